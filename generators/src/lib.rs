@@ -1,0 +1,1 @@
+//! The published shapegen generators: spaceship, three-branch tree and city.

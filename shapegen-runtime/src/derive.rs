@@ -1,0 +1,309 @@
+//! Derivation: walking a genome from its root and running each node's rule, which emits
+//! mesh instances and hands scopes to the node's children.
+//!
+//! The `generator!` macro implements [`Grammar`] for each grammar: one rule function per
+//! node type and a `match` over node kinds that calls them. Rules see their scope as a
+//! [`Shape`], their parameters as plain values and their children as [`Child`] (single
+//! slots) or [`Slots`] (array slots).
+
+use std::cell::RefCell;
+use std::marker::PhantomData;
+use std::ops::Deref;
+
+use glam::Vec3;
+
+use crate::geometry::{Instance, MeshId, Scope};
+use crate::graph::{GeneratorGraph, HEADER_WORDS};
+use crate::param::ParamValue;
+
+/// A procedural generator: its static graph and its derivation rules.
+///
+/// Implemented by the `generator!` macro; there is no need to implement it by hand.
+pub trait Grammar: Sized + Send + Sync + 'static {
+    /// The grammar's generator graph.
+    const GRAPH: &'static GeneratorGraph;
+
+    /// Runs the rule of `gene`'s node type in `shape`.
+    #[doc(hidden)]
+    fn derive_gene<'a>(shape: Shape<'a, Self>, gene: GeneView<'a>);
+}
+
+/// The parameters of one node type, as the `generator!` macro declares them: a
+/// `#[repr(C)]` struct of the node's parameters, named after the node.
+pub trait NodeParams: Copy + 'static {
+    /// The node type's kind: its index in the grammar's [`GeneratorGraph::nodes`].
+    const KIND: u32;
+    /// Number of child links in a gene of this node type.
+    const LINKS: u32;
+    /// Number of 32-bit words the parameters take.
+    const WORDS: u32;
+    /// Reads the parameters from a gene's parameter words.
+    fn read(params: &[u32]) -> Self;
+    /// Writes the parameters into a gene's parameter words.
+    fn write(&self, params: &mut [u32]);
+}
+
+/// Reads a parameter of type `T` at word `offset` of a gene's parameter words.
+#[doc(hidden)]
+#[inline]
+pub fn read_param<T: ParamValue>(params: &[u32], offset: usize) -> T {
+    T::read(&params[offset..offset + T::WORDS])
+}
+
+/// Writes a parameter of type `T` at word `offset` of a gene's parameter words.
+#[doc(hidden)]
+#[inline]
+pub fn write_param<T: ParamValue>(params: &mut [u32], offset: usize, value: T) {
+    value.write(&mut params[offset..offset + T::WORDS]);
+}
+
+/// A read-only view of one gene inside a genome's words.
+#[derive(Clone, Copy, Debug)]
+pub struct GeneView<'a> {
+    words: &'a [u32],
+    pos: u32,
+}
+
+impl<'a> GeneView<'a> {
+    /// The gene starting at word `pos` of `words`.
+    #[inline]
+    pub(crate) fn new(words: &'a [u32], pos: u32) -> Self {
+        GeneView { words, pos }
+    }
+
+    /// Word position of the gene in its genome.
+    #[inline]
+    pub fn pos(&self) -> u32 {
+        self.pos
+    }
+
+    /// Node kind of the gene.
+    #[inline]
+    pub fn kind(&self) -> u32 {
+        self.words[self.pos as usize]
+    }
+
+    /// Word position of the parent gene, or `None` for the root.
+    #[inline]
+    pub fn parent(&self) -> Option<u32> {
+        let off = self.words[self.pos as usize + 1] as i32;
+        (off != 0).then(|| self.pos.wrapping_add_signed(off))
+    }
+
+    /// Word position of the child on link `link`, or `None` when that child is absent.
+    #[inline]
+    pub fn link(&self, link: u32) -> Option<u32> {
+        let off = self.words[(self.pos + HEADER_WORDS + link) as usize] as i32;
+        (off != 0).then(|| self.pos.wrapping_add_signed(off))
+    }
+
+    /// The gene's parameter words, given how many links its node type has.
+    #[inline]
+    pub fn params(&self, links: u32) -> &'a [u32] {
+        &self.words[(self.pos + HEADER_WORDS + links) as usize..]
+    }
+
+    /// The child on link `link`, with its parameters read as `P`.
+    #[inline]
+    pub fn child<P: NodeParams>(&self, link: u32) -> Option<Child<'a, P>> {
+        self.link(link).map(|pos| {
+            let gene = GeneView::new(self.words, pos);
+            Child {
+                gene,
+                params: P::read(gene.params(P::LINKS)),
+            }
+        })
+    }
+}
+
+/// A present child of the node being derived: its parameters (reachable by `Deref`, so
+/// `child.size` reads the child's `size`) and the gene to derive it from with
+/// [`Shape::derive`].
+#[derive(Clone, Copy, Debug)]
+pub struct Child<'a, P> {
+    gene: GeneView<'a>,
+    params: P,
+}
+
+impl<P> Child<'_, P> {
+    /// The child's parameters.
+    #[inline]
+    pub fn params(&self) -> &P {
+        &self.params
+    }
+}
+
+impl<P> Deref for Child<'_, P> {
+    type Target = P;
+    #[inline]
+    fn deref(&self) -> &P {
+        &self.params
+    }
+}
+
+/// An array slot `[Node; N]` of the node being derived: `N` links, each holding a child
+/// or not.
+#[derive(Clone, Copy, Debug)]
+pub struct Slots<'a, P, const N: usize> {
+    gene: GeneView<'a>,
+    first_link: u32,
+    _p: PhantomData<fn() -> P>,
+}
+
+impl<'a, P: NodeParams, const N: usize> Slots<'a, P, N> {
+    #[doc(hidden)]
+    #[inline]
+    pub fn new(gene: GeneView<'a>, first_link: u32) -> Self {
+        Slots {
+            gene,
+            first_link,
+            _p: PhantomData,
+        }
+    }
+
+    /// The child in slot `index`, if `index < N` and that child is present.
+    #[inline]
+    pub fn get(&self, index: usize) -> Option<Child<'a, P>> {
+        (index < N).then(|| self.gene.child(self.first_link + index as u32))?
+    }
+
+    /// The present children with their slot indices, in slot order.
+    pub fn iter(&self) -> impl Iterator<Item = (usize, Child<'a, P>)> + 'a {
+        let this = *self;
+        (0..N).filter_map(move |i| this.get(i).map(|c| (i, c)))
+    }
+
+    /// Number of slots, present or not: `N`.
+    #[inline]
+    pub const fn len(&self) -> usize {
+        N
+    }
+
+    /// Whether the array has no slots at all (`N == 0`).
+    #[inline]
+    pub const fn is_empty(&self) -> bool {
+        N == 0
+    }
+}
+
+/// The state shared by all rules during one derivation: the genome's words and the
+/// output instances.
+#[derive(Debug)]
+pub struct Derivation {
+    out: RefCell<Vec<Instance>>,
+}
+
+impl Derivation {
+    /// Derives the genome held in `words` (root at word 0) into `out`, replacing its
+    /// contents and reusing its allocation.
+    pub(crate) fn run<G: Grammar>(words: &[u32], out: &mut Vec<Instance>) {
+        out.clear();
+        let ctx = Derivation {
+            out: RefCell::new(std::mem::take(out)),
+        };
+        let shape = Shape {
+            scope: Scope::UNIT,
+            ctx: &ctx,
+            _g: PhantomData,
+        };
+        G::derive_gene(shape, GeneView::new(words, 0));
+        *out = ctx.out.into_inner();
+    }
+}
+
+/// The scope a rule works in, tied to the derivation it belongs to: [`Scope`]'s
+/// operations plus [`emit`](Self::emit) and [`derive`](Self::derive).
+#[derive(Debug)]
+pub struct Shape<'a, G> {
+    scope: Scope,
+    ctx: &'a Derivation,
+    _g: PhantomData<fn() -> G>,
+}
+
+impl<G> Clone for Shape<'_, G> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<G> Copy for Shape<'_, G> {}
+
+/// Forwards scope operations that return a new scope to [`Shape`].
+macro_rules! forward_scope_ops {
+    ($($(#[$doc:meta])* fn $name:ident($($arg:ident: $ty:ty),*);)*) => {
+        $(
+            $(#[$doc])*
+            #[inline]
+            pub fn $name(self, $($arg: $ty),*) -> Self {
+                self.with_scope(self.scope.$name($($arg),*))
+            }
+        )*
+    };
+}
+
+impl<'a, G: Grammar> Shape<'a, G> {
+    /// The plain scope.
+    #[inline]
+    pub fn scope(&self) -> Scope {
+        self.scope
+    }
+
+    /// The same derivation with another scope.
+    #[inline]
+    pub fn with_scope(self, scope: Scope) -> Self {
+        Shape { scope, ..self }
+    }
+
+    /// The box's size along its local axes.
+    #[inline]
+    pub fn size(&self) -> Vec3 {
+        self.scope.size()
+    }
+
+    forward_scope_ops! {
+        /// Moves the box along its own axes; see [`Scope::translate`].
+        fn translate(v: Vec3);
+        /// Rotates the box about its own `axis`; see [`Scope::rotate`].
+        fn rotate(axis: Vec3, angle: f32);
+        /// Rotates the box about its own x axis; see [`Scope::rotate_x`].
+        fn rotate_x(angle: f32);
+        /// Rotates the box about its own y axis; see [`Scope::rotate_y`].
+        fn rotate_y(angle: f32);
+        /// Rotates the box about its own z axis; see [`Scope::rotate_z`].
+        fn rotate_z(angle: f32);
+        /// Multiplies the size component-wise; see [`Scope::resize`].
+        fn resize(factor: Vec3);
+        /// Sets the size; see [`Scope::with_size`].
+        fn with_size(size: Vec3);
+    }
+
+    /// Emits `mesh` scaled to fill the box.
+    #[inline]
+    pub fn emit(&self, mesh: MeshId) {
+        self.push(Instance {
+            transform: self.scope.transform(),
+            mesh,
+        });
+    }
+
+    /// Emits `mesh` at the box's frame without scaling it to the box's size.
+    #[inline]
+    pub fn emit_unscaled(&self, mesh: MeshId) {
+        self.push(Instance {
+            transform: self.scope.frame(),
+            mesh,
+        });
+    }
+
+    #[inline]
+    fn push(&self, instance: Instance) {
+        self.ctx.out.borrow_mut().push(instance);
+    }
+
+    /// Runs `child`'s rule in this scope. A child may be derived more than once, in
+    /// different scopes (a mirrored pair of wings from one gene, say).
+    #[inline]
+    pub fn derive<P>(self, child: Child<'a, P>) {
+        G::derive_gene(self, child.gene);
+    }
+}

@@ -1,0 +1,174 @@
+//! The packed genome: a derivation tree stored as genes back to back in one flat buffer
+//! of 32-bit words.
+//!
+//! A gene holds, in order: its node kind; the relative offset (in words) to its parent
+//! gene, 0 for the root; one relative offset per child link of its node type, 0 when the
+//! child is absent; then its parameter words. Offsets are relative, so a gene's links stay
+//! right wherever its subtree is copied as a block.
+//!
+//! Invariants, all checked by [`Genome::validate`]:
+//! - the root is at word 0 and is of the grammar's axiom kind;
+//! - every other gene lies after its parent, and its parent links to it on exactly one
+//!   link, whose slot's node type is the gene's kind;
+//! - genes tile the buffer exactly, each of its node type's size;
+//! - parameters lie within their distributions;
+//! - the tree's depth is at most [`DEPTH_CAP`].
+
+use std::marker::PhantomData;
+
+use rand::Rng;
+
+use crate::derive::{Derivation, GeneView, Grammar};
+use crate::geometry::Instance;
+use crate::graph::{GeneratorGraph, HEADER_WORDS, NodeDesc};
+use crate::param;
+
+/// The deepest tree any genome may hold: bounds the recursion of derivation.
+pub const DEPTH_CAP: u32 = 1024;
+
+/// A derivation tree of grammar `G`, packed.
+pub struct Genome<G> {
+    words: Vec<u32>,
+    len: u32,
+    _g: PhantomData<fn() -> G>,
+}
+
+impl<G> Clone for Genome<G> {
+    fn clone(&self) -> Self {
+        Genome {
+            words: self.words.clone(),
+            len: self.len,
+            _g: PhantomData,
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.words.clone_from(&source.words);
+        self.len = source.len;
+    }
+}
+
+impl<G> PartialEq for Genome<G> {
+    fn eq(&self, other: &Self) -> bool {
+        self.words == other.words
+    }
+}
+
+impl<G> Eq for Genome<G> {}
+
+impl<G: Grammar> Genome<G> {
+    /// The grammar's graph.
+    #[inline]
+    pub fn graph() -> &'static GeneratorGraph {
+        G::GRAPH
+    }
+
+    /// A genome holding only the axiom, its parameters drawn from `rng`.
+    pub fn axiom(rng: &mut impl Rng) -> Self {
+        let mut genome = Genome {
+            words: Vec::new(),
+            len: 0,
+            _g: PhantomData,
+        };
+        genome.push_gene(G::GRAPH.axiom, None, rng);
+        genome
+    }
+
+    /// Builds a genome from raw words and gene count without checking them.
+    pub(crate) fn from_parts(words: Vec<u32>, len: u32) -> Self {
+        Genome {
+            words,
+            len,
+            _g: PhantomData,
+        }
+    }
+
+    /// Number of genes: nodes of the derivation tree.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.len as usize
+    }
+
+    /// Always `false`: a genome holds at least its axiom.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The packed words.
+    #[inline]
+    pub fn words(&self) -> &[u32] {
+        &self.words
+    }
+
+    /// The root gene.
+    #[inline]
+    pub fn root(&self) -> GeneView<'_> {
+        GeneView::new(&self.words, 0)
+    }
+
+    /// The gene at word position `pos`. `pos` must be the start of a gene.
+    #[inline]
+    pub fn gene(&self, pos: u32) -> GeneView<'_> {
+        GeneView::new(&self.words, pos)
+    }
+
+    /// Every gene, in buffer order (every parent before its children).
+    pub fn genes(&self) -> impl Iterator<Item = GeneView<'_>> + '_ {
+        let words = &self.words[..];
+        let mut pos = 0u32;
+        std::iter::from_fn(move || {
+            if pos as usize >= words.len() {
+                return None;
+            }
+            let gene = GeneView::new(words, pos);
+            pos += node_of::<G>(gene.kind()).gene_words();
+            Some(gene)
+        })
+    }
+
+    /// The node type of a gene of this genome.
+    #[inline]
+    pub fn node(&self, gene: GeneView<'_>) -> &'static NodeDesc {
+        node_of::<G>(gene.kind())
+    }
+
+    /// Derives the model: runs the rules from the root in the axiom's unit scope and
+    /// writes the emitted mesh instances into `out`, replacing what it held and reusing
+    /// its allocation.
+    pub fn derive_into(&self, out: &mut Vec<Instance>) {
+        Derivation::run::<G>(&self.words, out);
+    }
+
+    /// Appends a gene of kind `kind` with parameters drawn from `rng`, linked from
+    /// `parent` on link `link` when given; returns its word position. O(1).
+    pub(crate) fn push_gene(
+        &mut self,
+        kind: u32,
+        parent: Option<(u32, u32)>,
+        rng: &mut impl Rng,
+    ) -> u32 {
+        let node = node_of::<G>(kind);
+        let pos = self.words.len() as u32;
+        self.words
+            .resize(self.words.len() + node.gene_words() as usize, 0);
+        self.words[pos as usize] = kind;
+        if let Some((parent, link)) = parent {
+            self.words[pos as usize + 1] = (parent as i32 - pos as i32) as u32;
+            self.words[(parent + HEADER_WORDS + link) as usize] = pos - parent;
+        }
+        let params_at = (pos + HEADER_WORDS + node.links) as usize;
+        for p in node.params {
+            let at = params_at + p.offset as usize;
+            param::sample(&p.dist, rng, &mut self.words[at..]);
+        }
+        self.len += 1;
+        pos
+    }
+}
+
+/// The node type of kind `kind` in `G`'s graph.
+#[inline]
+pub(crate) fn node_of<G: Grammar>(kind: u32) -> &'static NodeDesc {
+    G::GRAPH.node_unchecked(kind)
+}

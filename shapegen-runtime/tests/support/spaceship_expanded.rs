@@ -1,0 +1,391 @@
+//! The spaceship grammar written out by hand exactly as `generator!` expands it: the
+//! contract between the macro and the runtime, and a test grammar for the runtime.
+//!
+//! The grammar it spells out:
+//!
+//! ```text
+//! generator! {
+//!     pub Spaceship {
+//!         axiom Start;
+//!         node Start {
+//!             children { body: Body = 1.0 }
+//!             derive(s) { if let Some(body) = body { s.resize(body.size).derive(body); } }
+//!         }
+//!         node Body {
+//!             params { size: Vec3 ~ uniform([0.6; 3], [1.5; 3]) }
+//!             children { next: Body = 1.0 / 3.0, wing: Wing = 1.0 / 3.0, top: Top = 1.0 / 3.0 }
+//!             derive(s) { ... }
+//!         }
+//!         node Top { params { size: Vec3 ~ uniform([0.3, 0.1, 0.3], [0.8, 0.2, 0.8]) }
+//!                    children { next: TopNext = 1.0 } derive(s) { ... } }
+//!         node TopNext { params { size: Vec3 ~ uniform([0.6, 0.8, 0.6], [1.1, 1.1, 1.1]) }
+//!                        children { next: TopNext = 1.0 } derive(s) { ... } }
+//!         node Wing { params { size: Vec3 ~ uniform([0.3, 0.2, 0.2], [1.2, 0.5, 1.0]),
+//!                              shift: f32 ~ uniform(-0.5, 0.5) }
+//!                     children { next: WingNext = 1.0 } derive(s) { ... } }
+//!         node WingNext { params { size: Vec3 ~ uniform([0.6, 0.9, 0.7], [1.2, 1.0, 1.2]),
+//!                                  shift: f32 ~ uniform(-0.5, 0.5) }
+//!                         children { next: WingNext = 0.9 } derive(s) { ... } }
+//!     }
+//! }
+//! ```
+#![allow(dead_code)]
+
+use shapegen_runtime as __rt;
+
+/// Generator `Spaceship`.
+pub struct Spaceship;
+
+/// Parameters of node `Start` of generator `Spaceship`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Start {}
+
+/// Parameters of node `Body` of generator `Spaceship`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Body {
+    /// Parameter `size`.
+    pub size: __rt::__private::Vec3,
+}
+
+/// Parameters of node `Top` of generator `Spaceship`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Top {
+    /// Parameter `size`.
+    pub size: __rt::__private::Vec3,
+}
+
+/// Parameters of node `TopNext` of generator `Spaceship`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TopNext {
+    /// Parameter `size`.
+    pub size: __rt::__private::Vec3,
+}
+
+/// Parameters of node `Wing` of generator `Spaceship`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Wing {
+    /// Parameter `size`.
+    pub size: __rt::__private::Vec3,
+    /// Parameter `shift`.
+    pub shift: f32,
+}
+
+/// Parameters of node `WingNext` of generator `Spaceship`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WingNext {
+    /// Parameter `size`.
+    pub size: __rt::__private::Vec3,
+    /// Parameter `shift`.
+    pub shift: f32,
+}
+
+const _: () = {
+    use __rt::__private as __p;
+
+    // Layout checks: each parameter struct is exactly its words, no padding.
+    const _: () = assert!(::core::mem::size_of::<Start>() == 4 * 0);
+    const _: () = assert!(::core::mem::size_of::<Body>() == 4 * 3);
+    const _: () = assert!(::core::mem::size_of::<Top>() == 4 * 3);
+    const _: () = assert!(::core::mem::size_of::<TopNext>() == 4 * 3);
+    const _: () = assert!(::core::mem::size_of::<Wing>() == 4 * 4);
+    const _: () = assert!(::core::mem::size_of::<WingNext>() == 4 * 4);
+    // Gene sizes: 2 header words + links + parameter words.
+    const _: () = assert!(GRAPH.nodes[0].gene_words() == 2 + 1 + 0);
+    const _: () = assert!(GRAPH.nodes[1].gene_words() == 2 + 3 + 3);
+
+    impl __p::NodeParams for Start {
+        const KIND: u32 = 0;
+        const LINKS: u32 = 1;
+        const WORDS: u32 = 0;
+        #[inline]
+        fn read(_params: &[u32]) -> Self {
+            Start {
+            }
+        }
+        #[inline]
+        fn write(&self, _params: &mut [u32]) {
+        }
+    }
+    impl __p::NodeParams for Body {
+        const KIND: u32 = 1;
+        const LINKS: u32 = 3;
+        const WORDS: u32 = 3;
+        #[inline]
+        fn read(params: &[u32]) -> Self {
+            Body {
+                size: __p::read_param(params, 0),
+            }
+        }
+        #[inline]
+        fn write(&self, params: &mut [u32]) {
+            __p::write_param(params, 0, self.size);
+        }
+    }
+    impl __p::NodeParams for Top {
+        const KIND: u32 = 2;
+        const LINKS: u32 = 1;
+        const WORDS: u32 = 3;
+        #[inline]
+        fn read(params: &[u32]) -> Self {
+            Top {
+                size: __p::read_param(params, 0),
+            }
+        }
+        #[inline]
+        fn write(&self, params: &mut [u32]) {
+            __p::write_param(params, 0, self.size);
+        }
+    }
+    impl __p::NodeParams for TopNext {
+        const KIND: u32 = 3;
+        const LINKS: u32 = 1;
+        const WORDS: u32 = 3;
+        #[inline]
+        fn read(params: &[u32]) -> Self {
+            TopNext {
+                size: __p::read_param(params, 0),
+            }
+        }
+        #[inline]
+        fn write(&self, params: &mut [u32]) {
+            __p::write_param(params, 0, self.size);
+        }
+    }
+    impl __p::NodeParams for Wing {
+        const KIND: u32 = 4;
+        const LINKS: u32 = 1;
+        const WORDS: u32 = 4;
+        #[inline]
+        fn read(params: &[u32]) -> Self {
+            Wing {
+                size: __p::read_param(params, 0),
+                shift: __p::read_param(params, 3),
+            }
+        }
+        #[inline]
+        fn write(&self, params: &mut [u32]) {
+            __p::write_param(params, 0, self.size);
+            __p::write_param(params, 3, self.shift);
+        }
+    }
+    impl __p::NodeParams for WingNext {
+        const KIND: u32 = 5;
+        const LINKS: u32 = 1;
+        const WORDS: u32 = 4;
+        #[inline]
+        fn read(params: &[u32]) -> Self {
+            WingNext {
+                size: __p::read_param(params, 0),
+                shift: __p::read_param(params, 3),
+            }
+        }
+        #[inline]
+        fn write(&self, params: &mut [u32]) {
+            __p::write_param(params, 0, self.size);
+            __p::write_param(params, 3, self.shift);
+        }
+    }
+
+    const GRAPH: __p::GeneratorGraph = __p::GeneratorGraph {
+        name: "Spaceship",
+        axiom: 0,
+        meshes: &["cube"],
+        nodes: &[
+            __p::NodeDesc {
+                name: "Start",
+                params: &[],
+                slots: &[__p::SlotDesc { name: "body", child: 1, probability: 1.0, count: 1, first_link: 0 }],
+                links: 1,
+                param_words: 0,
+            },
+            __p::NodeDesc {
+                name: "Body",
+                params: &[__p::ParamDesc {
+                    name: "size",
+                    offset: 0,
+                    dist: __p::Distribution::UniformVec3 { lo: [0.6, 0.6, 0.6], hi: [1.5, 1.5, 1.5] },
+                }],
+                slots: &[
+                    __p::SlotDesc { name: "next", child: 1, probability: 1.0 / 3.0, count: 1, first_link: 0 },
+                    __p::SlotDesc { name: "wing", child: 4, probability: 1.0 / 3.0, count: 1, first_link: 1 },
+                    __p::SlotDesc { name: "top", child: 2, probability: 1.0 / 3.0, count: 1, first_link: 2 },
+                ],
+                links: 3,
+                param_words: 3,
+            },
+            __p::NodeDesc {
+                name: "Top",
+                params: &[__p::ParamDesc {
+                    name: "size",
+                    offset: 0,
+                    dist: __p::Distribution::UniformVec3 { lo: [0.3, 0.1, 0.3], hi: [0.8, 0.2, 0.8] },
+                }],
+                slots: &[__p::SlotDesc { name: "next", child: 3, probability: 1.0, count: 1, first_link: 0 }],
+                links: 1,
+                param_words: 3,
+            },
+            __p::NodeDesc {
+                name: "TopNext",
+                params: &[__p::ParamDesc {
+                    name: "size",
+                    offset: 0,
+                    dist: __p::Distribution::UniformVec3 { lo: [0.6, 0.8, 0.6], hi: [1.1, 1.1, 1.1] },
+                }],
+                slots: &[__p::SlotDesc { name: "next", child: 3, probability: 1.0, count: 1, first_link: 0 }],
+                links: 1,
+                param_words: 3,
+            },
+            __p::NodeDesc {
+                name: "Wing",
+                params: &[
+                    __p::ParamDesc {
+                        name: "size",
+                        offset: 0,
+                        dist: __p::Distribution::UniformVec3 { lo: [0.3, 0.2, 0.2], hi: [1.2, 0.5, 1.0] },
+                    },
+                    __p::ParamDesc { name: "shift", offset: 3, dist: __p::Distribution::Uniform { lo: -0.5, hi: 0.5 } },
+                ],
+                slots: &[__p::SlotDesc { name: "next", child: 5, probability: 1.0, count: 1, first_link: 0 }],
+                links: 1,
+                param_words: 4,
+            },
+            __p::NodeDesc {
+                name: "WingNext",
+                params: &[
+                    __p::ParamDesc {
+                        name: "size",
+                        offset: 0,
+                        dist: __p::Distribution::UniformVec3 { lo: [0.6, 0.9, 0.7], hi: [1.2, 1.0, 1.2] },
+                    },
+                    __p::ParamDesc { name: "shift", offset: 3, dist: __p::Distribution::Uniform { lo: -0.5, hi: 0.5 } },
+                ],
+                slots: &[__p::SlotDesc { name: "next", child: 5, probability: 0.9, count: 1, first_link: 0 }],
+                links: 1,
+                param_words: 4,
+            },
+        ],
+    };
+
+    impl __p::Grammar for Spaceship {
+        const GRAPH: &'static __p::GeneratorGraph = &GRAPH;
+
+        #[inline]
+        fn derive_gene<'a>(shape: __p::Shape<'a, Self>, gene: __p::GeneView<'a>) {
+            match gene.kind() {
+                0 => Spaceship::__rule_start(shape, gene),
+                1 => Spaceship::__rule_body(shape, gene),
+                2 => Spaceship::__rule_top(shape, gene),
+                3 => Spaceship::__rule_top_next(shape, gene),
+                4 => Spaceship::__rule_wing(shape, gene),
+                5 => Spaceship::__rule_wing_next(shape, gene),
+                _ => {}
+            }
+        }
+    }
+};
+
+// The rules live outside `const _` so that the user's imports apply to their bodies.
+// `s` is the identifier the user chose in `derive(s)`; parameters and children are bound
+// under their own names.
+impl Spaceship {
+    #[allow(unused_variables)]
+    #[inline]
+    fn __rule_start<'a>(s: __rt::__private::Shape<'a, Self>, gene: __rt::__private::GeneView<'a>) {
+        let body: Option<__rt::__private::Child<'a, Body>> = gene.child(0);
+        {
+            if let Some(body) = body {
+                s.resize(body.size).derive(body);
+            }
+        }
+    }
+
+    #[allow(unused_variables)]
+    #[inline]
+    fn __rule_body<'a>(s: __rt::__private::Shape<'a, Self>, gene: __rt::__private::GeneView<'a>) {
+        let Body { size } = <Body as __rt::__private::NodeParams>::read(gene.params(3));
+        let next: Option<__rt::__private::Child<'a, Body>> = gene.child(0);
+        let wing: Option<__rt::__private::Child<'a, Wing>> = gene.child(1);
+        let top: Option<__rt::__private::Child<'a, Top>> = gene.child(2);
+        {
+            use glam::vec3;
+            let s = s.translate(vec3(0.0, 0.0, s.size().z / 2.0));
+            s.emit(__rt::CUBE);
+            if let Some(next) = next {
+                s.translate(vec3(0.0, 0.0, s.size().z / 2.0)).resize(next.size).derive(next);
+            }
+            if let Some(top) = top {
+                s.translate(vec3(0.0, s.size().y / 2.0, 0.0)).derive(top);
+            }
+            if let Some(wing) = wing {
+                s.translate(vec3(s.size().x / 2.0, 0.0, 0.0)).derive(wing);
+                s.rotate_z(std::f32::consts::PI)
+                    .translate(vec3(s.size().x / 2.0, 0.0, 0.0))
+                    .derive(wing);
+            }
+        }
+    }
+
+    #[allow(unused_variables)]
+    #[inline]
+    fn __rule_top<'a>(s: __rt::__private::Shape<'a, Self>, gene: __rt::__private::GeneView<'a>) {
+        let Top { size } = <Top as __rt::__private::NodeParams>::read(gene.params(1));
+        let next: Option<__rt::__private::Child<'a, TopNext>> = gene.child(0);
+        {
+            if let Some(next) = next {
+                s.resize(size).derive(next);
+            }
+        }
+    }
+
+    #[allow(unused_variables)]
+    #[inline]
+    fn __rule_top_next<'a>(s: __rt::__private::Shape<'a, Self>, gene: __rt::__private::GeneView<'a>) {
+        let TopNext { size } = <TopNext as __rt::__private::NodeParams>::read(gene.params(1));
+        let next: Option<__rt::__private::Child<'a, TopNext>> = gene.child(0);
+        {
+            use glam::vec3;
+            let s = s.translate(vec3(0.0, s.size().y / 2.0, 0.0));
+            s.emit(__rt::CUBE);
+            if let Some(next) = next {
+                s.translate(vec3(0.0, s.size().y / 2.0, 0.0)).resize(next.size).derive(next);
+            }
+        }
+    }
+
+    #[allow(unused_variables)]
+    #[inline]
+    fn __rule_wing<'a>(s: __rt::__private::Shape<'a, Self>, gene: __rt::__private::GeneView<'a>) {
+        let Wing { size, shift } = <Wing as __rt::__private::NodeParams>::read(gene.params(1));
+        let next: Option<__rt::__private::Child<'a, WingNext>> = gene.child(0);
+        {
+            use glam::vec3;
+            let s = s.resize(size);
+            let s = s.translate(vec3(0.0, 0.0, s.size().z * shift));
+            if let Some(next) = next {
+                s.derive(next);
+            }
+        }
+    }
+
+    #[allow(unused_variables)]
+    #[inline]
+    fn __rule_wing_next<'a>(s: __rt::__private::Shape<'a, Self>, gene: __rt::__private::GeneView<'a>) {
+        let WingNext { size, shift } = <WingNext as __rt::__private::NodeParams>::read(gene.params(1));
+        let next: Option<__rt::__private::Child<'a, WingNext>> = gene.child(0);
+        {
+            use glam::vec3;
+            let s = s.translate(vec3(s.size().x / 2.0, 0.0, 0.0));
+            s.emit(__rt::CUBE);
+            if let Some(next) = next {
+                let c = s.translate(vec3(s.size().x / 2.0, 0.0, 0.0)).resize(next.size);
+                c.translate(vec3(0.0, 0.0, c.size().z * next.shift)).derive(next);
+            }
+        }
+    }
+}

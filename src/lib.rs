@@ -1,0 +1,2 @@
+//! shapegen: controlled procedural modeling.
+pub use shapegen_runtime::*;
