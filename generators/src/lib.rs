@@ -1,1 +1,95 @@
-//! The published shapegen generators: spaceship, three-branch tree and city.
+//! The published shapegen generators: the spaceship, the three-branch tree and the city
+//! of the ShapeGenetics paper, with the exact geometry, ranges and probabilities of the
+//! original implementation, so that the paper's targets and cameras line up with them.
+//!
+//! [`Published`] names them at run time (for command-line tools) and hands the chosen
+//! one, as a type, to a [`GeneratorVisitor`].
+
+pub mod city;
+pub mod spaceship;
+pub mod tree;
+
+use std::fmt;
+use std::str::FromStr;
+
+use shapegen_runtime::Grammar;
+use shapegen_runtime::genome::Limits;
+
+pub use city::City;
+pub use spaceship::Spaceship;
+pub use tree::Tree;
+
+/// Code that works on any grammar, run by [`Published::visit`] with the grammar chosen at
+/// run time.
+pub trait GeneratorVisitor {
+    /// What the visit returns.
+    type Output;
+    /// Runs with grammar `G`, whose published genome limits are `limits`.
+    fn visit<G: Grammar>(self, limits: Limits) -> Self::Output;
+}
+
+/// One of the published generators.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Published {
+    /// [`Spaceship`].
+    Spaceship,
+    /// [`Tree`].
+    Tree,
+    /// [`City`].
+    City,
+}
+
+impl Published {
+    /// All published generators.
+    pub const ALL: [Published; 3] = [Published::Spaceship, Published::Tree, Published::City];
+
+    /// The generator's name on the command line and in files: `spaceship`, `tree`, `city`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Published::Spaceship => "spaceship",
+            Published::Tree => "tree",
+            Published::City => "city",
+        }
+    }
+
+    /// The genome limits of the generator's paper scene.
+    pub const fn paper_limits(self) -> Limits {
+        match self {
+            Published::Spaceship => spaceship::PAPER_LIMITS,
+            Published::Tree => tree::PAPER_LIMITS,
+            Published::City => city::PAPER_LIMITS,
+        }
+    }
+
+    /// Runs `visitor` with this generator's grammar type.
+    pub fn visit<V: GeneratorVisitor>(self, visitor: V) -> V::Output {
+        let limits = self.paper_limits();
+        match self {
+            Published::Spaceship => visitor.visit::<Spaceship>(limits),
+            Published::Tree => visitor.visit::<Tree>(limits),
+            Published::City => visitor.visit::<City>(limits),
+        }
+    }
+}
+
+impl fmt::Display for Published {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// The name given is not that of a published generator.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("unknown generator `{0}`; the published generators are spaceship, tree and city")]
+pub struct UnknownGenerator(pub String);
+
+impl FromStr for Published {
+    type Err = UnknownGenerator;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Published::ALL
+            .into_iter()
+            .find(|g| g.name().eq_ignore_ascii_case(s))
+            .ok_or_else(|| UnknownGenerator(s.to_owned()))
+    }
+}

@@ -1,0 +1,26 @@
+//! Genomes of exact sizes for the benchmarks.
+
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use shapegen::genome::Limits;
+use shapegen::ops::Operators;
+use shapegen::{Genome, Grammar};
+
+/// Limits that let a genome of `genes` genes exist, with the paper scene's depth.
+pub fn limits_for(genes: usize, paper: Limits) -> Limits {
+    Limits {
+        min_len: 1,
+        max_len: genes.max(paper.max_len as usize) as u32,
+        max_depth: paper.max_depth,
+    }
+}
+
+/// A genome of `genes` genes, or as many as the grammar allows, grown by the grammar's
+/// probabilities from `seed`.
+pub fn genome_of<G: Grammar>(genes: usize, limits: Limits, seed: u64) -> Genome<G> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut ops = Operators::<G>::new(limits);
+    let mut genome = Genome::<G>::axiom(&mut rng);
+    while genome.len() < genes && ops.grow(&mut genome, &mut rng) {}
+    genome
+}

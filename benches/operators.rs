@@ -1,0 +1,66 @@
+//! Cost of the genetic operators and of random-genome creation, single-threaded.
+//!
+//! Each measured call works on a fresh clone of the same genome, so every iteration does
+//! the same work; the clone's cost is measured separately (`clone`) for reference.
+
+mod common;
+
+use criterion::{BatchSize, BenchmarkId, Criterion, criterion_group, criterion_main};
+use generators::{GeneratorVisitor, Published};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use shapegen::Grammar;
+use shapegen::genome::Limits;
+use shapegen::ops::Operators;
+
+struct OperatorBench<'a> {
+    c: &'a mut Criterion,
+}
+
+impl GeneratorVisitor for OperatorBench<'_> {
+    type Output = ();
+
+    fn visit<G: Grammar>(self, paper: Limits) {
+        let mut group = self.c.benchmark_group(format!("operators/{}", G::GRAPH.name));
+        for genes in [100, 1000] {
+            let limits = common::limits_for(genes, paper);
+            let a = common::genome_of::<G>(genes, limits, 1);
+            let b = common::genome_of::<G>(genes, limits, 2);
+            let genes = a.len();
+            let mut ops = Operators::<G>::new(Limits {
+                min_len: 1,
+                max_len: limits.max_len + 1,
+                ..limits
+            });
+            let mut rng = ChaCha8Rng::seed_from_u64(3);
+            let id = |name: &str| BenchmarkId::new(name, genes);
+
+            group.bench_function(id("clone"), |bench| bench.iter(|| a.clone()));
+            group.bench_function(id("grow"), |bench| {
+                bench.iter_batched_ref(|| a.clone(), |g| ops.grow(g, &mut rng), BatchSize::SmallInput)
+            });
+            group.bench_function(id("cut"), |bench| {
+                bench.iter_batched_ref(|| a.clone(), |g| ops.cut(g, &mut rng), BatchSize::SmallInput)
+            });
+            group.bench_function(id("alter"), |bench| {
+                bench.iter_batched_ref(|| a.clone(), |g| ops.alter(g, &mut rng), BatchSize::SmallInput)
+            });
+            group.bench_function(id("crossover"), |bench| {
+                bench.iter(|| ops.crossover(&a, &b, &mut rng))
+            });
+            group.bench_function(id("random"), |bench| {
+                bench.iter(|| ops.random(genes as u32, &mut rng))
+            });
+        }
+        group.finish();
+    }
+}
+
+fn operators(c: &mut Criterion) {
+    for generator in Published::ALL {
+        generator.visit(OperatorBench { c: &mut *c });
+    }
+}
+
+criterion_group!(benches, operators);
+criterion_main!(benches);

@@ -1,0 +1,111 @@
+//! The paper's spaceship generator (ShapeGenetics, Fig. 3): a chain of hull boxes with
+//! optional mirrored wing chains and stacked tops.
+
+use shapegen_runtime::generator;
+use shapegen_runtime::genome::Limits;
+use shapegen_runtime::prelude::*;
+
+generator! {
+    /// The spaceship of the paper's volume scene: a hull of boxes along +z, each of
+    /// which may carry a mirrored pair of wings and a tower of tops.
+    pub Spaceship {
+        axiom Start;
+
+        /// The axiom: a unit box at the origin, resized to the first hull box.
+        node Start {
+            children { body: Body = 1.0 }
+            derive(s) {
+                if let Some(body) = body {
+                    s.resize(body.size).derive(body);
+                }
+            }
+        }
+
+        /// A hull box; the next hull box continues along +z.
+        node Body {
+            params { size: Vec3 ~ uniform([0.6; 3], [1.5; 3]) }
+            children { next: Body = 1.0 / 3.0, wing: Wing = 1.0 / 3.0, top: Top = 1.0 / 3.0 }
+            derive(s) {
+                let s = s.translate(vec3(0.0, 0.0, s.size().z / 2.0));
+                s.emit(CUBE);
+                if let Some(next) = next {
+                    s.translate(vec3(0.0, 0.0, s.size().z / 2.0)).resize(next.size).derive(next);
+                }
+                if let Some(wing) = wing {
+                    // One gene, two wings: the left one is the right one turned about z.
+                    s.translate(vec3(s.size().x / 2.0, 0.0, 0.0)).derive(wing);
+                    s.rotate_z(std::f32::consts::PI)
+                        .translate(vec3(s.size().x / 2.0, 0.0, 0.0))
+                        .derive(wing);
+                }
+                if let Some(top) = top {
+                    s.translate(vec3(0.0, s.size().y / 2.0, 0.0)).derive(top);
+                }
+            }
+        }
+
+        /// The base of a tower on a hull box.
+        node Top {
+            params { size: Vec3 ~ uniform([0.3, 0.1, 0.3], [0.8, 0.2, 0.8]) }
+            children { next: TopNext = 1.0 }
+            derive(s) {
+                if let Some(next) = next {
+                    s.resize(size).derive(next);
+                }
+            }
+        }
+
+        /// A box of a tower, stacked along +y.
+        node TopNext {
+            params { size: Vec3 ~ uniform([0.6, 0.8, 0.6], [1.1, 1.1, 1.1]) }
+            children { next: TopNext = 1.0 }
+            derive(s) {
+                let s = s.translate(vec3(0.0, s.size().y / 2.0, 0.0));
+                s.emit(CUBE);
+                if let Some(next) = next {
+                    s.translate(vec3(0.0, s.size().y / 2.0, 0.0)).resize(next.size).derive(next);
+                }
+            }
+        }
+
+        /// The root of a wing, shifted along the hull by `shift` of its length.
+        node Wing {
+            params {
+                size: Vec3 ~ uniform([0.3, 0.2, 0.2], [1.2, 0.5, 1.0]),
+                shift: f32 ~ uniform(-0.5, 0.5),
+            }
+            children { next: WingNext = 1.0 }
+            derive(s) {
+                let s = s.resize(size);
+                let s = s.translate(vec3(0.0, 0.0, s.size().z * shift));
+                if let Some(next) = next {
+                    s.derive(next);
+                }
+            }
+        }
+
+        /// A box of a wing, continuing outwards along +x.
+        node WingNext {
+            params {
+                size: Vec3 ~ uniform([0.6, 0.9, 0.7], [1.2, 1.0, 1.2]),
+                shift: f32 ~ uniform(-0.5, 0.5),
+            }
+            children { next: WingNext = 0.9 }
+            derive(s) {
+                let s = s.translate(vec3(s.size().x / 2.0, 0.0, 0.0));
+                s.emit(CUBE);
+                if let Some(next) = next {
+                    let c = s.translate(vec3(s.size().x / 2.0, 0.0, 0.0)).resize(next.size);
+                    c.translate(vec3(0.0, 0.0, c.size().z * next.shift)).derive(next);
+                }
+            }
+        }
+    }
+}
+
+/// The genome limits of the paper's spaceship scene: length 4 to 100, depth 15.
+pub const PAPER_LIMITS: Limits = Limits {
+    min_len: 4,
+    max_len: 100,
+    max_depth: 15,
+};

@@ -1,0 +1,112 @@
+//! `shapegen sample`: random models of a published generator, from its own distribution.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+use clap::Args;
+use generators::{GeneratorVisitor, Published};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+use shapegen::export::{Palette, write_glb_file, write_obj_file};
+use shapegen::genome::{GenomeSet, Limits};
+use shapegen::ops::Operators;
+use shapegen::{Genome, Grammar};
+
+/// Arguments of `shapegen sample`.
+#[derive(Debug, Args)]
+pub struct SampleArgs {
+    /// The generator: spaceship, tree or city.
+    #[arg(long, short)]
+    generator: Published,
+    /// How many models to write.
+    #[arg(long, short = 'n', default_value_t = 10)]
+    count: u32,
+    /// Seed of the random streams; the same seed writes the same files.
+    #[arg(long, short, default_value_t = 1)]
+    seed: u64,
+    /// Folder to write into; created if missing.
+    #[arg(long, short)]
+    out: PathBuf,
+    /// Largest genome, in genes (default: the generator's paper scene).
+    #[arg(long, value_name = "GENES")]
+    max_len: Option<u32>,
+    /// Deepest derivation tree (default: the generator's paper scene).
+    #[arg(long, value_name = "LEVELS")]
+    max_depth: Option<u32>,
+}
+
+/// Runs `shapegen sample`.
+pub fn run(args: &SampleArgs) -> anyhow::Result<()> {
+    args.generator.visit(Sample { args })
+}
+
+struct Sample<'a> {
+    args: &'a SampleArgs,
+}
+
+impl GeneratorVisitor for Sample<'_> {
+    type Output = anyhow::Result<()>;
+
+    fn visit<G: Grammar>(self, paper: Limits) -> anyhow::Result<()> {
+        let args = self.args;
+        let limits = Limits {
+            min_len: 1,
+            max_len: args.max_len.unwrap_or(paper.max_len),
+            max_depth: args.max_depth.unwrap_or(paper.max_depth),
+        };
+        limits.check().context("bad --max-len or --max-depth")?;
+        let meshes = generators::default_meshes()
+            .bind(G::GRAPH)
+            .context("the generator's meshes")?;
+        fs::create_dir_all(&args.out)
+            .with_context(|| format!("could not create {}", args.out.display()))?;
+
+        let genomes: Vec<Genome<G>> = (0..args.count)
+            .into_par_iter()
+            .map_init(
+                || Operators::<G>::new(limits),
+                |ops, i| ops.sample(&mut model_rng(args.seed, i)),
+            )
+            .collect();
+
+        let width = digits(args.count);
+        let palette = Palette::default();
+        genomes
+            .par_iter()
+            .enumerate()
+            .try_for_each_init(Vec::new, |instances, (i, genome)| {
+                genome.derive_into(instances);
+                let stem = args.out.join(format!("model_{i:0width$}"));
+                write_obj_file(&stem.with_extension("obj"), instances, &meshes, &palette)?;
+                write_glb_file(&stem.with_extension("glb"), instances, &meshes, &palette)?;
+                anyhow::Ok(())
+            })?;
+
+        let path = args.out.join("genomes.json");
+        GenomeSet::new(genomes).save(&path)?;
+        report(&args.out, args.count, G::GRAPH.name);
+        Ok(())
+    }
+}
+
+/// The random stream of model `index`: one ChaCha stream per model, so the models do
+/// not depend on how work is spread over threads.
+fn model_rng(seed: u64, index: u32) -> ChaCha8Rng {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    rng.set_stream(u64::from(index));
+    rng
+}
+
+/// Number of decimal digits of the largest model index.
+fn digits(count: u32) -> usize {
+    count.saturating_sub(1).max(1).ilog10() as usize + 1
+}
+
+fn report(out: &Path, count: u32, name: &str) {
+    println!(
+        "wrote {count} {name} models (.obj, .glb) and genomes.json to {}",
+        out.display()
+    );
+}
