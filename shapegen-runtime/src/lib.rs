@@ -12,7 +12,7 @@ pub mod param;
 
 pub use derive::{Child, GeneView, Grammar, NodeParams, Shape, Slots};
 pub use genome::Genome;
-pub use geometry::{CUBE, Instance, MeshId, Scope};
+pub use geometry::{Axis, CUBE, Face, Instance, MeshId, Part, Scope};
 pub use graph::GeneratorGraph;
 
 /// The names most generator code needs: `use shapegen_runtime::prelude::*;`.
@@ -20,7 +20,7 @@ pub mod prelude {
     pub use crate::derive::{Child, Grammar, Shape, Slots};
     pub use crate::generator;
     pub use crate::genome::Genome;
-    pub use crate::geometry::{CUBE, Instance, MeshId, Scope};
+    pub use crate::geometry::{Axis, CUBE, Face, Instance, MeshId, Part, Scope};
     pub use glam::{Affine3A, Quat, Vec2, Vec3, vec2, vec3};
 }
 
@@ -37,8 +37,8 @@ macro_rules! generator {
 /// any release.
 #[doc(hidden)]
 pub mod __private {
-    pub use crate::derive::{GeneView, Grammar, NodeParams, Shape, Slots, read_param, write_param};
     pub use crate::derive::Child;
+    pub use crate::derive::{GeneView, Grammar, NodeParams, Shape, Slots, read_param, write_param};
     pub use crate::geometry::MeshId;
     pub use crate::graph::{
         AngleUnit, Distribution, GeneratorGraph, NodeDesc, ParamDesc, SlotDesc,
