@@ -164,7 +164,7 @@ impl Mesh {
                 name: name.to_owned(),
             });
         }
-        if self.indices.len() % 3 != 0 {
+        if !self.indices.len().is_multiple_of(3) {
             return Err(malformed(format!(
                 "{} indices do not make whole triangles",
                 self.indices.len()
