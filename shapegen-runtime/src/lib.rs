@@ -14,6 +14,7 @@ pub mod param;
 pub use derive::{Child, GeneView, Grammar, NodeParams, Shape, Slots};
 pub use genome::Genome;
 pub use geometry::{Axis, CUBE, Face, Instance, MeshId, Part, Scope};
+pub use geometry::{BoundMeshes, Mesh, MeshError, MeshLibrary};
 pub use graph::GeneratorGraph;
 
 /// The names most generator code needs: `use shapegen_runtime::prelude::*;`.
@@ -38,8 +39,8 @@ macro_rules! generator {
 /// any release.
 #[doc(hidden)]
 pub mod __private {
-    pub use crate::derive::Child;
     pub use crate::derive::{GeneView, Grammar, NodeParams, Shape, Slots, read_param, write_param};
+    pub use crate::derive::Child;
     pub use crate::geometry::MeshId;
     pub use crate::graph::{
         AngleUnit, Distribution, GeneratorGraph, NodeDesc, ParamDesc, SlotDesc,

@@ -17,6 +17,10 @@ impl Mesh {
     /// hard edge needs two normals. Positions and triangles are kept; vertices may be
     /// merged or repeated. Degenerate triangles get an arbitrary unit normal.
     ///
+    /// # Panics
+    ///
+    /// If an index is out of range (see [`validate`](Self::validate)).
+    ///
     /// ```
     /// use glam::Vec3;
     /// use shapegen_runtime::geometry::Mesh;
@@ -29,7 +33,7 @@ impl Mesh {
     /// ```
     pub fn compute_normals(&mut self, crease_angle: f32) {
         let cos_crease = crease_angle.cos();
-        let (welded, _) = weld(&self.positions);
+        let (welded, vertex_count) = weld(&self.positions);
         // Unit face normals, and each corner's share of its vertex normal: the face
         // normal weighted by the corner's angle, which keeps the result independent of
         // how polygons were cut into triangles.
@@ -53,7 +57,6 @@ impl Mesh {
             })
             .collect();
         // Corners around each welded vertex, as ranges of one flat list.
-        let vertex_count = welded.iter().map(|&w| w as usize + 1).max().unwrap_or(0);
         let mut start = vec![0u32; vertex_count + 1];
         for &i in &self.indices {
             start[welded[i as usize] as usize + 1] += 1;
