@@ -12,7 +12,7 @@ use std::ops::Deref;
 
 use glam::Vec3;
 
-use crate::geometry::{Instance, MeshId, Scope};
+use crate::geometry::{Axis, Face, Instance, MeshId, Part, Scope};
 use crate::graph::{GeneratorGraph, HEADER_WORDS};
 use crate::param::ParamValue;
 
@@ -275,6 +275,35 @@ impl<'a, G: Grammar> Shape<'a, G> {
         fn resize(factor: Vec3);
         /// Sets the size; see [`Scope::with_size`].
         fn with_size(size: Vec3);
+        /// The flat scope of one face of the box; see [`Scope::face`].
+        fn face(face: Face);
+        /// Sets the depth, keeping the back plane; see [`Scope::extrude`].
+        fn extrude(depth: f32);
+    }
+
+    /// Splits the box along `axis`, one shape per part; see [`Scope::split`].
+    #[inline]
+    pub fn split(self, axis: Axis, parts: &[Part]) -> impl ExactSizeIterator<Item = Self> {
+        self.scope
+            .split(axis, parts)
+            .map(move |s| self.with_scope(s))
+    }
+
+    /// Splits the box along `axis` into equal tiles of about `tile`; see
+    /// [`Scope::repeat`].
+    #[inline]
+    pub fn repeat(self, axis: Axis, tile: f32) -> impl ExactSizeIterator<Item = Self> {
+        self.scope
+            .repeat(axis, tile)
+            .map(move |s| self.with_scope(s))
+    }
+
+    /// The six faces of the box with their flat shapes; see [`Scope::faces`].
+    #[inline]
+    pub fn faces(self) -> impl ExactSizeIterator<Item = (Face, Self)> {
+        self.scope
+            .faces()
+            .map(move |(f, s)| (f, self.with_scope(s)))
     }
 
     /// Emits `mesh` scaled to fill the box.

@@ -5,6 +5,7 @@
 //! Most users depend on the `shapegen` crate, which re-exports this one.
 
 pub mod derive;
+pub mod export;
 pub mod genome;
 pub mod geometry;
 pub mod graph;
@@ -12,7 +13,8 @@ pub mod param;
 
 pub use derive::{Child, GeneView, Grammar, NodeParams, Shape, Slots};
 pub use genome::Genome;
-pub use geometry::{CUBE, Instance, MeshId, Scope};
+pub use geometry::{Axis, CUBE, Face, Instance, MeshId, Part, Scope};
+pub use geometry::{BoundMeshes, Mesh, MeshError, MeshLibrary};
 pub use graph::GeneratorGraph;
 
 /// The names most generator code needs: `use shapegen_runtime::prelude::*;`.
@@ -20,7 +22,7 @@ pub mod prelude {
     pub use crate::derive::{Child, Grammar, Shape, Slots};
     pub use crate::generator;
     pub use crate::genome::Genome;
-    pub use crate::geometry::{CUBE, Instance, MeshId, Scope};
+    pub use crate::geometry::{Axis, CUBE, Face, Instance, MeshId, Part, Scope};
     pub use glam::{Affine3A, Quat, Vec2, Vec3, vec2, vec3};
 }
 

@@ -1,7 +1,19 @@
 //! Geometry: oriented scopes, mesh instances and the meshes they refer to.
 
+mod face;
 mod instance;
+mod library;
+mod mesh;
+mod normals;
+mod obj;
 mod scope;
+#[cfg(test)]
+mod shape_tests;
+mod split;
 
+pub use face::{Face, Faces};
 pub use instance::{CUBE, Instance, MeshId};
+pub use library::{BoundMeshes, MeshLibrary};
+pub use mesh::{Mesh, MeshError};
 pub use scope::Scope;
+pub use split::{Axis, Part, Repeat, Split};

@@ -2,6 +2,8 @@
 
 use glam::{Affine3A, Mat3A, Vec3, Vec3A};
 
+use super::Axis;
+
 /// An oriented box: a rigid frame (rotation and translation, no scale) placing the box's
 /// centre and axes in the world, and the box's size along its own axes.
 ///
@@ -18,8 +20,8 @@ use glam::{Affine3A, Mat3A, Vec3, Vec3A};
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Scope {
-    frame: Affine3A,
-    size: Vec3,
+    pub(super) frame: Affine3A,
+    pub(super) size: Vec3,
 }
 
 impl Default for Scope {
@@ -58,6 +60,36 @@ impl Scope {
     #[inline]
     pub fn origin(&self) -> Vec3 {
         self.frame.translation.into()
+    }
+
+    /// The world direction of one of the box's local axes (a unit vector).
+    ///
+    /// ```
+    /// use glam::vec3;
+    /// use shapegen_runtime::{Axis, Scope};
+    ///
+    /// let s = Scope::UNIT.rotate_z(std::f32::consts::FRAC_PI_2);
+    /// assert!(s.axis(Axis::X).abs_diff_eq(vec3(0.0, 1.0, 0.0), 1e-6));
+    /// ```
+    #[inline]
+    pub fn axis(&self, axis: Axis) -> Vec3 {
+        self.frame.matrix3.col(axis.index()).into()
+    }
+
+    /// The world position of a point given in the box's unit coordinates, where
+    /// `[-0.5, 0.5]` on each axis spans the box: `to_world(vec3(0.5, 0.5, 0.5))` is a
+    /// corner.
+    ///
+    /// ```
+    /// use glam::vec3;
+    /// use shapegen_runtime::Scope;
+    ///
+    /// let s = Scope::UNIT.with_size(vec3(2.0, 4.0, 6.0)).translate(vec3(1.0, 0.0, 0.0));
+    /// assert_eq!(s.to_world(vec3(0.5, -0.5, 0.0)), vec3(2.0, -2.0, 0.0));
+    /// ```
+    #[inline]
+    pub fn to_world(&self, unit: Vec3) -> Vec3 {
+        self.frame.transform_point3(unit * self.size)
     }
 
     /// Moves the box by `v`, measured along its own axes.

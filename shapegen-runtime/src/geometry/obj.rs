@@ -1,0 +1,266 @@
+//! Loading meshes from Wavefront OBJ text.
+
+use std::io::{self, BufRead, Read};
+use std::path::Path;
+
+use glam::Vec3;
+
+use super::{Mesh, MeshError};
+
+impl Mesh {
+    /// Loads a mesh from an OBJ file; see [`from_obj_str`](Self::from_obj_str). Errors
+    /// name the file.
+    pub fn from_obj(path: impl AsRef<Path>) -> Result<Mesh, MeshError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|source| MeshError::Io {
+            path: path.to_owned(),
+            source,
+        })?;
+        Mesh::from_obj_str(&path.display().to_string(), &text)
+    }
+
+    /// Loads a mesh from OBJ text, naming it `name` in errors.
+    ///
+    /// Polygons are triangulated as fans; all objects and groups in the text are merged
+    /// into one mesh; materials, texture coordinates, points and lines are ignored. The
+    /// file's normals are used when every vertex has one, and computed otherwise (see
+    /// [`compute_normals`](Self::compute_normals) with
+    /// [`DEFAULT_CREASE_ANGLE`](Self::DEFAULT_CREASE_ANGLE)). A mesh without triangles
+    /// or with a non-finite coordinate is an error.
+    ///
+    /// ```
+    /// use shapegen_runtime::geometry::Mesh;
+    ///
+    /// let quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+    /// let mesh = Mesh::from_obj_str("quad", quad).unwrap();
+    /// assert_eq!((mesh.vertex_count(), mesh.triangle_count()), (4, 2));
+    /// assert_eq!(mesh.normals[0], glam::Vec3::Z);
+    ///
+    /// let bad = Mesh::from_obj_str("bad", "v 0 0 0\nv 1 x 0\n").unwrap_err();
+    /// assert_eq!(bad.to_string(), "cannot parse OBJ `bad` at line 2: position parse error");
+    /// ```
+    pub fn from_obj_str(name: &str, text: &str) -> Result<Mesh, MeshError> {
+        let mut reader = LineCounter {
+            rest: text.as_bytes(),
+            lines: 0,
+        };
+        let loaded = tobj::load_obj_buf(&mut reader, &tobj::GPU_LOAD_OPTIONS, |_| {
+            Ok(Default::default())
+        });
+        let models = match loaded {
+            Ok((models, _materials)) => models,
+            Err(e) => {
+                let line = per_line(&e).then(|| reader.line_at_fault(text));
+                return Err(MeshError::Parse {
+                    name: name.to_owned(),
+                    line,
+                    what: e.to_string(),
+                });
+            }
+        };
+        let mut mesh = Mesh::default();
+        let mut has_normals = true;
+        for model in &models {
+            let m = &model.mesh;
+            let base = mesh.positions.len() as u32;
+            mesh.positions
+                .extend(m.positions.chunks_exact(3).map(Vec3::from_slice));
+            mesh.indices.extend(m.indices.iter().map(|&i| base + i));
+            has_normals &= m.normals.len() == m.positions.len();
+            if has_normals {
+                mesh.normals
+                    .extend(m.normals.chunks_exact(3).map(Vec3::from_slice));
+            }
+        }
+        if mesh.indices.is_empty() {
+            return Err(MeshError::Empty {
+                name: name.to_owned(),
+            });
+        }
+        if let Some(vertex) = mesh.positions.iter().position(|p| !p.is_finite()) {
+            return Err(MeshError::NonFinite {
+                name: name.to_owned(),
+                vertex,
+            });
+        }
+        let normalized: Option<Vec<Vec3>> = has_normals
+            .then(|| mesh.normals.iter().map(|n| n.try_normalize()).collect())
+            .flatten();
+        match normalized {
+            Some(normals) => mesh.normals = normals,
+            None => mesh.compute_normals(Mesh::DEFAULT_CREASE_ANGLE),
+        }
+        mesh.validate(name)?;
+        Ok(mesh)
+    }
+}
+
+/// Whether tobj raises `e` while reading the line at fault (rather than when it
+/// assembles a finished object).
+fn per_line(e: &tobj::LoadError) -> bool {
+    use tobj::LoadError::*;
+    !matches!(
+        e,
+        FaceVertexOutOfBounds
+            | FaceTexCoordOutOfBounds
+            | FaceNormalOutOfBounds
+            | FaceColorOutOfBounds
+            | InvalidPolygon
+            | InvalidLoadOptionConfig
+            | GenericFailure
+    )
+}
+
+/// A reader over text that counts the lines consumed, so that a parse error can name
+/// its line: tobj reads line by line and stops at the first bad one.
+struct LineCounter<'a> {
+    rest: &'a [u8],
+    lines: usize,
+}
+
+impl LineCounter<'_> {
+    /// The 1-based number of the last line read.
+    fn line_at_fault(&self, text: &str) -> usize {
+        let unterminated = self.rest.is_empty() && !text.is_empty() && !text.ends_with('\n');
+        self.lines + usize::from(unterminated)
+    }
+}
+
+impl Read for LineCounter<'_> {
+    fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+        let n = buf.len().min(self.rest.len());
+        buf[..n].copy_from_slice(&self.rest[..n]);
+        self.consume(n);
+        Ok(n)
+    }
+}
+
+impl BufRead for LineCounter<'_> {
+    fn fill_buf(&mut self) -> io::Result<&[u8]> {
+        Ok(self.rest)
+    }
+
+    fn consume(&mut self, amt: usize) {
+        let (done, rest) = self.rest.split_at(amt);
+        self.lines += done.iter().filter(|&&b| b == b'\n').count();
+        self.rest = rest;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::vec3;
+
+    use super::*;
+
+    #[test]
+    fn merges_objects_and_keeps_file_normals() {
+        let text = "\
+o a
+v 0 0 0
+v 1 0 0
+v 0 1 0
+vn 0 0 2
+f 1//1 2//1 3//1
+o b
+v 0 0 1
+v 1 0 1
+v 0 1 1
+f 4//1 5//1 6//1
+";
+        let m = Mesh::from_obj_str("two", text).unwrap();
+        assert_eq!((m.vertex_count(), m.triangle_count()), (6, 2));
+        assert_eq!(m.indices, [0, 1, 2, 3, 4, 5]);
+        assert_eq!(m.positions[4], vec3(1.0, 0.0, 1.0));
+        assert!(
+            m.normals.iter().all(|&n| n == Vec3::Z),
+            "normalized file normals"
+        );
+    }
+
+    #[test]
+    fn computes_missing_normals() {
+        // A tetrahedron without normals: every edge is sharp, 3 vertices per face.
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+        let m = Mesh::from_obj_str("tetra", text).unwrap();
+        assert_eq!((m.vertex_count(), m.triangle_count()), (12, 4));
+        assert!(super::super::normals::is_closed(&m));
+        let centre = vec3(0.25, 0.25, 0.25);
+        for (p, n) in m.positions.iter().zip(&m.normals) {
+            assert!((n.length() - 1.0).abs() < 1e-6);
+            assert!((*p - centre).dot(*n) > 0.0, "outward");
+        }
+    }
+
+    #[test]
+    fn errors_name_the_file_and_the_line() {
+        let err = |text: &str| {
+            Mesh::from_obj_str("leaf.obj", text)
+                .unwrap_err()
+                .to_string()
+        };
+        assert_eq!(
+            err("v 0 0 0\nv 1 0 0\n\nvn 0 zero 1\n"),
+            "cannot parse OBJ `leaf.obj` at line 4: normal parse error"
+        );
+        assert_eq!(
+            err("v 0 0 0\nf 1 2 x"),
+            "cannot parse OBJ `leaf.obj` at line 2: face parse error"
+        );
+        assert_eq!(
+            err("v 0 0 0\nv 1 0 0\nf 1 2 3\n"),
+            "cannot parse OBJ `leaf.obj`: face vertex index out of bounds"
+        );
+        assert_eq!(
+            err("v 0 0 0\n# nothing\n"),
+            "mesh `leaf.obj` has no triangles"
+        );
+        assert_eq!(err(""), "mesh `leaf.obj` has no triangles");
+        assert_eq!(
+            err("v 0 0 0\nv 1 0 0\nv 0 inf 0\nf 1 2 3\n"),
+            "mesh `leaf.obj`: vertex 2 has a non-finite coordinate"
+        );
+    }
+
+    /// The published scenes' meshes, where the shared directory is present.
+    #[test]
+    fn loads_the_paper_meshes() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/paper-scenes");
+        if !dir.is_dir() {
+            eprintln!("skipped: {} is absent", dir.display());
+            return;
+        }
+        // (file, triangles in the file, vertex positions in the file)
+        for (file, triangles, positions) in [
+            ("spaceship_volume/cube.obj", 12, 8),
+            ("spaceship_volume/spaceship_target.obj", 84, 44),
+            ("tree_sketch1/trunk.obj", 64, 34),
+            ("tree_sketch1/leaf.obj", 574, 294),
+        ] {
+            let m = Mesh::from_obj(dir.join(file)).unwrap();
+            assert_eq!(m.triangle_count(), triangles, "{file}");
+            assert_eq!(
+                super::super::normals::weld(&m.positions).1,
+                positions,
+                "{file}"
+            );
+            assert!(m.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-3));
+        }
+        let (lo, hi) = Mesh::from_obj(dir.join("spaceship_volume/spaceship_target.obj"))
+            .unwrap()
+            .bounds()
+            .unwrap();
+        assert!(lo.abs_diff_eq(vec3(-2.94, -0.37, 0.20), 0.01), "{lo}");
+        assert!(hi.abs_diff_eq(vec3(2.94, 1.21, 7.96), 0.01), "{hi}");
+    }
+
+    #[test]
+    fn missing_file_is_named() {
+        let e = Mesh::from_obj("/no/such/dir/trunk.obj").unwrap_err();
+        assert!(matches!(e, MeshError::Io { .. }));
+        assert!(
+            e.to_string()
+                .starts_with("cannot read mesh file `/no/such/dir/trunk.obj`: ")
+        );
+    }
+}

@@ -1,0 +1,85 @@
+//! The scope operations as grammar rules see them, through [`Shape`].
+
+use glam::vec3;
+
+use super::{Axis, Face, Instance, Part};
+use crate::derive::{Derivation, GeneView, Grammar, Shape};
+use crate::graph::{GeneratorGraph, NodeDesc};
+
+/// A one-node grammar whose rule builds a small house: walls cut into a ground floor
+/// and an upper floor with repeated windows, and a roof slab extruded from the top.
+struct House;
+
+static HOUSE: GeneratorGraph = GeneratorGraph {
+    name: "House",
+    axiom: 0,
+    nodes: &[NodeDesc {
+        name: "House",
+        params: &[],
+        slots: &[],
+        links: 0,
+        param_words: 0,
+    }],
+    meshes: &["cube"],
+};
+
+impl Grammar for House {
+    const GRAPH: &'static GeneratorGraph = &HOUSE;
+
+    fn derive_gene<'a>(shape: Shape<'a, Self>, _gene: GeneView<'a>) {
+        let house = shape.with_size(vec3(8.0, 6.0, 4.0));
+        for (face, wall) in house.faces() {
+            match face {
+                Face::Top => wall.extrude(0.5).emit(crate::CUBE),
+                Face::Bottom => {}
+                _ => {
+                    let floors = [Part::Abs(2.0), Part::Float(1.0)];
+                    let mut floors = wall.split(Axis::Y, &floors);
+                    floors.next().unwrap().extrude(0.1).emit(crate::CUBE);
+                    for window in floors.next().unwrap().repeat(Axis::X, 1.5) {
+                        window
+                            .resize(vec3(0.5, 0.5, 1.0))
+                            .extrude(-0.2)
+                            .emit(crate::CUBE);
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn shapes_split_repeat_and_take_faces() {
+    let mut out: Vec<Instance> = Vec::new();
+    Derivation::run::<House>(&[0, 0], &mut out);
+    // Roof + per side wall (front, back: 8 wide; left, right: 4 wide) a ground floor
+    // and round(w / 1.5) windows: 5, 5, 3, 3.
+    assert_eq!(out.len(), 1 + 4 + 5 + 5 + 3 + 3);
+    let roof = out[out.len() - 1].transform;
+    assert_eq!(
+        roof.transform_point3(glam::Vec3::ZERO),
+        vec3(0.0, 3.25, 0.0)
+    );
+    // The front ground floor: 8 x 2 slab 0.1 deep standing on z = 2, from y = -3 to -1.
+    let ground = out[0].transform;
+    assert_eq!(
+        ground.transform_point3(glam::Vec3::ZERO),
+        vec3(0.0, -2.0, 2.05)
+    );
+    assert_eq!(
+        ground.transform_vector3(glam::Vec3::ONE),
+        vec3(8.0, 2.0, 0.1)
+    );
+    // The first front window: 1.6 x 4 tile scaled to 0.8 x 2, sunk 0.2 into the wall.
+    let window = out[1].transform;
+    assert!(
+        window
+            .transform_point3(glam::Vec3::ZERO)
+            .abs_diff_eq(vec3(-3.2, 1.0, 1.9), 1e-6)
+    );
+    assert!(
+        window
+            .transform_vector3(glam::Vec3::ONE)
+            .abs_diff_eq(vec3(0.8, 2.0, 0.2), 1e-6)
+    );
+}
