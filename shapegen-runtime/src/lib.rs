@@ -37,8 +37,8 @@ macro_rules! generator {
 /// any release.
 #[doc(hidden)]
 pub mod __private {
-    pub use crate::derive::{GeneView, Grammar, NodeParams, Shape, Slots, read_param, write_param};
     pub use crate::derive::Child;
+    pub use crate::derive::{GeneView, Grammar, NodeParams, Shape, Slots, read_param, write_param};
     pub use crate::geometry::MeshId;
     pub use crate::graph::{
         AngleUnit, Distribution, GeneratorGraph, NodeDesc, ParamDesc, SlotDesc,
