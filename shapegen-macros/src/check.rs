@@ -59,9 +59,11 @@ const TYPES: &str = "`f32`, `Vec2`, `Vec3`, `i32`, `u32` and `bool`";
 pub fn check<'a>(g: &'a parse::Generator, cx: &Ctxt) -> Generator<'a> {
     // Nodes first: everything else refers to them by name.
     let mut node_asts: Vec<&parse::Node> = Vec::new();
+    let mut any_dropped = false;
     for item in &g.items {
         let Item::Node(n) = item else { continue };
         if n.name == g.name {
+            any_dropped = true;
             cx.error(
                 &n.name,
                 format_args!(
@@ -72,6 +74,7 @@ pub fn check<'a>(g: &'a parse::Generator, cx: &Ctxt) -> Generator<'a> {
                 ),
             );
         } else if node_asts.iter().any(|m| m.name == n.name) {
+            any_dropped = true;
             cx.error(
                 &n.name,
                 format_args!(
@@ -105,9 +108,11 @@ pub fn check<'a>(g: &'a parse::Generator, cx: &Ctxt) -> Generator<'a> {
         .collect();
     name_rule_fns(&mut nodes);
 
-    // Reachability, only when the graph is fully known: an unknown child name already
-    // has its error, and the nodes behind it would only look unreachable.
-    let graph_known = node_asts.iter().all(|n| !n.broken)
+    // Reachability, only when the graph is fully known: an unknown child name or a
+    // dropped node already has its error, and the nodes behind it would only look
+    // unreachable.
+    let graph_known = !any_dropped
+        && node_asts.iter().all(|n| !n.broken)
         && nodes
             .iter()
             .all(|n| n.slots.iter().all(|s| s.child.is_some()));
@@ -363,6 +368,8 @@ fn check_node<'a>(
     let mut slots: Vec<Slot<'a>> = Vec::new();
     for s in slots_ast.into_iter().flatten() {
         check_doc_only(&s.attrs, "child slots", cx);
+        // A clashing slot stays in the model, so that the graph keeps its edge (and the
+        // node it leads to is not reported unreachable); the bindings are marked bad.
         if slots.iter().any(|t| *t.name == s.name) {
             bindings_ok = false;
             cx.error(
@@ -373,9 +380,7 @@ fn check_node<'a>(
                     s.name, n.name
                 ),
             );
-            continue;
-        }
-        if params.iter().any(|p| *p.name == s.name) {
+        } else if params.iter().any(|p| *p.name == s.name) {
             bindings_ok = false;
             cx.error(
                 &s.name,
@@ -385,7 +390,6 @@ fn check_node<'a>(
                     n.name, s.name
                 ),
             );
-            continue;
         }
         if let Some(scope) = scope.filter(|sc| **sc == s.name) {
             bindings_ok = false;
@@ -583,7 +587,7 @@ fn check_probability(expr: &Expr, cx: &Ctxt) -> Option<f32> {
             cx.error(
                 expr,
                 format_args!(
-                    "probability {p} is outside [0, 1]; a child's probability is the chance \
+                    "probability {p:?} is outside [0, 1]; a child's probability is the chance \
                      that it appears, between 0.0 and 1.0"
                 ),
             );
@@ -639,6 +643,11 @@ fn dists_of(ty: ParamType) -> &'static str {
 fn check_dist(ty: ParamType, p: &parse::Param, cx: &Ctxt) -> Option<Dist> {
     let d = p.dist.to_string();
     let tn = ty.name();
+    let an = if matches!(ty, ParamType::F32 | ParamType::I32) {
+        "an"
+    } else {
+        "a"
+    };
     let args: Vec<&Expr> = p.args.iter().collect();
     let call = span_range(p.dist.span(), p.paren.span.close());
     let applies = matches!(
@@ -655,13 +664,13 @@ fn check_dist(ty: ParamType, p: &parse::Param, cx: &Ctxt) -> Option<Dist> {
         let known =
             ["uniform", "degrees", "radians", "weighted", "bernoulli"].contains(&d.as_str());
         let what = if known {
-            format!("`{d}` does not apply to a `{tn}` parameter")
+            format!("`{d}` does not apply to {an} `{tn}` parameter")
         } else {
             format!("unknown distribution `{d}`")
         };
         cx.error(
             &p.dist,
-            format_args!("{what}; a `{tn}` parameter takes {}", dists_of(ty)),
+            format_args!("{what}; {an} `{tn}` parameter takes {}", dists_of(ty)),
         );
         return None;
     }
@@ -672,7 +681,7 @@ fn check_dist(ty: ParamType, p: &parse::Param, cx: &Ctxt) -> Option<Dist> {
             cx.error(
                 &call,
                 format_args!(
-                    "`{d}` for a `{tn}` parameter takes {} argument{}: `{form}`",
+                    "`{d}` for {an} `{tn}` parameter takes {} argument{}: `{form}`",
                     n,
                     if n == 1 { "" } else { "s" },
                 ),
@@ -692,8 +701,8 @@ fn check_dist(ty: ParamType, p: &parse::Param, cx: &Ctxt) -> Option<Dist> {
                 cx.error(
                     quote!(#(#args),*),
                     format_args!(
-                        "empty range: the lower bound {lo} is greater than the upper bound \
-                         {hi}; write `{d}({hi}, {lo})`"
+                        "empty range: the lower bound {lo:?} is greater than the upper bound \
+                         {hi:?}; write `{d}({hi:?}, {lo:?})`"
                     ),
                 );
                 return None;
@@ -736,7 +745,7 @@ fn check_dist(ty: ParamType, p: &parse::Param, cx: &Ctxt) -> Option<Dist> {
                 cx.error(
                     quote!(#(#args),*),
                     format_args!(
-                        "the bounds of a `{tn}` parameter are arrays, one number per \
+                        "the bounds of {an} `{tn}` parameter are arrays, one number per \
                          component: `{form}`, or `[v; {n}]` for equal components"
                     ),
                 );
@@ -748,18 +757,20 @@ fn check_dist(ty: ParamType, p: &parse::Param, cx: &Ctxt) -> Option<Dist> {
             let mut ok = true;
             let mut lo32 = [0.0f32; 3];
             let mut hi32 = [0.0f32; 3];
+            // Empty components, grouped by the bounds they were written as, so that
+            // `[1.5; 3]` over `[0.6; 3]` is one mistake.
+            let mut empty: Vec<(usize, usize, Vec<&str>)> = Vec::new();
             for (i, (l, h)) in lo.iter().zip(&hi).enumerate() {
                 let axis = ["x", "y", "z"][i];
                 if l.value > h.value {
                     ok = false;
-                    cx.error(
-                        h.expr,
-                        format_args!(
-                            "empty range in component {axis}: its upper bound {} is below its \
-                             lower bound {}; each component needs lower <= upper",
-                            h.value, l.value
-                        ),
-                    );
+                    let same = |&(a, b, _): &(usize, usize, Vec<&str>)| {
+                        std::ptr::eq(lo[a].expr, l.expr) && std::ptr::eq(hi[b].expr, h.expr)
+                    };
+                    match empty.iter_mut().find(|e| same(e)) {
+                        Some(e) => e.2.push(axis),
+                        None => empty.push((i, i, vec![axis])),
+                    }
                     continue;
                 }
                 match (to_f32(l.value, l.expr), to_f32(h.value, h.expr)) {
@@ -769,6 +780,20 @@ fn check_dist(ty: ParamType, p: &parse::Param, cx: &Ctxt) -> Option<Dist> {
                         a.err().into_iter().chain(b.err()).for_each(|e| cx.push(e));
                     }
                 }
+            }
+            for (i, _, axes) in empty {
+                let (l, h) = (lo[i].value, hi[i].value);
+                let which = match axes.as_slice() {
+                    [one] => format!("component {one}"),
+                    many => format!("components {}", many.join(", ")),
+                };
+                cx.error(
+                    hi[i].expr,
+                    format_args!(
+                        "empty range in {which}: the upper bound {h:?} is below the lower \
+                         bound {l:?}; each component needs lower <= upper"
+                    ),
+                );
             }
             ok.then(|| {
                 if n == 2 {
@@ -793,7 +818,7 @@ fn check_dist(ty: ParamType, p: &parse::Param, cx: &Ctxt) -> Option<Dist> {
                 cx.error(
                     &call,
                     format_args!(
-                        "a `{tn}` parameter takes a range: `uniform(lo..=hi)` (both ends \
+                        "{an} `{tn}` parameter takes a range: `uniform(lo..=hi)` (both ends \
                          included) or `uniform(lo..hi)`"
                     ),
                 );
@@ -837,7 +862,7 @@ fn check_dist(ty: ParamType, p: &parse::Param, cx: &Ctxt) -> Option<Dist> {
                     cx.error(
                         e,
                         format_args!(
-                            "{v} does not fit a `{tn}` parameter, whose values lie in \
+                            "{v} does not fit {an} `{tn}` parameter, whose values lie in \
                              {min}..={max}"
                         ),
                     );
@@ -874,7 +899,7 @@ fn check_dist(ty: ParamType, p: &parse::Param, cx: &Ctxt) -> Option<Dist> {
                     cx.error(
                         args[0],
                         format_args!(
-                            "probability {p} is outside [0, 1]; `bernoulli(p)` is `true` with \
+                            "probability {p:?} is outside [0, 1]; `bernoulli(p)` is `true` with \
                              probability p, between 0.0 and 1.0"
                         ),
                     );
@@ -928,7 +953,7 @@ fn check_weights(arg: &Expr, cx: &Ctxt) -> Option<Vec<f32>> {
                 ok = false;
                 cx.error(
                     e,
-                    format_args!("weight {w} is negative; weights are 0 or more"),
+                    format_args!("weight {w:?} is negative; weights are 0 or more"),
                 );
             }
             Ok(w) => weights.push(w),

@@ -16,8 +16,8 @@
 use syn::{BinOp, Error, Expr, Lit, Result, UnOp};
 
 /// What the language allows, for error messages.
-const LANGUAGE: &str = "constants may use number literals, unary `-`, `+ - * /`, \
-     parentheses and the f32 constants such as `PI`, `TAU` or `FRAC_PI_2`";
+const LANGUAGE: &str = "number literals, unary `-`, `+ - * /`, parentheses and the f32 \
+     constants such as `PI`, `TAU` or `FRAC_PI_2`";
 
 /// The named constants, with their `f64` values.
 const CONSTS: &[(&str, f64)] = {
@@ -65,10 +65,25 @@ pub fn peel(mut expr: &Expr) -> &Expr {
     }
 }
 
-fn not_constant(expr: &Expr, what: &str) -> Error {
+fn not_constant(expr: &Expr) -> Error {
+    let written = match expr {
+        Expr::Path(p) => {
+            let segs: Vec<String> = p
+                .path
+                .segments
+                .iter()
+                .map(|s| s.ident.to_string())
+                .collect();
+            format!("`{}`", segs.join("::"))
+        }
+        _ => "this expression".to_owned(),
+    };
     Error::new_spanned(
         expr,
-        format!("{what} is not a constant: {LANGUAGE}; it is evaluated when the macro expands"),
+        format!(
+            "the macro cannot evaluate {written}: bounds, probabilities and lengths are \
+             evaluated when the macro expands, from {LANGUAGE} only; write the value instead"
+        ),
     )
 }
 
@@ -120,14 +135,18 @@ fn float(expr: &Expr) -> Result<f64> {
             }
             _ => Err(Error::new_spanned(
                 lit,
-                format!("expected a number, found this literal; {LANGUAGE}"),
+                format!(
+                    "expected a number, found this literal; constants are written with {LANGUAGE}"
+                ),
             )),
         },
         Expr::Unary(u) => match u.op {
             UnOp::Neg(_) => Ok(-float(&u.expr)?),
             _ => Err(Error::new_spanned(
                 u.op,
-                format!("this operator is not supported here; {LANGUAGE}"),
+                format!(
+                    "this operator is not supported in constants, which are written with {LANGUAGE}"
+                ),
             )),
         },
         Expr::Binary(b) => {
@@ -140,13 +159,13 @@ fn float(expr: &Expr) -> Result<f64> {
                 _ => Err(unsupported_op(&b.op)),
             }
         }
-        Expr::Path(p) => named_const(p).ok_or_else(|| not_constant(expr, "this name")),
+        Expr::Path(p) => named_const(p).ok_or_else(|| not_constant(expr)),
         Expr::Array(_) | Expr::Repeat(_) => Err(Error::new_spanned(
             expr,
             "expected a number here, found an array; arrays are only bounds of `Vec2` and \
              `Vec3` parameters and the weights of `weighted`",
         )),
-        other => Err(not_constant(other, "this expression")),
+        other => Err(not_constant(other)),
     }
 }
 
@@ -165,14 +184,18 @@ pub fn eval_int(expr: &Expr) -> Result<i128> {
             )),
             _ => Err(Error::new_spanned(
                 lit,
-                format!("expected an integer, found this literal; {LANGUAGE}"),
+                format!(
+                    "expected an integer, found this literal; constants are written with {LANGUAGE}"
+                ),
             )),
         },
         Expr::Unary(u) => match u.op {
             UnOp::Neg(_) => eval_int(&u.expr)?.checked_neg().ok_or_else(overflow),
             _ => Err(Error::new_spanned(
                 u.op,
-                format!("this operator is not supported here; {LANGUAGE}"),
+                format!(
+                    "this operator is not supported in constants, which are written with {LANGUAGE}"
+                ),
             )),
         },
         Expr::Binary(b) => {
@@ -190,14 +213,14 @@ pub fn eval_int(expr: &Expr) -> Result<i128> {
             expr,
             "expected an integer here, found a float constant",
         )),
-        other => Err(not_constant(other, "this expression")),
+        other => Err(not_constant(other)),
     }
 }
 
 fn unsupported_op(op: &BinOp) -> Error {
     Error::new_spanned(
         op,
-        format!("this operator is not supported in constants; {LANGUAGE}"),
+        format!("this operator is not supported in constants, which are written with {LANGUAGE}"),
     )
 }
 

@@ -2,10 +2,10 @@
 //! (or `shapegen_runtime::generator!`), which passes this macro the path of the runtime
 //! and documents the syntax.
 //!
-//! The macro is a pipeline: [`parse`] (tokens to syntax tree) -> [`check`] (syntax tree
-//! to the checked [`model`], every mistake a spanned error) -> [`layout`] (gene layout)
-//! -> [`expand`] (Rust items), or [`fallback`] when a check failed. Constant expressions
-//! are evaluated by [`consteval`].
+//! The macro is a pipeline of modules: `parse` (tokens to syntax tree) -> `check` (syntax
+//! tree to the checked `model`, every mistake a spanned error) -> `layout` (gene layout)
+//! -> `expand` (Rust items), or `fallback` when a check failed. Constant expressions are
+//! evaluated by `consteval`.
 
 use proc_macro::TokenStream;
 
@@ -45,4 +45,72 @@ fn generator(input: proc_macro2::TokenStream) -> proc_macro2::TokenStream {
         return out;
     }
     fallback::expand(&ex, errors)
+}
+
+#[cfg(test)]
+mod tests {
+    use quote::quote;
+
+    fn expand(body: proc_macro2::TokenStream) -> String {
+        super::generator(quote!(::rt; #body)).to_string()
+    }
+
+    #[test]
+    fn sound_grammar_expands_without_errors() {
+        let out = expand(quote! {
+            pub Spaceship {
+                axiom Start;
+                meshes { HULL = "hull" }
+                node Start {
+                    children { body: Body = 1.0 }
+                    derive(s) { if let Some(body) = body { s.resize(body.size).derive(body); } }
+                }
+                node Body {
+                    params { size: Vec3 ~ uniform([0.6; 3], [1.5; 3]), on: bool ~ bernoulli(0.5) }
+                    children { next: Body = 1.0 / 3.0, lots: [Lot; 4] = 0.5 }
+                    derive(s) { s.emit(HULL); }
+                }
+                node Lot { children { body: Body = 0.5 } }
+            }
+        });
+        if std::env::var_os("SHOW_EXPANSION").is_some() {
+            println!("{out}");
+        }
+        assert!(!out.contains("compile_error"), "{out}");
+        for needle in [
+            "pub struct Spaceship ;",
+            "pub const HULL : :: rt :: __private :: MeshId = :: rt :: __private :: MeshId (1) ;",
+            "# [repr (C)]",
+            "pub size : :: rt :: __private :: Vec3",
+            "probability : 0.33333334",
+            "meshes : & [\"cube\" , \"hull\"]",
+            "shape . derive_children (gene , 1)",
+            "let lots : :: rt :: __private :: Slots < '__a , Lot , 4 > = :: rt :: __private :: Slots :: new (gene , 1) ;",
+            "size_of :: < Body > () <= 16",
+            "size_of :: < Start > () == 0",
+        ] {
+            assert!(out.contains(needle), "missing {needle:?} in\n{out}");
+        }
+    }
+
+    #[test]
+    fn mistakes_expand_to_errors_and_fallback_items() {
+        let out = expand(quote! {
+            pub G {
+                axiom Start;
+                node Start { params { a: f64 ~ uniform(0.0, 1.0), b: f32 ~ uniform(0.0, 1.0) } }
+            }
+        });
+        assert!(out.contains("compile_error"), "{out}");
+        assert!(out.contains("pub struct G ;"), "{out}");
+        assert!(out.contains("pub b : :: core :: primitive :: f32"), "{out}");
+        assert!(!out.contains("pub a :"), "{out}");
+        assert!(out.contains("nodes : & []"), "{out}");
+    }
+
+    #[test]
+    fn an_unreadable_header_gives_only_the_error() {
+        let out = expand(quote!(pub { }));
+        assert!(out.starts_with(":: core :: compile_error !"), "{out}");
+    }
 }

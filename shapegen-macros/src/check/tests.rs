@@ -80,7 +80,7 @@ fn probabilities() {
     one_error(g(quote!(1.5)), "probability 1.5 is outside [0, 1]");
     one_error(g(quote!(-0.1)), "outside [0, 1]");
     one_error(g(quote!(0.0 / 0.0)), "not a finite number");
-    one_error(g(quote!(p)), "is not a constant");
+    one_error(g(quote!(p)), "the macro cannot evaluate `p`");
 }
 
 #[test]
@@ -93,6 +93,10 @@ fn float_ranges() {
     one_error(
         with_params(quote!(a: Vec3 ~ uniform([0.0, 1.0, 0.0], [1.0, 0.5, 1.0]))),
         "empty range in component y",
+    );
+    one_error(
+        with_params(quote!(a: Vec3 ~ uniform([1.5; 3], [0.6; 3]))),
+        "empty range in components x, y, z: the upper bound 0.6 is below the lower bound 1.5",
     );
     one_error(
         with_params(quote!(a: Vec2 ~ uniform([0.0; 2], [1.0; 3]))),
@@ -142,7 +146,7 @@ fn weights_and_bernoulli() {
     );
     one_error(
         with_params(quote!(a: u32 ~ weighted([1.0, -1.0]))),
-        "weight -1 is negative",
+        "weight -1.0 is negative",
     );
     one_error(
         with_params(quote!(a: u32 ~ weighted([0.0; 3]))),
@@ -154,7 +158,7 @@ fn weights_and_bernoulli() {
     );
     one_error(
         with_params(quote!(a: bool ~ bernoulli(2.0))),
-        "probability 2 is outside",
+        "probability 2.0 is outside",
     );
 }
 
@@ -166,7 +170,7 @@ fn types_and_distributions() {
     );
     one_error(
         with_params(quote!(a: f32 ~ weighted([1.0]))),
-        "`weighted` does not apply to a `f32` parameter",
+        "`weighted` does not apply to an `f32` parameter",
     );
     one_error(
         with_params(quote!(a: f32 ~ normal(0.0, 1.0))),
@@ -195,7 +199,8 @@ fn duplicates() {
     one_error(
         quote! {
             axiom Start;
-            node Start { params { a: f32 ~ uniform(0.0, 1.0) } children { a: Start = 0.5 } }
+            node Start { params { a: f32 ~ uniform(0.0, 1.0) } children { a: Other = 0.5 } }
+            node Other {}
         },
         "a parameter and a child slot both named `a`",
     );

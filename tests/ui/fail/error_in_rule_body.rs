@@ -1,0 +1,15 @@
+use shapegen::prelude::*;
+
+generator! {
+    pub Ship {
+        axiom Start;
+        node Start {
+            params { size: Vec3 ~ uniform([0.5; 3], [1.0; 3]) }
+            derive(s) {
+                s.emit(size);
+            }
+        }
+    }
+}
+
+fn main() {}
