@@ -20,6 +20,7 @@
 
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
+use syn::ext::IdentExt;
 use syn::{Attribute, Lifetime};
 
 use crate::layout::{NodeLayout, node_layout};
@@ -134,6 +135,7 @@ impl<'a> Expander<'a> {
             #node_docs
             #(#attrs)*
             #[repr(C)]
+            #[allow(clippy::derive_partial_eq_without_eq)]
             #[derive(
                 ::core::clone::Clone,
                 ::core::marker::Copy,
@@ -301,7 +303,7 @@ impl<'a> Expander<'a> {
     /// rules, enough for the rest of the user's crate to type-check.
     pub fn stub_grammar_impl(&self) -> TokenStream {
         let p = &self.p;
-        let name = self.g.name.to_string();
+        let name = plain(self.g.name);
         let graph = quote! {
             &#p::GeneratorGraph {
                 name: #name,
@@ -361,7 +363,7 @@ impl<'a> Expander<'a> {
                 _ => {}
             }
         };
-        let graph_name = name.to_string();
+        let graph_name = plain(name);
         let meshes =
             std::iter::once("cube".to_owned()).chain(g.meshes.iter().map(|m| m.file.clone()));
         let grammar_impl = self.grammar_impl(quote!(&GRAPH), arms);
@@ -377,6 +379,8 @@ impl<'a> Expander<'a> {
             const _: () = {
                 #impls
 
+                // Bounds written as `PI / 2.0` become the literal `1.5707964`.
+                #[allow(clippy::approx_constant)]
                 const GRAPH: #p::GeneratorGraph = #p::GeneratorGraph {
                     name: #graph_name,
                     axiom: #axiom,
@@ -402,13 +406,13 @@ impl<'a> Expander<'a> {
     /// The `NodeDesc` of `node`.
     fn node_desc(&self, node: &Node, layout: &NodeLayout) -> Option<TokenStream> {
         let p = &self.p;
-        let name = node.name.to_string();
+        let name = plain(node.name);
         let params = node
             .params
             .iter()
             .zip(&layout.offsets)
             .map(|(param, &offset)| {
-                let pname = param.name.to_string();
+                let pname = plain(param.name);
                 let offset = Literal::u32_unsuffixed(offset);
                 let dist = self.dist(param.dist.as_ref()?);
                 Some(quote!(#p::ParamDesc { name: #pname, offset: #offset, dist: #dist }))
@@ -419,7 +423,7 @@ impl<'a> Expander<'a> {
             .iter()
             .zip(&layout.first_links)
             .map(|(s, &first)| {
-                let sname = s.name.to_string();
+                let sname = plain(s.name);
                 let child = Literal::u32_unsuffixed(s.child?);
                 let probability = f32_lit(s.probability?);
                 let count = Literal::u32_unsuffixed(s.count()?);
@@ -494,6 +498,11 @@ impl<'a> Expander<'a> {
             }
         }
     }
+}
+
+/// A name as the generator graph stores it: without `r#`.
+fn plain(ident: &Ident) -> String {
+    ident.unraw().to_string()
 }
 
 /// `default` as a doc attribute, then a paragraph break if `attrs` hold docs of their own.

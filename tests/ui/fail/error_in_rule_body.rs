@@ -1,3 +1,4 @@
+//! Mistakes in a rule's body are the compiler's, reported on the user's own tokens.
 use shapegen::prelude::*;
 
 generator! {
@@ -6,7 +7,9 @@ generator! {
         node Start {
             params { size: Vec3 ~ uniform([0.5; 3], [1.0; 3]) }
             derive(s) {
-                s.emit(size);
+                let count: u32 = size;
+                s.emit(CUBE);
+                let _ = count;
             }
         }
     }
