@@ -111,8 +111,17 @@ pub fn check<'a>(g: &'a parse::Generator, cx: &Ctxt) -> Generator<'a> {
     // Reachability, only when the graph is fully known: an unknown child name or a
     // dropped node already has its error, and the nodes behind it would only look
     // unreachable.
+    let one_children_section = |n: &&parse::Node| {
+        let children = n.sections.iter();
+        children
+            .filter(|s| matches!(s, Section::Children { .. }))
+            .count()
+            <= 1
+    };
     let graph_known = !any_dropped
-        && node_asts.iter().all(|n| !n.broken)
+        && node_asts
+            .iter()
+            .all(|n| !n.broken && one_children_section(n))
         && nodes
             .iter()
             .all(|n| n.slots.iter().all(|s| s.child.is_some()));

@@ -229,7 +229,9 @@ fn parse_item(input: ParseStream, cx: &Ctxt) -> Result<Item> {
     let lookahead = input.lookahead1();
     if lookahead.peek(kw::node) {
         input.parse::<kw::node>()?;
-        let name: Ident = input.parse()?;
+        let name: Ident = input
+            .parse()
+            .map_err(|e| Error::new(e.span(), "expected the node's name: `node Name { .. }`"))?;
         if !input.peek(token::Brace) {
             return Err(input.error(format!(
                 "expected `{{` after `node {name}`: a node's body holds its sections, \
