@@ -193,10 +193,11 @@ fn parse_generator(input: ParseStream, cx: &Ctxt) -> Result<Generator> {
         }
     }
     if !input.is_empty() {
-        return Err(input.error(format!(
+        cx.push(input.error(format!(
             "unexpected tokens after the body of generator `{name}`; declare one generator per \
              `generator!`"
         )));
+        let _ = input.parse::<TokenStream>();
     }
     Ok(Generator {
         attrs,
