@@ -335,4 +335,16 @@ impl<'a, G: Grammar> Shape<'a, G> {
     pub fn derive<P>(self, child: Child<'a, P>) {
         G::derive_gene(self, child.gene);
     }
+
+    /// Runs, in this scope and in link order, the rule of every child present on the
+    /// first `links` links of `gene`: the rule of a node declared without `derive`.
+    #[doc(hidden)]
+    #[inline]
+    pub fn derive_children(self, gene: GeneView<'a>, links: u32) {
+        for link in 0..links {
+            if let Some(pos) = gene.link(link) {
+                G::derive_gene(self, GeneView::new(gene.words, pos));
+            }
+        }
+    }
 }

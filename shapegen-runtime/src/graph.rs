@@ -37,7 +37,56 @@ impl GeneratorGraph {
 
     /// The node kind named `name`, if the grammar has one.
     pub fn kind_of(&self, name: &str) -> Option<u32> {
-        self.nodes.iter().position(|n| n.name == name).map(|i| i as u32)
+        self.nodes
+            .iter()
+            .position(|n| n.name == name)
+            .map(|i| i as u32)
+    }
+
+    /// Whether the graph's layout numbers agree with each other and with this runtime:
+    /// the axiom and every slot's child are node kinds; parameter offsets follow each
+    /// other by [`Distribution::words`] and add up to `param_words`; slots' first links
+    /// follow each other by their counts (at least 1) and add up to `links`;
+    /// probabilities lie in `[0, 1]`; mesh 0 exists. The `generator!` macro asserts this
+    /// at compile time.
+    pub const fn layout_is_consistent(&self) -> bool {
+        let kinds = self.nodes.len();
+        if self.axiom as usize >= kinds || self.meshes.is_empty() {
+            return false;
+        }
+        let mut k = 0;
+        while k < kinds {
+            let node = &self.nodes[k];
+            let mut words = 0u32;
+            let mut i = 0;
+            while i < node.params.len() {
+                let p = &node.params[i];
+                if p.offset != words {
+                    return false;
+                }
+                words += p.dist.words();
+                i += 1;
+            }
+            let mut links = 0u32;
+            i = 0;
+            while i < node.slots.len() {
+                let s = &node.slots[i];
+                if s.first_link != links
+                    || s.count == 0
+                    || s.child as usize >= kinds
+                    || !(s.probability >= 0.0 && s.probability <= 1.0)
+                {
+                    return false;
+                }
+                links += s.count;
+                i += 1;
+            }
+            if words != node.param_words || links != node.links {
+                return false;
+            }
+            k += 1;
+        }
+        true
     }
 }
 

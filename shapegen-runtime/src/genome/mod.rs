@@ -75,6 +75,7 @@ impl<G: Grammar> Genome<G> {
     }
 
     /// Builds a genome from raw words and gene count without checking them.
+    #[allow(dead_code)] // not used until the genetic operators land
     pub(crate) fn from_parts(words: Vec<u32>, len: u32) -> Self {
         Genome {
             words,

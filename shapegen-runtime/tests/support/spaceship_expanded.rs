@@ -29,21 +29,31 @@
 //!     }
 //! }
 //! ```
+//!
+//! Differences from the macro's real output, which a hand-written file cannot reproduce:
+//! the runtime is reached through `__rt` instead of `$crate`; the gene variables (`gene`,
+//! `shape`, `params`) have mixed-site hygiene there, so user code cannot name them; and
+//! the macro writes probabilities as the `f32` literals it evaluated (`0.33333334`).
 #![allow(dead_code)]
 
 use shapegen_runtime as __rt;
 
-/// Generator `Spaceship`.
+/// Generator `Spaceship`, axiom `Start`, 6 node types. Declared with `generator!`; its
+/// derivations run through its `Grammar` implementation.
 pub struct Spaceship;
 
 /// Parameters of node `Start` of generator `Spaceship`.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(
+    ::core::clone::Clone, ::core::marker::Copy, ::core::fmt::Debug, ::core::cmp::PartialEq,
+)]
 pub struct Start {}
 
 /// Parameters of node `Body` of generator `Spaceship`.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(
+    ::core::clone::Clone, ::core::marker::Copy, ::core::fmt::Debug, ::core::cmp::PartialEq,
+)]
 pub struct Body {
     /// Parameter `size`.
     pub size: __rt::__private::Vec3,
@@ -51,7 +61,9 @@ pub struct Body {
 
 /// Parameters of node `Top` of generator `Spaceship`.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(
+    ::core::clone::Clone, ::core::marker::Copy, ::core::fmt::Debug, ::core::cmp::PartialEq,
+)]
 pub struct Top {
     /// Parameter `size`.
     pub size: __rt::__private::Vec3,
@@ -59,7 +71,9 @@ pub struct Top {
 
 /// Parameters of node `TopNext` of generator `Spaceship`.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(
+    ::core::clone::Clone, ::core::marker::Copy, ::core::fmt::Debug, ::core::cmp::PartialEq,
+)]
 pub struct TopNext {
     /// Parameter `size`.
     pub size: __rt::__private::Vec3,
@@ -67,37 +81,30 @@ pub struct TopNext {
 
 /// Parameters of node `Wing` of generator `Spaceship`.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(
+    ::core::clone::Clone, ::core::marker::Copy, ::core::fmt::Debug, ::core::cmp::PartialEq,
+)]
 pub struct Wing {
     /// Parameter `size`.
     pub size: __rt::__private::Vec3,
     /// Parameter `shift`.
-    pub shift: f32,
+    pub shift: ::core::primitive::f32,
 }
 
 /// Parameters of node `WingNext` of generator `Spaceship`.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(
+    ::core::clone::Clone, ::core::marker::Copy, ::core::fmt::Debug, ::core::cmp::PartialEq,
+)]
 pub struct WingNext {
     /// Parameter `size`.
     pub size: __rt::__private::Vec3,
     /// Parameter `shift`.
-    pub shift: f32,
+    pub shift: ::core::primitive::f32,
 }
 
 const _: () = {
     use __rt::__private as __p;
-
-    // Layout checks: each parameter struct is exactly its words, no padding.
-    const _: () = assert!(::core::mem::size_of::<Start>() == 4 * 0);
-    const _: () = assert!(::core::mem::size_of::<Body>() == 4 * 3);
-    const _: () = assert!(::core::mem::size_of::<Top>() == 4 * 3);
-    const _: () = assert!(::core::mem::size_of::<TopNext>() == 4 * 3);
-    const _: () = assert!(::core::mem::size_of::<Wing>() == 4 * 4);
-    const _: () = assert!(::core::mem::size_of::<WingNext>() == 4 * 4);
-    // Gene sizes: 2 header words + links + parameter words.
-    const _: () = assert!(GRAPH.nodes[0].gene_words() == 2 + 1 + 0);
-    const _: () = assert!(GRAPH.nodes[1].gene_words() == 2 + 3 + 3);
 
     impl __p::NodeParams for Start {
         const KIND: u32 = 0;
@@ -105,12 +112,10 @@ const _: () = {
         const WORDS: u32 = 0;
         #[inline]
         fn read(_params: &[u32]) -> Self {
-            Start {
-            }
+            Start {}
         }
         #[inline]
-        fn write(&self, _params: &mut [u32]) {
-        }
+        fn write(&self, _params: &mut [u32]) {}
     }
     impl __p::NodeParams for Body {
         const KIND: u32 = 1;
@@ -118,7 +123,7 @@ const _: () = {
         const WORDS: u32 = 3;
         #[inline]
         fn read(params: &[u32]) -> Self {
-            Body {
+            Self {
                 size: __p::read_param(params, 0),
             }
         }
@@ -133,7 +138,7 @@ const _: () = {
         const WORDS: u32 = 3;
         #[inline]
         fn read(params: &[u32]) -> Self {
-            Top {
+            Self {
                 size: __p::read_param(params, 0),
             }
         }
@@ -148,7 +153,7 @@ const _: () = {
         const WORDS: u32 = 3;
         #[inline]
         fn read(params: &[u32]) -> Self {
-            TopNext {
+            Self {
                 size: __p::read_param(params, 0),
             }
         }
@@ -163,7 +168,7 @@ const _: () = {
         const WORDS: u32 = 4;
         #[inline]
         fn read(params: &[u32]) -> Self {
-            Wing {
+            Self {
                 size: __p::read_param(params, 0),
                 shift: __p::read_param(params, 3),
             }
@@ -180,7 +185,7 @@ const _: () = {
         const WORDS: u32 = 4;
         #[inline]
         fn read(params: &[u32]) -> Self {
-            WingNext {
+            Self {
                 size: __p::read_param(params, 0),
                 shift: __p::read_param(params, 3),
             }
@@ -200,7 +205,13 @@ const _: () = {
             __p::NodeDesc {
                 name: "Start",
                 params: &[],
-                slots: &[__p::SlotDesc { name: "body", child: 1, probability: 1.0, count: 1, first_link: 0 }],
+                slots: &[__p::SlotDesc {
+                    name: "body",
+                    child: 1,
+                    probability: 1.0,
+                    count: 1,
+                    first_link: 0,
+                }],
                 links: 1,
                 param_words: 0,
             },
@@ -209,12 +220,33 @@ const _: () = {
                 params: &[__p::ParamDesc {
                     name: "size",
                     offset: 0,
-                    dist: __p::Distribution::UniformVec3 { lo: [0.6, 0.6, 0.6], hi: [1.5, 1.5, 1.5] },
+                    dist: __p::Distribution::UniformVec3 {
+                        lo: [0.6, 0.6, 0.6],
+                        hi: [1.5, 1.5, 1.5],
+                    },
                 }],
                 slots: &[
-                    __p::SlotDesc { name: "next", child: 1, probability: 1.0 / 3.0, count: 1, first_link: 0 },
-                    __p::SlotDesc { name: "wing", child: 4, probability: 1.0 / 3.0, count: 1, first_link: 1 },
-                    __p::SlotDesc { name: "top", child: 2, probability: 1.0 / 3.0, count: 1, first_link: 2 },
+                    __p::SlotDesc {
+                        name: "next",
+                        child: 1,
+                        probability: 1.0 / 3.0,
+                        count: 1,
+                        first_link: 0,
+                    },
+                    __p::SlotDesc {
+                        name: "wing",
+                        child: 4,
+                        probability: 1.0 / 3.0,
+                        count: 1,
+                        first_link: 1,
+                    },
+                    __p::SlotDesc {
+                        name: "top",
+                        child: 2,
+                        probability: 1.0 / 3.0,
+                        count: 1,
+                        first_link: 2,
+                    },
                 ],
                 links: 3,
                 param_words: 3,
@@ -224,9 +256,18 @@ const _: () = {
                 params: &[__p::ParamDesc {
                     name: "size",
                     offset: 0,
-                    dist: __p::Distribution::UniformVec3 { lo: [0.3, 0.1, 0.3], hi: [0.8, 0.2, 0.8] },
+                    dist: __p::Distribution::UniformVec3 {
+                        lo: [0.3, 0.1, 0.3],
+                        hi: [0.8, 0.2, 0.8],
+                    },
                 }],
-                slots: &[__p::SlotDesc { name: "next", child: 3, probability: 1.0, count: 1, first_link: 0 }],
+                slots: &[__p::SlotDesc {
+                    name: "next",
+                    child: 3,
+                    probability: 1.0,
+                    count: 1,
+                    first_link: 0,
+                }],
                 links: 1,
                 param_words: 3,
             },
@@ -235,9 +276,18 @@ const _: () = {
                 params: &[__p::ParamDesc {
                     name: "size",
                     offset: 0,
-                    dist: __p::Distribution::UniformVec3 { lo: [0.6, 0.8, 0.6], hi: [1.1, 1.1, 1.1] },
+                    dist: __p::Distribution::UniformVec3 {
+                        lo: [0.6, 0.8, 0.6],
+                        hi: [1.1, 1.1, 1.1],
+                    },
                 }],
-                slots: &[__p::SlotDesc { name: "next", child: 3, probability: 1.0, count: 1, first_link: 0 }],
+                slots: &[__p::SlotDesc {
+                    name: "next",
+                    child: 3,
+                    probability: 1.0,
+                    count: 1,
+                    first_link: 0,
+                }],
                 links: 1,
                 param_words: 3,
             },
@@ -247,11 +297,24 @@ const _: () = {
                     __p::ParamDesc {
                         name: "size",
                         offset: 0,
-                        dist: __p::Distribution::UniformVec3 { lo: [0.3, 0.2, 0.2], hi: [1.2, 0.5, 1.0] },
+                        dist: __p::Distribution::UniformVec3 {
+                            lo: [0.3, 0.2, 0.2],
+                            hi: [1.2, 0.5, 1.0],
+                        },
                     },
-                    __p::ParamDesc { name: "shift", offset: 3, dist: __p::Distribution::Uniform { lo: -0.5, hi: 0.5 } },
+                    __p::ParamDesc {
+                        name: "shift",
+                        offset: 3,
+                        dist: __p::Distribution::Uniform { lo: -0.5, hi: 0.5 },
+                    },
                 ],
-                slots: &[__p::SlotDesc { name: "next", child: 5, probability: 1.0, count: 1, first_link: 0 }],
+                slots: &[__p::SlotDesc {
+                    name: "next",
+                    child: 5,
+                    probability: 1.0,
+                    count: 1,
+                    first_link: 0,
+                }],
                 links: 1,
                 param_words: 4,
             },
@@ -261,15 +324,62 @@ const _: () = {
                     __p::ParamDesc {
                         name: "size",
                         offset: 0,
-                        dist: __p::Distribution::UniformVec3 { lo: [0.6, 0.9, 0.7], hi: [1.2, 1.0, 1.2] },
+                        dist: __p::Distribution::UniformVec3 {
+                            lo: [0.6, 0.9, 0.7],
+                            hi: [1.2, 1.0, 1.2],
+                        },
                     },
-                    __p::ParamDesc { name: "shift", offset: 3, dist: __p::Distribution::Uniform { lo: -0.5, hi: 0.5 } },
+                    __p::ParamDesc {
+                        name: "shift",
+                        offset: 3,
+                        dist: __p::Distribution::Uniform { lo: -0.5, hi: 0.5 },
+                    },
                 ],
-                slots: &[__p::SlotDesc { name: "next", child: 5, probability: 0.9, count: 1, first_link: 0 }],
+                slots: &[__p::SlotDesc {
+                    name: "next",
+                    child: 5,
+                    probability: 0.9,
+                    count: 1,
+                    first_link: 0,
+                }],
                 links: 1,
                 param_words: 4,
             },
         ],
+    };
+
+    // Each parameter struct holds exactly its gene words (`<=` for nodes with a `bool`,
+    // which takes one byte in the struct but a word in the gene), and the graph's offsets
+    // agree with the runtime's word sizes.
+    const _: () = {
+        ::core::assert!(
+            ::core::mem::size_of::<Start>() == 0,
+            "the parameter struct of node `Start` does not match its gene words"
+        );
+        ::core::assert!(
+            ::core::mem::size_of::<Body>() == 12,
+            "the parameter struct of node `Body` does not match its gene words"
+        );
+        ::core::assert!(
+            ::core::mem::size_of::<Top>() == 12,
+            "the parameter struct of node `Top` does not match its gene words"
+        );
+        ::core::assert!(
+            ::core::mem::size_of::<TopNext>() == 12,
+            "the parameter struct of node `TopNext` does not match its gene words"
+        );
+        ::core::assert!(
+            ::core::mem::size_of::<Wing>() == 16,
+            "the parameter struct of node `Wing` does not match its gene words"
+        );
+        ::core::assert!(
+            ::core::mem::size_of::<WingNext>() == 16,
+            "the parameter struct of node `WingNext` does not match its gene words"
+        );
+        ::core::assert!(
+            GRAPH.layout_is_consistent(),
+            "the generator graph's layout disagrees with the runtime's"
+        );
     };
 
     impl __p::Grammar for Spaceship {
@@ -278,26 +388,30 @@ const _: () = {
         #[inline]
         fn derive_gene<'a>(shape: __p::Shape<'a, Self>, gene: __p::GeneView<'a>) {
             match gene.kind() {
-                0 => Spaceship::__rule_start(shape, gene),
-                1 => Spaceship::__rule_body(shape, gene),
-                2 => Spaceship::__rule_top(shape, gene),
-                3 => Spaceship::__rule_top_next(shape, gene),
-                4 => Spaceship::__rule_wing(shape, gene),
-                5 => Spaceship::__rule_wing_next(shape, gene),
+                0 => Self::__rule_start(shape, gene),
+                1 => Self::__rule_body(shape, gene),
+                2 => Self::__rule_top(shape, gene),
+                3 => Self::__rule_top_next(shape, gene),
+                4 => Self::__rule_wing(shape, gene),
+                5 => Self::__rule_wing_next(shape, gene),
                 _ => {}
             }
         }
     }
 };
 
-// The rules live outside `const _` so that the user's imports apply to their bodies.
-// `s` is the identifier the user chose in `derive(s)`; parameters and children are bound
-// under their own names.
+// The rules live outside `const _` so that nothing declared there (`GRAPH`) can shadow a
+// name their bodies use. `s` is the identifier the user chose in `derive(s)`; parameters
+// and children are bound under their own names. A node without `derive` gets
+// `shape.derive_children(gene, LINKS)`: each present child, in link order, in its scope.
 impl Spaceship {
     #[allow(unused_variables)]
     #[inline]
-    fn __rule_start<'a>(s: __rt::__private::Shape<'a, Self>, gene: __rt::__private::GeneView<'a>) {
-        let body: Option<__rt::__private::Child<'a, Body>> = gene.child(0);
+    fn __rule_start<'__a>(
+        s: __rt::__private::Shape<'__a, Self>,
+        gene: __rt::__private::GeneView<'__a>,
+    ) {
+        let body: ::core::option::Option<__rt::__private::Child<'__a, Body>> = gene.child(0);
         {
             if let Some(body) = body {
                 s.resize(body.size).derive(body);
@@ -307,17 +421,22 @@ impl Spaceship {
 
     #[allow(unused_variables)]
     #[inline]
-    fn __rule_body<'a>(s: __rt::__private::Shape<'a, Self>, gene: __rt::__private::GeneView<'a>) {
+    fn __rule_body<'__a>(
+        s: __rt::__private::Shape<'__a, Self>,
+        gene: __rt::__private::GeneView<'__a>,
+    ) {
         let Body { size } = <Body as __rt::__private::NodeParams>::read(gene.params(3));
-        let next: Option<__rt::__private::Child<'a, Body>> = gene.child(0);
-        let wing: Option<__rt::__private::Child<'a, Wing>> = gene.child(1);
-        let top: Option<__rt::__private::Child<'a, Top>> = gene.child(2);
+        let next: ::core::option::Option<__rt::__private::Child<'__a, Body>> = gene.child(0);
+        let wing: ::core::option::Option<__rt::__private::Child<'__a, Wing>> = gene.child(1);
+        let top: ::core::option::Option<__rt::__private::Child<'__a, Top>> = gene.child(2);
         {
             use glam::vec3;
             let s = s.translate(vec3(0.0, 0.0, s.size().z / 2.0));
             s.emit(__rt::CUBE);
             if let Some(next) = next {
-                s.translate(vec3(0.0, 0.0, s.size().z / 2.0)).resize(next.size).derive(next);
+                s.translate(vec3(0.0, 0.0, s.size().z / 2.0))
+                    .resize(next.size)
+                    .derive(next);
             }
             if let Some(top) = top {
                 s.translate(vec3(0.0, s.size().y / 2.0, 0.0)).derive(top);
@@ -333,9 +452,12 @@ impl Spaceship {
 
     #[allow(unused_variables)]
     #[inline]
-    fn __rule_top<'a>(s: __rt::__private::Shape<'a, Self>, gene: __rt::__private::GeneView<'a>) {
+    fn __rule_top<'__a>(
+        s: __rt::__private::Shape<'__a, Self>,
+        gene: __rt::__private::GeneView<'__a>,
+    ) {
         let Top { size } = <Top as __rt::__private::NodeParams>::read(gene.params(1));
-        let next: Option<__rt::__private::Child<'a, TopNext>> = gene.child(0);
+        let next: ::core::option::Option<__rt::__private::Child<'__a, TopNext>> = gene.child(0);
         {
             if let Some(next) = next {
                 s.resize(size).derive(next);
@@ -345,24 +467,32 @@ impl Spaceship {
 
     #[allow(unused_variables)]
     #[inline]
-    fn __rule_top_next<'a>(s: __rt::__private::Shape<'a, Self>, gene: __rt::__private::GeneView<'a>) {
+    fn __rule_top_next<'__a>(
+        s: __rt::__private::Shape<'__a, Self>,
+        gene: __rt::__private::GeneView<'__a>,
+    ) {
         let TopNext { size } = <TopNext as __rt::__private::NodeParams>::read(gene.params(1));
-        let next: Option<__rt::__private::Child<'a, TopNext>> = gene.child(0);
+        let next: ::core::option::Option<__rt::__private::Child<'__a, TopNext>> = gene.child(0);
         {
             use glam::vec3;
             let s = s.translate(vec3(0.0, s.size().y / 2.0, 0.0));
             s.emit(__rt::CUBE);
             if let Some(next) = next {
-                s.translate(vec3(0.0, s.size().y / 2.0, 0.0)).resize(next.size).derive(next);
+                s.translate(vec3(0.0, s.size().y / 2.0, 0.0))
+                    .resize(next.size)
+                    .derive(next);
             }
         }
     }
 
     #[allow(unused_variables)]
     #[inline]
-    fn __rule_wing<'a>(s: __rt::__private::Shape<'a, Self>, gene: __rt::__private::GeneView<'a>) {
+    fn __rule_wing<'__a>(
+        s: __rt::__private::Shape<'__a, Self>,
+        gene: __rt::__private::GeneView<'__a>,
+    ) {
         let Wing { size, shift } = <Wing as __rt::__private::NodeParams>::read(gene.params(1));
-        let next: Option<__rt::__private::Child<'a, WingNext>> = gene.child(0);
+        let next: ::core::option::Option<__rt::__private::Child<'__a, WingNext>> = gene.child(0);
         {
             use glam::vec3;
             let s = s.resize(size);
@@ -375,16 +505,23 @@ impl Spaceship {
 
     #[allow(unused_variables)]
     #[inline]
-    fn __rule_wing_next<'a>(s: __rt::__private::Shape<'a, Self>, gene: __rt::__private::GeneView<'a>) {
-        let WingNext { size, shift } = <WingNext as __rt::__private::NodeParams>::read(gene.params(1));
-        let next: Option<__rt::__private::Child<'a, WingNext>> = gene.child(0);
+    fn __rule_wing_next<'__a>(
+        s: __rt::__private::Shape<'__a, Self>,
+        gene: __rt::__private::GeneView<'__a>,
+    ) {
+        let WingNext { size, shift } =
+            <WingNext as __rt::__private::NodeParams>::read(gene.params(1));
+        let next: ::core::option::Option<__rt::__private::Child<'__a, WingNext>> = gene.child(0);
         {
             use glam::vec3;
             let s = s.translate(vec3(s.size().x / 2.0, 0.0, 0.0));
             s.emit(__rt::CUBE);
             if let Some(next) = next {
-                let c = s.translate(vec3(s.size().x / 2.0, 0.0, 0.0)).resize(next.size);
-                c.translate(vec3(0.0, 0.0, c.size().z * next.shift)).derive(next);
+                let c = s
+                    .translate(vec3(s.size().x / 2.0, 0.0, 0.0))
+                    .resize(next.size);
+                c.translate(vec3(0.0, 0.0, c.size().z * next.shift))
+                    .derive(next);
             }
         }
     }

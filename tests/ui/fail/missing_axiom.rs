@@ -1,0 +1,9 @@
+use shapegen::prelude::*;
+
+generator! {
+    pub Ship {
+        node Start {}
+    }
+}
+
+fn main() {}

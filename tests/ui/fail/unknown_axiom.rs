@@ -1,0 +1,10 @@
+use shapegen::prelude::*;
+
+generator! {
+    pub Ship {
+        axiom Strat;
+        node Start {}
+    }
+}
+
+fn main() {}

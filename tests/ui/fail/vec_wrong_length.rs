@@ -1,0 +1,10 @@
+use shapegen::prelude::*;
+
+generator! {
+    pub Ship {
+        axiom Start;
+        node Start { params { size: Vec3 ~ uniform([0.0, 0.0], [1.0; 3]) } }
+    }
+}
+
+fn main() {}
