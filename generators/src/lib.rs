@@ -6,6 +6,7 @@
 //! one, as a type, to a [`GeneratorVisitor`].
 
 pub mod city;
+mod meshes;
 pub mod spaceship;
 pub mod tree;
 
@@ -16,6 +17,7 @@ use shapegen_runtime::Grammar;
 use shapegen_runtime::genome::Limits;
 
 pub use city::City;
+pub use meshes::{LEAF_OBJ, TRUNK_OBJ, default_meshes};
 pub use spaceship::Spaceship;
 pub use tree::Tree;
 

@@ -270,8 +270,9 @@ impl<'a> Expander<'a> {
                         },
                     }
                 });
+                // A one-expression body `derive(s) { rule(s) }` is still the user's block.
                 quote! {
-                    #[allow(unused_variables)]
+                    #[allow(unused_variables, unused_braces)]
                     #[inline]
                     fn #f<#lt>(#mutability #scope: #p::Shape<#lt, Self>, #gene: #p::GeneView<#lt>) {
                         #read

@@ -9,7 +9,7 @@ use generators::{GeneratorVisitor, Published};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
-use shapegen::export::{Palette, write_glb_file, write_obj_file};
+use shapegen::export::{Palette, save_glb, save_obj};
 use shapegen::genome::{GenomeSet, Limits};
 use shapegen::ops::Operators;
 use shapegen::{Genome, Grammar};
@@ -79,8 +79,8 @@ impl GeneratorVisitor for Sample<'_> {
             .try_for_each_init(Vec::new, |instances, (i, genome)| {
                 genome.derive_into(instances);
                 let stem = args.out.join(format!("model_{i:0width$}"));
-                write_obj_file(&stem.with_extension("obj"), instances, &meshes, &palette)?;
-                write_glb_file(&stem.with_extension("glb"), instances, &meshes, &palette)?;
+                save_obj(&stem, instances, &meshes, &palette)?;
+                save_glb(stem.with_extension("glb"), instances, &meshes, &palette)?;
                 anyhow::Ok(())
             })?;
 
