@@ -37,7 +37,10 @@ impl GeneratorGraph {
 
     /// The node kind named `name`, if the grammar has one.
     pub fn kind_of(&self, name: &str) -> Option<u32> {
-        self.nodes.iter().position(|n| n.name == name).map(|i| i as u32)
+        self.nodes
+            .iter()
+            .position(|n| n.name == name)
+            .map(|i| i as u32)
     }
 }
 

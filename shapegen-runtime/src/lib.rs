@@ -8,19 +8,22 @@ pub mod derive;
 pub mod genome;
 pub mod geometry;
 pub mod graph;
+pub mod ops;
 pub mod param;
 
 pub use derive::{Child, GeneView, Grammar, NodeParams, Shape, Slots};
-pub use genome::Genome;
+pub use genome::{Genome, GenomeError, Limits};
 pub use geometry::{CUBE, Instance, MeshId, Scope};
 pub use graph::GeneratorGraph;
+pub use ops::Operators;
 
 /// The names most generator code needs: `use shapegen_runtime::prelude::*;`.
 pub mod prelude {
     pub use crate::derive::{Child, Grammar, Shape, Slots};
     pub use crate::generator;
-    pub use crate::genome::Genome;
+    pub use crate::genome::{Genome, Limits};
     pub use crate::geometry::{CUBE, Instance, MeshId, Scope};
+    pub use crate::ops::Operators;
     pub use glam::{Affine3A, Quat, Vec2, Vec3, vec2, vec3};
 }
 
@@ -37,8 +40,8 @@ macro_rules! generator {
 /// any release.
 #[doc(hidden)]
 pub mod __private {
-    pub use crate::derive::{GeneView, Grammar, NodeParams, Shape, Slots, read_param, write_param};
     pub use crate::derive::Child;
+    pub use crate::derive::{GeneView, Grammar, NodeParams, Shape, Slots, read_param, write_param};
     pub use crate::geometry::MeshId;
     pub use crate::graph::{
         AngleUnit, Distribution, GeneratorGraph, NodeDesc, ParamDesc, SlotDesc,

@@ -104,9 +104,11 @@ pub fn sample(dist: &Distribution, rng: &mut impl Rng, out: &mut [u32]) {
         Distribution::Uniform { lo, hi } | Distribution::Angle { lo, hi, .. } => {
             uniform_f32(rng, lo, hi).write(out)
         }
-        Distribution::UniformVec2 { lo, hi } => {
-            Vec2::new(uniform_f32(rng, lo[0], hi[0]), uniform_f32(rng, lo[1], hi[1])).write(out)
-        }
+        Distribution::UniformVec2 { lo, hi } => Vec2::new(
+            uniform_f32(rng, lo[0], hi[0]),
+            uniform_f32(rng, lo[1], hi[1]),
+        )
+        .write(out),
         Distribution::UniformVec3 { lo, hi } => Vec3::new(
             uniform_f32(rng, lo[0], hi[0]),
             uniform_f32(rng, lo[1], hi[1]),

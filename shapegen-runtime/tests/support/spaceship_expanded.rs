@@ -29,7 +29,7 @@
 //!     }
 //! }
 //! ```
-#![allow(dead_code)]
+#![allow(dead_code, clippy::erasing_op, clippy::identity_op)]
 
 use shapegen_runtime as __rt;
 
@@ -105,12 +105,10 @@ const _: () = {
         const WORDS: u32 = 0;
         #[inline]
         fn read(_params: &[u32]) -> Self {
-            Start {
-            }
+            Start {}
         }
         #[inline]
-        fn write(&self, _params: &mut [u32]) {
-        }
+        fn write(&self, _params: &mut [u32]) {}
     }
     impl __p::NodeParams for Body {
         const KIND: u32 = 1;
@@ -200,7 +198,13 @@ const _: () = {
             __p::NodeDesc {
                 name: "Start",
                 params: &[],
-                slots: &[__p::SlotDesc { name: "body", child: 1, probability: 1.0, count: 1, first_link: 0 }],
+                slots: &[__p::SlotDesc {
+                    name: "body",
+                    child: 1,
+                    probability: 1.0,
+                    count: 1,
+                    first_link: 0,
+                }],
                 links: 1,
                 param_words: 0,
             },
@@ -209,12 +213,33 @@ const _: () = {
                 params: &[__p::ParamDesc {
                     name: "size",
                     offset: 0,
-                    dist: __p::Distribution::UniformVec3 { lo: [0.6, 0.6, 0.6], hi: [1.5, 1.5, 1.5] },
+                    dist: __p::Distribution::UniformVec3 {
+                        lo: [0.6, 0.6, 0.6],
+                        hi: [1.5, 1.5, 1.5],
+                    },
                 }],
                 slots: &[
-                    __p::SlotDesc { name: "next", child: 1, probability: 1.0 / 3.0, count: 1, first_link: 0 },
-                    __p::SlotDesc { name: "wing", child: 4, probability: 1.0 / 3.0, count: 1, first_link: 1 },
-                    __p::SlotDesc { name: "top", child: 2, probability: 1.0 / 3.0, count: 1, first_link: 2 },
+                    __p::SlotDesc {
+                        name: "next",
+                        child: 1,
+                        probability: 1.0 / 3.0,
+                        count: 1,
+                        first_link: 0,
+                    },
+                    __p::SlotDesc {
+                        name: "wing",
+                        child: 4,
+                        probability: 1.0 / 3.0,
+                        count: 1,
+                        first_link: 1,
+                    },
+                    __p::SlotDesc {
+                        name: "top",
+                        child: 2,
+                        probability: 1.0 / 3.0,
+                        count: 1,
+                        first_link: 2,
+                    },
                 ],
                 links: 3,
                 param_words: 3,
@@ -224,9 +249,18 @@ const _: () = {
                 params: &[__p::ParamDesc {
                     name: "size",
                     offset: 0,
-                    dist: __p::Distribution::UniformVec3 { lo: [0.3, 0.1, 0.3], hi: [0.8, 0.2, 0.8] },
+                    dist: __p::Distribution::UniformVec3 {
+                        lo: [0.3, 0.1, 0.3],
+                        hi: [0.8, 0.2, 0.8],
+                    },
                 }],
-                slots: &[__p::SlotDesc { name: "next", child: 3, probability: 1.0, count: 1, first_link: 0 }],
+                slots: &[__p::SlotDesc {
+                    name: "next",
+                    child: 3,
+                    probability: 1.0,
+                    count: 1,
+                    first_link: 0,
+                }],
                 links: 1,
                 param_words: 3,
             },
@@ -235,9 +269,18 @@ const _: () = {
                 params: &[__p::ParamDesc {
                     name: "size",
                     offset: 0,
-                    dist: __p::Distribution::UniformVec3 { lo: [0.6, 0.8, 0.6], hi: [1.1, 1.1, 1.1] },
+                    dist: __p::Distribution::UniformVec3 {
+                        lo: [0.6, 0.8, 0.6],
+                        hi: [1.1, 1.1, 1.1],
+                    },
                 }],
-                slots: &[__p::SlotDesc { name: "next", child: 3, probability: 1.0, count: 1, first_link: 0 }],
+                slots: &[__p::SlotDesc {
+                    name: "next",
+                    child: 3,
+                    probability: 1.0,
+                    count: 1,
+                    first_link: 0,
+                }],
                 links: 1,
                 param_words: 3,
             },
@@ -247,11 +290,24 @@ const _: () = {
                     __p::ParamDesc {
                         name: "size",
                         offset: 0,
-                        dist: __p::Distribution::UniformVec3 { lo: [0.3, 0.2, 0.2], hi: [1.2, 0.5, 1.0] },
+                        dist: __p::Distribution::UniformVec3 {
+                            lo: [0.3, 0.2, 0.2],
+                            hi: [1.2, 0.5, 1.0],
+                        },
                     },
-                    __p::ParamDesc { name: "shift", offset: 3, dist: __p::Distribution::Uniform { lo: -0.5, hi: 0.5 } },
+                    __p::ParamDesc {
+                        name: "shift",
+                        offset: 3,
+                        dist: __p::Distribution::Uniform { lo: -0.5, hi: 0.5 },
+                    },
                 ],
-                slots: &[__p::SlotDesc { name: "next", child: 5, probability: 1.0, count: 1, first_link: 0 }],
+                slots: &[__p::SlotDesc {
+                    name: "next",
+                    child: 5,
+                    probability: 1.0,
+                    count: 1,
+                    first_link: 0,
+                }],
                 links: 1,
                 param_words: 4,
             },
@@ -261,11 +317,24 @@ const _: () = {
                     __p::ParamDesc {
                         name: "size",
                         offset: 0,
-                        dist: __p::Distribution::UniformVec3 { lo: [0.6, 0.9, 0.7], hi: [1.2, 1.0, 1.2] },
+                        dist: __p::Distribution::UniformVec3 {
+                            lo: [0.6, 0.9, 0.7],
+                            hi: [1.2, 1.0, 1.2],
+                        },
                     },
-                    __p::ParamDesc { name: "shift", offset: 3, dist: __p::Distribution::Uniform { lo: -0.5, hi: 0.5 } },
+                    __p::ParamDesc {
+                        name: "shift",
+                        offset: 3,
+                        dist: __p::Distribution::Uniform { lo: -0.5, hi: 0.5 },
+                    },
                 ],
-                slots: &[__p::SlotDesc { name: "next", child: 5, probability: 0.9, count: 1, first_link: 0 }],
+                slots: &[__p::SlotDesc {
+                    name: "next",
+                    child: 5,
+                    probability: 0.9,
+                    count: 1,
+                    first_link: 0,
+                }],
                 links: 1,
                 param_words: 4,
             },
@@ -317,7 +386,9 @@ impl Spaceship {
             let s = s.translate(vec3(0.0, 0.0, s.size().z / 2.0));
             s.emit(__rt::CUBE);
             if let Some(next) = next {
-                s.translate(vec3(0.0, 0.0, s.size().z / 2.0)).resize(next.size).derive(next);
+                s.translate(vec3(0.0, 0.0, s.size().z / 2.0))
+                    .resize(next.size)
+                    .derive(next);
             }
             if let Some(top) = top {
                 s.translate(vec3(0.0, s.size().y / 2.0, 0.0)).derive(top);
@@ -345,7 +416,10 @@ impl Spaceship {
 
     #[allow(unused_variables)]
     #[inline]
-    fn __rule_top_next<'a>(s: __rt::__private::Shape<'a, Self>, gene: __rt::__private::GeneView<'a>) {
+    fn __rule_top_next<'a>(
+        s: __rt::__private::Shape<'a, Self>,
+        gene: __rt::__private::GeneView<'a>,
+    ) {
         let TopNext { size } = <TopNext as __rt::__private::NodeParams>::read(gene.params(1));
         let next: Option<__rt::__private::Child<'a, TopNext>> = gene.child(0);
         {
@@ -353,7 +427,9 @@ impl Spaceship {
             let s = s.translate(vec3(0.0, s.size().y / 2.0, 0.0));
             s.emit(__rt::CUBE);
             if let Some(next) = next {
-                s.translate(vec3(0.0, s.size().y / 2.0, 0.0)).resize(next.size).derive(next);
+                s.translate(vec3(0.0, s.size().y / 2.0, 0.0))
+                    .resize(next.size)
+                    .derive(next);
             }
         }
     }
@@ -375,16 +451,23 @@ impl Spaceship {
 
     #[allow(unused_variables)]
     #[inline]
-    fn __rule_wing_next<'a>(s: __rt::__private::Shape<'a, Self>, gene: __rt::__private::GeneView<'a>) {
-        let WingNext { size, shift } = <WingNext as __rt::__private::NodeParams>::read(gene.params(1));
+    fn __rule_wing_next<'a>(
+        s: __rt::__private::Shape<'a, Self>,
+        gene: __rt::__private::GeneView<'a>,
+    ) {
+        let WingNext { size, shift } =
+            <WingNext as __rt::__private::NodeParams>::read(gene.params(1));
         let next: Option<__rt::__private::Child<'a, WingNext>> = gene.child(0);
         {
             use glam::vec3;
             let s = s.translate(vec3(s.size().x / 2.0, 0.0, 0.0));
             s.emit(__rt::CUBE);
             if let Some(next) = next {
-                let c = s.translate(vec3(s.size().x / 2.0, 0.0, 0.0)).resize(next.size);
-                c.translate(vec3(0.0, 0.0, c.size().z * next.shift)).derive(next);
+                let c = s
+                    .translate(vec3(s.size().x / 2.0, 0.0, 0.0))
+                    .resize(next.size);
+                c.translate(vec3(0.0, 0.0, c.size().z * next.shift))
+                    .derive(next);
             }
         }
     }

@@ -1,0 +1,119 @@
+//! cut: remove a subtree, chosen by the grammar's probabilities.
+
+use rand::Rng;
+
+use super::edit::{cover, remove_subtree};
+use super::weight::{ONE, below};
+use super::{Operators, gene_starts};
+use crate::derive::Grammar;
+use crate::genome::{Genome, GenomeError, parent_pos};
+use crate::graph::HEADER_WORDS;
+
+impl<G: Grammar> Operators<G> {
+    /// Cuts one subtree: picks an expressed link `(k, l)` with probability
+    /// `(1 - p(k,l)) / sum of (1 - p)` over the expressed links whose removal keeps the
+    /// genome at least `min_len` long, and removes the child there with its whole
+    /// subtree. Links of probability 1 are never cut. Returns `false`, leaving the genome
+    /// as it was, when nothing can be cut.
+    ///
+    /// The removal is one forward pass that compacts the surviving genes and fixes their
+    /// offsets. O(W); no allocation once the scratch buffers have grown.
+    ///
+    /// ```
+    /// # use rand::SeedableRng;
+    /// # use shapegen_runtime::genome::{Genome, Limits};
+    /// # use shapegen_runtime::ops::Operators;
+    /// # use shapegen_runtime::ops::doc_grammar::Chain;
+    /// let mut ops = Operators::<Chain>::new(Limits::new(2, 50, 10)?)?;
+    /// let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+    /// let mut g = ops.random(20, &mut rng);
+    /// while ops.cut(&mut g, &mut rng) {}
+    /// assert_eq!(g.len(), 2); // min_len
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn cut(&mut self, genome: &mut Genome<G>, rng: &mut impl Rng) -> bool {
+        let len = genome.len;
+        let min_len = self.limits.min_len.max(1);
+        if len <= min_len {
+            return false; // any cut removes at least one gene
+        }
+        // Subtree sizes only matter when some cut could go below min_len.
+        let need_sizes = min_len > 1;
+        let s = &mut self.s;
+        let words = &genome.words;
+        gene_starts(&self.kinds, words, &mut s.starts);
+        if need_sizes {
+            subtree_sizes(words, &s.starts, &mut s.depth);
+        }
+        s.cand.clear();
+        s.cum.clear();
+        let mut total = 0u64;
+        for &pos in &s.starts {
+            let k = self.kinds[words[pos as usize] as usize];
+            let at = (pos + HEADER_WORDS) as usize;
+            let links = &self.links[k.first_link as usize..][..k.links as usize];
+            for (&off, l) in words[at..at + k.links as usize].iter().zip(links) {
+                if off == 0 {
+                    continue;
+                }
+                let child = pos + off;
+                let w = ONE - l.grow;
+                if w > 0 && (!need_sizes || len - s.depth[child as usize] >= min_len) {
+                    total += w;
+                    s.cand.push(child);
+                    s.cum.push(total);
+                }
+            }
+        }
+        if total == 0 {
+            return false;
+        }
+        let r = below(rng, total);
+        let child = s.cand[s.cum.partition_point(|&c| c <= r)];
+        let removed = remove_subtree(&self.kinds, &mut genome.words, &s.starts, child, &mut s.map);
+        genome.len -= removed;
+        true
+    }
+
+    /// Removes the gene at word `pos` and its subtree, whatever its link's probability;
+    /// returns the number of genes removed. Fails, leaving the genome as it was, if `pos`
+    /// is the root or not the start of a gene, or if the genome would become shorter than
+    /// `min_len`. O(W).
+    pub fn cut_at(&mut self, genome: &mut Genome<G>, pos: u32) -> Result<u32, GenomeError> {
+        let s = &mut self.s;
+        gene_starts(&self.kinds, &genome.words, &mut s.starts);
+        if s.starts.binary_search(&pos).is_err() {
+            return Err(GenomeError::NotAGene {
+                pos,
+                words: genome.words.len() as u32,
+            });
+        }
+        if pos == 0 {
+            return Err(GenomeError::IsRoot);
+        }
+        subtree_sizes(&genome.words, &s.starts, &mut s.depth);
+        let left = genome.len - s.depth[pos as usize];
+        if left < self.limits.min_len {
+            return Err(GenomeError::TooShort {
+                len: left,
+                min_len: self.limits.min_len,
+            });
+        }
+        let removed = remove_subtree(&self.kinds, &mut genome.words, &s.starts, pos, &mut s.map);
+        genome.len -= removed;
+        Ok(removed)
+    }
+}
+
+/// Fills `size`, indexed by word position, with the number of genes in each gene's
+/// subtree (itself included). O(G): children follow their parents, so a backward pass
+/// adds each finished subtree to its parent.
+fn subtree_sizes(words: &[u32], starts: &[u32], size: &mut Vec<u32>) {
+    cover(size, words.len());
+    for &pos in starts {
+        size[pos as usize] = 1;
+    }
+    for &pos in starts.iter().skip(1).rev() {
+        size[parent_pos(words, pos) as usize] += size[pos as usize];
+    }
+}
