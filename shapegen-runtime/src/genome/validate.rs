@@ -141,29 +141,32 @@ pub(crate) fn validate_words<G: Grammar>(words: &[u32], len: u32) -> Result<(), 
         });
     }
 
-    // Pass 2: parent offsets point back to genes; links point forward to genes of the
-    // slot's kind whose parent is this gene. Count the links reaching each gene.
+    // Pass 2: parent offsets point back to genes.
+    for &pos in &starts[1..] {
+        let pos = pos as usize;
+        let offset = words[pos + 1] as i32;
+        if offset >= 0 {
+            return Err(GenomeError::ParentNotBefore {
+                at: at(pos),
+                offset,
+            });
+        }
+        let target = pos as i64 + i64::from(offset);
+        if !is_gene(target) {
+            return Err(GenomeError::ParentNotGene {
+                at: at(pos),
+                offset,
+                target,
+            });
+        }
+    }
+
+    // Pass 3: links point forward to genes of the slot's kind whose parent is this gene.
+    // Count the links reaching each gene.
     let mut incoming = vec![0u32; n];
     for &pos in &starts {
         let pos = pos as usize;
         let node = node_of::<G>(words[pos]);
-        if pos != 0 {
-            let offset = words[pos + 1] as i32;
-            if offset >= 0 {
-                return Err(GenomeError::ParentNotBefore {
-                    at: at(pos),
-                    offset,
-                });
-            }
-            let target = pos as i64 + i64::from(offset);
-            if !is_gene(target) {
-                return Err(GenomeError::ParentNotGene {
-                    at: at(pos),
-                    offset,
-                    target,
-                });
-            }
-        }
         for slot in node.slots {
             for link in slot.first_link..slot.first_link + slot.count {
                 let offset = words[pos + (HEADER_WORDS + link) as usize] as i32;
@@ -210,7 +213,7 @@ pub(crate) fn validate_words<G: Grammar>(words: &[u32], len: u32) -> Result<(), 
         }
     }
 
-    // Pass 3, in buffer order so parents come first: each gene linked back exactly once,
+    // Pass 4, in buffer order so parents come first: each gene linked back exactly once,
     // depth, parameters.
     let mut depth = vec![0u32; n];
     for &pos in &starts {
