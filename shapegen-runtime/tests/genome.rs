@@ -2,104 +2,18 @@
 
 mod support {
     pub mod city_expanded;
+    pub mod known;
     pub mod spaceship_expanded;
 }
 
-use glam::{Vec2, Vec3, vec2, vec3};
+use glam::Vec3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use shapegen_runtime::genome::{GeneAt, Genome, GenomeError, GenomeSet, JsonError, Limits};
 use shapegen_runtime::ops::Operators;
 use support::city_expanded::{self as city, City};
-use support::spaceship_expanded::{Body, Spaceship, Start, Top, TopNext, Wing, WingNext};
-
-fn v3(x: f32, y: f32, z: f32) -> Vec3 {
-    vec3(x, y, z)
-}
-
-/// Start @0 -> body: Body @3 -> wing: Wing @11.
-fn small() -> Genome<Spaceship> {
-    let mut g = Genome::<Spaceship>::with_root(Start {}).unwrap();
-    let body = g
-        .attach(
-            0,
-            "body",
-            Body {
-                size: v3(0.83, 1.2, 0.7),
-            },
-        )
-        .unwrap();
-    let wing = Wing {
-        size: v3(0.5, 0.3, 0.7),
-        shift: 0.1,
-    };
-    g.attach(body, "wing", wing).unwrap();
-    g
-}
-
-/// Start @0, Body @3, Body @11 (next), Wing @19 (wing of @3), WingNext @26, Top @33 (top
-/// of @11), TopNext @39.
-fn ship() -> Genome<Spaceship> {
-    let mut g = Genome::<Spaceship>::with_root(Start {}).unwrap();
-    let body = g
-        .attach(
-            0,
-            "body",
-            Body {
-                size: v3(0.83, 1.2, 0.7),
-            },
-        )
-        .unwrap();
-    let next = g
-        .attach(
-            body,
-            "next",
-            Body {
-                size: v3(1.0, 1.0, 1.0),
-            },
-        )
-        .unwrap();
-    let wing = Wing {
-        size: v3(0.5, 0.3, 0.7),
-        shift: 0.1,
-    };
-    let wing = g.attach(body, "wing", wing).unwrap();
-    let wn = WingNext {
-        size: v3(0.9, 0.95, 1.0),
-        shift: -0.25,
-    };
-    g.attach(wing, "next", wn).unwrap();
-    let top = g
-        .attach(
-            next,
-            "top",
-            Top {
-                size: v3(0.5, 0.15, 0.5),
-            },
-        )
-        .unwrap();
-    g.attach(
-        top,
-        "next",
-        TopNext {
-            size: v3(1.0, 1.0, 1.0),
-        },
-    )
-    .unwrap();
-    g
-}
-
-fn building(height: f32) -> city::Building {
-    city::Building {
-        footprint: vec2(1.0, 1.5),
-        height,
-        rotation: std::f32::consts::FRAC_PI_6,
-        style: 2,
-        floors: -1,
-        lit: true,
-        block: 3,
-    }
-}
+use support::known::{building, ship, small, v3};
+use support::spaceship_expanded::{Body, Spaceship, Start, Top, TopNext};
 
 #[test]
 fn attach_appends_genes_with_relative_offsets() {
@@ -618,5 +532,4 @@ fn genome_depth_is_capped() {
         "{err}"
     );
     g.validate().unwrap();
-    let _ = Vec2::ZERO;
 }

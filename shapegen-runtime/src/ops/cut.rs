@@ -2,12 +2,11 @@
 
 use rand::Rng;
 
-use super::edit::{cover, remove_subtree};
+use super::Operators;
+use super::edit::{cover, record_links, remove_subtree};
 use super::weight::{ONE, below};
-use super::{Operators, gene_starts};
 use crate::derive::Grammar;
-use crate::genome::{Genome, GenomeError, parent_pos};
-use crate::graph::HEADER_WORDS;
+use crate::genome::{Genome, GenomeError};
 
 impl<G: Grammar> Operators<G> {
     /// Cuts one subtree: picks an expressed link `(k, l)` with probability
@@ -16,8 +15,9 @@ impl<G: Grammar> Operators<G> {
     /// subtree. Links of probability 1 are never cut. Returns `false`, leaving the genome
     /// as it was, when nothing can be cut.
     ///
-    /// The removal is one forward pass that compacts the surviving genes and fixes their
-    /// offsets. O(W); no allocation once the scratch buffers have grown.
+    /// One pass finds the candidates; the removal is one forward sweep from the cut
+    /// gene that compacts the survivors and fixes their offsets. O(W); no allocation once
+    /// the scratch buffers have grown.
     ///
     /// ```
     /// # use rand::SeedableRng;
@@ -40,29 +40,34 @@ impl<G: Grammar> Operators<G> {
         // Subtree sizes only matter when some cut could go below min_len.
         let need_sizes = min_len > 1;
         let s = &mut self.s;
-        let words = &genome.words;
-        gene_starts(&self.kinds, words, &mut s.starts);
-        if need_sizes {
-            subtree_sizes(words, &s.starts, &mut s.depth);
-        }
         s.cand.clear();
         s.cum.clear();
+        let (cand, cum) = (&mut s.cand, &mut s.cum);
         let mut total = 0u64;
-        for &pos in &s.starts {
-            let k = self.kinds[words[pos as usize] as usize];
-            let at = (pos + HEADER_WORDS) as usize;
-            let links = &self.links[k.first_link as usize..][..k.links as usize];
-            for (&off, l) in words[at..at + k.links as usize].iter().zip(links) {
-                if off == 0 {
-                    continue;
-                }
-                let child = pos + off;
+        record_links(
+            &self.kinds,
+            &self.links,
+            &genome.words,
+            &mut s.map,
+            &mut s.link_of,
+            need_sizes.then_some(&mut s.starts),
+            |child, l| {
                 let w = ONE - l.grow;
-                if w > 0 && (!need_sizes || len - s.depth[child as usize] >= min_len) {
+                if w > 0 {
                     total += w;
-                    s.cand.push(child);
-                    s.cum.push(total);
+                    cand.push(child);
+                    cum.push(if need_sizes { w } else { total });
                 }
+            },
+        );
+        if need_sizes {
+            subtree_sizes(&s.starts, &s.map, &mut s.depth);
+            total = 0;
+            for (c, w) in s.cand.iter().zip(s.cum.iter_mut()) {
+                if len - s.depth[*c as usize] >= min_len {
+                    total += *w;
+                }
+                *w = total;
             }
         }
         if total == 0 {
@@ -70,7 +75,13 @@ impl<G: Grammar> Operators<G> {
         }
         let r = below(rng, total);
         let child = s.cand[s.cum.partition_point(|&c| c <= r)];
-        let removed = remove_subtree(&self.kinds, &mut genome.words, &s.starts, child, &mut s.map);
+        let removed = remove_subtree(
+            &self.kinds,
+            &mut genome.words,
+            child,
+            &mut s.map,
+            &s.link_of,
+        );
         genome.len -= removed;
         true
     }
@@ -81,7 +92,15 @@ impl<G: Grammar> Operators<G> {
     /// `min_len`. O(W).
     pub fn cut_at(&mut self, genome: &mut Genome<G>, pos: u32) -> Result<u32, GenomeError> {
         let s = &mut self.s;
-        gene_starts(&self.kinds, &genome.words, &mut s.starts);
+        record_links(
+            &self.kinds,
+            &self.links,
+            &genome.words,
+            &mut s.map,
+            &mut s.link_of,
+            Some(&mut s.starts),
+            |_, _| {},
+        );
         if s.starts.binary_search(&pos).is_err() {
             return Err(GenomeError::NotAGene {
                 pos,
@@ -91,7 +110,7 @@ impl<G: Grammar> Operators<G> {
         if pos == 0 {
             return Err(GenomeError::IsRoot);
         }
-        subtree_sizes(&genome.words, &s.starts, &mut s.depth);
+        subtree_sizes(&s.starts, &s.map, &mut s.depth);
         let left = genome.len - s.depth[pos as usize];
         if left < self.limits.min_len {
             return Err(GenomeError::TooShort {
@@ -99,21 +118,24 @@ impl<G: Grammar> Operators<G> {
                 min_len: self.limits.min_len,
             });
         }
-        let removed = remove_subtree(&self.kinds, &mut genome.words, &s.starts, pos, &mut s.map);
+        let removed = remove_subtree(&self.kinds, &mut genome.words, pos, &mut s.map, &s.link_of);
         genome.len -= removed;
         Ok(removed)
     }
 }
 
 /// Fills `size`, indexed by word position, with the number of genes in each gene's
-/// subtree (itself included). O(G): children follow their parents, so a backward pass
-/// adds each finished subtree to its parent.
-fn subtree_sizes(words: &[u32], starts: &[u32], size: &mut Vec<u32>) {
-    cover(size, words.len());
+/// subtree (itself included), given the gene starts and each gene's parent position.
+/// O(G): children follow their parents, so a backward pass adds each finished subtree to
+/// its parent.
+fn subtree_sizes(starts: &[u32], parent: &[u32], size: &mut Vec<u32>) {
+    if let Some(&last) = starts.last() {
+        cover(size, last as usize + 1);
+    }
     for &pos in starts {
         size[pos as usize] = 1;
     }
     for &pos in starts.iter().skip(1).rev() {
-        size[parent_pos(words, pos) as usize] += size[pos as usize];
+        size[parent[pos as usize] as usize] += size[pos as usize];
     }
 }

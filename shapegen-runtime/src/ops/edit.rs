@@ -6,7 +6,7 @@
 //! subtree members by their parent's mark. Word positions are remapped through a
 //! word-indexed table and every offset is rewritten once: O(W).
 
-use super::KindInfo;
+use super::{KindInfo, LinkInfo};
 use crate::genome::parent_pos;
 use crate::graph::HEADER_WORDS;
 
@@ -25,71 +25,97 @@ pub(super) fn cover(table: &mut Vec<u32>, n: usize) {
 }
 
 /// Removes the gene at `root` (not the genome's root) and its whole subtree from the
-/// valid genome in `words`, whose gene starts are `starts`, compacting the survivors and
-/// fixing all offsets; the parent's link becomes 0. Returns the number of genes removed.
+/// valid genome in `words`, compacting the survivors and fixing all offsets in one
+/// forward sweep from `root`; the parent's link becomes 0. Returns the number of genes
+/// removed.
+///
+/// `parent` and `link` (word-indexed) must hold, for every gene from `root` on, its
+/// parent's position and the index of the link it hangs from, as [`record_links`] fills
+/// them; `parent` is overwritten. The sweep meets parents before children, so when it
+/// moves a gene it knows its parent's new place and the link there to patch, and it tells
+/// removed genes by their parent's mark.
 pub(super) fn remove_subtree(
     kinds: &[KindInfo],
     words: &mut Vec<u32>,
-    starts: &[u32],
     root: u32,
-    map: &mut Vec<u32>,
+    parent: &mut [u32],
+    link: &[u32],
 ) -> u32 {
     debug_assert!(root != 0);
-    cover(map, words.len());
-    let gw = |words: &[u32], pos: u32| kinds[words[pos as usize] as usize].gene_words;
-
-    // New positions of the genes from `root` on; the genes before it stay put.
-    let first = starts.partition_point(|&p| p < root);
+    let n = words.len() as u32;
     let mut cursor = root;
     let mut removed = 0;
-    for &pos in &starts[first..] {
-        let gone = pos == root || {
-            let parent = parent_pos(words, pos);
-            parent >= root && map[parent as usize] == GONE
-        };
-        if gone {
-            map[pos as usize] = GONE;
+    let mut pos = root;
+    while pos < n {
+        let k = kinds[words[pos as usize] as usize];
+        let p = pos as usize;
+        let par = parent[p];
+        if pos == root || par == GONE {
+            if pos == root {
+                words[(par + HEADER_WORDS + link[p]) as usize] = 0;
+            }
+            for &off in &words[p + HEADER_WORDS as usize..][..k.links as usize] {
+                if off != 0 {
+                    parent[(pos + off) as usize] = GONE;
+                }
+            }
             removed += 1;
         } else {
-            map[pos as usize] = cursor;
-            cursor += gw(words, pos);
-        }
-    }
-    let new_pos = |map: &[u32], pos: u32| if pos < root { pos } else { map[pos as usize] };
-
-    // Genes before `root` stay, but their links past it move (or vanish).
-    for &pos in &starts[..first] {
-        let k = kinds[words[pos as usize] as usize];
-        let at = (pos + HEADER_WORDS) as usize;
-        for w in &mut words[at..at + k.links as usize] {
-            if *w != 0 && pos + *w >= root {
-                let to = map[(pos + *w) as usize];
-                *w = if to == GONE { 0 } else { to - pos };
+            // Moving down never reaches the words of a gene not yet swept.
+            let np = cursor;
+            words.copy_within(p..p + k.gene_words as usize, np as usize);
+            words[np as usize + 1] = par.wrapping_sub(np);
+            words[(par + HEADER_WORDS + link[p]) as usize] = np - par;
+            for &off in &words[(np + HEADER_WORDS) as usize..][..k.links as usize] {
+                if off != 0 {
+                    parent[(pos + off) as usize] = np;
+                }
             }
+            cursor += k.gene_words;
         }
-    }
-
-    // Survivors after `root` move down; writing one never reaches a later one's words.
-    for &pos in &starts[first..] {
-        let np = map[pos as usize];
-        if np == GONE {
-            continue;
-        }
-        let k = kinds[words[pos as usize] as usize];
-        let (p, n) = (pos as usize, np as usize);
-        words.copy_within(p..p + k.gene_words as usize, n);
-        // The copy still holds the old offsets, relative to the old position.
-        let parent = pos.wrapping_add_signed(words[n + 1] as i32);
-        let np_parent = new_pos(map, parent);
-        words[n + 1] = np_parent.wrapping_sub(np);
-        for w in &mut words[n + HEADER_WORDS as usize..][..k.links as usize] {
-            if *w != 0 {
-                *w = map[(pos + *w) as usize] - np;
-            }
-        }
+        pos += k.gene_words;
     }
     words.truncate(cursor as usize);
     removed
+}
+
+/// One forward pass over the valid genome in `words`: records in `parent` and `link`
+/// (word-indexed) each child's parent position and link index, and calls `each_link`
+/// with every expressed link's child position and [`LinkInfo`]; pushes each gene's start
+/// into `starts` when given.
+#[inline]
+pub(super) fn record_links(
+    kinds: &[KindInfo],
+    links: &[LinkInfo],
+    words: &[u32],
+    parent: &mut Vec<u32>,
+    link: &mut Vec<u32>,
+    mut starts: Option<&mut Vec<u32>>,
+    mut each_link: impl FnMut(u32, &LinkInfo),
+) {
+    cover(parent, words.len());
+    cover(link, words.len());
+    if let Some(starts) = starts.as_deref_mut() {
+        starts.clear();
+    }
+    let mut pos = 0u32;
+    while (pos as usize) < words.len() {
+        let k = kinds[words[pos as usize] as usize];
+        if let Some(starts) = starts.as_deref_mut() {
+            starts.push(pos);
+        }
+        let at = (pos + HEADER_WORDS) as usize;
+        let infos = &links[k.first_link as usize..][..k.links as usize];
+        for (l, (&off, info)) in words[at..at + k.links as usize].iter().zip(infos).enumerate() {
+            if off != 0 {
+                let child = pos + off;
+                parent[child as usize] = pos;
+                link[child as usize] = l as u32;
+                each_link(child, info);
+            }
+        }
+        pos += k.gene_words;
+    }
 }
 
 /// How a genome splits at a link: the subtree below it and the rest.

@@ -124,6 +124,7 @@ struct Scratch {
     depth_b: Vec<u32>,
     map: Vec<u32>,
     map_b: Vec<u32>,
+    link_of: Vec<u32>,
     fenwick: Fenwick,
     /// Open links of [`Self::fenwick`] or the sampling queue: (gene, link, depth).
     owners: Vec<(u32, u32, u32)>,
