@@ -7,6 +7,7 @@ use super::edit::{cover, record_links, remove_subtree};
 use super::weight::{ONE, below};
 use crate::derive::Grammar;
 use crate::genome::{Genome, GenomeError};
+use crate::graph::HEADER_WORDS;
 
 impl<G: Grammar> Operators<G> {
     /// Cuts one subtree: picks an expressed link `(k, l)` with probability
@@ -40,30 +41,56 @@ impl<G: Grammar> Operators<G> {
         // Subtree sizes only matter when some cut could go below min_len.
         let need_sizes = min_len > 1;
         let s = &mut self.s;
-        s.cand.clear();
-        s.cum.clear();
-        let (cand, cum) = (&mut s.cand, &mut s.cum);
+        let words = &genome.words[..];
+        let n = words.len();
+        cover(&mut s.map, n);
+        cover(&mut s.link_of, n);
+        // Every gene but the root hangs from one expressed link: `len - 1` candidates at
+        // most, written by index.
+        if s.cand.len() < len as usize {
+            s.cand.resize(len as usize, 0);
+        }
+        if s.cum.len() < len as usize {
+            s.cum.resize(len as usize, 0);
+        }
+        s.starts.clear();
+        let (parent, link) = (&mut s.map[..n], &mut s.link_of[..n]);
+        let (cand, cum) = (&mut s.cand[..], &mut s.cum[..]);
+        let mut m = 0;
         let mut total = 0u64;
-        record_links(
-            &self.kinds,
-            &self.links,
-            &genome.words,
-            &mut s.map,
-            &mut s.link_of,
-            need_sizes.then_some(&mut s.starts),
-            |child, l| {
-                let w = ONE - l.grow;
-                if w > 0 {
-                    total += w;
-                    cand.push(child);
-                    cum.push(if need_sizes { w } else { total });
+        let mut pos = 0u32;
+        while (pos as usize) < n {
+            let k = self.kinds[words[pos as usize] as usize];
+            if need_sizes {
+                s.starts.push(pos);
+            }
+            let at = (pos + HEADER_WORDS) as usize;
+            let infos = &self.links[k.first_link as usize..][..k.links as usize];
+            for (l, (&off, info)) in words[at..at + k.links as usize]
+                .iter()
+                .zip(infos)
+                .enumerate()
+            {
+                if off != 0 {
+                    let child = pos + off;
+                    parent[child as usize] = pos;
+                    link[child as usize] = l as u32;
+                    let w = ONE - info.grow;
+                    if w > 0 {
+                        total += w;
+                        cand[m] = child;
+                        cum[m] = if need_sizes { w } else { total };
+                        m += 1;
+                    }
                 }
-            },
-        );
+            }
+            pos += k.gene_words;
+        }
+        let (cand, cum) = (&s.cand[..m], &mut s.cum[..m]);
         if need_sizes {
             subtree_sizes(&s.starts, &s.map, &mut s.depth);
             total = 0;
-            for (c, w) in s.cand.iter().zip(s.cum.iter_mut()) {
+            for (c, w) in cand.iter().zip(cum.iter_mut()) {
                 if len - s.depth[*c as usize] >= min_len {
                     total += *w;
                 }
@@ -74,7 +101,7 @@ impl<G: Grammar> Operators<G> {
             return false;
         }
         let r = below(rng, total);
-        let child = s.cand[s.cum.partition_point(|&c| c <= r)];
+        let child = cand[cum.partition_point(|&c| c <= r)];
         let removed = remove_subtree(
             &self.kinds,
             &mut genome.words,

@@ -106,7 +106,11 @@ pub(super) fn record_links(
         }
         let at = (pos + HEADER_WORDS) as usize;
         let infos = &links[k.first_link as usize..][..k.links as usize];
-        for (l, (&off, info)) in words[at..at + k.links as usize].iter().zip(infos).enumerate() {
+        for (l, (&off, info)) in words[at..at + k.links as usize]
+            .iter()
+            .zip(infos)
+            .enumerate()
+        {
             if off != 0 {
                 let child = pos + off;
                 parent[child as usize] = pos;
