@@ -1,30 +1,4 @@
-//! Genomes as JSON: a readable form that names nodes and parameters, one gene a line.
-//!
-//! ```json
-//! {
-//!   "generator": "Spaceship",
-//!   "genes": [
-//!     {"node": "Start", "parent": 0, "links": [3], "params": {}},
-//!     {"node": "Body", "parent": -3, "links": [0, 8, 0], "params": {"size": [0.83, 1.2, 0.7]}},
-//!     {"node": "Wing", "parent": -8, "links": [0], "params": {"size": [0.5, 0.3, 0.7], "shift": 0.1}}
-//!   ]
-//! }
-//! ```
-//!
-//! Genes are listed in buffer order. `parent` and `links` are the gene's relative word
-//! offsets exactly as stored (0: the root's parent, or an absent child); `links` has one
-//! entry per link of the node, array slots included, in declaration order. Parameters
-//! are keyed by name: `f32` as a number, `Vec2`/`Vec3` as arrays of numbers, `i32`/`u32`
-//! as integers, `bool` as `true`/`false`; angles in radians, as stored. Numbers are
-//! written as the shortest decimals that read back to the same `f32`, so a save and load
-//! round-trips exactly.
-//!
-//! Many genomes go in one file as a [`GenomeSet`]:
-//! `{"generator": "Spaceship", "genomes": [{"genes": [...]}, ...]}`.
-//!
-//! Loading checks the generator's name, node names, the number of links, that each
-//! parameter is present, known and of its type, and then every layout invariant with
-//! [`Genome::validate`], parameter ranges included; errors name the gene by its index.
+//! Genomes as JSON; the format is described on [`Genome::to_json`].
 
 use std::fmt;
 use std::io;
@@ -152,7 +126,33 @@ pub enum JsonError {
 }
 
 impl<G: Grammar> Genome<G> {
-    /// The genome as readable JSON, one gene a line (see the [module](self) docs).
+    /// The genome as readable JSON: nodes and parameters by name, one gene a line.
+    ///
+    /// ```json
+    /// {
+    ///   "generator": "Spaceship",
+    ///   "genes": [
+    ///     {"node": "Start", "parent": 0, "links": [3], "params": {}},
+    ///     {"node": "Body", "parent": -3, "links": [0, 8, 0], "params": {"size": [0.83, 1.2, 0.7]}},
+    ///     {"node": "Wing", "parent": -8, "links": [0], "params": {"size": [0.5, 0.3, 0.7], "shift": 0.1}}
+    ///   ]
+    /// }
+    /// ```
+    ///
+    /// Genes are listed in buffer order. `parent` and `links` are the gene's relative word
+    /// offsets exactly as stored (0: the root's parent, or an absent child); `links` has one
+    /// entry per link of the node, array slots included, in declaration order. Parameters
+    /// are keyed by name: `f32` as a number, `Vec2`/`Vec3` as arrays of numbers, `i32`/`u32`
+    /// as integers, `bool` as `true`/`false`; angles in radians, as stored. Numbers are
+    /// written as the shortest decimals that read back to the same `f32`, so a save and load
+    /// round-trips exactly.
+    ///
+    /// Many genomes go in one file as a [`GenomeSet`]:
+    /// `{"generator": "Spaceship", "genomes": [{"genes": [...]}, ...]}`.
+    ///
+    /// Loading checks the generator's name, node names, the number of links, that each
+    /// parameter is present, known and of its type, and then every layout invariant with
+    /// [`Genome::validate`], parameter ranges included; errors name the gene by its index.
     pub fn to_json(&self) -> String {
         to_json_string(self, 2)
     }
