@@ -40,6 +40,20 @@ impl<G: Grammar> Genome<G> {
     ///
     /// O(G) to check `parent`; the gene itself is appended in O(1). Limits are not
     /// applied here: check them with [`validate_limits`](Self::validate_limits).
+    ///
+    /// ```
+    /// use shapegen_runtime::genome::Genome;
+    /// # use shapegen_runtime::ops::doc_grammar::{Chain, Seg, Start};
+    /// // `Chain`: Start -> first: Seg; Seg -> next: Seg, side: Seg; Seg has `len`.
+    /// let mut g = Genome::<Chain>::with_root(Start {})?;
+    /// let first = g.attach(0, "first", Seg { len: 1.0 })?;
+    /// g.attach(first, "side", Seg { len: 0.5 })?;
+    /// assert_eq!(g.to_string(), "Start @0\n  first: Seg @3 len=1.00\n    side: Seg @8 len=0.50\n");
+    /// let err = g.attach(first, "side", Seg { len: 0.7 }).unwrap_err();
+    /// assert_eq!(err.to_string(), "gene 1 (`Seg` @3): slot `side` already holds the gene @8");
+    /// assert!(g.attach(first, "next", Seg { len: 9.0 }).is_err()); // outside [0.5, 1.5]
+    /// # Ok::<(), shapegen_runtime::genome::GenomeError>(())
+    /// ```
     pub fn attach<P: NodeParams>(
         &mut self,
         parent: u32,
