@@ -75,7 +75,9 @@ fn grow_appends_one_child_at_an_open_link() {
     assert!(ops.grow(&mut g, &mut r));
     // Appended after the old words, with one link of its parent patched.
     let old = before.words().len();
-    let diffs = (0..old).filter(|&i| g.words()[i] != before.words()[i]).count();
+    let diffs = (0..old)
+        .filter(|&i| g.words()[i] != before.words()[i])
+        .count();
     assert_eq!(diffs, 1);
     assert_eq!(g.len(), 3);
     assert_eq!(g.gene(11).parent(), Some(3));
@@ -235,6 +237,14 @@ fn cut_never_cuts_probability_one_links_and_keeps_min_len() {
         assert!(!ops5.cut(&mut g, &mut r), "at min_len nothing is cuttable");
     }
     assert_fits(&counts, &[0.5, 0.5]);
+
+    // min_len 6: every cuttable subtree of ship() has 2 or 3 genes.
+    let mut ops6 = new_ops::<Spaceship>(6, 100, 20);
+    let mut g = ship();
+    for _ in 0..50 {
+        assert!(!ops6.cut(&mut g, &mut r));
+    }
+    assert_eq!(g, ship());
 }
 
 #[test]

@@ -2,9 +2,9 @@
 
 use rand::Rng;
 
-use super::Operators;
 use super::edit::{cover, record_links, remove_subtree};
 use super::weight::{ONE, below};
+use super::{KindInfo, Operators, gene_starts};
 use crate::derive::Grammar;
 use crate::genome::{Genome, GenomeError};
 use crate::graph::HEADER_WORDS;
@@ -38,8 +38,10 @@ impl<G: Grammar> Operators<G> {
         if len <= min_len {
             return false; // any cut removes at least one gene
         }
-        // Subtree sizes only matter when some cut could go below min_len.
-        let need_sizes = min_len > 1;
+        // Subtrees of more than `len - min_len` genes may not be cut. Descendants follow
+        // their root, so only a subtree rooted among the first `min_len` genes can be that
+        // large: genes from `sure_from` on are always cuttable.
+        let max_cut = len - min_len;
         let s = &mut self.s;
         let words = &genome.words[..];
         let n = words.len();
@@ -53,17 +55,19 @@ impl<G: Grammar> Operators<G> {
         if s.cum.len() < len as usize {
             s.cum.resize(len as usize, 0);
         }
-        s.starts.clear();
         let (parent, link) = (&mut s.map[..n], &mut s.link_of[..n]);
         let (cand, cum) = (&mut s.cand[..], &mut s.cum[..]);
         let mut m = 0;
         let mut total = 0u64;
         let mut pos = 0u32;
+        let mut index = 0u32;
+        let mut sure_from = u32::MAX;
         while (pos as usize) < n {
             let k = self.kinds[words[pos as usize] as usize];
-            if need_sizes {
-                s.starts.push(pos);
+            if index == min_len {
+                sure_from = pos;
             }
+            index += 1;
             let at = (pos + HEADER_WORDS) as usize;
             let infos = &self.links[k.first_link as usize..][..k.links as usize];
             for (l, (&off, info)) in words[at..at + k.links as usize]
@@ -79,29 +83,43 @@ impl<G: Grammar> Operators<G> {
                     if w > 0 {
                         total += w;
                         cand[m] = child;
-                        cum[m] = if need_sizes { w } else { total };
+                        cum[m] = total;
                         m += 1;
                     }
                 }
             }
             pos += k.gene_words;
         }
-        let (cand, cum) = (&s.cand[..m], &mut s.cum[..m]);
-        if need_sizes {
-            subtree_sizes(&s.starts, &s.map, &mut s.depth);
-            total = 0;
-            for (c, w) in cand.iter().zip(cum.iter_mut()) {
-                if len - s.depth[*c as usize] >= min_len {
-                    total += *w;
-                }
-                *w = total;
-            }
-        }
         if total == 0 {
             return false;
         }
+        let (cand, cum) = (&s.cand[..m], &mut s.cum[..m]);
         let r = below(rng, total);
-        let child = cand[cum.partition_point(|&c| c <= r)];
+        let mut child = cand[cum.partition_point(|&c| c <= r)];
+        if child < sure_from
+            && subtree_len(&self.kinds, words, child, &s.map, &mut s.depth, max_cut) > max_cut
+        {
+            // Drawn too large: draw again among the cuttable links only. Accepting the
+            // first draw when it fits and redrawing exactly otherwise gives each cuttable
+            // link its weight over the cuttable links' total weight.
+            gene_starts(&self.kinds, words, &mut s.starts);
+            subtree_sizes(&s.starts, &s.map, &mut s.depth);
+            let mut prev = 0;
+            total = 0;
+            for (c, w) in cand.iter().zip(cum.iter_mut()) {
+                let own = *w - prev;
+                prev = *w;
+                if s.depth[*c as usize] <= max_cut {
+                    total += own;
+                }
+                *w = total;
+            }
+            if total == 0 {
+                return false;
+            }
+            let r = below(rng, total);
+            child = cand[cum.partition_point(|&c| c <= r)];
+        }
         let removed = remove_subtree(
             &self.kinds,
             &mut genome.words,
@@ -149,6 +167,31 @@ impl<G: Grammar> Operators<G> {
         genome.len -= removed;
         Ok(removed)
     }
+}
+
+/// Number of genes in the subtree of the gene at `root`, counted up to `limit + 1`, given
+/// each gene's parent position; `mark` is scratch. O(W) from `root`.
+fn subtree_len(
+    kinds: &[KindInfo],
+    words: &[u32],
+    root: u32,
+    parent: &[u32],
+    mark: &mut Vec<u32>,
+    limit: u32,
+) -> u32 {
+    cover(mark, words.len());
+    let mut count = 0;
+    let mut pos = root;
+    while (pos as usize) < words.len() && count <= limit {
+        let inside = pos == root || {
+            let p = parent[pos as usize];
+            p >= root && mark[p as usize] != 0
+        };
+        mark[pos as usize] = u32::from(inside);
+        count += u32::from(inside);
+        pos += kinds[words[pos as usize] as usize].gene_words;
+    }
+    count
 }
 
 /// Fills `size`, indexed by word position, with the number of genes in each gene's
