@@ -84,9 +84,8 @@ fn run_sequence<G: Grammar>(seed: u64, limits: Limits, initial_len: u32, codes: 
 
 /// Limits every random genome can meet: min_len is small enough for any depth allowed.
 fn limits(min_depth: u32) -> impl Strategy<Value = Limits> {
-    (1u32..=8, 0u32..=120, min_depth..=16).prop_map(|(min, extra, depth)| {
-        Limits::new(min, (min + extra).max(2), depth).unwrap()
-    })
+    (1u32..=8, 0u32..=120, min_depth..=16)
+        .prop_map(|(min, extra, depth)| Limits::new(min, (min + extra).max(2), depth).unwrap())
 }
 
 fn codes() -> impl Strategy<Value = Vec<u8>> {
