@@ -19,7 +19,7 @@ pub fn limits_for(genes: usize, paper: Limits) -> Limits {
 /// probabilities from `seed`.
 pub fn genome_of<G: Grammar>(genes: usize, limits: Limits, seed: u64) -> Genome<G> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut ops = Operators::<G>::new(limits);
+    let mut ops = Operators::<G>::new(limits).expect("benchmark limits are valid");
     let mut genome = Genome::<G>::axiom(&mut rng);
     while genome.len() < genes && ops.grow(&mut genome, &mut rng) {}
     genome

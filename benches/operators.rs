@@ -21,7 +21,9 @@ impl GeneratorVisitor for OperatorBench<'_> {
     type Output = ();
 
     fn visit<G: Grammar>(self, paper: Limits) {
-        let mut group = self.c.benchmark_group(format!("operators/{}", G::GRAPH.name));
+        let mut group = self
+            .c
+            .benchmark_group(format!("operators/{}", G::GRAPH.name));
         for genes in [100, 1000] {
             let limits = common::limits_for(genes, paper);
             let a = common::genome_of::<G>(genes, limits, 1);
@@ -31,19 +33,32 @@ impl GeneratorVisitor for OperatorBench<'_> {
                 min_len: 1,
                 max_len: limits.max_len + 1,
                 ..limits
-            });
+            })
+            .expect("benchmark limits are valid");
             let mut rng = ChaCha8Rng::seed_from_u64(3);
             let id = |name: &str| BenchmarkId::new(name, genes);
 
             group.bench_function(id("clone"), |bench| bench.iter(|| a.clone()));
             group.bench_function(id("grow"), |bench| {
-                bench.iter_batched_ref(|| a.clone(), |g| ops.grow(g, &mut rng), BatchSize::SmallInput)
+                bench.iter_batched_ref(
+                    || a.clone(),
+                    |g| ops.grow(g, &mut rng),
+                    BatchSize::SmallInput,
+                )
             });
             group.bench_function(id("cut"), |bench| {
-                bench.iter_batched_ref(|| a.clone(), |g| ops.cut(g, &mut rng), BatchSize::SmallInput)
+                bench.iter_batched_ref(
+                    || a.clone(),
+                    |g| ops.cut(g, &mut rng),
+                    BatchSize::SmallInput,
+                )
             });
             group.bench_function(id("alter"), |bench| {
-                bench.iter_batched_ref(|| a.clone(), |g| ops.alter(g, &mut rng), BatchSize::SmallInput)
+                bench.iter_batched_ref(
+                    || a.clone(),
+                    |g| ops.alter(g, &mut rng),
+                    BatchSize::SmallInput,
+                )
             });
             group.bench_function(id("crossover"), |bench| {
                 bench.iter(|| ops.crossover(&a, &b, &mut rng))

@@ -1,2 +1,3 @@
-//! shapegen: controlled procedural modeling.
+#![doc = include_str!("../README.md")]
+
 pub use shapegen_runtime::*;

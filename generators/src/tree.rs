@@ -85,7 +85,9 @@ fn branch<'a>(
         .translate(vec3(0.0, 0.38 * s.size().y, 0.0))
         .rotate_z(tilt)
         .resize(size);
-    let s = s.translate(vec3(0.0, s.size().y / 2.0, 0.0)).rotate_y(twist);
+    let s = s
+        .translate(vec3(0.0, s.size().y / 2.0, 0.0))
+        .rotate_y(twist);
     s.emit(TRUNK);
     if b1.is_none() && b2.is_none() && b3.is_none() {
         s.translate(vec3(0.0, 0.75 * s.size().y, 0.0))

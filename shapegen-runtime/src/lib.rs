@@ -9,20 +9,23 @@ pub mod export;
 pub mod genome;
 pub mod geometry;
 pub mod graph;
+pub mod ops;
 pub mod param;
 
 pub use derive::{Child, GeneView, Grammar, NodeParams, Shape, Slots};
-pub use genome::Genome;
+pub use genome::{Genome, GenomeError, Limits};
 pub use geometry::{Axis, CUBE, Face, Instance, MeshId, Part, Scope};
 pub use geometry::{BoundMeshes, Mesh, MeshError, MeshLibrary};
 pub use graph::GeneratorGraph;
+pub use ops::Operators;
 
 /// The names most generator code needs: `use shapegen_runtime::prelude::*;`.
 pub mod prelude {
     pub use crate::derive::{Child, Grammar, Shape, Slots};
     pub use crate::generator;
-    pub use crate::genome::Genome;
+    pub use crate::genome::{Genome, Limits};
     pub use crate::geometry::{Axis, CUBE, Face, Instance, MeshId, Part, Scope};
+    pub use crate::ops::Operators;
     pub use glam::{Affine3A, Quat, Vec2, Vec3, vec2, vec3};
 }
 

@@ -56,7 +56,7 @@ impl GeneratorVisitor for Sample<'_> {
             max_len: args.max_len.unwrap_or(paper.max_len),
             max_depth: args.max_depth.unwrap_or(paper.max_depth),
         };
-        limits.check().context("bad --max-len or --max-depth")?;
+        let ops = Operators::<G>::new(limits).context("bad --max-len or --max-depth")?;
         let meshes = generators::default_meshes()
             .bind(G::GRAPH)
             .context("the generator's meshes")?;
@@ -66,7 +66,7 @@ impl GeneratorVisitor for Sample<'_> {
         let genomes: Vec<Genome<G>> = (0..args.count)
             .into_par_iter()
             .map_init(
-                || Operators::<G>::new(limits),
+                || ops.clone(),
                 |ops, i| ops.sample(&mut model_rng(args.seed, i)),
             )
             .collect();

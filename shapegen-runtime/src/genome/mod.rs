@@ -13,6 +13,27 @@
 //! - genes tile the buffer exactly, each of its node type's size;
 //! - parameters lie within their distributions;
 //! - the tree's depth is at most [`DEPTH_CAP`].
+//!
+//! Genomes made through this crate's API (the builders [`Genome::with_root`] and
+//! [`Genome::attach`], JSON loading, the genetic operators of [`crate::ops`]) always hold
+//! these invariants. [`Limits`] bound a genome's length and depth further; the operators
+//! keep their genomes within them.
+//!
+//! Genomes print as an indented tree ([`Display`](std::fmt::Display), and
+//! [`Debug`](std::fmt::Debug) with exact parameter values) and load and save as JSON
+//! ([`Genome::to_json`], [`Genome::from_json`], [`GenomeSet`]).
+
+mod build;
+mod display;
+mod error;
+mod json;
+mod limits;
+mod validate;
+
+pub use error::{GeneAt, GenomeError, SlotAt};
+pub use json::{GenomeSet, JsonError};
+pub use limits::{Limits, LimitsError};
+pub(crate) use validate::slot_at;
 
 use std::marker::PhantomData;
 
@@ -28,8 +49,8 @@ pub const DEPTH_CAP: u32 = 1024;
 
 /// A derivation tree of grammar `G`, packed.
 pub struct Genome<G> {
-    words: Vec<u32>,
-    len: u32,
+    pub(crate) words: Vec<u32>,
+    pub(crate) len: u32,
     _g: PhantomData<fn() -> G>,
 }
 
@@ -75,13 +96,20 @@ impl<G: Grammar> Genome<G> {
     }
 
     /// Builds a genome from raw words and gene count without checking them.
-    #[allow(dead_code)] // not used until the genetic operators land
     pub(crate) fn from_parts(words: Vec<u32>, len: u32) -> Self {
         Genome {
             words,
             len,
             _g: PhantomData,
         }
+    }
+
+    /// Replaces this genome by the axiom alone, its parameters drawn from `rng`, reusing
+    /// the allocation.
+    pub(crate) fn reset_to_axiom(&mut self, rng: &mut impl Rng) {
+        self.words.clear();
+        self.len = 0;
+        self.push_gene(G::GRAPH.axiom, None, rng);
     }
 
     /// Number of genes: nodes of the derivation tree.
@@ -166,6 +194,34 @@ impl<G: Grammar> Genome<G> {
         self.len += 1;
         pos
     }
+}
+
+/// Word position of the parent of the (non-root) gene at `pos`.
+#[inline]
+pub(crate) fn parent_pos(words: &[u32], pos: u32) -> u32 {
+    pos.wrapping_add_signed(words[pos as usize + 1] as i32)
+}
+
+/// Fills `depth`, indexed by word position, with the depth of each gene of the valid
+/// genome in `words` (entries between gene starts are left as they were); returns the
+/// tree's depth. O(G).
+pub(crate) fn depths<G: Grammar>(words: &[u32], depth: &mut Vec<u32>) -> u32 {
+    if depth.len() < words.len() {
+        depth.resize(words.len(), 0);
+    }
+    let mut max = 0;
+    let mut pos = 0u32;
+    while (pos as usize) < words.len() {
+        let d = if pos == 0 {
+            1
+        } else {
+            depth[parent_pos(words, pos) as usize] + 1
+        };
+        depth[pos as usize] = d;
+        max = max.max(d);
+        pos += node_of::<G>(words[pos as usize]).gene_words();
+    }
+    max
 }
 
 /// The node type of kind `kind` in `G`'s graph.

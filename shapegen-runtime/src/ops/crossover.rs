@@ -1,0 +1,258 @@
+//! crossover: swap two subtrees hanging from the same edge of the generator graph.
+
+use rand::Rng;
+
+use super::edit::{Split, splice, split};
+use super::weight::below;
+use super::{CROSSOVER_RETRIES, Operators, gene_starts};
+use crate::derive::Grammar;
+use crate::genome::{GeneAt, Genome, GenomeError, node_of, parent_pos, slot_at};
+use crate::graph::HEADER_WORDS;
+
+impl<G: Grammar> Operators<G> {
+    /// Single-point crossover adapted to trees: picks uniformly an expressed link of `a`,
+    /// collects the expressed links of `b` on the same edge of the generator graph (same
+    /// parent node type and slot; the index within an array slot may differ), picks one
+    /// uniformly and swaps the two subtrees, giving two children. When `b` has no such
+    /// link, or a child would break the limits, it draws again, up to
+    /// [`CROSSOVER_RETRIES`] times, then gives up with `None`.
+    ///
+    /// The children are valid genomes within the limits. O(W_a + W_b) per attempt.
+    ///
+    /// ```
+    /// # use rand::SeedableRng;
+    /// # use shapegen_runtime::genome::{Genome, Limits};
+    /// # use shapegen_runtime::ops::Operators;
+    /// # use shapegen_runtime::ops::doc_grammar::Chain;
+    /// let mut ops = Operators::<Chain>::new(Limits::new(1, 60, 12)?)?;
+    /// let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+    /// let (a, b) = (ops.random(20, &mut rng), ops.random(20, &mut rng));
+    /// let (c, d) = ops.crossover(&a, &b, &mut rng).expect("Chain's edges all match");
+    /// assert_eq!(c.len() + d.len(), a.len() + b.len()); // genes are exchanged, not lost
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn crossover(
+        &mut self,
+        a: &Genome<G>,
+        b: &Genome<G>,
+        rng: &mut impl Rng,
+    ) -> Option<(Genome<G>, Genome<G>)> {
+        let mut c = Genome::from_parts(Vec::new(), 0);
+        let mut d = Genome::from_parts(Vec::new(), 0);
+        self.crossover_into(a, b, &mut c, &mut d, rng)
+            .then_some((c, d))
+    }
+
+    /// As [`crossover`](Self::crossover), writing the children into `out_a` (from `a`,
+    /// with `b`'s subtree) and `out_b`, reusing their allocations. Returns `false`, with
+    /// the outputs unspecified, when no crossover was found.
+    pub fn crossover_into(
+        &mut self,
+        a: &Genome<G>,
+        b: &Genome<G>,
+        out_a: &mut Genome<G>,
+        out_b: &mut Genome<G>,
+        rng: &mut impl Rng,
+    ) -> bool {
+        if a.len < 2 || b.len < 2 {
+            return false; // no expressed link on one side
+        }
+        gene_starts(&self.kinds, &a.words, &mut self.s.starts);
+        gene_starts(&self.kinds, &b.words, &mut self.s.starts_b);
+        for _ in 0..=CROSSOVER_RETRIES {
+            let s = &mut self.s;
+            let ra = s.starts[1 + below(rng, u64::from(a.len - 1)) as usize];
+            let pa = parent_pos(&a.words, ra);
+            let kind = a.words[pa as usize];
+            let k = self.kinds[kind as usize];
+            let link = (0..k.links)
+                .find(|&l| pa + a.words[(pa + HEADER_WORDS + l) as usize] == ra)
+                .expect("a valid genome's parent links to its child");
+            let slot =
+                &node_of::<G>(kind).slots[self.links[(k.first_link + link) as usize].slot as usize];
+            s.cand.clear();
+            for &pos in &s.starts_b {
+                if b.words[pos as usize] != kind {
+                    continue;
+                }
+                let at = (pos + HEADER_WORDS + slot.first_link) as usize;
+                for &off in &b.words[at..at + slot.count as usize] {
+                    if off != 0 {
+                        s.cand.push(pos + off);
+                    }
+                }
+            }
+            if s.cand.is_empty() {
+                continue;
+            }
+            let rb = s.cand[below(rng, s.cand.len() as u64) as usize];
+            if self.try_swap(a, ra, b, rb, out_a, out_b) {
+                return true;
+            }
+        }
+        false
+    }
+
+    /// Swaps the subtree of `a` at word `a_pos` with the subtree of `b` at word `b_pos`,
+    /// which must hang from the same edge of the generator graph (same parent node type
+    /// and slot). Fails if a position is the root or no gene start, the edges differ, or
+    /// a child would break the limits (the error says which limit). O(W_a + W_b).
+    pub fn crossover_at(
+        &mut self,
+        a: &Genome<G>,
+        a_pos: u32,
+        b: &Genome<G>,
+        b_pos: u32,
+    ) -> Result<(Genome<G>, Genome<G>), GenomeError> {
+        let a_at = self.link_root(a, a_pos)?;
+        let b_at = self.link_root(b, b_pos)?;
+        let edge = |g: &Genome<G>, pos: u32| {
+            let parent = parent_pos(&g.words, pos);
+            let pnode = node_of::<G>(g.words[parent as usize]);
+            let off = pos - parent;
+            let link = (0..pnode.links)
+                .find(|&l| g.words[(parent + HEADER_WORDS + l) as usize] == off)
+                .expect("a valid genome's parent links to its child");
+            (pnode, slot_at(pnode, link))
+        };
+        let ((an, aslot), (bn, bslot)) = (edge(a, a_pos), edge(b, b_pos));
+        if !std::ptr::eq(an, bn) || aslot.slot != bslot.slot {
+            return Err(GenomeError::EdgeMismatch {
+                a: a_at,
+                a_edge: format!("{aslot} of `{}`", an.name),
+                b: b_at,
+                b_edge: format!("{bslot} of `{}`", bn.name),
+            });
+        }
+        let s = &mut self.s;
+        gene_starts(&self.kinds, &a.words, &mut s.starts);
+        gene_starts(&self.kinds, &b.words, &mut s.starts_b);
+        let mut c = Genome::from_parts(Vec::new(), 0);
+        let mut d = Genome::from_parts(Vec::new(), 0);
+        let (sa, sb) = self.split_both(a, a_pos, b, b_pos, true);
+        self.build_children(a, &sa, b, &sb, &mut c, &mut d);
+        c.validate_limits(&self.limits)?;
+        d.validate_limits(&self.limits)?;
+        Ok((c, d))
+    }
+
+    /// Where the gene at `pos` of `g` is, if it hangs from a link.
+    fn link_root(&mut self, g: &Genome<G>, pos: u32) -> Result<GeneAt, GenomeError> {
+        let index = g.gene_index(pos)?;
+        if pos == 0 {
+            return Err(GenomeError::IsRoot);
+        }
+        Ok(GeneAt {
+            index,
+            pos,
+            node: node_of::<G>(g.words[pos as usize]).name,
+        })
+    }
+
+    /// Splits `a` at `ra` and `b` at `rb` (gene starts already in the scratch buffers).
+    fn split_both(
+        &mut self,
+        a: &Genome<G>,
+        ra: u32,
+        b: &Genome<G>,
+        rb: u32,
+        track_depth: bool,
+    ) -> (Split, Split) {
+        let s = &mut self.s;
+        let sa = split(
+            &self.kinds,
+            &a.words,
+            &s.starts,
+            ra,
+            &mut s.map,
+            &mut s.depth,
+            track_depth,
+        );
+        let sb = split(
+            &self.kinds,
+            &b.words,
+            &s.starts_b,
+            rb,
+            &mut s.map_b,
+            &mut s.depth_b,
+            track_depth,
+        );
+        (sa, sb)
+    }
+
+    /// Writes both children of a swap whose splits are done.
+    fn build_children(
+        &mut self,
+        a: &Genome<G>,
+        sa: &Split,
+        b: &Genome<G>,
+        sb: &Split,
+        out_a: &mut Genome<G>,
+        out_b: &mut Genome<G>,
+    ) {
+        let s = &self.s;
+        splice(
+            &self.kinds,
+            &mut out_a.words,
+            &a.words,
+            &s.starts,
+            &s.map,
+            sa,
+            &b.words,
+            &s.starts_b,
+            &s.map_b,
+            sb,
+        );
+        out_a.len = a.len - sa.sub_genes + sb.sub_genes;
+        splice(
+            &self.kinds,
+            &mut out_b.words,
+            &b.words,
+            &s.starts_b,
+            &s.map_b,
+            sb,
+            &a.words,
+            &s.starts,
+            &s.map,
+            sa,
+        );
+        out_b.len = b.len - sb.sub_genes + sa.sub_genes;
+    }
+
+    /// Swaps the subtrees at `ra` and `rb` into the outputs if both children meet the
+    /// limits; `false` otherwise.
+    fn try_swap(
+        &mut self,
+        a: &Genome<G>,
+        ra: u32,
+        b: &Genome<G>,
+        rb: u32,
+        out_a: &mut Genome<G>,
+        out_b: &mut Genome<G>,
+    ) -> bool {
+        let lim = self.limits;
+        // A child's depth is at most its length, which is below a.len + b.len.
+        let track_depth = lim.max_depth < a.len + b.len;
+        let (sa, sb) = self.split_both(a, ra, b, rb, track_depth);
+        let len_a = a.len - sa.sub_genes + sb.sub_genes;
+        let len_b = b.len - sb.sub_genes + sa.sub_genes;
+        let len_ok = |len: u32| len >= lim.min_len && len <= lim.max_len;
+        if !len_ok(len_a) || !len_ok(len_b) {
+            return false;
+        }
+        if track_depth {
+            // The donated subtree keeps its own height, hung at the taken subtree's depth.
+            let depth_a = sa
+                .rest_max_depth
+                .max(sa.root_depth + sb.sub_max_depth - sb.root_depth);
+            let depth_b = sb
+                .rest_max_depth
+                .max(sb.root_depth + sa.sub_max_depth - sa.root_depth);
+            if depth_a > lim.max_depth || depth_b > lim.max_depth {
+                return false;
+            }
+        }
+        self.build_children(a, &sa, b, &sb, out_a, out_b);
+        true
+    }
+}

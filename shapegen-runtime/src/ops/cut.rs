@@ -1,0 +1,211 @@
+//! cut: remove a subtree, chosen by the grammar's probabilities.
+
+use rand::Rng;
+
+use super::edit::{cover, record_links, remove_subtree};
+use super::weight::{ONE, below};
+use super::{KindInfo, Operators, gene_starts};
+use crate::derive::Grammar;
+use crate::genome::{Genome, GenomeError};
+use crate::graph::HEADER_WORDS;
+
+impl<G: Grammar> Operators<G> {
+    /// Cuts one subtree: picks an expressed link `(k, l)` with probability
+    /// `(1 - p(k,l)) / sum of (1 - p)` over the expressed links whose removal keeps the
+    /// genome at least `min_len` long, and removes the child there with its whole
+    /// subtree. Links of probability 1 are never cut. Returns `false`, leaving the genome
+    /// as it was, when nothing can be cut.
+    ///
+    /// One pass finds the candidates; the removal is one forward sweep from the cut
+    /// gene that compacts the survivors and fixes their offsets. O(W); no allocation once
+    /// the scratch buffers have grown.
+    ///
+    /// ```
+    /// # use rand::SeedableRng;
+    /// # use shapegen_runtime::genome::{Genome, Limits};
+    /// # use shapegen_runtime::ops::Operators;
+    /// # use shapegen_runtime::ops::doc_grammar::Chain;
+    /// let mut ops = Operators::<Chain>::new(Limits::new(2, 50, 10)?)?;
+    /// let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+    /// let mut g = ops.random(20, &mut rng);
+    /// while ops.cut(&mut g, &mut rng) {}
+    /// assert_eq!(g.len(), 2); // min_len
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn cut(&mut self, genome: &mut Genome<G>, rng: &mut impl Rng) -> bool {
+        let len = genome.len;
+        let min_len = self.limits.min_len.max(1);
+        if len <= min_len {
+            return false; // any cut removes at least one gene
+        }
+        // Subtrees of more than `len - min_len` genes may not be cut. Descendants follow
+        // their root, so only a subtree rooted among the first `min_len` genes can be that
+        // large: genes from `sure_from` on are always cuttable.
+        let max_cut = len - min_len;
+        let s = &mut self.s;
+        let words = &genome.words[..];
+        let n = words.len();
+        cover(&mut s.map, n);
+        cover(&mut s.link_of, n);
+        // Every gene but the root hangs from one expressed link: `len - 1` candidates at
+        // most, written by index.
+        if s.cand.len() < len as usize {
+            s.cand.resize(len as usize, 0);
+        }
+        if s.cum.len() < len as usize {
+            s.cum.resize(len as usize, 0);
+        }
+        let (parent, link) = (&mut s.map[..n], &mut s.link_of[..n]);
+        let (cand, cum) = (&mut s.cand[..], &mut s.cum[..]);
+        let mut m = 0;
+        let mut total = 0u64;
+        let mut pos = 0u32;
+        let mut index = 0u32;
+        let mut sure_from = u32::MAX;
+        while (pos as usize) < n {
+            let k = self.kinds[words[pos as usize] as usize];
+            if index == min_len {
+                sure_from = pos;
+            }
+            index += 1;
+            let at = (pos + HEADER_WORDS) as usize;
+            let infos = &self.links[k.first_link as usize..][..k.links as usize];
+            for (l, (&off, info)) in words[at..at + k.links as usize]
+                .iter()
+                .zip(infos)
+                .enumerate()
+            {
+                if off != 0 {
+                    let child = pos + off;
+                    parent[child as usize] = pos;
+                    link[child as usize] = l as u32;
+                    let w = ONE - info.grow;
+                    if w > 0 {
+                        total += w;
+                        cand[m] = child;
+                        cum[m] = total;
+                        m += 1;
+                    }
+                }
+            }
+            pos += k.gene_words;
+        }
+        if total == 0 {
+            return false;
+        }
+        let (cand, cum) = (&s.cand[..m], &mut s.cum[..m]);
+        let r = below(rng, total);
+        let mut child = cand[cum.partition_point(|&c| c <= r)];
+        if child < sure_from
+            && subtree_len(&self.kinds, words, child, &s.map, &mut s.depth, max_cut) > max_cut
+        {
+            // Drawn too large: draw again among the cuttable links only. Accepting the
+            // first draw when it fits and redrawing exactly otherwise gives each cuttable
+            // link its weight over the cuttable links' total weight.
+            gene_starts(&self.kinds, words, &mut s.starts);
+            subtree_sizes(&s.starts, &s.map, &mut s.depth);
+            let mut prev = 0;
+            total = 0;
+            for (c, w) in cand.iter().zip(cum.iter_mut()) {
+                let own = *w - prev;
+                prev = *w;
+                if s.depth[*c as usize] <= max_cut {
+                    total += own;
+                }
+                *w = total;
+            }
+            if total == 0 {
+                return false;
+            }
+            let r = below(rng, total);
+            child = cand[cum.partition_point(|&c| c <= r)];
+        }
+        let removed = remove_subtree(
+            &self.kinds,
+            &mut genome.words,
+            child,
+            &mut s.map,
+            &s.link_of,
+        );
+        genome.len -= removed;
+        true
+    }
+
+    /// Removes the gene at word `pos` and its subtree, whatever its link's probability;
+    /// returns the number of genes removed. Fails, leaving the genome as it was, if `pos`
+    /// is the root or not the start of a gene, or if the genome would become shorter than
+    /// `min_len`. O(W).
+    pub fn cut_at(&mut self, genome: &mut Genome<G>, pos: u32) -> Result<u32, GenomeError> {
+        let s = &mut self.s;
+        record_links(
+            &self.kinds,
+            &self.links,
+            &genome.words,
+            &mut s.map,
+            &mut s.link_of,
+            Some(&mut s.starts),
+            |_, _| {},
+        );
+        if s.starts.binary_search(&pos).is_err() {
+            return Err(GenomeError::NotAGene {
+                pos,
+                words: genome.words.len() as u32,
+            });
+        }
+        if pos == 0 {
+            return Err(GenomeError::IsRoot);
+        }
+        subtree_sizes(&s.starts, &s.map, &mut s.depth);
+        let left = genome.len - s.depth[pos as usize];
+        if left < self.limits.min_len {
+            return Err(GenomeError::TooShort {
+                len: left,
+                min_len: self.limits.min_len,
+            });
+        }
+        let removed = remove_subtree(&self.kinds, &mut genome.words, pos, &mut s.map, &s.link_of);
+        genome.len -= removed;
+        Ok(removed)
+    }
+}
+
+/// Number of genes in the subtree of the gene at `root`, counted up to `limit + 1`, given
+/// each gene's parent position; `mark` is scratch. O(W) from `root`.
+fn subtree_len(
+    kinds: &[KindInfo],
+    words: &[u32],
+    root: u32,
+    parent: &[u32],
+    mark: &mut Vec<u32>,
+    limit: u32,
+) -> u32 {
+    cover(mark, words.len());
+    let mut count = 0;
+    let mut pos = root;
+    while (pos as usize) < words.len() && count <= limit {
+        let inside = pos == root || {
+            let p = parent[pos as usize];
+            p >= root && mark[p as usize] != 0
+        };
+        mark[pos as usize] = u32::from(inside);
+        count += u32::from(inside);
+        pos += kinds[words[pos as usize] as usize].gene_words;
+    }
+    count
+}
+
+/// Fills `size`, indexed by word position, with the number of genes in each gene's
+/// subtree (itself included), given the gene starts and each gene's parent position.
+/// O(G): children follow their parents, so a backward pass adds each finished subtree to
+/// its parent.
+fn subtree_sizes(starts: &[u32], parent: &[u32], size: &mut Vec<u32>) {
+    if let Some(&last) = starts.last() {
+        cover(size, last as usize + 1);
+    }
+    for &pos in starts {
+        size[pos as usize] = 1;
+    }
+    for &pos in starts.iter().skip(1).rev() {
+        size[parent[pos as usize] as usize] += size[pos as usize];
+    }
+}

@@ -1,0 +1,270 @@
+//! Subtree surgery on packed genomes: removing a subtree in one compacting pass, and
+//! splicing one genome's subtree into another's place.
+//!
+//! Both rely on the layout's order: a gene lies after its parent, so one forward sweep
+//! from a subtree's root meets every gene of the subtree after its parent, and can tell
+//! subtree members by their parent's mark. Word positions are remapped through a
+//! word-indexed table and every offset is rewritten once: O(W).
+
+use super::{KindInfo, LinkInfo};
+use crate::genome::parent_pos;
+use crate::graph::HEADER_WORDS;
+
+/// Marks a gene as removed in a position map.
+const GONE: u32 = u32::MAX;
+/// Marks a gene as part of the split-off subtree in a position map; the other bits hold
+/// its position relative to the subtree's new start.
+const SUB: u32 = 1 << 31;
+
+/// Grows a word-indexed scratch table to cover `n` words.
+#[inline]
+pub(super) fn cover(table: &mut Vec<u32>, n: usize) {
+    if table.len() < n {
+        table.resize(n, 0);
+    }
+}
+
+/// Removes the gene at `root` (not the genome's root) and its whole subtree from the
+/// valid genome in `words`, compacting the survivors and fixing all offsets in one
+/// forward sweep from `root`; the parent's link becomes 0. Returns the number of genes
+/// removed.
+///
+/// `parent` and `link` (word-indexed) must hold, for every gene from `root` on, its
+/// parent's position and the index of the link it hangs from, as [`record_links`] fills
+/// them; `parent` is overwritten. The sweep meets parents before children, so when it
+/// moves a gene it knows its parent's new place and the link there to patch, and it tells
+/// removed genes by their parent's mark.
+pub(super) fn remove_subtree(
+    kinds: &[KindInfo],
+    words: &mut Vec<u32>,
+    root: u32,
+    parent: &mut [u32],
+    link: &[u32],
+) -> u32 {
+    debug_assert!(root != 0);
+    let n = words.len() as u32;
+    let mut cursor = root;
+    let mut removed = 0;
+    let mut pos = root;
+    while pos < n {
+        let k = kinds[words[pos as usize] as usize];
+        let p = pos as usize;
+        let par = parent[p];
+        if pos == root || par == GONE {
+            if pos == root {
+                words[(par + HEADER_WORDS + link[p]) as usize] = 0;
+            }
+            for &off in &words[p + HEADER_WORDS as usize..][..k.links as usize] {
+                if off != 0 {
+                    parent[(pos + off) as usize] = GONE;
+                }
+            }
+            removed += 1;
+        } else {
+            // Moving down never reaches the words of a gene not yet swept.
+            let np = cursor;
+            words.copy_within(p..p + k.gene_words as usize, np as usize);
+            words[np as usize + 1] = par.wrapping_sub(np);
+            words[(par + HEADER_WORDS + link[p]) as usize] = np - par;
+            for &off in &words[(np + HEADER_WORDS) as usize..][..k.links as usize] {
+                if off != 0 {
+                    parent[(pos + off) as usize] = np;
+                }
+            }
+            cursor += k.gene_words;
+        }
+        pos += k.gene_words;
+    }
+    words.truncate(cursor as usize);
+    removed
+}
+
+/// One forward pass over the valid genome in `words`: records in `parent` and `link`
+/// (word-indexed) each child's parent position and link index, and calls `each_link`
+/// with every expressed link's child position and [`LinkInfo`]; pushes each gene's start
+/// into `starts` when given.
+#[inline]
+pub(super) fn record_links(
+    kinds: &[KindInfo],
+    links: &[LinkInfo],
+    words: &[u32],
+    parent: &mut Vec<u32>,
+    link: &mut Vec<u32>,
+    mut starts: Option<&mut Vec<u32>>,
+    mut each_link: impl FnMut(u32, &LinkInfo),
+) {
+    cover(parent, words.len());
+    cover(link, words.len());
+    if let Some(starts) = starts.as_deref_mut() {
+        starts.clear();
+    }
+    let mut pos = 0u32;
+    while (pos as usize) < words.len() {
+        let k = kinds[words[pos as usize] as usize];
+        if let Some(starts) = starts.as_deref_mut() {
+            starts.push(pos);
+        }
+        let at = (pos + HEADER_WORDS) as usize;
+        let infos = &links[k.first_link as usize..][..k.links as usize];
+        for (l, (&off, info)) in words[at..at + k.links as usize]
+            .iter()
+            .zip(infos)
+            .enumerate()
+        {
+            if off != 0 {
+                let child = pos + off;
+                parent[child as usize] = pos;
+                link[child as usize] = l as u32;
+                each_link(child, info);
+            }
+        }
+        pos += k.gene_words;
+    }
+}
+
+/// How a genome splits at a link: the subtree below it and the rest.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Split {
+    /// Position of the subtree's root.
+    pub root: u32,
+    /// Position of its parent.
+    pub parent: u32,
+    /// Genes in the subtree.
+    pub sub_genes: u32,
+    /// Words in the subtree.
+    pub sub_words: u32,
+    /// Depth of the subtree's root.
+    pub root_depth: u32,
+    /// Deepest gene of the subtree.
+    pub sub_max_depth: u32,
+    /// Deepest gene outside the subtree.
+    pub rest_max_depth: u32,
+}
+
+/// Splits the valid genome in `words` (gene starts `starts`) at the gene `root`: fills
+/// `map` with each gene's position in the rest (compacted) or, marked [`SUB`], relative to
+/// the subtree's start, and `depth` with depths when `track_depth`.
+pub(super) fn split(
+    kinds: &[KindInfo],
+    words: &[u32],
+    starts: &[u32],
+    root: u32,
+    map: &mut Vec<u32>,
+    depth: &mut Vec<u32>,
+    track_depth: bool,
+) -> Split {
+    cover(map, words.len());
+    if track_depth {
+        cover(depth, words.len());
+    }
+    let mut s = Split {
+        root,
+        parent: parent_pos(words, root),
+        sub_genes: 0,
+        sub_words: 0,
+        root_depth: 0,
+        sub_max_depth: 0,
+        rest_max_depth: 0,
+    };
+    let mut kept = 0u32;
+    for &pos in starts {
+        let size = kinds[words[pos as usize] as usize].gene_words;
+        let parent = (pos != 0).then(|| parent_pos(words, pos));
+        let d = if !track_depth {
+            0
+        } else if let Some(parent) = parent {
+            depth[parent as usize] + 1
+        } else {
+            1
+        };
+        if track_depth {
+            depth[pos as usize] = d;
+        }
+        let in_sub = pos == root
+            || (pos > root && parent.is_some_and(|p| p >= root && map[p as usize] & SUB != 0));
+        if in_sub {
+            map[pos as usize] = SUB | s.sub_words;
+            s.sub_words += size;
+            s.sub_genes += 1;
+            s.sub_max_depth = s.sub_max_depth.max(d);
+            if pos == root {
+                s.root_depth = d;
+            }
+        } else {
+            map[pos as usize] = kept;
+            kept += size;
+            s.rest_max_depth = s.rest_max_depth.max(d);
+        }
+    }
+    s
+}
+
+/// Writes into `out` the genome `keep` with the subtree `ks` split off and the subtree
+/// `ds` of `donor` hung in its place, given both genomes' gene starts and the maps
+/// [`split`] filled. The donor's subtree goes after all kept genes, in its own order.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn splice(
+    kinds: &[KindInfo],
+    out: &mut Vec<u32>,
+    keep: &[u32],
+    keep_starts: &[u32],
+    keep_map: &[u32],
+    ks: &Split,
+    donor: &[u32],
+    donor_starts: &[u32],
+    donor_map: &[u32],
+    ds: &Split,
+) {
+    out.clear();
+    let base = keep.len() as u32 - ks.sub_words;
+    out.reserve((base + ds.sub_words) as usize);
+    for &pos in keep_starts {
+        let np = keep_map[pos as usize];
+        if np & SUB != 0 {
+            continue;
+        }
+        let k = kinds[keep[pos as usize] as usize];
+        debug_assert_eq!(np as usize, out.len());
+        out.extend_from_slice(&keep[pos as usize..(pos + k.gene_words) as usize]);
+        let n = np as usize;
+        if pos != 0 {
+            let parent = parent_pos(keep, pos);
+            out[n + 1] = keep_map[parent as usize].wrapping_sub(np);
+        }
+        for w in &mut out[n + HEADER_WORDS as usize..][..k.links as usize] {
+            if *w != 0 {
+                let child = pos + *w;
+                let to = if child == ks.root {
+                    base
+                } else {
+                    keep_map[child as usize]
+                };
+                *w = to - np;
+            }
+        }
+    }
+    let first = donor_starts.partition_point(|&p| p < ds.root);
+    for &pos in &donor_starts[first..] {
+        let m = donor_map[pos as usize];
+        if m & SUB == 0 {
+            continue;
+        }
+        let np = base + (m & !SUB);
+        let k = kinds[donor[pos as usize] as usize];
+        debug_assert_eq!(np as usize, out.len());
+        out.extend_from_slice(&donor[pos as usize..(pos + k.gene_words) as usize]);
+        let n = np as usize;
+        let parent_np = if pos == ds.root {
+            keep_map[ks.parent as usize]
+        } else {
+            base + (donor_map[parent_pos(donor, pos) as usize] & !SUB)
+        };
+        out[n + 1] = parent_np.wrapping_sub(np);
+        // The subtree's genes were not contiguous in the donor: recompute its offsets.
+        for w in &mut out[n + HEADER_WORDS as usize..][..k.links as usize] {
+            if *w != 0 {
+                *w = base + (donor_map[(pos + *w) as usize] & !SUB) - np;
+            }
+        }
+    }
+}

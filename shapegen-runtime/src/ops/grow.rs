@@ -1,0 +1,103 @@
+//! grow: append one child at an empty link, chosen by the grammar's probabilities.
+
+use rand::Rng;
+
+use super::Operators;
+use super::edit::cover;
+use super::weight::below;
+use crate::derive::Grammar;
+use crate::genome::{Genome, parent_pos};
+use crate::graph::HEADER_WORDS;
+
+impl<G: Grammar> Operators<G> {
+    /// Grows the genome by one gene: picks a gene `i` that lies above the maximum depth
+    /// and one of its empty links `j` with probability `p(i,j) / sum of p(k,l)` over all
+    /// such genes `k` and their empty links `l`, and appends a child there with
+    /// parameters drawn from their distributions. Returns `false`, leaving the genome as
+    /// it was, when it is at the maximum length or no link can grow.
+    ///
+    /// Probabilities are compared as exact 32-bit fixed-point weights. O(W), plus O(1)
+    /// for the append; no allocation once the scratch buffers have grown.
+    ///
+    /// ```
+    /// # use rand::SeedableRng;
+    /// # use shapegen_runtime::genome::{Genome, Limits};
+    /// # use shapegen_runtime::ops::Operators;
+    /// # use shapegen_runtime::ops::doc_grammar::Chain;
+    /// let mut ops = Operators::<Chain>::new(Limits::new(1, 3, 10)?)?;
+    /// let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+    /// let mut g = Genome::<Chain>::axiom(&mut rng);
+    /// assert!(ops.grow(&mut g, &mut rng));
+    /// assert!(ops.grow(&mut g, &mut rng));
+    /// assert!(!ops.grow(&mut g, &mut rng)); // at max_len
+    /// assert_eq!(g.len(), 3);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn grow(&mut self, genome: &mut Genome<G>, rng: &mut impl Rng) -> bool {
+        if genome.len >= self.limits.max_len {
+            return false;
+        }
+        let max_depth = self.limits.max_depth;
+        // A gene of a G-gene tree lies at most G deep: only track depth if it can matter.
+        let track_depth = max_depth <= genome.len;
+        let words = &genome.words;
+        let s = &mut self.s;
+        if track_depth {
+            cover(&mut s.depth, words.len());
+        }
+        s.cand.clear();
+        s.cum.clear();
+        let mut total = 0u64;
+        let mut pos = 0u32;
+        while (pos as usize) < words.len() {
+            let k = self.kinds[words[pos as usize] as usize];
+            let open = if track_depth {
+                let d = if pos == 0 {
+                    1
+                } else {
+                    s.depth[parent_pos(words, pos) as usize] + 1
+                };
+                s.depth[pos as usize] = d;
+                d < max_depth
+            } else {
+                true
+            };
+            if open && k.links > 0 {
+                let at = (pos + HEADER_WORDS) as usize;
+                let links = &self.links[k.first_link as usize..][..k.links as usize];
+                let w: u64 = words[at..at + k.links as usize]
+                    .iter()
+                    .zip(links)
+                    .filter(|(w, _)| **w == 0)
+                    .map(|(_, l)| l.grow)
+                    .sum();
+                if w > 0 {
+                    total += w;
+                    s.cand.push(pos);
+                    s.cum.push(total);
+                }
+            }
+            pos += k.gene_words;
+        }
+        if total == 0 {
+            return false;
+        }
+        let r = below(rng, total);
+        let i = s.cum.partition_point(|&c| c <= r);
+        let pos = s.cand[i];
+        let mut r = r - if i > 0 { s.cum[i - 1] } else { 0 };
+        let k = self.kind_at(words, pos);
+        for link in 0..k.links {
+            if words[(pos + HEADER_WORDS + link) as usize] != 0 {
+                continue;
+            }
+            let l = self.link(&k, link);
+            if r < l.grow {
+                genome.push_gene(l.child, Some((pos, link)), rng);
+                return true;
+            }
+            r -= l.grow;
+        }
+        unreachable!("the drawn weight lies within the chosen gene's empty links")
+    }
+}
