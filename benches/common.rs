@@ -6,13 +6,19 @@ use shapegen::genome::Limits;
 use shapegen::ops::Operators;
 use shapegen::{Genome, Grammar};
 
-/// Limits that let a genome of `genes` genes exist, with the paper scene's depth.
-pub fn limits_for(genes: usize, paper: Limits) -> Limits {
-    Limits {
+/// Limits that let a genome of `genes` genes exist: the paper scene's depth where the
+/// grammar fits that many genes within it (the spaceship holds at most 197 genes within
+/// depth 15), else a depth of `genes`.
+pub fn limits_for<G: Grammar>(genes: usize, paper: Limits) -> Limits {
+    let mut limits = Limits {
         min_len: 1,
         max_len: genes.max(paper.max_len as usize) as u32,
         max_depth: paper.max_depth,
+    };
+    if genome_of::<G>(genes, limits, 0).len() < genes {
+        limits.max_depth = limits.max_depth.max(genes as u32);
     }
+    limits
 }
 
 /// A genome of `genes` genes, or as many as the grammar allows, grown by the grammar's

@@ -19,7 +19,7 @@ impl GeneratorVisitor for DeriveBench<'_> {
         for genes in [10, 100, 1000] {
             // The city holds 201 genes at most (100 lots with a building each), so its
             // largest case is 201 genes.
-            let genome = common::genome_of::<G>(genes, common::limits_for(genes, paper), 1);
+            let genome = common::genome_of::<G>(genes, common::limits_for::<G>(genes, paper), 1);
             let genes = genome.len();
             let mut out = Vec::new();
             genome.derive_into(&mut out);
