@@ -33,9 +33,14 @@ generator! {
         /// A box building standing on its lot, turned about the vertical.
         node Building {
             params {
+                /// Width (x) and depth (z) of the building.
                 footprint: Vec2 ~ uniform([0.44; 2], [1.98; 2]),
+                /// Height of the building.
                 height: f32 ~ uniform(0.36, 10.0),
+                /// Height of one storey, for detailed facades; the box building does not
+                /// use it.
                 floor_height: f32 ~ uniform(0.24, 0.36),
+                /// Turn about the vertical.
                 rotation: f32 ~ radians(0.0, PI),
             }
             derive(s) {

@@ -23,7 +23,10 @@ generator! {
 
         /// A hull box; the next hull box continues along +z.
         node Body {
-            params { size: Vec3 ~ uniform([0.6; 3], [1.5; 3]) }
+            params {
+                /// Size relative to the previous hull box (the first: to the unit box).
+                size: Vec3 ~ uniform([0.6; 3], [1.5; 3]),
+            }
             children { next: Body = 1.0 / 3.0, wing: Wing = 1.0 / 3.0, top: Top = 1.0 / 3.0 }
             derive(s) {
                 let s = s.translate(vec3(0.0, 0.0, s.size().z / 2.0));
@@ -46,7 +49,10 @@ generator! {
 
         /// The base of a tower on a hull box.
         node Top {
-            params { size: Vec3 ~ uniform([0.3, 0.1, 0.3], [0.8, 0.2, 0.8]) }
+            params {
+                /// Size of the tower's first box relative to the hull box it stands on.
+                size: Vec3 ~ uniform([0.3, 0.1, 0.3], [0.8, 0.2, 0.8]),
+            }
             children { next: TopNext = 1.0 }
             derive(s) {
                 if let Some(next) = next {
@@ -57,7 +63,11 @@ generator! {
 
         /// A box of a tower, stacked along +y.
         node TopNext {
-            params { size: Vec3 ~ uniform([0.6, 0.8, 0.6], [1.1, 1.1, 1.1]) }
+            params {
+                /// Size relative to the box below; unused on a tower's first box, which
+                /// `Top` sizes.
+                size: Vec3 ~ uniform([0.6, 0.8, 0.6], [1.1, 1.1, 1.1]),
+            }
             children { next: TopNext = 1.0 }
             derive(s) {
                 let s = s.translate(vec3(0.0, s.size().y / 2.0, 0.0));
@@ -71,7 +81,10 @@ generator! {
         /// The root of a wing, shifted along the hull by `shift` of its length.
         node Wing {
             params {
+                /// Size of the wing's first box relative to the hull box.
                 size: Vec3 ~ uniform([0.3, 0.2, 0.2], [1.2, 0.5, 1.0]),
+                /// Shift of the wing along the hull (+z), as a fraction of its first
+                /// box's length.
                 shift: f32 ~ uniform(-0.5, 0.5),
             }
             children { next: WingNext = 1.0 }
@@ -87,7 +100,11 @@ generator! {
         /// A box of a wing, continuing outwards along +x.
         node WingNext {
             params {
+                /// Size relative to the previous box of the wing; unused on a wing's first
+                /// box, which `Wing` sizes.
                 size: Vec3 ~ uniform([0.6, 0.9, 0.7], [1.2, 1.0, 1.2]),
+                /// Shift along the hull (+z) from the previous box, as a fraction of this
+                /// box's length; unused on a wing's first box.
                 shift: f32 ~ uniform(-0.5, 0.5),
             }
             children { next: WingNext = 0.9 }

@@ -11,7 +11,14 @@ generator! {
     /// The tree of the paper's sketch scene.
     pub Tree {
         axiom Start;
-        meshes { TRUNK = "trunk", LEAF = "leaf" }
+        meshes {
+            /// The branch and trunk mesh ([`TRUNK_OBJ`](crate::TRUNK_OBJ) in
+            /// [`default_meshes`](crate::default_meshes)), scaled to each branch.
+            TRUNK = "trunk",
+            /// The leaf mesh ([`LEAF_OBJ`](crate::LEAF_OBJ) in
+            /// [`default_meshes`](crate::default_meshes)), placed unscaled.
+            LEAF = "leaf",
+        }
 
         /// The axiom: a unit box at the origin.
         node Start {
@@ -20,7 +27,10 @@ generator! {
 
         /// The trunk; branches grow from near its top.
         node Trunk {
-            params { size: Vec3 ~ uniform([0.8, 1.4, 0.8], [0.8, 1.8, 0.8]) }
+            params {
+                /// Size of the trunk.
+                size: Vec3 ~ uniform([0.8, 1.4, 0.8], [0.8, 1.8, 0.8]),
+            }
             children { b1: B1 = 1.0 / 3.0, b2: B2 = 1.0 / 3.0, b3: B3 = 1.0 / 3.0 }
             derive(s) {
                 let s = s.resize(size);
@@ -32,9 +42,13 @@ generator! {
         /// A branch turned into the first third of the circle.
         node B1 {
             params {
+                /// Size relative to the branch (or trunk) it grows from.
                 size: Vec3 ~ uniform([0.6, 0.6, 0.6], [0.7, 0.801, 0.7]),
+                /// Turn about the parent's axis, within this branch's third of the circle.
                 yaw: f32 ~ degrees(0.0, 120.0),
+                /// Lean away from the parent's axis.
                 tilt: f32 ~ degrees(35.0, 85.0),
+                /// A small turn about the branch's own axis.
                 twist: f32 ~ degrees(-3.0, 3.0),
             }
             children { b1: B1 = 1.0 / 3.0, b2: B2 = 1.0 / 3.0, b3: B3 = 1.0 / 3.0 }
@@ -44,9 +58,13 @@ generator! {
         /// A branch turned into the second third of the circle.
         node B2 {
             params {
+                /// Size relative to the branch (or trunk) it grows from.
                 size: Vec3 ~ uniform([0.6, 0.6, 0.6], [0.7, 0.801, 0.7]),
+                /// Turn about the parent's axis, within this branch's third of the circle.
                 yaw: f32 ~ degrees(120.0, 240.0),
+                /// Lean away from the parent's axis.
                 tilt: f32 ~ degrees(35.0, 85.0),
+                /// A small turn about the branch's own axis.
                 twist: f32 ~ degrees(-3.0, 3.0),
             }
             children { b1: B1 = 1.0 / 3.0, b2: B2 = 1.0 / 3.0, b3: B3 = 1.0 / 3.0 }
@@ -56,9 +74,13 @@ generator! {
         /// A branch turned into the last third of the circle.
         node B3 {
             params {
+                /// Size relative to the branch (or trunk) it grows from.
                 size: Vec3 ~ uniform([0.6, 0.6, 0.6], [0.7, 0.801, 0.7]),
+                /// Turn about the parent's axis, within this branch's third of the circle.
                 yaw: f32 ~ degrees(240.0, 360.0),
+                /// Lean away from the parent's axis.
                 tilt: f32 ~ degrees(35.0, 85.0),
+                /// A small turn about the branch's own axis.
                 twist: f32 ~ degrees(-3.0, 3.0),
             }
             children { b1: B1 = 1.0 / 3.0, b2: B2 = 1.0 / 3.0, b3: B3 = 1.0 / 3.0 }

@@ -1,5 +1,7 @@
 //! The spaceship grammar declared with `generator!` matches its hand-written expansion
-//! (`support/spaceship_expanded.rs`): same generator graph, same derivations.
+//! (`support/spaceship_expanded.rs`): same generator graph, and the same instances from
+//! the same genomes, whether drawn from one seed, changed by the same operators or copied
+//! from one grammar to the other through JSON.
 
 mod support {
     pub mod spaceship_expanded;
@@ -186,5 +188,98 @@ fn axiom_genomes_derive_identically() {
         a.derive_into(&mut out_a);
         b.derive_into(&mut out_b);
         assert_eq!(out_a, out_b, "seed {seed}");
+    }
+}
+
+/// Derives both genomes and checks the instances are identical, bit for bit.
+fn assert_same_derivation(
+    a: &Genome<Spaceship>,
+    b: &Genome<hand::Spaceship>,
+    out_a: &mut Vec<shapegen_runtime::Instance>,
+    out_b: &mut Vec<shapegen_runtime::Instance>,
+    what: &str,
+) {
+    assert_eq!(a.words(), b.words(), "{what}: words");
+    a.derive_into(out_a);
+    b.derive_into(out_b);
+    assert_eq!(out_a.len(), expected_boxes(a), "{what}");
+    assert_eq!(out_a, out_b, "{what}: instances");
+}
+
+/// The number of boxes a spaceship derives to: one per Body and TopNext, two per
+/// WingNext (each wing is derived twice, mirrored); Start, Top and Wing emit nothing.
+fn expected_boxes(g: &Genome<Spaceship>) -> usize {
+    g.genes()
+        .map(|gene| match g.node(gene).name {
+            "Body" | "TopNext" => 1,
+            "WingNext" => 2,
+            _ => 0,
+        })
+        .sum()
+}
+
+#[test]
+fn random_genomes_derive_identically() {
+    use rand::RngExt;
+    use shapegen_runtime::genome::Limits;
+    use shapegen_runtime::ops::Operators;
+
+    let limits = Limits::new(4, 100, 15).unwrap();
+    let mut ops = Operators::<Spaceship>::new(limits).unwrap();
+    let mut hops = Operators::<hand::Spaceship>::new(limits).unwrap();
+    let (mut out_a, mut out_b) = (Vec::new(), Vec::new());
+    for seed in 0..40 {
+        // The graphs are equal, so one seed draws the same words in both grammars.
+        let (mut r, mut hr) = (
+            ChaCha8Rng::seed_from_u64(seed),
+            ChaCha8Rng::seed_from_u64(seed),
+        );
+        let initial = 5 + 5 * seed as u32;
+        let mut a = ops.random(initial, &mut r);
+        let mut b = hops.random(initial, &mut hr);
+        assert_same_derivation(&a, &b, &mut out_a, &mut out_b, &format!("seed {seed}"));
+        let (mut a2, mut b2) = (ops.sample(&mut r), hops.sample(&mut hr));
+        assert_same_derivation(&a2, &b2, &mut out_a, &mut out_b, "sample");
+        // Then the same operators on both, step by step.
+        for step in 0..50 {
+            let what = format!("seed {seed}, step {step}");
+            let op = r.random_range(0..4u32);
+            assert_eq!(op, hr.random_range(0..4u32));
+            match op {
+                0 => assert_eq!(ops.grow(&mut a, &mut r), hops.grow(&mut b, &mut hr)),
+                1 => assert_eq!(ops.cut(&mut a, &mut r), hops.cut(&mut b, &mut hr)),
+                2 => assert_eq!(ops.alter(&mut a, &mut r), hops.alter(&mut b, &mut hr)),
+                _ => {
+                    let x = ops.crossover(&a, &a2, &mut r);
+                    let y = hops.crossover(&b, &b2, &mut hr);
+                    assert_eq!(x.is_some(), y.is_some(), "{what}");
+                    if let (Some((c, d)), Some((e, f))) = (x, y) {
+                        (a, a2, b, b2) = (c, d, e, f);
+                        assert_same_derivation(&a2, &b2, &mut out_a, &mut out_b, &what);
+                    }
+                }
+            }
+            assert_same_derivation(&a, &b, &mut out_a, &mut out_b, &what);
+        }
+    }
+}
+
+#[test]
+fn genomes_copied_through_json_derive_identically() {
+    use shapegen_runtime::genome::{GenomeSet, Limits};
+    use shapegen_runtime::ops::Operators;
+
+    // Both grammars are named `Spaceship`, with the same node and slot names, so a genome
+    // saved by one loads into the other.
+    let mut hops = Operators::<hand::Spaceship>::new(Limits::new(1, 200, 20).unwrap()).unwrap();
+    let mut r = ChaCha8Rng::seed_from_u64(99);
+    let hand_genomes: Vec<_> = (0..30).map(|k| hops.random(1 + 6 * k, &mut r)).collect();
+    let set = GenomeSet::new(hand_genomes);
+    let copied = GenomeSet::<Spaceship>::from_json(&set.to_json()).unwrap();
+    let (mut out_a, mut out_b) = (Vec::new(), Vec::new());
+    for (a, b) in copied.genomes.iter().zip(&set.genomes) {
+        assert_same_derivation(a, b, &mut out_a, &mut out_b, "copied set");
+        let back = Genome::<hand::Spaceship>::from_json(&a.to_json()).unwrap();
+        assert!(back == *b);
     }
 }

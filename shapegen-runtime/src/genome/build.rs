@@ -43,7 +43,27 @@ impl<G: Grammar> Genome<G> {
     ///
     /// ```
     /// use shapegen_runtime::genome::Genome;
-    /// # use shapegen_runtime::ops::doc_grammar::{Chain, Seg, Start};
+    /// # shapegen_runtime::generator! {
+    /// #     pub Chain {
+    /// #         axiom Start;
+    /// #         node Start { children { first: Seg = 0.9 } }
+    /// #         node Seg {
+    /// #             params { len: f32 ~ uniform(0.5, 1.5) }
+    /// #             children { next: Seg = 0.5, side: Seg = 0.25 }
+    /// #             derive(s) {
+    /// #                 use shapegen_runtime::prelude::{CUBE, vec3};
+    /// #                 let s = s.resize(vec3(1.0, len, 1.0));
+    /// #                 s.emit(CUBE);
+    /// #                 if let Some(next) = next {
+    /// #                     s.translate(vec3(0.0, s.size().y, 0.0)).derive(next);
+    /// #                 }
+    /// #                 if let Some(side) = side {
+    /// #                     s.rotate_z(0.5).translate(vec3(0.0, s.size().y, 0.0)).derive(side);
+    /// #                 }
+    /// #             }
+    /// #         }
+    /// #     }
+    /// # }
     /// // `Chain`: Start -> first: Seg; Seg -> next: Seg, side: Seg; Seg has `len`.
     /// let mut g = Genome::<Chain>::with_root(Start {})?;
     /// let first = g.attach(0, "first", Seg { len: 1.0 })?;

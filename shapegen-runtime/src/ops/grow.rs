@@ -23,7 +23,27 @@ impl<G: Grammar> Operators<G> {
     /// # use rand::SeedableRng;
     /// # use shapegen_runtime::genome::{Genome, Limits};
     /// # use shapegen_runtime::ops::Operators;
-    /// # use shapegen_runtime::ops::doc_grammar::Chain;
+    /// # shapegen_runtime::generator! {
+    /// #     pub Chain {
+    /// #         axiom Start;
+    /// #         node Start { children { first: Seg = 0.9 } }
+    /// #         node Seg {
+    /// #             params { len: f32 ~ uniform(0.5, 1.5) }
+    /// #             children { next: Seg = 0.5, side: Seg = 0.25 }
+    /// #             derive(s) {
+    /// #                 use shapegen_runtime::prelude::{CUBE, vec3};
+    /// #                 let s = s.resize(vec3(1.0, len, 1.0));
+    /// #                 s.emit(CUBE);
+    /// #                 if let Some(next) = next {
+    /// #                     s.translate(vec3(0.0, s.size().y, 0.0)).derive(next);
+    /// #                 }
+    /// #                 if let Some(side) = side {
+    /// #                     s.rotate_z(0.5).translate(vec3(0.0, s.size().y, 0.0)).derive(side);
+    /// #                 }
+    /// #             }
+    /// #         }
+    /// #     }
+    /// # }
     /// let mut ops = Operators::<Chain>::new(Limits::new(1, 3, 10)?)?;
     /// let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
     /// let mut g = Genome::<Chain>::axiom(&mut rng);

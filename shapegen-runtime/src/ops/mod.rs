@@ -16,12 +16,31 @@
 //! ```
 //! use rand::SeedableRng;
 //! use rand_chacha::ChaCha8Rng;
-//! use shapegen_runtime::genome::{Genome, Limits};
-//! use shapegen_runtime::ops::Operators;
-//! # use shapegen_runtime::ops::doc_grammar::Chain;
+//! use shapegen_runtime::prelude::*;
 //!
-//! // `Chain` is a small grammar: Start -> first: Seg (p = 0.9), Seg -> next: Seg (p = 0.5),
-//! // Seg -> side: Seg (p = 0.25); Seg has a parameter `len`.
+//! generator! {
+//!     /// A stack of segments with side branches.
+//!     pub Chain {
+//!         axiom Start;
+//!         node Start { children { first: Seg = 0.9 } }
+//!         node Seg {
+//!             params { len: f32 ~ uniform(0.5, 1.5) }
+//!             children { next: Seg = 0.5, side: Seg = 0.25 }
+//!             derive(s) {
+//!                 let s = s.resize(vec3(1.0, len, 1.0));
+//!                 s.emit(CUBE);
+//!                 if let Some(next) = next {
+//!                     s.translate(vec3(0.0, s.size().y, 0.0)).derive(next);
+//!                 }
+//!                 if let Some(side) = side {
+//!                     s.rotate_z(0.5).translate(vec3(0.0, s.size().y, 0.0)).derive(side);
+//!                 }
+//!             }
+//!         }
+//!     }
+//! }
+//!
+//! // The examples of the operators below use this grammar.
 //! let mut ops = Operators::<Chain>::new(Limits::new(2, 40, 10)?)?;
 //! let mut rng = ChaCha8Rng::seed_from_u64(1);
 //! let mut a = ops.random(20, &mut rng);
@@ -38,8 +57,6 @@
 mod alter;
 mod crossover;
 mod cut;
-#[doc(hidden)]
-pub mod doc_grammar;
 mod edit;
 mod grow;
 mod random;
