@@ -34,15 +34,15 @@ generator! {
                 if let Some(next) = next {
                     s.translate(vec3(0.0, 0.0, s.size().z / 2.0)).resize(next.size).derive(next);
                 }
+                if let Some(top) = top {
+                    s.translate(vec3(0.0, s.size().y / 2.0, 0.0)).derive(top);
+                }
                 if let Some(wing) = wing {
                     // One gene, two wings: the left one is the right one turned about z.
                     s.translate(vec3(s.size().x / 2.0, 0.0, 0.0)).derive(wing);
                     s.rotate_z(std::f32::consts::PI)
                         .translate(vec3(s.size().x / 2.0, 0.0, 0.0))
                         .derive(wing);
-                }
-                if let Some(top) = top {
-                    s.translate(vec3(0.0, s.size().y / 2.0, 0.0)).derive(top);
                 }
             }
         }

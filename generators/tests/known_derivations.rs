@@ -205,11 +205,12 @@ fn spaceship_hull_wings_and_tower() {
         &out,
         &[hull0, hull1, right1, right2, left1, left2, tower1, tower2],
     );
-    // The rules emit depth first in slot order: next, wing (right, then left), top.
+    // The rules emit depth first in the order of the paper's description: next, top,
+    // wing (right, then left).
     assert!(matches(&out[0], &hull0) && matches(&out[1], &hull1));
-    assert!(matches(&out[2], &right1) && matches(&out[3], &right2));
-    assert!(matches(&out[4], &left1) && matches(&out[5], &left2));
-    assert!(matches(&out[6], &tower1) && matches(&out[7], &tower2));
+    assert!(matches(&out[2], &tower1) && matches(&out[3], &tower2));
+    assert!(matches(&out[4], &right1) && matches(&out[5], &right2));
+    assert!(matches(&out[6], &left1) && matches(&out[7], &left2));
 }
 
 #[test]

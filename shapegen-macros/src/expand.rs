@@ -60,8 +60,8 @@ impl<'a> Expander<'a> {
         let docs = docs(&doc, g.attrs);
         let attrs = g.attrs;
         quote! {
-            #docs
             #(#attrs)*
+            #docs
             #vis struct #name;
         }
     }
@@ -81,8 +81,8 @@ impl<'a> Expander<'a> {
                 let (attrs, name) = (m.attrs, m.name);
                 let id = Literal::u32_unsuffixed(m.id);
                 quote! {
-                    #docs
                     #(#attrs)*
+                    #docs
                     #vis const #name: #p::MeshId = #p::MeshId(#id);
                 }
             })
@@ -103,7 +103,7 @@ impl<'a> Expander<'a> {
                         _ => s.node.to_string(),
                     };
                     match s.probability {
-                        Some(p) => format!("`{}: {target}` (p = {p:?})", s.name),
+                        Some(p) => format!("`{}: {target}` (p = {})", s.name, show_probability(p)),
                         None => format!("`{}: {target}`", s.name),
                     }
                 })
@@ -126,14 +126,14 @@ impl<'a> Expander<'a> {
             let docs = docs(&doc, param.attrs);
             let attrs = param.attrs;
             Some(quote! {
-                #docs
                 #(#attrs)*
+                #docs
                 pub #pname: #ty,
             })
         });
         quote! {
-            #node_docs
             #(#attrs)*
+            #node_docs
             #[repr(C)]
             #[allow(clippy::derive_partial_eq_without_eq)]
             #[derive(
@@ -506,14 +506,24 @@ fn plain(ident: &Ident) -> String {
     ident.unraw().to_string()
 }
 
-/// `default` as a doc attribute, then a paragraph break if `attrs` hold docs of their own.
+/// `default` as a doc attribute, after a paragraph break if `attrs` hold docs of their
+/// own: the expansion puts it after the user's attributes, so the user's first line is
+/// the item's summary.
 fn docs(default: &str, attrs: &[Attribute]) -> TokenStream {
     let user_docs = attrs.iter().any(|a| a.path().is_ident("doc"));
     let sep = user_docs.then(|| quote!(#[doc = ""]));
     quote! {
-        #[doc = #default]
         #sep
+        #[doc = #default]
     }
+}
+
+/// A probability as people write it: at most four decimals, `0.3333` for `1.0 / 3.0`.
+fn show_probability(p: f32) -> String {
+    let s = format!("{p:.4}");
+    let s = s.trim_end_matches('0');
+    s.strip_suffix('.')
+        .map_or_else(|| s.to_owned(), |s| format!("{s}.0"))
 }
 
 /// How a distribution reads in documentation.

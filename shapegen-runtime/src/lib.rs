@@ -137,8 +137,9 @@ pub mod prelude {
 ///   `GRAPH.meshes` is `["cube", ..]`.
 ///
 /// Doc comments and attributes on the grammar, nodes, parameters and meshes go on the
-/// generated items, after a default doc line (so `#[derive(..)]` on a node adds to its
-/// parameter struct). Child slots take doc comments only. `cfg` attributes are refused:
+/// generated items, followed by a generated paragraph describing the item (its slots and
+/// probabilities, a parameter's distribution); `#[derive(..)]` on a node adds to its
+/// parameter struct. Child slots take doc comments only. `cfg` attributes are refused:
 /// the graph always lists every part.
 ///
 /// ## Parameters

@@ -1,108 +1,17 @@
-//! The spaceship grammar declared with `generator!` matches its hand-written expansion
-//! (`support/spaceship_expanded.rs`): same generator graph, and the same instances from
+//! The published spaceship, declared with `generator!`, matches its hand-written
+//! expansion (`shapegen-runtime/tests/support/spaceship_expanded.rs`): same generator graph, and the same instances from
 //! the same genomes, whether drawn from one seed, changed by the same operators or copied
 //! from one grammar to the other through JSON.
 
-mod support {
-    pub mod spaceship_expanded;
-}
+#[path = "../../shapegen-runtime/tests/support/spaceship_expanded.rs"]
+mod hand;
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use shapegen_runtime::graph::{GeneratorGraph, NodeDesc};
 use shapegen_runtime::{Genome, Grammar, NodeParams};
-use support::spaceship_expanded as hand;
 
-mod declared {
-    use glam::vec3;
-    use shapegen_runtime::prelude::*;
-
-    generator! {
-        /// The spaceship of the paper, declared with the macro.
-        pub Spaceship {
-            axiom Start;
-            node Start {
-                children { body: Body = 1.0 }
-                derive(s) {
-                    if let Some(body) = body {
-                        s.resize(body.size).derive(body);
-                    }
-                }
-            }
-            node Body {
-                params { size: Vec3 ~ uniform([0.6; 3], [1.5; 3]) }
-                children { next: Body = 1.0 / 3.0, wing: Wing = 1.0 / 3.0, top: Top = 1.0 / 3.0 }
-                derive(s) {
-                    let s = s.translate(vec3(0.0, 0.0, s.size().z / 2.0));
-                    s.emit(CUBE);
-                    if let Some(next) = next {
-                        s.translate(vec3(0.0, 0.0, s.size().z / 2.0)).resize(next.size).derive(next);
-                    }
-                    if let Some(top) = top {
-                        s.translate(vec3(0.0, s.size().y / 2.0, 0.0)).derive(top);
-                    }
-                    if let Some(wing) = wing {
-                        s.translate(vec3(s.size().x / 2.0, 0.0, 0.0)).derive(wing);
-                        s.rotate_z(std::f32::consts::PI)
-                            .translate(vec3(s.size().x / 2.0, 0.0, 0.0))
-                            .derive(wing);
-                    }
-                }
-            }
-            node Top {
-                params { size: Vec3 ~ uniform([0.3, 0.1, 0.3], [0.8, 0.2, 0.8]) }
-                children { next: TopNext = 1.0 }
-                derive(s) {
-                    if let Some(next) = next {
-                        s.resize(size).derive(next);
-                    }
-                }
-            }
-            node TopNext {
-                params { size: Vec3 ~ uniform([0.6, 0.8, 0.6], [1.1, 1.1, 1.1]) }
-                children { next: TopNext = 1.0 }
-                derive(s) {
-                    let s = s.translate(vec3(0.0, s.size().y / 2.0, 0.0));
-                    s.emit(CUBE);
-                    if let Some(next) = next {
-                        s.translate(vec3(0.0, s.size().y / 2.0, 0.0)).resize(next.size).derive(next);
-                    }
-                }
-            }
-            node Wing {
-                params {
-                    size: Vec3 ~ uniform([0.3, 0.2, 0.2], [1.2, 0.5, 1.0]),
-                    shift: f32 ~ uniform(-0.5, 0.5),
-                }
-                children { next: WingNext = 1.0 }
-                derive(s) {
-                    let s = s.resize(size);
-                    let s = s.translate(vec3(0.0, 0.0, s.size().z * shift));
-                    if let Some(next) = next {
-                        s.derive(next);
-                    }
-                }
-            }
-            node WingNext {
-                params {
-                    size: Vec3 ~ uniform([0.6, 0.9, 0.7], [1.2, 1.0, 1.2]),
-                    shift: f32 ~ uniform(-0.5, 0.5),
-                }
-                children { next: WingNext = 0.9 }
-                derive(s) {
-                    let s = s.translate(vec3(s.size().x / 2.0, 0.0, 0.0));
-                    s.emit(CUBE);
-                    if let Some(next) = next {
-                        let c = s.translate(vec3(s.size().x / 2.0, 0.0, 0.0)).resize(next.size);
-                        c.translate(vec3(0.0, 0.0, c.size().z * next.shift)).derive(next);
-                    }
-                }
-            }
-        }
-    }
-}
-
-use declared::Spaceship;
+use generators::Spaceship;
 
 fn assert_nodes_equal(a: &NodeDesc, b: &NodeDesc) {
     assert_eq!(a.name, b.name);
@@ -155,22 +64,22 @@ fn node_params_agree_with_the_hand_expansion() {
     macro_rules! same {
         ($($node:ident),*) => {$(
             assert_eq!(
-                <declared::$node as NodeParams>::KIND,
+                <generators::spaceship::$node as NodeParams>::KIND,
                 <hand::$node as NodeParams>::KIND
             );
             assert_eq!(
-                <declared::$node as NodeParams>::LINKS,
+                <generators::spaceship::$node as NodeParams>::LINKS,
                 <hand::$node as NodeParams>::LINKS
             );
             assert_eq!(
-                <declared::$node as NodeParams>::WORDS,
+                <generators::spaceship::$node as NodeParams>::WORDS,
                 <hand::$node as NodeParams>::WORDS
             );
         )*};
     }
     same!(Start, Body, Top, TopNext, Wing, WingNext);
     let words = [1.0f32, 2.0, 3.0, 0.25].map(f32::to_bits);
-    let wing = <declared::WingNext as NodeParams>::read(&words);
+    let wing = <generators::spaceship::WingNext as NodeParams>::read(&words);
     assert_eq!(wing.size, glam::vec3(1.0, 2.0, 3.0));
     assert_eq!(wing.shift, 0.25);
     let mut back = [0u32; 4];
