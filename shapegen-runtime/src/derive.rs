@@ -194,10 +194,9 @@ pub struct Derivation {
 }
 
 impl Derivation {
-    /// Derives the genome held in `words` (root at word 0) into `out`, replacing its
-    /// contents and reusing its allocation.
+    /// Derives the genome held in `words` (root at word 0), appending its instances to
+    /// `out`.
     pub(crate) fn run<G: Grammar>(words: &[u32], out: &mut Vec<Instance>) {
-        out.clear();
         let ctx = Derivation {
             out: RefCell::new(std::mem::take(out)),
         };

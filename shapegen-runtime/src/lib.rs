@@ -11,6 +11,7 @@ pub mod geometry;
 pub mod graph;
 pub mod ops;
 pub mod param;
+pub mod score;
 
 pub use derive::{Child, GeneView, Grammar, NodeParams, Shape, Slots};
 pub use genome::{Genome, GenomeError, Limits};

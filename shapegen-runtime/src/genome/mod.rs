@@ -166,6 +166,13 @@ impl<G: Grammar> Genome<G> {
     /// writes the emitted mesh instances into `out`, replacing what it held and reusing
     /// its allocation.
     pub fn derive_into(&self, out: &mut Vec<Instance>) {
+        out.clear();
+        Derivation::run::<G>(&self.words, out);
+    }
+
+    /// Derives the model like [`derive_into`](Self::derive_into), appending its
+    /// instances to what `out` already holds (a population's models back to back).
+    pub fn derive_append(&self, out: &mut Vec<Instance>) {
         Derivation::run::<G>(&self.words, out);
     }
 

@@ -1,0 +1,109 @@
+//! A population's models, back to back, and counting them all in parallel.
+
+use rayon::prelude::*;
+
+use super::Scorer;
+use crate::geometry::Instance;
+use crate::{Genome, Grammar};
+
+/// The instances of many models in one buffer: model `i` is
+/// `instances[starts[i]..starts[i + 1]]`. Reused from generation to generation, it
+/// allocates only when a population outgrows it.
+///
+/// ```
+/// use shapegen_runtime::score::InstanceBatch;
+/// use shapegen_runtime::{CUBE, Instance};
+/// use glam::Affine3A;
+///
+/// let cube = Instance { transform: Affine3A::IDENTITY, mesh: CUBE };
+/// let mut batch = InstanceBatch::new();
+/// batch.push_with(|out| out.push(cube));
+/// batch.push_with(|out| out.extend([cube, cube]));
+/// assert_eq!(batch.len(), 2);
+/// assert_eq!(batch.model(1).len(), 2);
+/// assert_eq!(batch.instances().len(), 3);
+/// ```
+#[derive(Clone, Debug, Default)]
+pub struct InstanceBatch {
+    instances: Vec<Instance>,
+    starts: Vec<u32>,
+}
+
+impl InstanceBatch {
+    /// An empty batch.
+    pub fn new() -> Self {
+        InstanceBatch {
+            instances: Vec::new(),
+            starts: vec![0],
+        }
+    }
+
+    /// Empties the batch, keeping its memory.
+    pub fn clear(&mut self) {
+        self.instances.clear();
+        self.starts.clear();
+        self.starts.push(0);
+    }
+
+    /// Appends one model, whose instances `write` appends to the buffer it is given
+    /// (for example `|out| genome.derive_append(out)`, which is what
+    /// [`push_genome`](Self::push_genome) does).
+    pub fn push_with(&mut self, write: impl FnOnce(&mut Vec<Instance>)) {
+        if self.starts.is_empty() {
+            self.starts.push(0);
+        }
+        write(&mut self.instances);
+        let end = u32::try_from(self.instances.len())
+            .expect("a batch holds fewer than 2^32 instances");
+        self.starts.push(end);
+    }
+
+    /// Appends the model `genome` derives into.
+    pub fn push_genome<G: Grammar>(&mut self, genome: &Genome<G>) {
+        self.push_with(|out| genome.derive_append(out));
+    }
+
+    /// Number of models.
+    pub fn len(&self) -> usize {
+        self.starts.len().saturating_sub(1)
+    }
+
+    /// Whether the batch holds no model.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The instances of model `index`.
+    ///
+    /// # Panics
+    /// If `index >= self.len()`.
+    pub fn model(&self, index: usize) -> &[Instance] {
+        let (start, end) = (self.starts[index], self.starts[index + 1]);
+        &self.instances[start as usize..end as usize]
+    }
+
+    /// Every model's instances, back to back.
+    pub fn instances(&self) -> &[Instance] {
+        &self.instances
+    }
+
+    /// Where each model starts in [`instances`](Self::instances), followed by the total.
+    pub fn starts(&self) -> &[u32] {
+        &self.starts
+    }
+}
+
+/// Counts every model of `batch` with `scorer` on the current rayon pool, writing model
+/// `i`'s counts to `out[i]`. The result does not depend on the number of threads.
+///
+/// # Panics
+/// If `out.len() != batch.len()`.
+pub fn count_batch<S: Scorer>(scorer: &S, batch: &InstanceBatch, out: &mut [S::Counts]) {
+    assert_eq!(out.len(), batch.len(), "one counts slot per model");
+    out.par_iter_mut()
+        .enumerate()
+        .for_each_init(
+            || scorer.scratch(),
+            |scratch, (i, slot)| *slot = scorer.count(batch.model(i), scratch),
+        );
+}

@@ -1,0 +1,50 @@
+//! Scoring derived models against a goal: a volume to fill or avoid
+//! ([`VolumeScorer`]) and silhouettes seen through cameras ([`SilhouetteScorer`]).
+//!
+//! A scorer first *counts* (voxels or pixels of each kind a model covers) and then turns
+//! the counts into a fitness with a [`Form`]: the paper's weighted sum, or the original
+//! implementation's smoothstep form. Counts are exact integers, so every backend that
+//! counts the same way gives the same fitness.
+//!
+//! Whole populations are scored at once: their instances go into one
+//! [`InstanceBatch`], and [`count_batch`] counts every model on the rayon pool with one
+//! scratch buffer per worker.
+//!
+//! ```
+//! use shapegen_runtime::score::{LengthPenalty, smoothstep};
+//!
+//! assert_eq!(smoothstep(0.0, 10.0, 5.0), 0.5);
+//! let penalty = LengthPenalty { weight: 0.1, from: 10.0, to: 100.0 };
+//! assert_eq!(penalty.apply(10), 0.0);
+//! assert_eq!(penalty.apply(100), 0.1);
+//! ```
+
+mod batch;
+mod form;
+
+pub use batch::{InstanceBatch, count_batch};
+pub use form::{Form, LengthPenalty, smoothstep};
+
+use crate::geometry::Instance;
+
+/// Counts what models cover and turns the counts into fitness.
+///
+/// Implementors keep no state between calls apart from `Scratch`, so that one scorer is
+/// shared by every worker thread, each with its own scratch.
+pub trait Scorer: Sync {
+    /// What one model covers, in exact integers.
+    type Counts: Copy + Send + Sync + std::fmt::Debug + PartialEq;
+    /// Reusable working memory of one worker.
+    type Scratch: Send;
+
+    /// Fresh working memory for [`count`](Self::count).
+    fn scratch(&self) -> Self::Scratch;
+
+    /// Counts what the model made of `instances` covers. Leaves `scratch` ready for the
+    /// next model; allocates nothing once `scratch` has grown to the largest model.
+    fn count(&self, instances: &[Instance], scratch: &mut Self::Scratch) -> Self::Counts;
+
+    /// The scorer's part of the fitness of a model with these counts (higher is better),
+    /// without any genome-length term.
+    fn fitness(&self, counts: &Self::Counts) -> f64;
+}
