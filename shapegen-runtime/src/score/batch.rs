@@ -53,8 +53,8 @@ impl InstanceBatch {
             self.starts.push(0);
         }
         write(&mut self.instances);
-        let end = u32::try_from(self.instances.len())
-            .expect("a batch holds fewer than 2^32 instances");
+        let end =
+            u32::try_from(self.instances.len()).expect("a batch holds fewer than 2^32 instances");
         self.starts.push(end);
     }
 
@@ -100,10 +100,8 @@ impl InstanceBatch {
 /// If `out.len() != batch.len()`.
 pub fn count_batch<S: Scorer>(scorer: &S, batch: &InstanceBatch, out: &mut [S::Counts]) {
     assert_eq!(out.len(), batch.len(), "one counts slot per model");
-    out.par_iter_mut()
-        .enumerate()
-        .for_each_init(
-            || scorer.scratch(),
-            |scratch, (i, slot)| *slot = scorer.count(batch.model(i), scratch),
-        );
+    out.par_iter_mut().enumerate().for_each_init(
+        || scorer.scratch(),
+        |scratch, (i, slot)| *slot = scorer.count(batch.model(i), scratch),
+    );
 }

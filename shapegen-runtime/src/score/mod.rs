@@ -1,5 +1,5 @@
-//! Scoring derived models against a goal: a volume to fill or avoid
-//! ([`VolumeScorer`]) and silhouettes seen through cameras ([`SilhouetteScorer`]).
+//! Scoring derived models against a goal: a volume to fill or avoid, or silhouettes
+//! seen through cameras.
 //!
 //! A scorer first *counts* (voxels or pixels of each kind a model covers) and then turns
 //! the counts into a fitness with a [`Form`]: the paper's weighted sum, or the original
