@@ -98,7 +98,8 @@ impl GpuContext {
     /// The largest storage binding to use: the device's limit, at most [`MAX_BINDING`].
     pub fn max_binding(&self) -> u64 {
         let limits = self.device.limits();
-        u64::from(limits.max_storage_buffer_binding_size)
+        limits
+            .max_storage_buffer_binding_size
             .min(limits.max_buffer_size)
             .min(MAX_BINDING)
     }
