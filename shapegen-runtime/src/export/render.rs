@@ -63,7 +63,7 @@ impl Preview {
                 continue;
             };
             for &p in &mesh.positions {
-                let p = Vec3::from(instance.transform.transform_point3(p));
+                let p = instance.transform.transform_point3(p);
                 if p.is_finite() {
                     lo = lo.min(p);
                     hi = hi.max(p);
@@ -117,11 +117,9 @@ impl Preview {
             let base = Vec3::from(palette.color(instance.mesh, name));
             for [a, b, c] in mesh.triangles() {
                 let world = [a, b, c].map(|i| {
-                    Vec3::from(
-                        instance
-                            .transform
-                            .transform_point3(mesh.positions[i as usize]),
-                    )
+                    instance
+                        .transform
+                        .transform_point3(mesh.positions[i as usize])
                 });
                 let normal = (world[1] - world[0])
                     .cross(world[2] - world[0])
