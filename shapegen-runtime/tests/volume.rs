@@ -12,8 +12,9 @@ use glam::{Affine3A, Quat, Vec3};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use shapegen_runtime::genome::Limits;
+use shapegen_runtime::gpu::GpuError;
 use shapegen_runtime::score::volume::{
-    Grid, VolumeCounts, VolumeError, VolumeScorer, VolumeTarget, VoxelClasses,
+    GpuVolumeScorer, Grid, VolumeCounts, VolumeError, VolumeScorer, VolumeTarget, VoxelClasses,
 };
 use shapegen_runtime::score::{Form, InstanceBatch, Scorer, count_batch};
 use shapegen_runtime::{
@@ -454,4 +455,143 @@ fn counts_do_not_depend_on_threads_or_scratch_history() {
         .install(|| count_batch(&scorer, &city, &mut b));
     assert_eq!(a, b);
     assert!(a.iter().any(|c| c.inside > 0));
+}
+
+/// The CPU's counts of every model of `batch`.
+fn cpu_counts(scorer: &VolumeScorer, batch: &InstanceBatch) -> Vec<VolumeCounts> {
+    let mut out = vec![VolumeCounts::default(); batch.len()];
+    count_batch(scorer, batch, &mut out);
+    out
+}
+
+#[test]
+fn the_gpu_counts_exactly_what_the_cpu_counts() {
+    let Some(gpu) = shapegen_runtime::gpu::test_context() else {
+        return;
+    };
+    let ship = Mesh::from_obj(scenes().join("spaceship_volume/spaceship_target.obj")).unwrap();
+    // A grid smaller than many ships, so that they poke out on every side.
+    let grid = Grid::new(
+        Vec3::new(-2.0, -1.0, -1.0),
+        Vec3::new(2.0, 1.5, 6.0),
+        [33, 21, 47],
+    )
+    .unwrap();
+    let targets = [
+        target("ship", ship, 1.0, -1.0),
+        target(
+            "nose",
+            block(Vec3::new(-0.5, -0.5, 4.0), Vec3::new(0.5, 0.5, 6.0)),
+            0.5,
+            0.0,
+        ),
+    ];
+    let bound = MeshLibrary::new().bind(Spaceship::GRAPH).unwrap();
+    let scorer = VolumeScorer::new(
+        grid,
+        &targets,
+        &bound,
+        Form::Smooth {
+            good: 2.0,
+            bad: 15.0,
+        },
+    )
+    .unwrap();
+    assert!(scorer.classes().weights().len() >= 3);
+    let mut batch = population::<Spaceship>(60, Limits::new(4, 100, 15).unwrap(), 50, 21);
+    // Hand-made models: empty, overlapping copies, a box far out, one too large to
+    // rasterise, a flat one.
+    batch.push_with(|_| {});
+    let r = Instance {
+        transform: Affine3A::from_scale_rotation_translation(
+            Vec3::new(2.3, 0.7, 3.1),
+            Quat::from_euler(glam::EulerRot::XYZ, 0.3, 0.9, -0.2),
+            Vec3::new(1.5, 0.2, 0.5),
+        ),
+        mesh: CUBE,
+    };
+    let far = aabb(Vec3::splat(30.0), Vec3::splat(31.3));
+    let huge = Instance {
+        transform: Affine3A::from_scale(Vec3::splat(1e4)),
+        mesh: CUBE,
+    };
+    let flat = Instance {
+        transform: Affine3A::from_scale(Vec3::new(1.0, 0.0, 1.0)),
+        mesh: CUBE,
+    };
+    batch.push_with(|out| out.extend([r, r, r, far, huge, flat]));
+
+    let cpu = cpu_counts(&scorer, &batch);
+    assert!(cpu.iter().filter(|c| c.out_of_grid > 0).count() > 10);
+    assert!(cpu.iter().filter(|c| c.overlap > 0).count() > 10);
+    assert!(
+        cpu.iter()
+            .filter(|c| c.classes[..3].iter().all(|&n| n > 0))
+            .count()
+            > 3
+    );
+    let mut gpu_scorer = GpuVolumeScorer::new(gpu, &scorer).unwrap();
+    let mut out = vec![VolumeCounts::default(); batch.len()];
+    gpu_scorer.count_batch(&batch, &mut out).unwrap();
+    for (i, (c, g)) in cpu.iter().zip(&out).enumerate() {
+        assert_eq!(c, g, "model {i}");
+    }
+    // In passes of 7 models, twice over with the same buffers.
+    gpu_scorer.limit_models_per_pass(7);
+    assert_eq!(gpu_scorer.models_per_pass(), 7);
+    for _ in 0..2 {
+        out.fill(VolumeCounts::default());
+        gpu_scorer.count_batch(&batch, &mut out).unwrap();
+        assert_eq!(cpu, out);
+    }
+
+    // The city, on a grid around its middle lots.
+    let city = population::<City>(30, Limits::new(4, 300, 8).unwrap(), 50, 8);
+    let grid = Grid::new(
+        Vec3::new(-6.0, 0.0, -6.0),
+        Vec3::new(6.0, 6.0, 6.0),
+        [40, 20, 40],
+    )
+    .unwrap();
+    let bound = MeshLibrary::new().bind(City::GRAPH).unwrap();
+    let t = target(
+        "tower",
+        block(Vec3::new(-3.0, 0.0, -3.0), Vec3::new(3.0, 8.0, 3.0)),
+        1.0,
+        -1.0,
+    );
+    let scorer = VolumeScorer::new(grid, &[t], &bound, Form::Weighted { overlap: 1.0 }).unwrap();
+    let cpu = cpu_counts(&scorer, &city);
+    assert!(cpu.iter().any(|c| c.out_of_grid > 0 && c.inside > 0));
+    let mut out = vec![VolumeCounts::default(); city.len()];
+    GpuVolumeScorer::new(gpu, &scorer)
+        .unwrap()
+        .count_batch(&city, &mut out)
+        .unwrap();
+    assert_eq!(cpu, out);
+}
+
+#[test]
+fn the_gpu_refuses_meshes_other_than_boxes() {
+    let Some(gpu) = shapegen_runtime::gpu::test_context() else {
+        return;
+    };
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../generators/meshes");
+    let mut library = MeshLibrary::new();
+    library
+        .register_obj("trunk", dir.join("trunk.obj"))
+        .unwrap();
+    library.register_obj("leaf", dir.join("leaf.obj")).unwrap();
+    let bound = library
+        .bind_names("Tree", &["cube", "trunk", "leaf"])
+        .unwrap();
+    let grid = Grid::new(Vec3::splat(-1.0), Vec3::splat(1.0), [8, 8, 8]).unwrap();
+    let scorer = VolumeScorer::new(grid, &[], &bound, Form::Weighted { overlap: 0.0 }).unwrap();
+    let err = GpuVolumeScorer::new(gpu, &scorer).unwrap_err();
+    assert!(matches!(err, GpuError::Unsupported(_)), "{err:?}");
+    assert_eq!(
+        err.to_string(),
+        "not supported on the GPU: mesh `trunk` (id 1) is not the unit cube; only box meshes \
+         are counted on the GPU, count this grammar on the CPU"
+    );
 }

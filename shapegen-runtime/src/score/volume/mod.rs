@@ -57,6 +57,7 @@
 
 mod classes;
 mod count;
+mod gpu;
 mod grid;
 mod parity;
 mod parts;
@@ -64,6 +65,7 @@ mod quant;
 
 pub use classes::{MAX_CLASSES, VoxelClasses};
 pub use count::VolumeScratch;
+pub use gpu::{GpuVolumeScorer, VOLUME_WGSL};
 pub use grid::{Grid, GridError, MAX_VOXELS};
 
 use super::{Form, Scorer, smoothstep};
