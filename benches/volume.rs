@@ -11,8 +11,11 @@ use rand_chacha::ChaCha8Rng;
 use shapegen::Grammar;
 use shapegen::ops::Operators;
 use shapegen_runtime::Mesh;
+use shapegen_runtime::gpu::GpuContext;
 use shapegen_runtime::prelude::Vec3;
-use shapegen_runtime::score::volume::{Grid, VolumeCounts, VolumeScorer, VolumeTarget};
+use shapegen_runtime::score::volume::{
+    GpuVolumeScorer, Grid, VolumeCounts, VolumeScorer, VolumeTarget,
+};
 use shapegen_runtime::score::{Form, InstanceBatch, count_batch};
 
 const POPULATION: usize = 200;
@@ -76,6 +79,27 @@ fn volume(c: &mut Criterion) {
         format!("cpu-{}-threads", rayon::current_num_threads()),
         |b| b.iter(|| count_batch(&scorer, &batch, &mut out)),
     );
+    match GpuContext::new() {
+        Ok(gpu) => {
+            let on_gpu =
+                GpuVolumeScorer::new(&gpu, &scorer).expect("the spaceship scene runs on the GPU");
+            let mut cpu = vec![VolumeCounts::default(); batch.len()];
+            count_batch(&scorer, &batch, &mut cpu);
+            on_gpu
+                .count_batch(&batch, &mut out)
+                .expect("the GPU counts");
+            assert_eq!(cpu, out, "the GPU counts what the CPU counts");
+            eprintln!("volume/spaceship/gpu runs on {}", gpu.describe());
+            group.bench_function("gpu", |b| {
+                b.iter(|| {
+                    on_gpu
+                        .count_batch(&batch, &mut out)
+                        .expect("the GPU counts")
+                })
+            });
+        }
+        Err(err) => eprintln!("no GPU ({err}): volume/spaceship/gpu not measured"),
+    }
     group.finish();
 }
 
