@@ -9,6 +9,7 @@
 
 use std::sync::Mutex;
 
+use rayon::prelude::*;
 use wgpu::util::DeviceExt;
 
 use super::classes::MAX_CLASSES;
@@ -86,6 +87,8 @@ pub struct GpuVolumeScorer<'a> {
     models_per_pass: usize,
     /// The bitsets of the largest pass so far, reused.
     covered: Mutex<Option<wgpu::Buffer>>,
+    /// Every instance of the last batch, quantised; reused.
+    placements: Mutex<Vec<Placement>>,
 }
 
 impl std::fmt::Debug for GpuVolumeScorer<'_> {
@@ -163,6 +166,7 @@ impl<'a> GpuVolumeScorer<'a> {
             words_per_model,
             models_per_pass,
             covered: Mutex::new(None),
+            placements: Mutex::new(Vec::new()),
         })
     }
 
@@ -252,19 +256,28 @@ impl<'a> GpuVolumeScorer<'a> {
     /// model's out-of-grid hits of instances too large to rasterise.
     fn plan(&self, batch: &InstanceBatch) -> Result<(Vec<Pass>, Vec<u64>), GpuError> {
         let max_boxes = (self.ctx.max_binding() / size_of::<QuantBox>() as u64) as usize;
-        let max_rows = u64::from(u32::MAX) - WORKGROUP;
+        // Row numbers travel as i32 in QuantBox::extent[3].
+        let max_rows = i32::MAX as u64 - WORKGROUP;
         let grid = self.scorer.grid();
+        // Quantise every instance on the CPU threads, in order.
+        let mut placements = self.placements.lock().unwrap_or_else(|e| e.into_inner());
+        batch
+            .instances()
+            .par_iter()
+            .map(|instance| match self.scorer.is_box(instance.mesh) {
+                Some(true) => quantize(grid, &instance.transform),
+                _ => Placement::Nothing, // ids the grammar lacks cover nothing
+            })
+            .collect_into_vec(&mut placements);
+        let starts = batch.starts();
         let mut oversize = vec![0u64; batch.len()];
         let mut passes = vec![Pass::default()];
         let mut model_boxes = Vec::new();
         for (m, extra) in oversize.iter_mut().enumerate() {
             model_boxes.clear();
             let mut rows = 0u64;
-            for instance in batch.model(m) {
-                if self.scorer.is_box(instance.mesh) != Some(true) {
-                    continue; // ids the grammar lacks cover nothing
-                }
-                match quantize(grid, &instance.transform) {
+            for placement in &placements[starts[m] as usize..starts[m + 1] as usize] {
+                match *placement {
                     Placement::Nothing => {}
                     Placement::Oversize(n) => *extra = extra.saturating_add(n),
                     Placement::Box(q) => {

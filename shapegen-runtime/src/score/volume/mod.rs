@@ -16,6 +16,10 @@
 //! [`Form::Smooth`], `good S(0, T, inside) - bad S(0, 2T, outside + overlap +
 //! out_of_grid)` where `T` is the number of target voxels.
 //!
+//! [`count_batch`](super::count_batch) counts a population on the CPU threads;
+//! [`GpuVolumeScorer`] counts it on the GPU in one submission, with the same counts,
+//! for grammars whose meshes are all boxes.
+//!
 //! ```
 //! use glam::{Affine3A, Quat, Vec3};
 //! use shapegen_runtime::{CUBE, Instance, Mesh, MeshLibrary};
