@@ -269,6 +269,43 @@ mod tests {
     }
 
     #[test]
+    fn rows_are_exactly_the_points_meeting_every_inequality() {
+        let grid = Grid::new(Vec3::splat(-3.0), Vec3::splat(3.0), [23, 29, 31]).unwrap();
+        let mut checked = 0;
+        for n in 0..40 {
+            let f = n as f32;
+            let t = Affine3A::from_scale_rotation_translation(
+                Vec3::new(
+                    0.3 + (f * 0.37) % 3.0,
+                    0.2 + (f * 0.71) % 2.0,
+                    0.5 + (f * 0.13) % 4.0,
+                ),
+                Quat::from_euler(glam::EulerRot::ZXY, f * 0.7, f * 1.3, f * 0.4),
+                Vec3::new((f * 0.29) % 2.0 - 1.0, (f * 0.53) % 2.0 - 1.0, 0.1),
+            );
+            let Placement::Box(q) = quantize(&grid, &t) else {
+                panic!("box {n} covers lattice points");
+            };
+            for k in 0..q.extent[2] {
+                for j in 0..q.extent[1] {
+                    let inside = |i: i32| {
+                        (0..3).all(|a| {
+                            let [ca, cb, cc, cd] = q.axes[a].map(i64::from);
+                            let u = ca * i64::from(i) + cb * i64::from(j) + cc * i64::from(k) + cd;
+                            u.abs() <= i64::from(q.half[a])
+                        })
+                    };
+                    let all: Vec<i32> = (0..q.extent[0]).filter(|&i| inside(i)).collect();
+                    let expected = all.first().map(|&lo| (lo, *all.last().unwrap()));
+                    assert_eq!(q.row(j, k), expected, "box {n} row {j} {k}");
+                    checked += all.len();
+                }
+            }
+        }
+        assert!(checked > 10_000, "{checked}");
+    }
+
+    #[test]
     fn flat_far_and_huge_boxes() {
         let grid = Grid::new(Vec3::ZERO, Vec3::ONE, [10, 10, 10]).unwrap();
         let flat = Affine3A::from_scale(Vec3::new(1.0, 1.0, 0.0));
