@@ -10,6 +10,9 @@
 //! [`InstanceBatch`], and [`count_batch`] counts every model on the rayon pool with one
 //! scratch buffer per worker.
 //!
+//! [`volume`] scores how well models fill weighted target volumes on a voxel grid, on
+//! the CPU or, for grammars made of boxes, on the GPU with identical counts.
+//!
 //! ```
 //! use shapegen_runtime::score::{LengthPenalty, smoothstep};
 //!
@@ -21,6 +24,7 @@
 
 mod batch;
 mod form;
+pub mod volume;
 
 pub use batch::{InstanceBatch, count_batch};
 pub use form::{Form, LengthPenalty, smoothstep};

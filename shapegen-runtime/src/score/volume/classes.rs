@@ -1,0 +1,170 @@
+//! The targets combined into one grid of voxel classes.
+
+use super::parity::{Bounds, Voxelizer};
+use super::{Grid, VolumeError, VolumeTarget};
+
+/// The most distinct voxel weights (classes) a scene may have.
+pub const MAX_CLASSES: usize = 16;
+
+/// Every voxel's class: the distinct combined weights `sum_i (inside target i ?
+/// inside_i : outside_i)` in ascending order, and one class index per voxel.
+///
+/// ```
+/// use glam::Vec3;
+/// use shapegen_runtime::Mesh;
+/// use shapegen_runtime::score::volume::{Grid, VolumeTarget, VoxelClasses};
+///
+/// let grid = Grid::new(Vec3::splat(-1.0), Vec3::splat(1.0), [4, 4, 4])?;
+/// let target = VolumeTarget { name: "cube".into(), mesh: Mesh::unit_cube(), inside: 1.0, outside: -0.5 };
+/// let classes = VoxelClasses::new(&grid, &[target])?;
+/// assert_eq!(classes.weights(), [-0.5, 1.0]);
+/// assert_eq!(classes.target_voxels(), 8); // the middle 2 x 2 x 2
+/// assert_eq!(classes.weight_at([1, 1, 1]), Some(1.0));
+/// assert_eq!(classes.weight_at([0, 1, 1]), Some(-0.5));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct VoxelClasses {
+    grid: Grid,
+    weights: Vec<f64>,
+    voxels: Vec<u8>,
+    sizes: Vec<u64>,
+}
+
+impl VoxelClasses {
+    /// Voxelizes `targets` on `grid` by parity and combines their weights.
+    ///
+    /// Fails when a target's mesh is malformed or a weight is not finite (naming the
+    /// target), or when the combined weights take more than [`MAX_CLASSES`] values.
+    pub fn new(grid: &Grid, targets: &[VolumeTarget]) -> Result<VoxelClasses, VolumeError> {
+        let voxels = grid.voxel_count() as usize;
+        let words = voxels.div_ceil(64);
+        let mut inside = vec![0u64; words * targets.len()];
+        let mut voxelizer = Voxelizer::default();
+        let [nx, ny, _] = grid.resolution().map(i64::from);
+        for (t, target) in targets.iter().enumerate() {
+            for (which, value) in [("inside", target.inside), ("outside", target.outside)] {
+                if !value.is_finite() {
+                    return Err(VolumeError::Weight {
+                        target: target.name.clone(),
+                        which,
+                        value,
+                    });
+                }
+            }
+            target
+                .mesh
+                .validate(&target.name)
+                .map_err(|source| VolumeError::Mesh {
+                    target: target.name.clone(),
+                    source,
+                })?;
+            let bits = &mut inside[t * words..(t + 1) * words];
+            let place = |p: glam::Vec3| grid.to_lattice(p.as_dvec3());
+            let run = voxelizer.run(
+                &target.mesh,
+                place,
+                Bounds::Grid(grid.resolution()),
+                |j, k, a, b| {
+                    let base = (j + ny * k) * nx;
+                    for v in (base + a) as usize..=(base + b) as usize {
+                        bits[v / 64] |= 1 << (v % 64);
+                    }
+                },
+            );
+            debug_assert!(run.is_ok(), "grid bounds have no size limit");
+        }
+
+        let weight_of = |v: usize| -> f64 {
+            let mut w = 0.0;
+            for (t, target) in targets.iter().enumerate() {
+                let bit = inside[t * words + v / 64] >> (v % 64) & 1 != 0;
+                w += if bit { target.inside } else { target.outside };
+            }
+            w + 0.0 // -0 is 0
+        };
+        let mut weights: Vec<f64> = Vec::new();
+        for v in 0..voxels {
+            let w = weight_of(v);
+            if let Err(at) = weights.binary_search_by(|x| x.total_cmp(&w)) {
+                weights.insert(at, w);
+            }
+        }
+        if weights.len() > MAX_CLASSES {
+            return Err(VolumeError::TooManyClasses {
+                classes: weights.len(),
+                targets: targets
+                    .iter()
+                    .map(|t| format!("`{}`", t.name))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            });
+        }
+        let mut sizes = vec![0u64; weights.len()];
+        let classes = (0..voxels)
+            .map(|v| {
+                let w = weight_of(v);
+                let c = weights.partition_point(|x| x.total_cmp(&w).is_lt());
+                sizes[c] += 1;
+                c as u8
+            })
+            .collect();
+        Ok(VoxelClasses {
+            grid: *grid,
+            weights,
+            voxels: classes,
+            sizes,
+        })
+    }
+
+    /// The grid.
+    #[inline]
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    /// The weight of each class, ascending (at least one class, at most
+    /// [`MAX_CLASSES`]).
+    #[inline]
+    pub fn weights(&self) -> &[f64] {
+        &self.weights
+    }
+
+    /// Every voxel's class index, by voxel number ([`Grid::index`]).
+    #[inline]
+    pub fn voxels(&self) -> &[u8] {
+        &self.voxels
+    }
+
+    /// Number of voxels of each class.
+    #[inline]
+    pub fn sizes(&self) -> &[u64] {
+        &self.sizes
+    }
+
+    /// Whether class `class` is a target class: its weight is above 0.
+    #[inline]
+    pub fn is_target(&self, class: usize) -> bool {
+        self.weights.get(class).is_some_and(|&w| w > 0.0)
+    }
+
+    /// The class of lattice point `idx`, `None` outside the grid.
+    #[inline]
+    pub fn class_at(&self, idx: [i64; 3]) -> Option<u8> {
+        self.grid.index(idx).map(|v| self.voxels[v])
+    }
+
+    /// The combined weight at lattice point `idx`, `None` outside the grid.
+    #[inline]
+    pub fn weight_at(&self, idx: [i64; 3]) -> Option<f64> {
+        self.class_at(idx).map(|c| self.weights[usize::from(c)])
+    }
+
+    /// Number of target voxels: those whose weight is above 0.
+    pub fn target_voxels(&self) -> u64 {
+        (0..self.weights.len())
+            .filter(|&c| self.is_target(c))
+            .map(|c| self.sizes[c])
+            .sum()
+    }
+}

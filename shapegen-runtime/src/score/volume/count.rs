@@ -1,0 +1,191 @@
+//! Counting one model on the CPU: a covered-voxel bitset whose reset costs what the
+//! model covered.
+
+use glam::Vec3;
+
+use super::classes::MAX_CLASSES;
+use super::parity::{Bounds, Voxelizer};
+use super::parts::PartKind;
+use super::quant::{Placement, QuantBox, quantize, usable_linear, voxels_of_volume};
+use super::{VolumeCounts, VolumeScorer};
+use crate::geometry::Instance;
+
+/// Working memory of one worker counting models with a [`VolumeScorer`]: a bitset over
+/// the grid and the list of its words that are not zero.
+#[derive(Clone, Debug)]
+pub struct VolumeScratch {
+    covered: Vec<u64>,
+    touched: Vec<u32>,
+    voxelizer: Voxelizer,
+}
+
+impl VolumeScratch {
+    pub(crate) fn new(voxels: u64) -> VolumeScratch {
+        VolumeScratch {
+            covered: vec![0; voxels.div_ceil(64) as usize],
+            touched: Vec::new(),
+            voxelizer: Voxelizer::default(),
+        }
+    }
+}
+
+/// The running counts of one model.
+struct Tally<'a> {
+    scorer: &'a VolumeScorer,
+    covered: &'a mut [u64],
+    touched: &'a mut Vec<u32>,
+    classes: [u64; MAX_CLASSES],
+    overlap: u64,
+    out_of_grid: u64,
+}
+
+impl Tally<'_> {
+    /// Covers lattice points `(first..=last, j, k)`.
+    #[inline]
+    fn row(&mut self, j: i64, k: i64, first: i64, last: i64) {
+        let len = (last - first + 1) as u64;
+        let [nx, ny, nz] = self.scorer.grid.resolution().map(i64::from);
+        if !(0..ny).contains(&j) || !(0..nz).contains(&k) {
+            self.out_of_grid += len;
+            return;
+        }
+        let (a, b) = (first.max(0), last.min(nx - 1));
+        if a > b {
+            self.out_of_grid += len;
+            return;
+        }
+        self.out_of_grid += len - (b - a + 1) as u64;
+        let base = (j + ny * k) * nx;
+        self.bits((base + a) as usize, (base + b) as usize);
+    }
+
+    /// Covers voxels `first..=last`.
+    #[inline]
+    fn bits(&mut self, first: usize, last: usize) {
+        let per = self.scorer.class_stride;
+        let (w0, w1) = (first / 64, last / 64);
+        for w in w0..=w1 {
+            let mut mask = !0u64;
+            if w == w0 {
+                mask &= !0 << (first % 64);
+            }
+            if w == w1 {
+                mask &= !0 >> (63 - last % 64);
+            }
+            let old = self.covered[w];
+            if old == 0 {
+                self.touched.push(w as u32);
+            }
+            self.covered[w] = old | mask;
+            self.overlap += u64::from((old & mask).count_ones());
+            let new = mask & !old;
+            let mut rest = u64::from(new.count_ones());
+            let masks = &self.scorer.class_bits[w * per..(w + 1) * per];
+            for (count, &m) in self.classes.iter_mut().zip(masks) {
+                let n = u64::from((new & m).count_ones());
+                *count += n;
+                rest -= n;
+            }
+            self.classes[per] += rest;
+        }
+    }
+
+    /// Covers what box `q` covers.
+    fn quant_box(&mut self, q: &QuantBox) {
+        let [i0, j0, k0, _] = q.corner.map(i64::from);
+        for k in 0..q.extent[2] {
+            for j in 0..q.extent[1] {
+                if let Some((a, b)) = q.row(j, k) {
+                    let (a, b) = (i0 + i64::from(a), i0 + i64::from(b));
+                    self.row(j0 + i64::from(j), k0 + i64::from(k), a, b);
+                }
+            }
+        }
+    }
+}
+
+impl VolumeScorer {
+    /// Counts the model made of `instances` with `scratch`, leaving it cleared.
+    pub(crate) fn count_model(
+        &self,
+        instances: &[Instance],
+        scratch: &mut VolumeScratch,
+    ) -> VolumeCounts {
+        let VolumeScratch {
+            covered,
+            touched,
+            voxelizer,
+        } = scratch;
+        let mut tally = Tally {
+            scorer: self,
+            covered,
+            touched,
+            classes: [0; MAX_CLASSES],
+            overlap: 0,
+            out_of_grid: 0,
+        };
+        for instance in instances {
+            match self.parts.get(instance.mesh.0 as usize) {
+                Some(PartKind::Box) => match quantize(&self.grid, &instance.transform) {
+                    Placement::Nothing => {}
+                    Placement::Oversize(n) => {
+                        tally.out_of_grid = tally.out_of_grid.saturating_add(n)
+                    }
+                    Placement::Box(q) => tally.quant_box(&q),
+                },
+                Some(&PartKind::Solid { volume }) => {
+                    let t = &instance.transform;
+                    let Some((m, shift)) = usable_linear(t.matrix3, Vec3::from(t.translation))
+                    else {
+                        continue;
+                    };
+                    let grid = &self.grid;
+                    let mesh = &self.meshes[instance.mesh];
+                    let place = |p: Vec3| grid.to_lattice(m * p.as_dvec3() + shift);
+                    let run = voxelizer.run(mesh, place, Bounds::Lattice, |j, k, a, b| {
+                        tally.row(j, k, a, b)
+                    });
+                    if run.is_err() {
+                        let n = voxels_of_volume(grid, volume * m.determinant().abs());
+                        tally.out_of_grid = tally.out_of_grid.saturating_add(n);
+                    }
+                }
+                None => {}
+            }
+        }
+        let (classes, overlap, out_of_grid) = (tally.classes, tally.overlap, tally.out_of_grid);
+        for &w in touched.iter() {
+            covered[w as usize] = 0;
+        }
+        touched.clear();
+        self.counts_from(classes, overlap, out_of_grid)
+    }
+
+    /// The counts of a model covering `classes` distinct voxels of each class.
+    pub(crate) fn counts_from(
+        &self,
+        classes: [u64; MAX_CLASSES],
+        overlap: u64,
+        out_of_grid: u64,
+    ) -> VolumeCounts {
+        let (mut inside, mut outside) = (0, 0);
+        for (c, &n) in classes
+            .iter()
+            .enumerate()
+            .take(self.classes.weights().len())
+        {
+            if self.classes.is_target(c) {
+                inside += n;
+            } else {
+                outside += n;
+            }
+        }
+        VolumeCounts {
+            inside,
+            outside,
+            overlap,
+            out_of_grid,
+            classes,
+        }
+    }
+}

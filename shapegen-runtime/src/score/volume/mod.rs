@@ -1,0 +1,273 @@
+//! The volume scorer: how well a model fills target volumes, counted on a voxel grid.
+//!
+//! Targets are voxelized once by ray parity ([`VoxelClasses`]); each voxel gets the
+//! combined weight `sum_i (inside target i ? inside_i : outside_i)`, and the distinct
+//! weights are the voxel *classes*. A model is the union of its instances: instances of
+//! the unit cube (or any mesh whose geometry is exactly the unit cube) are rasterised
+//! with exact integer arithmetic from a quantised form of the instance, which the GPU
+//! evaluates identically; other meshes are voxelized by parity on their transformed
+//! triangles. A lattice point counts as covered when its voxel centre is.
+//!
+//! [`VolumeCounts`] holds what a model covers: distinct covered voxels per class,
+//! `inside` (target voxels: class weight above 0) and `outside` (the rest), `overlap`
+//! (every hit of a voxel beyond its first) and `out_of_grid` (hits of lattice points
+//! outside the grid, repeats counted). The fitness is, with [`Form::Weighted`], `sum_c
+//! count_c weight_c + out_of_grid sum_i outside_i - w_self overlap` and, with
+//! [`Form::Smooth`], `good S(0, T, inside) - bad S(0, 2T, outside + overlap +
+//! out_of_grid)` where `T` is the number of target voxels.
+//!
+//! [`count_batch`](super::count_batch) counts a population on the CPU threads;
+//! [`GpuVolumeScorer`] counts it on the GPU in one submission, with the same counts,
+//! for grammars whose meshes are all boxes.
+//!
+//! ```
+//! use glam::{Affine3A, Quat, Vec3};
+//! use shapegen_runtime::{CUBE, Instance, Mesh, MeshLibrary};
+//! use shapegen_runtime::score::{Form, Scorer};
+//! use shapegen_runtime::score::volume::{Grid, VolumeScorer, VolumeTarget};
+//!
+//! // A 2 x 2 x 2 block of target voxels in the middle of a 4^3 grid of voxels of 0.5.
+//! let grid = Grid::new(Vec3::splat(-1.0), Vec3::splat(1.0), [4, 4, 4])?;
+//! let target = VolumeTarget {
+//!     name: "block".into(),
+//!     mesh: Mesh::unit_cube(),
+//!     inside: 1.0,
+//!     outside: -1.0,
+//! };
+//! let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"])?;
+//! let form = Form::Smooth { good: 2.0, bad: 15.0 };
+//! let scorer = VolumeScorer::new(grid, &[target], &meshes, form)?;
+//! assert_eq!(scorer.target_voxels(), 8);
+//!
+//! // A box reaching one layer further up: the 8 target voxels and 4 others.
+//! let taller = Instance {
+//!     transform: Affine3A::from_scale_rotation_translation(
+//!         Vec3::new(1.0, 1.0, 1.5),
+//!         Quat::IDENTITY,
+//!         Vec3::new(0.0, 0.0, 0.25),
+//!     ),
+//!     mesh: CUBE,
+//! };
+//! let mut scratch = scorer.scratch();
+//! let counts = scorer.count(&[taller], &mut scratch);
+//! let summary = (counts.inside, counts.outside, counts.overlap, counts.out_of_grid);
+//! assert_eq!(summary, (8, 4, 0, 0));
+//!
+//! // The target exactly: the optimum, `good`.
+//! let exact = Instance { transform: Affine3A::IDENTITY, mesh: CUBE };
+//! assert_eq!(scorer.fitness(&scorer.count(&[exact], &mut scratch)), 2.0);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+mod classes;
+mod count;
+mod gpu;
+mod grid;
+mod parity;
+mod parts;
+mod quant;
+
+pub use classes::{MAX_CLASSES, VoxelClasses};
+pub use count::VolumeScratch;
+pub use gpu::{GpuVolumeScorer, VOLUME_WGSL};
+pub use grid::{Grid, GridError, MAX_VOXELS};
+
+use super::{Form, Scorer, smoothstep};
+use crate::geometry::{BoundMeshes, Instance, Mesh, MeshError, MeshId};
+use parts::PartKind;
+
+/// A volume to fill (or avoid): a mesh in world space, voxelized by parity, and the
+/// weights a model's voxel scores inside and outside it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VolumeTarget {
+    /// Names the target in errors.
+    pub name: String,
+    /// The target's surface, in world space.
+    pub mesh: Mesh,
+    /// Weight of a voxel inside the mesh.
+    pub inside: f64,
+    /// Weight of a voxel outside the mesh (also of each out-of-grid hit).
+    pub outside: f64,
+}
+
+/// Why a [`VolumeScorer`] cannot be made.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum VolumeError {
+    /// A weight is infinite or NaN.
+    #[error("volume target `{target}`: {which} weight {value} is not finite (finite numbers only)")]
+    Weight {
+        /// The target's name.
+        target: String,
+        /// `inside` or `outside`.
+        which: &'static str,
+        /// The weight given.
+        value: f64,
+    },
+    /// A target's mesh is malformed.
+    #[error("volume target `{target}`: {source}")]
+    Mesh {
+        /// The target's name.
+        target: String,
+        /// What is wrong with it.
+        #[source]
+        source: MeshError,
+    },
+    /// The targets' weights combine into too many distinct voxel weights.
+    #[error(
+        "volume targets {targets} combine into {classes} distinct voxel weights; at most {} \
+         are supported (give targets fewer distinct inside/outside weights, or fewer targets)",
+        MAX_CLASSES
+    )]
+    TooManyClasses {
+        /// The targets, named and quoted.
+        targets: String,
+        /// How many distinct weights there are.
+        classes: usize,
+    },
+}
+
+/// What one model covers on the grid. Equal counts give equal fitness, whichever
+/// backend counted them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct VolumeCounts {
+    /// Distinct covered target voxels (class weight above 0).
+    pub inside: u64,
+    /// Distinct covered voxels that are not target voxels.
+    pub outside: u64,
+    /// Hits of in-grid voxels beyond each voxel's first.
+    pub overlap: u64,
+    /// Hits of lattice points outside the grid, one per instance and point.
+    pub out_of_grid: u64,
+    /// Distinct covered voxels of each class ([`VoxelClasses::weights`]); classes the
+    /// scene lacks stay 0.
+    pub classes: [u64; MAX_CLASSES],
+}
+
+/// Scores models by the voxels they cover on a grid against weighted target volumes.
+/// See the [module documentation](self).
+#[derive(Clone, Debug)]
+pub struct VolumeScorer {
+    grid: Grid,
+    classes: VoxelClasses,
+    /// Per grid word, a bit mask of the voxels of each class but the last:
+    /// `class_bits[w * class_stride + c]`.
+    class_bits: Vec<u64>,
+    /// Number of classes minus one.
+    class_stride: usize,
+    parts: Vec<PartKind>,
+    meshes: BoundMeshes,
+    form: Form,
+    outside_sum: f64,
+}
+
+impl VolumeScorer {
+    /// A scorer of models made of `meshes` (a grammar's meshes, indexed by [`MeshId`])
+    /// against `targets` on `grid`, giving fitness in `form`.
+    ///
+    /// Fails as [`VoxelClasses::new`] does: a malformed target mesh, a weight that is
+    /// not finite, more than [`MAX_CLASSES`] distinct combined weights. A target mesh
+    /// that is not closed is no error: parity does what it does with it.
+    pub fn new(
+        grid: Grid,
+        targets: &[VolumeTarget],
+        meshes: &BoundMeshes,
+        form: Form,
+    ) -> Result<VolumeScorer, VolumeError> {
+        let classes = VoxelClasses::new(&grid, targets)?;
+        let class_stride = classes.weights().len() - 1;
+        let words = classes.voxels().len().div_ceil(64);
+        let mut class_bits = vec![0u64; words * class_stride];
+        for (v, &c) in classes.voxels().iter().enumerate() {
+            let c = usize::from(c);
+            if c < class_stride {
+                class_bits[v / 64 * class_stride + c] |= 1 << (v % 64);
+            }
+        }
+        Ok(VolumeScorer {
+            grid,
+            classes,
+            class_bits,
+            class_stride,
+            parts: meshes.iter().map(|(_, _, m)| PartKind::of(m)).collect(),
+            meshes: meshes.clone(),
+            form,
+            outside_sum: targets.iter().map(|t| t.outside).sum(),
+        })
+    }
+
+    /// The grid.
+    #[inline]
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    /// The voxel classes: every voxel's combined target weight.
+    #[inline]
+    pub fn classes(&self) -> &VoxelClasses {
+        &self.classes
+    }
+
+    /// `T`, the number of target voxels (class weight above 0).
+    #[inline]
+    pub fn target_voxels(&self) -> u64 {
+        self.classes.target_voxels()
+    }
+
+    /// The fitness form.
+    #[inline]
+    pub fn form(&self) -> Form {
+        self.form
+    }
+
+    /// The grammar's meshes.
+    #[inline]
+    pub fn meshes(&self) -> &BoundMeshes {
+        &self.meshes
+    }
+
+    /// Whether instances of mesh `id` take the exact integer path (the mesh is the
+    /// unit cube); `None` for an id the grammar lacks, whose instances cover nothing.
+    #[inline]
+    pub fn is_box(&self, id: MeshId) -> Option<bool> {
+        self.parts.get(id.0 as usize).map(|p| *p == PartKind::Box)
+    }
+}
+
+impl Scorer for VolumeScorer {
+    type Counts = VolumeCounts;
+    type Scratch = VolumeScratch;
+
+    fn scratch(&self) -> VolumeScratch {
+        VolumeScratch::new(self.grid.voxel_count())
+    }
+
+    fn count(&self, instances: &[Instance], scratch: &mut VolumeScratch) -> VolumeCounts {
+        self.count_model(instances, scratch)
+    }
+
+    fn fitness(&self, counts: &VolumeCounts) -> f64 {
+        match self.form {
+            Form::Weighted { overlap } => {
+                let covered: f64 = self
+                    .classes
+                    .weights()
+                    .iter()
+                    .zip(&counts.classes)
+                    .map(|(&w, &n)| w * n as f64)
+                    .sum();
+                covered + counts.out_of_grid as f64 * self.outside_sum
+                    - overlap * counts.overlap as f64
+            }
+            Form::Smooth { good, bad } => {
+                let t = self.target_voxels() as f64;
+                let off = (counts.outside + counts.overlap + counts.out_of_grid) as f64;
+                good * smoothstep(0.0, t, counts.inside as f64)
+                    - bad * smoothstep(0.0, 2.0 * t, off)
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;

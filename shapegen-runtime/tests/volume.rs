@@ -1,0 +1,597 @@
+//! The volume scorer on hand-computed scenes, the paper's spaceship target and random
+//! populations.
+
+mod support {
+    pub mod city_expanded;
+    pub mod spaceship_expanded;
+}
+
+use std::path::{Path, PathBuf};
+
+use glam::{Affine3A, Quat, Vec3};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use shapegen_runtime::genome::Limits;
+use shapegen_runtime::gpu::GpuError;
+use shapegen_runtime::score::volume::{
+    GpuVolumeScorer, Grid, VolumeCounts, VolumeError, VolumeScorer, VolumeTarget, VoxelClasses,
+};
+use shapegen_runtime::score::{Form, InstanceBatch, Scorer, count_batch};
+use shapegen_runtime::{
+    BoundMeshes, CUBE, Grammar, Instance, Mesh, MeshId, MeshLibrary, Operators,
+};
+use support::city_expanded::City;
+use support::spaceship_expanded::Spaceship;
+
+fn scenes() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/paper-scenes")
+}
+
+/// The unit cube mesh moved to span `lo ..= hi`.
+fn block(lo: Vec3, hi: Vec3) -> Mesh {
+    let mut m = Mesh::unit_cube();
+    for p in &mut m.positions {
+        *p = lo + (*p + 0.5) * (hi - lo);
+    }
+    m
+}
+
+fn target(name: &str, mesh: Mesh, inside: f64, outside: f64) -> VolumeTarget {
+    VolumeTarget {
+        name: name.into(),
+        mesh,
+        inside,
+        outside,
+    }
+}
+
+fn cubes() -> BoundMeshes {
+    MeshLibrary::new().bind_names("Boxes", &["cube"]).unwrap()
+}
+
+/// A box spanning `lo ..= hi`, axis-aligned.
+fn aabb(lo: Vec3, hi: Vec3) -> Instance {
+    Instance {
+        transform: Affine3A::from_scale_rotation_translation(
+            hi - lo,
+            Quat::IDENTITY,
+            (lo + hi) / 2.0,
+        ),
+        mesh: CUBE,
+    }
+}
+
+/// A 10^3 grid of unit voxels over [0, 10]^3 (centres at .5) with the target [0, 5]^3.
+fn unit_scene(form: Form) -> VolumeScorer {
+    let grid = Grid::new(Vec3::ZERO, Vec3::splat(10.0), [10, 10, 10]).unwrap();
+    let t = target("corner", block(Vec3::ZERO, Vec3::splat(5.0)), 1.0, -1.0);
+    VolumeScorer::new(grid, &[t], &cubes(), form).unwrap()
+}
+
+fn count(scorer: &VolumeScorer, instances: &[Instance]) -> VolumeCounts {
+    scorer.count(instances, &mut scorer.scratch())
+}
+
+fn summary(c: &VolumeCounts) -> [u64; 4] {
+    [c.inside, c.outside, c.overlap, c.out_of_grid]
+}
+
+#[test]
+fn axis_aligned_box_covers_its_block() {
+    let scorer = unit_scene(Form::Weighted { overlap: 0.0 });
+    assert_eq!(scorer.target_voxels(), 125);
+    // x centres 2.5, 3.5; y 2.5 ..= 5.5; z 4.5 ..= 6.5: 2 x 4 x 3 voxels, of which
+    // those with y, z < 5 (2 x 3 x 1) are in the target.
+    let b = aabb(Vec3::new(1.9, 2.2, 4.1), Vec3::new(4.1, 5.8, 7.3));
+    let c = count(&scorer, &[b]);
+    assert_eq!(summary(&c), [6, 18, 0, 0]);
+    // Classes ascend by weight: -1 then 1.
+    assert_eq!(scorer.classes().weights(), [-1.0, 1.0]);
+    assert_eq!(c.classes[..3], [18, 6, 0]);
+    assert_eq!(scorer.fitness(&c), 6.0 - 18.0);
+}
+
+#[test]
+fn identical_boxes_overlap_by_their_voxel_count() {
+    let scorer = unit_scene(Form::Weighted { overlap: 0.5 });
+    let b = aabb(Vec3::new(1.9, 2.2, 4.1), Vec3::new(4.1, 5.8, 7.3));
+    let c = count(&scorer, &[b, b]);
+    assert_eq!(summary(&c), [6, 18, 24, 0]);
+    let c = count(&scorer, &[b, b, b]);
+    assert_eq!(c.overlap, 48);
+    assert_eq!(scorer.fitness(&c), 6.0 - 18.0 - 0.5 * 48.0);
+    // A rotated box overlaps itself exactly as much as it covers.
+    let r = Instance {
+        transform: Affine3A::from_scale_rotation_translation(
+            Vec3::new(3.3, 1.7, 2.9),
+            Quat::from_euler(glam::EulerRot::YXZ, 0.4, -0.7, 1.2),
+            Vec3::new(4.9, 5.2, 5.1),
+        ),
+        mesh: CUBE,
+    };
+    let one = count(&scorer, &[r]);
+    let two = count(&scorer, &[r, r]);
+    assert!(one.inside + one.outside > 5);
+    assert_eq!(two.overlap, one.inside + one.outside);
+    assert_eq!([two.inside, two.outside], [one.inside, one.outside]);
+}
+
+#[test]
+fn boxes_out_of_the_grid_count_every_outside_hit() {
+    let scorer = unit_scene(Form::Weighted { overlap: 0.0 });
+    // x centres -2.5 ..= 1.5 (5, two in the grid), y -0.5, 0.5 (the row at -0.5 lies
+    // wholly outside), z 2.5, 3.5: 20 hits, 4 in the grid.
+    let b = aabb(Vec3::new(-2.9, -1.1, 2.2), Vec3::new(2.1, 0.9, 3.8));
+    let c = count(&scorer, &[b]);
+    assert_eq!(summary(&c), [4, 0, 0, 16]);
+    // Repeats outside count again; overlap counts in-grid voxels only.
+    let c = count(&scorer, &[b, b]);
+    assert_eq!(summary(&c), [4, 0, 4, 32]);
+    assert_eq!(scorer.fitness(&c), 4.0 - 32.0);
+    // Wholly outside, beyond every side.
+    let far = aabb(Vec3::new(20.2, 20.2, 20.2), Vec3::new(22.8, 21.8, 20.8));
+    assert_eq!(summary(&count(&scorer, &[far])), [0, 0, 0, 6]);
+    let below = aabb(Vec3::new(2.2, 2.2, -3.8), Vec3::new(3.8, 3.8, -0.2));
+    assert_eq!(summary(&count(&scorer, &[below])), [0, 0, 0, 2 * 2 * 4]);
+}
+
+#[test]
+fn smooth_form_reaches_good_when_filling_the_target_exactly() {
+    let scorer = unit_scene(Form::Smooth {
+        good: 2.0,
+        bad: 15.0,
+    });
+    let exact = aabb(Vec3::splat(0.1), Vec3::splat(4.9));
+    let c = count(&scorer, &[exact]);
+    assert_eq!(summary(&c), [125, 0, 0, 0]);
+    assert_eq!(scorer.fitness(&c), 2.0);
+    // Half the target, and 125 voxels elsewhere (half of 2T): S(0, 2T, 125) = 1/2.
+    let hand = |inside, outside| VolumeCounts {
+        inside,
+        outside,
+        ..VolumeCounts::default()
+    };
+    let f = scorer.fitness(&hand(0, 125));
+    assert!((f + 7.5).abs() < 1e-12, "{f}");
+    let f = scorer.fitness(&VolumeCounts {
+        overlap: 100,
+        out_of_grid: 25,
+        ..hand(125, 0)
+    });
+    assert!((f - (2.0 - 7.5)).abs() < 1e-12, "{f}");
+    assert_eq!(scorer.fitness(&hand(0, 250)), -15.0);
+    assert_eq!(scorer.fitness(&hand(0, 0)), 0.0);
+}
+
+#[test]
+fn weighted_form_sums_class_weights_on_hand_counts() {
+    // Two overlapping targets: A = [0, 6]^3 (inside 2, outside -1) and B = [4, 10]^3
+    // (inside 0.5, outside 0): weights -1 (neither), -0.5 (B only), 2 (A only), 2.5 (both).
+    let grid = Grid::new(Vec3::ZERO, Vec3::splat(10.0), [10, 10, 10]).unwrap();
+    let a = target("a", block(Vec3::ZERO, Vec3::splat(6.0)), 2.0, -1.0);
+    let b = target("b", block(Vec3::splat(4.0), Vec3::splat(10.0)), 0.5, 0.0);
+    let scorer =
+        VolumeScorer::new(grid, &[a, b], &cubes(), Form::Weighted { overlap: 0.25 }).unwrap();
+    let classes = scorer.classes();
+    assert_eq!(classes.weights(), [-1.0, -0.5, 2.0, 2.5]);
+    assert_eq!(classes.sizes(), [1000 - 216 - 216 + 8, 216 - 8, 216 - 8, 8]);
+    assert_eq!(classes.weight_at([5, 5, 5]), Some(2.5));
+    assert_eq!(classes.weight_at([9, 9, 0]), Some(-1.0));
+    assert_eq!(scorer.target_voxels(), 216); // A's voxels; B alone weighs -0.5
+    let mut hand = VolumeCounts {
+        overlap: 4,
+        out_of_grid: 10,
+        ..VolumeCounts::default()
+    };
+    hand.classes[..4].copy_from_slice(&[3, 5, 7, 11]);
+    let expected = -3.0 - 2.5 + 14.0 + 27.5 + 10.0 * (-1.0 + 0.0) - 0.25 * 4.0;
+    assert_eq!(scorer.fitness(&hand), expected);
+    // A box over [3.1, 6.9]^3 covers 4^3 voxels with centres 3.5 .. 6.5 per axis: 27
+    // in A (3.5 ..= 5.5 on every axis), 27 in B, 8 in both.
+    let c = count(&scorer, &[aabb(Vec3::splat(3.1), Vec3::splat(6.9))]);
+    assert_eq!(c.classes[..4], [64 - 19 - 19 - 8, 19, 19, 8]);
+    assert_eq!([c.inside, c.outside], [27, 37]);
+}
+
+#[test]
+fn parity_voxelizes_the_cube_obj_exactly_and_the_spaceship_by_volume() {
+    let cube = Mesh::from_obj(scenes().join("spaceship_volume/cube.obj")).unwrap();
+    let grid = Grid::new(Vec3::splat(-1.0), Vec3::splat(1.0), [20, 20, 20]).unwrap();
+    let classes = VoxelClasses::new(&grid, &[target("cube", cube.clone(), 1.0, 0.0)]).unwrap();
+    assert_eq!(classes.target_voxels(), 1000);
+    assert_eq!(classes.class_at([5, 5, 5]), Some(1));
+    assert_eq!(classes.class_at([4, 5, 5]), Some(0));
+    assert_eq!(classes.class_at([14, 14, 14]), Some(1));
+    assert_eq!(classes.class_at([15, 14, 14]), Some(0));
+
+    let ship = Mesh::from_obj(scenes().join("spaceship_volume/spaceship_target.obj")).unwrap();
+    let volume: f64 = ship
+        .triangles()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| ship.positions[i as usize].as_dvec3());
+            a.dot(b.cross(c)) / 6.0
+        })
+        .sum();
+    let grid = Grid::new(
+        Vec3::new(-5.0, -5.0, -2.0),
+        Vec3::new(5.0, 5.0, 18.0),
+        [100, 200, 100],
+    )
+    .unwrap();
+    let t = VoxelClasses::new(&grid, &[target("ship", ship, 1.0, -1.0)])
+        .unwrap()
+        .target_voxels();
+    let expected = volume.abs() / (0.1 * 0.05 * 0.2);
+    assert!(
+        (t as f64 - expected).abs() < 0.03 * expected,
+        "{t} voxels for a volume of {expected} voxels"
+    );
+
+    // The OBJ cube is a box: it takes the integer path.
+    let mut library = MeshLibrary::new();
+    library.register("cube", cube).unwrap();
+    let bound = library.bind_names("Boxes", &["cube"]).unwrap();
+    let scorer = VolumeScorer::new(grid, &[], &bound, Form::Weighted { overlap: 0.0 }).unwrap();
+    assert_eq!(scorer.is_box(CUBE), Some(true));
+    assert_eq!(scorer.is_box(MeshId(1)), None);
+}
+
+#[test]
+fn other_meshes_are_voxelized_by_parity_like_boxes() {
+    // The unit cube at twice the size is no box: it is voxelized by parity, and where no
+    // face passes near a lattice point it covers what the box does.
+    let mut library = MeshLibrary::new();
+    let mut double = Mesh::unit_cube();
+    double.positions.iter_mut().for_each(|p| *p *= 2.0);
+    library.register("double", double).unwrap();
+    let bound = library.bind_names("Mixed", &["cube", "double"]).unwrap();
+    let grid = Grid::new(Vec3::ZERO, Vec3::splat(10.0), [10, 10, 10]).unwrap();
+    let t = target("corner", block(Vec3::ZERO, Vec3::splat(5.0)), 1.0, -1.0);
+    let scorer = VolumeScorer::new(grid, &[t], &bound, Form::Weighted { overlap: 0.0 }).unwrap();
+    assert_eq!(scorer.is_box(MeshId(1)), Some(false));
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    for _ in 0..20 {
+        use rand::RngExt;
+        let transform = Affine3A::from_scale_rotation_translation(
+            Vec3::new(
+                rng.random_range(0.5..4.0),
+                rng.random_range(0.5..4.0),
+                rng.random_range(0.5..4.0),
+            ),
+            Quat::from_euler(
+                glam::EulerRot::XYZ,
+                rng.random_range(0.0..3.0),
+                rng.random_range(0.0..3.0),
+                0.3,
+            ),
+            Vec3::new(
+                rng.random_range(-1.0..11.0),
+                rng.random_range(-1.0..11.0),
+                rng.random_range(-1.0..11.0),
+            ),
+        );
+        let as_box = count(
+            &scorer,
+            &[Instance {
+                transform,
+                mesh: CUBE,
+            }],
+        );
+        let half = transform * Affine3A::from_scale(Vec3::splat(0.5));
+        let as_mesh = count(
+            &scorer,
+            &[Instance {
+                transform: half,
+                mesh: MeshId(1),
+            }],
+        );
+        assert_eq!(as_box, as_mesh, "{transform:?}");
+        let both = count(
+            &scorer,
+            &[
+                Instance {
+                    transform,
+                    mesh: CUBE,
+                },
+                Instance {
+                    transform: half,
+                    mesh: MeshId(1),
+                },
+            ],
+        );
+        assert_eq!(both.overlap, as_box.inside + as_box.outside);
+        assert_eq!(both.out_of_grid, 2 * as_box.out_of_grid);
+    }
+    // Ids the grammar lacks cover nothing.
+    let ghost = Instance {
+        transform: Affine3A::IDENTITY,
+        mesh: MeshId(7),
+    };
+    assert_eq!(count(&scorer, &[ghost]), VolumeCounts::default());
+}
+
+#[test]
+fn errors_name_the_target_and_the_limit() {
+    let grid = Grid::new(Vec3::ZERO, Vec3::new(18.0, 1.0, 1.0), [18, 1, 1]).unwrap();
+    // Target i fills voxel i with weight 2^i: with no target on the last voxel, 17
+    // targets make 18 distinct weights.
+    let targets: Vec<_> = (0..17)
+        .map(|i| {
+            let lo = Vec3::new(i as f32 + 0.1, 0.1, 0.1);
+            target(
+                &format!("t{i}"),
+                block(lo, lo + 0.8),
+                f64::from(1u32 << i),
+                0.0,
+            )
+        })
+        .collect();
+    let form = Form::Weighted { overlap: 0.0 };
+    let err = VolumeScorer::new(grid, &targets, &cubes(), form).unwrap_err();
+    assert!(
+        matches!(err, VolumeError::TooManyClasses { classes: 18, .. }),
+        "{err:?}"
+    );
+    let text = err.to_string();
+    assert!(
+        text.starts_with("volume targets `t0`, `t1`, `t2`"),
+        "{text}"
+    );
+    assert!(
+        text.contains("combine into 18 distinct voxel weights; at most 16 are supported"),
+        "{text}"
+    );
+    let ok = VolumeScorer::new(grid, &targets[..15], &cubes(), form).unwrap();
+    assert_eq!(ok.classes().weights().len(), 16);
+    assert_eq!(ok.target_voxels(), 15);
+
+    let nan = target("hull", Mesh::unit_cube(), 1.0, f64::NAN);
+    let err = VolumeScorer::new(grid, &[nan], &cubes(), form)
+        .unwrap_err()
+        .to_string();
+    assert_eq!(
+        err,
+        "volume target `hull`: outside weight NaN is not finite (finite numbers only)"
+    );
+    let empty = target("nothing", Mesh::default(), 1.0, 0.0);
+    let err = VolumeScorer::new(grid, &[empty], &cubes(), form)
+        .unwrap_err()
+        .to_string();
+    assert_eq!(
+        err,
+        "volume target `nothing`: mesh `nothing` has no triangles"
+    );
+    // An open mesh is no error.
+    let mut open = Mesh::unit_cube();
+    open.indices.truncate(6);
+    assert!(VolumeScorer::new(grid, &[target("open", open, 1.0, 0.0)], &cubes(), form).is_ok());
+}
+
+fn paper_grid() -> Grid {
+    Grid::new(
+        Vec3::new(-5.0, -5.0, -2.0),
+        Vec3::new(5.0, 5.0, 18.0),
+        [100, 200, 100],
+    )
+    .unwrap()
+}
+
+fn population<G: Grammar>(n: usize, limits: Limits, initial: u32, seed: u64) -> InstanceBatch {
+    let mut ops = Operators::<G>::new(limits).unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut batch = InstanceBatch::new();
+    for _ in 0..n {
+        batch.push_genome(&ops.random(initial, &mut rng));
+    }
+    batch
+}
+
+#[test]
+fn counts_do_not_depend_on_threads_or_scratch_history() {
+    let ship = Mesh::from_obj(scenes().join("spaceship_volume/spaceship_target.obj")).unwrap();
+    let bound = MeshLibrary::new().bind(Spaceship::GRAPH).unwrap();
+    let scorer = VolumeScorer::new(
+        paper_grid(),
+        &[target("ship", ship, 1.0, -1.0)],
+        &bound,
+        Form::Smooth {
+            good: 2.0,
+            bad: 15.0,
+        },
+    )
+    .unwrap();
+    let batch = population::<Spaceship>(40, Limits::new(4, 100, 15).unwrap(), 50, 9);
+    let run = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let mut out = vec![VolumeCounts::default(); batch.len()];
+        pool.install(|| count_batch(&scorer, &batch, &mut out));
+        out
+    };
+    let one = run(1);
+    assert_eq!(one, run(3));
+    assert!(
+        one.iter()
+            .any(|c| c.inside > 0 && c.outside > 0 && c.overlap > 0)
+    );
+    // One scratch through the whole population, backwards, gives the same as fresh ones.
+    let mut scratch = scorer.scratch();
+    for i in (0..batch.len()).rev() {
+        assert_eq!(
+            scorer.count(batch.model(i), &mut scratch),
+            one[i],
+            "model {i}"
+        );
+    }
+    // The city too.
+    let city = population::<City>(10, Limits::new(4, 300, 8).unwrap(), 50, 4);
+    let scene = Grid::new(
+        Vec3::new(-12.0, -1.0, -12.0),
+        Vec3::new(12.0, 11.0, 12.0),
+        [48, 24, 48],
+    )
+    .unwrap();
+    let bound = MeshLibrary::new().bind(City::GRAPH).unwrap();
+    let t = target(
+        "tower",
+        block(Vec3::new(-3.0, 0.0, -3.0), Vec3::new(3.0, 8.0, 3.0)),
+        1.0,
+        -1.0,
+    );
+    let scorer = VolumeScorer::new(scene, &[t], &bound, Form::Weighted { overlap: 1.0 }).unwrap();
+    let mut a = vec![VolumeCounts::default(); city.len()];
+    let mut b = a.clone();
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap()
+        .install(|| count_batch(&scorer, &city, &mut a));
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(4)
+        .build()
+        .unwrap()
+        .install(|| count_batch(&scorer, &city, &mut b));
+    assert_eq!(a, b);
+    assert!(a.iter().any(|c| c.inside > 0));
+}
+
+/// The CPU's counts of every model of `batch`.
+fn cpu_counts(scorer: &VolumeScorer, batch: &InstanceBatch) -> Vec<VolumeCounts> {
+    let mut out = vec![VolumeCounts::default(); batch.len()];
+    count_batch(scorer, batch, &mut out);
+    out
+}
+
+#[test]
+fn the_gpu_counts_exactly_what_the_cpu_counts() {
+    let Some(gpu) = shapegen_runtime::gpu::test_context() else {
+        return;
+    };
+    let ship = Mesh::from_obj(scenes().join("spaceship_volume/spaceship_target.obj")).unwrap();
+    // A grid smaller than many ships, so that they poke out on every side.
+    let grid = Grid::new(
+        Vec3::new(-2.0, -1.0, -1.0),
+        Vec3::new(2.0, 1.5, 6.0),
+        [33, 21, 47],
+    )
+    .unwrap();
+    let targets = [
+        target("ship", ship, 1.0, -1.0),
+        target(
+            "nose",
+            block(Vec3::new(-0.5, -0.5, 4.0), Vec3::new(0.5, 0.5, 6.0)),
+            0.5,
+            0.0,
+        ),
+    ];
+    let bound = MeshLibrary::new().bind(Spaceship::GRAPH).unwrap();
+    let scorer = VolumeScorer::new(
+        grid,
+        &targets,
+        &bound,
+        Form::Smooth {
+            good: 2.0,
+            bad: 15.0,
+        },
+    )
+    .unwrap();
+    assert!(scorer.classes().weights().len() >= 3);
+    let mut batch = population::<Spaceship>(60, Limits::new(4, 100, 15).unwrap(), 50, 21);
+    // Hand-made models: empty, overlapping copies, a box far out, one too large to
+    // rasterise, a flat one.
+    batch.push_with(|_| {});
+    let r = Instance {
+        transform: Affine3A::from_scale_rotation_translation(
+            Vec3::new(2.3, 0.7, 3.1),
+            Quat::from_euler(glam::EulerRot::XYZ, 0.3, 0.9, -0.2),
+            Vec3::new(1.5, 0.2, 0.5),
+        ),
+        mesh: CUBE,
+    };
+    let far = aabb(Vec3::splat(30.0), Vec3::splat(31.3));
+    let huge = Instance {
+        transform: Affine3A::from_scale(Vec3::splat(1e4)),
+        mesh: CUBE,
+    };
+    let flat = Instance {
+        transform: Affine3A::from_scale(Vec3::new(1.0, 0.0, 1.0)),
+        mesh: CUBE,
+    };
+    batch.push_with(|out| out.extend([r, r, r, far, huge, flat]));
+
+    let cpu = cpu_counts(&scorer, &batch);
+    assert!(cpu.iter().filter(|c| c.out_of_grid > 0).count() > 10);
+    assert!(cpu.iter().filter(|c| c.overlap > 0).count() > 10);
+    assert!(
+        cpu.iter()
+            .filter(|c| c.classes[..3].iter().all(|&n| n > 0))
+            .count()
+            > 3
+    );
+    let mut gpu_scorer = GpuVolumeScorer::new(gpu, &scorer).unwrap();
+    let mut out = vec![VolumeCounts::default(); batch.len()];
+    gpu_scorer.count_batch(&batch, &mut out).unwrap();
+    for (i, (c, g)) in cpu.iter().zip(&out).enumerate() {
+        assert_eq!(c, g, "model {i}");
+    }
+    // In passes of 7 models, twice over with the same buffers.
+    gpu_scorer.limit_models_per_pass(7);
+    assert_eq!(gpu_scorer.models_per_pass(), 7);
+    for _ in 0..2 {
+        out.fill(VolumeCounts::default());
+        gpu_scorer.count_batch(&batch, &mut out).unwrap();
+        assert_eq!(cpu, out);
+    }
+
+    // The city, on a grid around its middle lots.
+    let city = population::<City>(30, Limits::new(4, 300, 8).unwrap(), 50, 8);
+    let grid = Grid::new(
+        Vec3::new(-6.0, 0.0, -6.0),
+        Vec3::new(6.0, 6.0, 6.0),
+        [40, 20, 40],
+    )
+    .unwrap();
+    let bound = MeshLibrary::new().bind(City::GRAPH).unwrap();
+    let t = target(
+        "tower",
+        block(Vec3::new(-3.0, 0.0, -3.0), Vec3::new(3.0, 8.0, 3.0)),
+        1.0,
+        -1.0,
+    );
+    let scorer = VolumeScorer::new(grid, &[t], &bound, Form::Weighted { overlap: 1.0 }).unwrap();
+    let cpu = cpu_counts(&scorer, &city);
+    assert!(cpu.iter().any(|c| c.out_of_grid > 0 && c.inside > 0));
+    let mut out = vec![VolumeCounts::default(); city.len()];
+    GpuVolumeScorer::new(gpu, &scorer)
+        .unwrap()
+        .count_batch(&city, &mut out)
+        .unwrap();
+    assert_eq!(cpu, out);
+}
+
+#[test]
+fn the_gpu_refuses_meshes_other_than_boxes() {
+    let Some(gpu) = shapegen_runtime::gpu::test_context() else {
+        return;
+    };
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../generators/meshes");
+    let mut library = MeshLibrary::new();
+    library
+        .register_obj("trunk", dir.join("trunk.obj"))
+        .unwrap();
+    library.register_obj("leaf", dir.join("leaf.obj")).unwrap();
+    let bound = library
+        .bind_names("Tree", &["cube", "trunk", "leaf"])
+        .unwrap();
+    let grid = Grid::new(Vec3::splat(-1.0), Vec3::splat(1.0), [8, 8, 8]).unwrap();
+    let scorer = VolumeScorer::new(grid, &[], &bound, Form::Weighted { overlap: 0.0 }).unwrap();
+    let err = GpuVolumeScorer::new(gpu, &scorer).unwrap_err();
+    assert!(matches!(err, GpuError::Unsupported(_)), "{err:?}");
+    assert_eq!(
+        err.to_string(),
+        "not supported on the GPU: mesh `trunk` (id 1) is not the unit cube; only box meshes \
+         are counted on the GPU, count this grammar on the CPU"
+    );
+}
