@@ -21,6 +21,7 @@
 
 mod batch;
 mod form;
+pub mod silhouette;
 
 pub use batch::{InstanceBatch, count_batch};
 pub use form::{Form, LengthPenalty, smoothstep};
