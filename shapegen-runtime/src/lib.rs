@@ -8,6 +8,7 @@ pub mod derive;
 pub mod export;
 pub mod genome;
 pub mod geometry;
+pub mod gpu;
 pub mod graph;
 pub mod ops;
 pub mod param;

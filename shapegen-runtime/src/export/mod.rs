@@ -1,5 +1,5 @@
-//! Writing derived models to files: Wavefront OBJ with its MTL materials, and binary
-//! glTF (`.glb`).
+//! Writing derived models to files: Wavefront OBJ with its MTL materials, binary glTF
+//! (`.glb`), and shaded [`Preview`] pictures.
 //!
 //! Both exporters bake every [`Instance`] into world space: positions through the
 //! instance's transform, normals through its inverse transpose (renormalized), and
@@ -12,12 +12,14 @@ mod bake;
 mod glb;
 mod obj;
 mod palette;
+mod render;
 
 use std::path::PathBuf;
 
 pub use glb::{glb_bytes, save_glb, write_glb};
 pub use obj::{save_obj, write_mtl, write_obj};
 pub use palette::Palette;
+pub use render::Preview;
 
 #[cfg(doc)]
 use crate::geometry::{Instance, MeshId};
