@@ -13,6 +13,7 @@
 
 mod camera;
 mod counts;
+mod gpu;
 mod meshes;
 mod raster;
 mod scorer;
@@ -22,5 +23,6 @@ mod tests;
 
 pub use camera::{Camera, CameraError, OrbitCamera};
 pub use counts::{MAX_TARGETS, SilhouetteCounts, TargetCounts};
+pub use gpu::GpuSilhouetteScorer;
 pub use scorer::{SilhouetteError, SilhouetteScorer, SilhouetteScratch};
 pub use target::{ImageTarget, MAX_TARGET_PIXELS, TargetError, TargetKind};

@@ -482,3 +482,8 @@ fn scorer_errors_name_the_limit() {
         "target 2 asked for; the scorer has 1 targets (0..1)"
     );
 }
+
+#[test]
+fn the_shader_validates() {
+    crate::gpu::validate_wgsl(gpu::SHADER).unwrap();
+}
