@@ -24,9 +24,10 @@ pub struct TargetCounts {
 /// ```
 /// use shapegen_runtime::score::silhouette::{SilhouetteCounts, TargetCounts};
 ///
-/// let counts = SilhouetteCounts::new(&[TargetCounts { covered: 3, on_target: 2, off_target: 1, level_sum: 255 }]);
-/// assert_eq!(counts.targets().len(), 1);
-/// assert_eq!(counts.targets()[0].on_target, 2);
+/// let one = TargetCounts { covered: 3, on_target: 2, off_target: 1, level_sum: 255 };
+/// let counts = SilhouetteCounts::new(&[one]).unwrap();
+/// assert_eq!(counts.targets(), [one]);
+/// assert!(SilhouetteCounts::new(&[one; 9]).is_none());
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct SilhouetteCounts {
@@ -35,21 +36,15 @@ pub struct SilhouetteCounts {
 }
 
 impl SilhouetteCounts {
-    /// Counts for `targets.len()` targets.
-    ///
-    /// # Panics
-    /// If there are more than [`MAX_TARGETS`].
-    pub fn new(targets: &[TargetCounts]) -> Self {
-        assert!(
-            targets.len() <= MAX_TARGETS,
-            "at most {MAX_TARGETS} targets"
-        );
-        let mut counts = SilhouetteCounts {
-            len: targets.len() as u8,
-            ..Default::default()
-        };
+    /// Counts for `targets.len()` targets, or `None` when there are more than
+    /// [`MAX_TARGETS`].
+    pub fn new(targets: &[TargetCounts]) -> Option<Self> {
+        if targets.len() > MAX_TARGETS {
+            return None;
+        }
+        let mut counts = SilhouetteCounts::zeroed(targets.len());
         counts.per_target[..targets.len()].copy_from_slice(targets);
-        counts
+        Some(counts)
     }
 
     /// Zero counts for `len` targets (at most [`MAX_TARGETS`]).

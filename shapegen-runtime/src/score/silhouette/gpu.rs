@@ -285,10 +285,9 @@ impl<'a> GpuSilhouetteScorer<'a> {
         let meshes = self.mesh_vertices.len();
         let mut starts = vec![0u32; meshes + 1];
         for instance in batch.instances() {
-            if let Some(n) = starts.get_mut(instance.mesh.0 as usize + 1)
-                && (instance.mesh.0 as usize) < meshes
-            {
-                *n += 1;
+            let m = instance.mesh.0 as usize;
+            if m < meshes {
+                starts[m + 1] += 1;
             }
         }
         for m in 0..meshes {

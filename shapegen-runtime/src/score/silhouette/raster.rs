@@ -9,7 +9,7 @@
 use glam::{Vec2, Vec4};
 
 /// Most vertices a polygon handed to [`fill_convex`] may have.
-pub(super) const MAX_POLYGON: usize = 32;
+pub(super) const MAX_POLYGON: usize = 128;
 
 /// Which pixels of one image are covered, as one bit per pixel (rows padded to whole
 /// 64-bit words), with the list of the words that became non-zero, so that reading and
@@ -203,9 +203,9 @@ fn clip_plane(poly: &[Vec4; 5], n: usize, out: &mut [Vec4; 5], d: impl Fn(Vec4) 
     m
 }
 
-/// Writes the convex hull of `points` into `hull` (counter-clockwise in pixel space's
-/// y-down sense does not matter to [`Coverage::fill_convex`]) and returns its vertex
-/// count. `points` is sorted in place.
+/// Writes the convex hull of `points` (at most [`MAX_POLYGON`] of them) into `hull`, in
+/// either winding, and returns its vertex count; collinear points are dropped. Sorts
+/// `points` in place.
 pub(super) fn convex_hull(points: &mut [Vec2], hull: &mut [Vec2; MAX_POLYGON + 1]) -> usize {
     points.sort_unstable_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
     let cross = |o: Vec2, a: Vec2, b: Vec2| (a - o).perp_dot(b - o);

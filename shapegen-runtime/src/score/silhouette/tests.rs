@@ -487,3 +487,32 @@ fn scorer_errors_name_the_limit() {
 fn the_shader_validates() {
     crate::gpu::validate_wgsl(gpu::SHADER).unwrap();
 }
+
+#[test]
+fn the_tree_meshes_take_the_hull_path_and_a_concave_mesh_does_not() {
+    let trunk = crate::Mesh::from_obj_str(
+        "trunk",
+        include_str!("../../../../generators/meshes/trunk.obj"),
+    );
+    let leaf = crate::Mesh::from_obj_str(
+        "leaf",
+        include_str!("../../../../generators/meshes/leaf.obj"),
+    );
+    let mut library = MeshLibrary::new();
+    library.register("trunk", trunk.unwrap()).unwrap();
+    library.register("leaf", leaf.unwrap()).unwrap();
+    // A cube with one corner pushed in is concave.
+    let mut dented = crate::Mesh::unit_cube();
+    for p in &mut dented.positions {
+        if *p == Vec3::splat(0.5) {
+            *p = Vec3::splat(0.1);
+        }
+    }
+    library.register("dented", dented).unwrap();
+    let bound = library
+        .bind_names("T", &["cube", "trunk", "leaf", "dented"])
+        .unwrap();
+    let prepared = meshes::prepare(&bound);
+    let hulls: Vec<bool> = prepared.iter().map(|m| m.hull.is_some()).collect();
+    assert_eq!(hulls, [true, true, true, false]);
+}
