@@ -292,7 +292,7 @@ fn compare_on_gpu(scorer: &SilhouetteScorer, batch: &InstanceBatch) {
     count_batch(scorer, batch, &mut cpu);
     let mut out = vec![SilhouetteCounts::default(); batch.len()];
     on_gpu.count_batch(batch, &mut out).unwrap();
-    let mut exact = 0;
+    let (mut exact, mut worst) = (0, 0);
     for (i, (c, g)) in cpu.iter().zip(&out).enumerate() {
         let n = batch.model(i).len();
         for (tc, tg) in c.targets().iter().zip(g.targets()) {
@@ -322,10 +322,14 @@ fn compare_on_gpu(scorer: &SilhouetteScorer, batch: &InstanceBatch) {
                 n + 1,
             );
             assert_eq!(tg.covered, tg.on_target + tg.off_target);
+            worst = worst.max(tc.covered.abs_diff(tg.covered));
         }
         exact += usize::from(c == g);
     }
-    eprintln!("{exact} of {} models counted identically", batch.len());
+    eprintln!(
+        "{exact} of {} models counted identically; covered pixels differ by at most {worst}",
+        batch.len()
+    );
     assert!(cpu.iter().any(|c| c.targets()[0].covered > 0));
     // The same batch again gives the same counts: bitsets are cleared between calls.
     let mut again = vec![SilhouetteCounts::default(); batch.len()];
