@@ -24,6 +24,7 @@
 
 mod batch;
 mod form;
+pub mod silhouette;
 pub mod volume;
 
 pub use batch::{InstanceBatch, count_batch};

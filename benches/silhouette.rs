@@ -1,0 +1,165 @@
+//! Silhouette scoring throughput: evaluations per second of populations of 200 random
+//! models against the paper's city whale and tree sketch targets (800 x 600), on one CPU
+//! thread, on all CPU threads, and on the GPU when there is one; and one city of 100
+//! buildings on one thread.
+
+use std::path::Path;
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use generators::{city, tree};
+use glam::{Vec3, vec2};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use shapegen::genome::Limits;
+use shapegen::ops::Operators;
+use shapegen::score::silhouette::{
+    Camera, GpuSilhouetteScorer, ImageTarget, OrbitCamera, SilhouetteCounts, SilhouetteScorer,
+};
+use shapegen::score::{Form, InstanceBatch, Scorer, count_batch};
+use shapegen::{Genome, Grammar, gpu::GpuContext};
+
+const POPULATION: usize = 200;
+
+struct Scene {
+    name: &'static str,
+    scorer: SilhouetteScorer,
+    batch: InstanceBatch,
+}
+
+fn target(scene: &str, file: &str, camera: OrbitCamera) -> ImageTarget {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/paper-scenes")
+        .join(scene)
+        .join(file);
+    let image = image::open(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    ImageTarget::from_mask(file.into(), &image, Camera::Orbit(camera), 1.0, -1.0).unwrap()
+}
+
+fn population<G: Grammar>(limits: Limits, initial_len: u32) -> InstanceBatch {
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let mut ops = Operators::<G>::new(limits).unwrap();
+    let mut batch = InstanceBatch::new();
+    for _ in 0..POPULATION {
+        batch.push_genome(&ops.random(initial_len, &mut rng));
+    }
+    batch
+}
+
+const SMOOTH: Form = Form::Smooth {
+    good: 1.0,
+    bad: 1.0,
+};
+
+fn city_whale() -> Scene {
+    let camera = OrbitCamera {
+        phi: -3.05161,
+        theta: 0.0479887,
+        radius: 12.4346,
+        lookat: Vec3::new(1.82669, 4.65407, -0.620025),
+        fov_degrees: 60.0,
+        near: 0.1,
+        far: 100.0,
+    };
+    let meshes = generators::default_meshes()
+        .bind(city::City::GRAPH)
+        .unwrap();
+    let target = target("city_whale", "city_target_whale.png", camera);
+    Scene {
+        name: "city_whale",
+        scorer: SilhouetteScorer::new(vec![target], &meshes, SMOOTH).unwrap(),
+        batch: population::<city::City>(city::PAPER_LIMITS, 50),
+    }
+}
+
+fn tree_sketch1() -> Scene {
+    let camera = OrbitCamera {
+        phi: -std::f32::consts::FRAC_PI_2,
+        theta: 0.0,
+        radius: 9.4716,
+        lookat: Vec3::new(-0.680994, 3.2558, 0.0),
+        fov_degrees: 60.0,
+        near: 0.1,
+        far: 100.0,
+    };
+    let meshes = generators::default_meshes()
+        .bind(tree::Tree::GRAPH)
+        .unwrap();
+    let target = target("tree_sketch1", "tree_target_sketch1.png", camera);
+    Scene {
+        name: "tree_sketch1",
+        scorer: SilhouetteScorer::new(vec![target], &meshes, SMOOTH).unwrap(),
+        batch: population::<tree::Tree>(tree::PAPER_LIMITS, 250),
+    }
+}
+
+fn populations(c: &mut Criterion) {
+    let gpu = match GpuContext::new() {
+        Ok(gpu) => {
+            eprintln!("GPU benchmarks on {}", gpu.describe());
+            Some(gpu)
+        }
+        Err(err) => {
+            eprintln!("no GPU benchmarks: {err}");
+            None
+        }
+    };
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    for scene in [city_whale(), tree_sketch1()] {
+        let mut group = c.benchmark_group(format!("silhouette/{}", scene.name));
+        group.throughput(Throughput::Elements(POPULATION as u64));
+        group.sample_size(10);
+        let mut out = vec![SilhouetteCounts::default(); POPULATION];
+        group.bench_function(BenchmarkId::new("cpu", "1 thread"), |b| {
+            b.iter(|| one.install(|| count_batch(&scene.scorer, &scene.batch, &mut out)))
+        });
+        let threads = rayon::current_num_threads();
+        group.bench_function(BenchmarkId::new("cpu", format!("{threads} threads")), |b| {
+            b.iter(|| count_batch(&scene.scorer, &scene.batch, &mut out))
+        });
+        if let Some(gpu) = &gpu {
+            match GpuSilhouetteScorer::new(gpu, &scene.scorer) {
+                Ok(scorer) => {
+                    group.bench_function(BenchmarkId::new("gpu", gpu.info.name.as_str()), |b| {
+                        b.iter(|| scorer.count_batch(&scene.batch, &mut out).unwrap())
+                    });
+                }
+                Err(err) => eprintln!("{}: no GPU benchmark: {err}", scene.name),
+            }
+        }
+        group.finish();
+    }
+}
+
+/// One city with a building on every lot, as the paper's skyline scene sees it.
+fn hundred_buildings(c: &mut Criterion) {
+    let scene = city_whale();
+    let mut g = Genome::<city::City>::with_root(city::Start {}).unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    for k in 0..100 {
+        let lot = g.attach_at(0, "lots", k, city::Lot {}).unwrap();
+        let building = city::Building {
+            footprint: vec2(0.44, 0.44)
+                + 1.54
+                    * vec2(
+                        rand::RngExt::random(&mut rng),
+                        rand::RngExt::random(&mut rng),
+                    ),
+            height: 0.36 + 9.64 * rand::RngExt::random::<f32>(&mut rng),
+            floor_height: 0.3,
+            rotation: std::f32::consts::PI * rand::RngExt::random::<f32>(&mut rng),
+        };
+        g.attach(lot, "building", building).unwrap();
+    }
+    let mut model = Vec::new();
+    g.derive_append(&mut model);
+    let mut scratch = scene.scorer.scratch();
+    c.bench_function("silhouette/city_whale/100 buildings, 1 model", |b| {
+        b.iter(|| scene.scorer.count(&model, &mut scratch))
+    });
+}
+
+criterion_group!(benches, populations, hundred_buildings);
+criterion_main!(benches);

@@ -1,0 +1,229 @@
+//! Scanline rasterization of convex polygons into a coverage bitset.
+//!
+//! A pixel `(x, y)` (row 0 at the top) is covered when its centre `(x + 0.5, y + 0.5)`
+//! lies inside a polygon, with the top-left rule deciding centres exactly on an edge: a
+//! centre on a left edge or on a horizontal top edge is inside, one on a right or bottom
+//! edge is not. Every edge's crossing of a scanline is computed from its endpoints in a
+//! fixed order, so two polygons sharing an edge split the centres on it exactly.
+
+use glam::{Vec2, Vec4};
+
+/// Most vertices a polygon handed to [`fill_convex`] may have.
+pub(super) const MAX_POLYGON: usize = 128;
+
+/// Which pixels of one image are covered, as one bit per pixel (rows padded to whole
+/// 64-bit words), with the list of the words that became non-zero, so that reading and
+/// clearing costs what was covered rather than the whole image.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Coverage {
+    words: Vec<u64>,
+    touched: Vec<u32>,
+    stride: usize,
+    width: u32,
+    height: u32,
+}
+
+/// Words per row of an image `width` pixels wide.
+pub(super) fn row_words(width: u32) -> usize {
+    (width as usize).div_ceil(64)
+}
+
+impl Coverage {
+    /// Prepares an empty coverage of `width` x `height` pixels, keeping the memory.
+    pub(super) fn shape(&mut self, width: u32, height: u32) {
+        debug_assert!(self.touched.is_empty(), "coverage cleared before reshaping");
+        self.stride = row_words(width);
+        self.width = width;
+        self.height = height;
+        let len = self.stride * height as usize;
+        if self.words.len() < len {
+            self.words.resize(len, 0);
+        }
+    }
+
+    /// Marks pixels `col0..col1` of `row` covered.
+    #[inline]
+    fn fill_row(&mut self, row: usize, col0: usize, col1: usize) {
+        let base = row * self.stride;
+        let (first, last) = (col0 / 64, (col1 - 1) / 64);
+        for w in first..=last {
+            let lo = if w == first { col0 % 64 } else { 0 };
+            let hi = if w == last { (col1 - 1) % 64 + 1 } else { 64 };
+            let mask = if hi - lo == 64 {
+                u64::MAX
+            } else {
+                ((1u64 << (hi - lo)) - 1) << lo
+            };
+            let word = &mut self.words[base + w];
+            if *word == 0 {
+                self.touched.push((base + w) as u32);
+            }
+            *word |= mask;
+        }
+    }
+
+    /// Hands every non-zero word (its index and bits) to `visit` and clears the
+    /// coverage.
+    #[inline]
+    pub(super) fn drain(&mut self, mut visit: impl FnMut(usize, u64)) {
+        for &w in &self.touched {
+            let word = &mut self.words[w as usize];
+            visit(w as usize, *word);
+            *word = 0;
+        }
+        self.touched.clear();
+    }
+
+    /// Whether pixel `(x, y)` is covered.
+    pub(super) fn get(&self, x: u32, y: u32) -> bool {
+        let bit = x as usize % 64;
+        let word = self.words[y as usize * self.stride + x as usize / 64];
+        word >> bit & 1 == 1
+    }
+
+    /// Fills the convex polygon `poly` (pixel coordinates, either winding); degenerate
+    /// polygons cover nothing.
+    pub(super) fn fill_convex(&mut self, poly: &[Vec2]) {
+        let n = poly.len();
+        if n < 3 {
+            return;
+        }
+        let mut area2 = 0.0f32;
+        let (mut ymin, mut ymax) = (f32::INFINITY, f32::NEG_INFINITY);
+        for i in 0..n {
+            let (a, b) = (poly[i], poly[(i + 1) % n]);
+            area2 += a.x * b.y - b.x * a.y;
+            ymin = ymin.min(a.y);
+            ymax = ymax.max(a.y);
+        }
+        if area2 == 0.0 || !area2.is_finite() {
+            return;
+        }
+        let row0 = (ymin - 0.5).ceil().max(0.0);
+        let row1 = (ymax - 0.5).ceil().min(self.height as f32);
+        if row0 >= row1 {
+            return;
+        }
+        // Each non-horizontal edge bounds the polygon on the left or on the right:
+        // x_e(y) = px + (y - py) * slope, from the endpoint first in (y, x) order.
+        let mut left = [(0.0f32, 0.0f32, 0.0f32); MAX_POLYGON];
+        let mut right = [(0.0f32, 0.0f32, 0.0f32); MAX_POLYGON];
+        let (mut nl, mut nr) = (0, 0);
+        for i in 0..n {
+            let (a, b) = (poly[i], poly[(i + 1) % n]);
+            let dy = b.y - a.y;
+            if dy == 0.0 {
+                continue;
+            }
+            let (p, q) = if (a.y, a.x) < (b.y, b.x) {
+                (a, b)
+            } else {
+                (b, a)
+            };
+            let edge = (p.x, p.y, (q.x - p.x) / (q.y - p.y));
+            if (area2 > 0.0) == (dy > 0.0) {
+                right[nr] = edge;
+                nr += 1;
+            } else {
+                left[nl] = edge;
+                nl += 1;
+            }
+        }
+        let width = self.width as f32;
+        for row in row0 as usize..row1 as usize {
+            let yc = row as f32 + 0.5;
+            let mut xl = f32::NEG_INFINITY;
+            for &(px, py, slope) in &left[..nl] {
+                xl = xl.max(px + (yc - py) * slope);
+            }
+            let mut xr = f32::INFINITY;
+            for &(px, py, slope) in &right[..nr] {
+                xr = xr.min(px + (yc - py) * slope);
+            }
+            let col0 = (xl - 0.5).ceil().max(0.0);
+            let col1 = (xr - 0.5).ceil().min(width);
+            if col0 < col1 {
+                self.fill_row(row, col0 as usize, col1 as usize);
+            }
+        }
+    }
+}
+
+/// Clip space to pixel coordinates of a `width` x `height` image, row 0 at the top:
+/// `x = (ndc_x + 1) / 2 * width`, `y = (1 - ndc_y) / 2 * height`.
+#[inline]
+pub(super) fn to_pixels(clip: Vec4, width: f32, height: f32) -> Vec2 {
+    let inv = 1.0 / clip.w;
+    Vec2::new(
+        (clip.x * inv + 1.0) * 0.5 * width,
+        (1.0 - clip.y * inv) * 0.5 * height,
+    )
+}
+
+/// Whether a clip-space point lies in front of the near plane (`z >= -w`, `w > 0`).
+#[inline]
+pub(super) fn in_front(clip: Vec4) -> bool {
+    clip.z + clip.w >= 0.0 && clip.w > 0.0
+}
+
+/// Smallest `w` kept when clipping, so that the divide stays finite.
+const MIN_W: f32 = 1e-6;
+
+/// Clips the triangle `tri` (clip space) to the near plane `z + w >= 0` (and `w >= 1e-6`,
+/// which a perspective camera's near plane implies), writing the convex polygon left
+/// into `out` and returning its vertex count (0, 3, 4 or 5).
+pub(super) fn clip_triangle(tri: [Vec4; 3], out: &mut [Vec4; 5]) -> usize {
+    let mut a = [Vec4::ZERO; 5];
+    a[..3].copy_from_slice(&tri);
+    let n = clip_plane(&a, 3, out, |v| v.z + v.w);
+    if n == 0 {
+        return 0;
+    }
+    a[..n].copy_from_slice(&out[..n]);
+    clip_plane(&a, n, out, |v| v.w - MIN_W)
+}
+
+/// One Sutherland-Hodgman step: keeps the part of `poly[..n]` where `d >= 0`.
+fn clip_plane(poly: &[Vec4; 5], n: usize, out: &mut [Vec4; 5], d: impl Fn(Vec4) -> f32) -> usize {
+    let mut m = 0;
+    for i in 0..n {
+        let (p, q) = (poly[i], poly[(i + 1) % n]);
+        let (dp, dq) = (d(p), d(q));
+        if dp >= 0.0 {
+            out[m] = p;
+            m += 1;
+        }
+        if (dp >= 0.0) != (dq >= 0.0) {
+            out[m] = p + (q - p) * (dp / (dp - dq));
+            m += 1;
+        }
+    }
+    // A triangle clipped by two planes has at most 5 vertices.
+    debug_assert!(m <= 5);
+    m
+}
+
+/// Writes the convex hull of `points` (at most [`MAX_POLYGON`] of them) into `hull`, in
+/// either winding, and returns its vertex count; collinear points are dropped. Sorts
+/// `points` in place.
+pub(super) fn convex_hull(points: &mut [Vec2], hull: &mut [Vec2; MAX_POLYGON + 1]) -> usize {
+    points.sort_unstable_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    let cross = |o: Vec2, a: Vec2, b: Vec2| (a - o).perp_dot(b - o);
+    let mut k = 0;
+    for &p in points.iter() {
+        while k >= 2 && cross(hull[k - 2], hull[k - 1], p) <= 0.0 {
+            k -= 1;
+        }
+        hull[k] = p;
+        k += 1;
+    }
+    let lower = k + 1;
+    for &p in points.iter().rev().skip(1) {
+        while k >= lower && cross(hull[k - 2], hull[k - 1], p) <= 0.0 {
+            k -= 1;
+        }
+        hull[k] = p;
+        k += 1;
+    }
+    k.saturating_sub(1)
+}

@@ -1,0 +1,347 @@
+//! Target images: per-pixel grey levels and the weights they stand for.
+
+use glam::Mat4;
+
+use super::camera::{Camera, CameraError};
+use super::raster::row_words;
+
+/// Most pixels one target image may have (4096 x 4096): counts of grey levels over a
+/// whole image then fit in 32 bits on every backend.
+pub const MAX_TARGET_PIXELS: u64 = 1 << 24;
+
+/// Why a target image cannot be used.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum TargetError {
+    /// The image has no pixels.
+    #[error("target `{name}`: the image is {width} x {height}; it must have at least one pixel")]
+    Empty {
+        /// The target's name.
+        name: String,
+        /// Image width.
+        width: u32,
+        /// Image height.
+        height: u32,
+    },
+    /// The image has more pixels than [`MAX_TARGET_PIXELS`].
+    #[error(
+        "target `{name}`: the image is {width} x {height}; at most {max} pixels are \
+         supported (for example 4096 x 4096)"
+    )]
+    TooLarge {
+        /// The target's name.
+        name: String,
+        /// Image width.
+        width: u32,
+        /// Image height.
+        height: u32,
+        /// [`MAX_TARGET_PIXELS`].
+        max: u64,
+    },
+    /// A weight is infinite or NaN.
+    #[error("target `{name}`: weight `{field}` is {value}; it must be a finite number")]
+    Weight {
+        /// The target's name.
+        name: String,
+        /// `on` or `off`.
+        field: &'static str,
+        /// Its value.
+        value: f32,
+    },
+    /// The camera is unusable.
+    #[error("target `{name}`: {source}")]
+    Camera {
+        /// The target's name.
+        name: String,
+        /// What is wrong with the camera.
+        #[source]
+        source: CameraError,
+    },
+}
+
+/// How grey levels become weights.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TargetKind {
+    /// Black and white: a grey level below 128 has weight `on`, any other `off`.
+    Mask,
+    /// Grey levels: weight `on + (off - on) * g / 255`.
+    WeightMap,
+}
+
+/// One silhouette target: an image of per-pixel weights seen through a camera.
+///
+/// Every pixel has a grey level `g` in `0..=255` (the luminance of the image) and a
+/// weight: for a [mask](Self::from_mask) `on` where `g < 128`, else `off`; for a
+/// [weight map](Self::from_weight_map) `on + (off - on) * g / 255` (black is `on`, white
+/// `off`). Positive weights attract, negative ones repel, 0 is indifferent; the *target
+/// pixels* are those of positive weight. A mask keeps its levels as 0 or 255, so both
+/// kinds score with the same formula.
+///
+/// ```
+/// use glam::Vec3;
+/// use image::{DynamicImage, GrayImage, Luma};
+/// use shapegen_runtime::score::silhouette::{Camera, ImageTarget, OrbitCamera};
+///
+/// let camera = Camera::Orbit(OrbitCamera {
+///     phi: 0.0, theta: 0.0, radius: 5.0, lookat: Vec3::ZERO,
+///     fov_degrees: 60.0, near: 0.1, far: 100.0,
+/// });
+/// let mut image = GrayImage::from_pixel(4, 2, Luma([255]));
+/// image.put_pixel(1, 0, Luma([0]));
+/// image.put_pixel(2, 1, Luma([100]));
+/// let image = DynamicImage::ImageLuma8(image);
+///
+/// let mask = ImageTarget::from_mask("m".into(), &image, camera, 1.0, -0.5)?;
+/// assert_eq!(mask.target_pixels(), 2);
+/// assert_eq!(mask.weight(2, 1), 1.0);
+/// assert_eq!(mask.weight(0, 0), -0.5);
+///
+/// let map = ImageTarget::from_weight_map("w".into(), &image, camera, 1.0, 0.0)?;
+/// assert_eq!(map.weight(1, 0), 1.0);
+/// assert!((map.weight(2, 1) - (1.0 - 100.0 / 255.0)).abs() < 1e-12);
+/// assert_eq!(map.target_pixels(), 2);
+/// # Ok::<(), shapegen_runtime::score::silhouette::TargetError>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct ImageTarget {
+    name: String,
+    kind: TargetKind,
+    width: u32,
+    height: u32,
+    camera: Camera,
+    view_projection: Mat4,
+    on: f32,
+    off: f32,
+    levels: Vec<u8>,
+    target_pixels: u64,
+    /// Per 64-pixel word of a row-padded bitset: the target bits, then one word per
+    /// grey-level bit plane ([`TargetKind::Mask`]: one plane, all levels 0 or 255).
+    words: Vec<u64>,
+}
+
+impl ImageTarget {
+    /// A black-and-white target: pixels darker than 128 weigh `on`, the others `off`.
+    pub fn from_mask(
+        name: String,
+        image: &image::DynamicImage,
+        camera: Camera,
+        on: f32,
+        off: f32,
+    ) -> Result<ImageTarget, TargetError> {
+        Self::build(name, image, camera, on, off, TargetKind::Mask)
+    }
+
+    /// A grey-level target: a pixel of grey level `g` weighs `on + (off - on) * g / 255`.
+    pub fn from_weight_map(
+        name: String,
+        image: &image::DynamicImage,
+        camera: Camera,
+        on: f32,
+        off: f32,
+    ) -> Result<ImageTarget, TargetError> {
+        Self::build(name, image, camera, on, off, TargetKind::WeightMap)
+    }
+
+    fn build(
+        name: String,
+        image: &image::DynamicImage,
+        camera: Camera,
+        on: f32,
+        off: f32,
+        kind: TargetKind,
+    ) -> Result<ImageTarget, TargetError> {
+        let (width, height) = (image.width(), image.height());
+        if width == 0 || height == 0 {
+            return Err(TargetError::Empty {
+                name,
+                width,
+                height,
+            });
+        }
+        if u64::from(width) * u64::from(height) > MAX_TARGET_PIXELS {
+            return Err(TargetError::TooLarge {
+                name,
+                width,
+                height,
+                max: MAX_TARGET_PIXELS,
+            });
+        }
+        for (field, value) in [("on", on), ("off", off)] {
+            if !value.is_finite() {
+                return Err(TargetError::Weight { name, field, value });
+            }
+        }
+        if let Err(source) = camera.validate() {
+            return Err(TargetError::Camera { name, source });
+        }
+        let luma = image.to_luma8();
+        let levels: Vec<u8> = match kind {
+            TargetKind::Mask => luma
+                .as_raw()
+                .iter()
+                .map(|&g| if g < 128 { 0 } else { 255 })
+                .collect(),
+            TargetKind::WeightMap => luma.into_raw(),
+        };
+        let mut target = ImageTarget {
+            name,
+            kind,
+            width,
+            height,
+            camera,
+            view_projection: camera.view_projection(width, height),
+            on,
+            off,
+            levels,
+            target_pixels: 0,
+            words: Vec::new(),
+        };
+        target.build_words();
+        Ok(target)
+    }
+
+    /// Fills `words` and `target_pixels` from the levels.
+    fn build_words(&mut self) {
+        let stride = row_words(self.width);
+        let planes = self.planes();
+        let per = 1 + planes;
+        self.words = vec![0; stride * self.height as usize * per];
+        let mut count = 0;
+        for y in 0..self.height {
+            for x in 0..self.width {
+                let g = self.level(x, y);
+                let base = (y as usize * stride + x as usize / 64) * per;
+                let bit = 1u64 << (x % 64);
+                if self.weight_of(g) > 0.0 {
+                    self.words[base] |= bit;
+                    count += 1;
+                }
+                for p in 0..planes {
+                    if g >> p & 1 == 1 {
+                        self.words[base + 1 + p] |= bit;
+                    }
+                }
+            }
+        }
+        self.target_pixels = count;
+    }
+
+    /// Number of grey-level bit planes kept per word.
+    fn planes(&self) -> usize {
+        match self.kind {
+            TargetKind::Mask => 1,
+            TargetKind::WeightMap => 8,
+        }
+    }
+
+    /// The target's name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Mask or weight map.
+    pub fn kind(&self) -> TargetKind {
+        self.kind
+    }
+
+    /// Image width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Image height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// The camera the target is seen through.
+    pub fn camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    /// World space to clip space for this image's size.
+    pub fn view_projection(&self) -> Mat4 {
+        self.view_projection
+    }
+
+    /// Weight of black (a mask's target pixels).
+    pub fn on(&self) -> f32 {
+        self.on
+    }
+
+    /// Weight of white (a mask's other pixels).
+    pub fn off(&self) -> f32 {
+        self.off
+    }
+
+    /// Grey level of pixel `(x, y)` (row 0 at the top) as scored: a mask's levels are 0
+    /// or 255.
+    ///
+    /// # Panics
+    /// If the pixel is outside the image.
+    pub fn level(&self, x: u32, y: u32) -> u8 {
+        assert!(x < self.width && y < self.height, "pixel inside the image");
+        self.levels[(y * self.width + x) as usize]
+    }
+
+    /// The grey levels as scored, row by row from the top.
+    pub fn levels(&self) -> &[u8] {
+        &self.levels
+    }
+
+    fn weight_of(&self, g: u8) -> f64 {
+        let (on, off) = (f64::from(self.on), f64::from(self.off));
+        on + (off - on) * f64::from(g) / 255.0
+    }
+
+    /// Weight of pixel `(x, y)` (row 0 at the top).
+    ///
+    /// # Panics
+    /// If the pixel is outside the image.
+    pub fn weight(&self, x: u32, y: u32) -> f64 {
+        self.weight_of(self.level(x, y))
+    }
+
+    /// Whether pixel `(x, y)` is a target pixel (positive weight).
+    ///
+    /// # Panics
+    /// If the pixel is outside the image.
+    pub fn is_target(&self, x: u32, y: u32) -> bool {
+        self.weight(x, y) > 0.0
+    }
+
+    /// Number of target pixels `T`.
+    pub fn target_pixels(&self) -> u64 {
+        self.target_pixels
+    }
+
+    /// The sum of weights over pixels of which `covered` are covered, with grey levels
+    /// summing to `level_sum`: `on * covered + (off - on) * level_sum / 255`.
+    pub fn weighted_sum(&self, covered: u64, level_sum: u64) -> f64 {
+        let (on, off) = (f64::from(self.on), f64::from(self.off));
+        on * covered as f64 + (off - on) * level_sum as f64 / 255.0
+    }
+
+    /// Counts the covered pixels of one coverage word `w` with bits `bits`: (target
+    /// pixels, sum of grey levels).
+    #[inline]
+    pub(super) fn count_word(&self, w: usize, bits: u64) -> (u32, u64) {
+        match self.kind {
+            TargetKind::Mask => {
+                let t = &self.words[w * 2..w * 2 + 2];
+                let on = (bits & t[0]).count_ones();
+                let bright = (bits & t[1]).count_ones();
+                (on, 255 * u64::from(bright))
+            }
+            TargetKind::WeightMap => {
+                let t = &self.words[w * 9..w * 9 + 9];
+                let on = (bits & t[0]).count_ones();
+                let mut sum = 0u64;
+                for (p, plane) in t[1..].iter().enumerate() {
+                    sum += u64::from((bits & plane).count_ones()) << p;
+                }
+                (on, sum)
+            }
+        }
+    }
+}

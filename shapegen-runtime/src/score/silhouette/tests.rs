@@ -1,0 +1,518 @@
+//! Unit tests of the silhouette scorer on hand-computed cases.
+
+use std::f32::consts::FRAC_PI_2;
+
+use glam::{Affine3A, Mat4, Vec2, Vec3, Vec4, vec2, vec3};
+use image::{DynamicImage, GrayImage, Luma};
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+use super::raster::{Coverage, MAX_POLYGON, clip_triangle, convex_hull};
+use super::*;
+use crate::geometry::{CUBE, Instance, MeshLibrary};
+use crate::score::{Form, Scorer, smoothstep};
+
+const SMOOTH: Form = Form::Smooth {
+    good: 1.0,
+    bad: 1.0,
+};
+const WEIGHTED: Form = Form::Weighted { overlap: 0.0 };
+
+fn orbit(phi: f32, theta: f32, radius: f32, fov: f32, near: f32, far: f32) -> OrbitCamera {
+    OrbitCamera {
+        phi,
+        theta,
+        radius,
+        lookat: Vec3::ZERO,
+        fov_degrees: fov,
+        near,
+        far,
+    }
+}
+
+/// A camera that maps world space to clip space unchanged (orthographic, `w = 1`).
+const IDENTITY: Camera = Camera::Matrices {
+    view: Mat4::IDENTITY,
+    projection: Mat4::IDENTITY,
+};
+
+fn white(width: u32, height: u32) -> DynamicImage {
+    DynamicImage::ImageLuma8(GrayImage::from_pixel(width, height, Luma([255])))
+}
+
+fn cube_scorer(target: ImageTarget, form: Form) -> SilhouetteScorer {
+    let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"]).unwrap();
+    SilhouetteScorer::new(vec![target], &meshes, form).unwrap()
+}
+
+fn cube(scale: Vec3, at: Vec3) -> Instance {
+    Instance {
+        transform: Affine3A::from_scale_rotation_translation(scale, glam::Quat::IDENTITY, at),
+        mesh: CUBE,
+    }
+}
+
+fn covered(scorer: &SilhouetteScorer, model: &[Instance]) -> Vec<(u32, u32)> {
+    let t = &scorer.targets()[0];
+    let mut mask = vec![false; (t.width() * t.height()) as usize];
+    scorer.coverage_mask(0, model, &mut mask).unwrap();
+    (0..t.height())
+        .flat_map(|y| (0..t.width()).map(move |x| (x, y)))
+        .filter(|&(x, y)| mask[(y * t.width() + x) as usize])
+        .collect()
+}
+
+fn block(cols: std::ops::Range<u32>, rows: std::ops::Range<u32>) -> Vec<(u32, u32)> {
+    rows.flat_map(|y| cols.clone().map(move |x| (x, y)))
+        .collect()
+}
+
+#[test]
+fn orbit_camera_matches_hand_computed_matrices() {
+    // phi = theta = 0: w = (-1, 0, 0), v = (0, 1, 0), u = v x w = (0, 0, 1),
+    // eye = (5, 0, 0). fov 90: s2 = 1; aspect 2: s1 = 0.5; near 1, far 3: z1 = 2,
+    // z2 = -3.
+    let camera = orbit(0.0, 0.0, 5.0, 90.0, 1.0, 3.0);
+    assert!(camera.eye().abs_diff_eq(vec3(5.0, 0.0, 0.0), 1e-6));
+    let view = Mat4::from_cols_array_2d(&[
+        [0.0, 0.0, -1.0, 0.0],
+        [0.0, 1.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0, 0.0],
+        [0.0, 0.0, 5.0, 1.0],
+    ]);
+    assert!(camera.view().abs_diff_eq(view, 1e-6), "{}", camera.view());
+    let projection = Mat4::from_cols_array_2d(&[
+        [0.5, 0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0, 0.0],
+        [0.0, 0.0, 2.0, 1.0],
+        [0.0, 0.0, -3.0, 0.0],
+    ]);
+    assert!(camera.projection(2.0).abs_diff_eq(projection, 1e-6));
+    let vp = Camera::Orbit(camera).view_projection(200, 100);
+    // (0, 1, 2) is 5 in front, 2 along u, 1 along v: clip (1, 1, 2 * 5 - 3, 5).
+    let clip = vp * Vec4::new(0.0, 1.0, 2.0, 1.0);
+    assert!(
+        clip.abs_diff_eq(Vec4::new(1.0, 1.0, 7.0, 5.0), 1e-5),
+        "{clip}"
+    );
+    // A point on the near plane (1 in front) has z = -w.
+    let clip = vp * Vec4::new(4.0, 0.0, 0.0, 1.0);
+    assert!(
+        clip.abs_diff_eq(Vec4::new(0.0, 0.0, -1.0, 1.0), 1e-5),
+        "{clip}"
+    );
+}
+
+#[test]
+fn orbit_camera_raised_and_turned() {
+    // phi = 90 degrees, theta = 30 degrees: w = -(0, 1/2, sqrt3/2),
+    // v = (0, sqrt3/2, -1/2), u = v x w = (-1, 0, 0), eye = 2 * -w.
+    let (s, c) = (0.5f32, 0.866_025_4f32);
+    let camera = orbit(FRAC_PI_2, 30f32.to_radians(), 2.0, 60.0, 0.1, 10.0);
+    let view = camera.view();
+    let rows = [view.row(0), view.row(1), view.row(2), view.row(3)];
+    let eye = vec3(0.0, 2.0 * s, 2.0 * c);
+    assert!(camera.eye().abs_diff_eq(eye, 1e-6));
+    assert!(rows[0].abs_diff_eq(Vec4::new(-1.0, 0.0, 0.0, 0.0), 1e-6));
+    assert!(rows[1].abs_diff_eq(Vec4::new(0.0, c, -s, 0.0), 1e-6));
+    assert!(rows[2].abs_diff_eq(Vec4::new(0.0, -s, -c, 2.0), 1e-6));
+    assert_eq!(rows[3], Vec4::W);
+    let p = camera.projection(1.5);
+    let s2 = 1.0 / 30f32.to_radians().tan();
+    assert!((p.row(0).x - s2 / 1.5).abs() < 1e-6 && (p.row(1).y - s2).abs() < 1e-6);
+    assert!((p.row(2).z - 10.1 / 9.9).abs() < 1e-6);
+    assert!((p.row(2).w + 2.0 / 9.9).abs() < 1e-6);
+    assert_eq!(p.row(3), Vec4::Z);
+}
+
+#[test]
+fn unit_cube_head_on_covers_the_hand_computed_block() {
+    // The camera at (0, 0, -5) looks along +z (phi = -90 degrees). The cube's front face
+    // is 4.5 away and spans +-0.5: ndc +-1/9 with fov 90, pixels 50 +- 5.56 in a
+    // 100 x 100 image, so the centres 44.5 ..= 55.5: columns and rows 44 to 55.
+    let camera = Camera::Orbit(orbit(-FRAC_PI_2, 0.0, 5.0, 90.0, 0.1, 100.0));
+    let target = ImageTarget::from_mask("t".into(), &white(100, 100), camera, 1.0, -1.0).unwrap();
+    let scorer = cube_scorer(target, SMOOTH);
+    let model = [cube(Vec3::ONE, Vec3::ZERO)];
+    assert_eq!(covered(&scorer, &model), block(44..56, 44..56));
+    let counts = scorer.count(&model, &mut scorer.scratch()).targets()[0];
+    assert_eq!(
+        (counts.covered, counts.on_target, counts.off_target),
+        (144, 0, 144)
+    );
+    assert_eq!(counts.level_sum, 144 * 255);
+    // World +x lands to the right, +y up. The cube moved by (2, 1, 0) has its front face
+    // 4.5 away (x in [1.5, 2.5] -> pixels 66.7 to 77.8, y in [0.5, 1.5] -> 33.3 to 44.4)
+    // and its back face 5.5 away (pixels 63.6 to 72.7 and 36.4 to 45.5): the silhouette
+    // spans the centres of columns 64 to 77 and rows 33 to 44.
+    let pixels = covered(&scorer, &[cube(Vec3::ONE, vec3(2.0, 1.0, 0.0))]);
+    let cols = pixels.iter().map(|p| p.0);
+    let rows = pixels.iter().map(|p| p.1);
+    assert_eq!((cols.clone().min(), cols.max()), (Some(64), Some(77)));
+    assert_eq!((rows.clone().min(), rows.max()), (Some(33), Some(44)));
+}
+
+#[test]
+fn shared_edge_is_neither_doubled_nor_missed() {
+    // A square with corners on pixel centres (4.5, 4.5) and (12.5, 12.5), split along
+    // its diagonal, which runs through the centres (k + 0.5, k + 0.5).
+    let (a, b, c, d) = (
+        vec2(4.5, 4.5),
+        vec2(12.5, 4.5),
+        vec2(12.5, 12.5),
+        vec2(4.5, 12.5),
+    );
+    let fill = |tris: &[[Vec2; 3]]| {
+        let mut cov = Coverage::default();
+        cov.shape(16, 16);
+        for t in tris {
+            cov.fill_convex(t);
+        }
+        let mut pixels = Vec::new();
+        for y in 0..16 {
+            for x in 0..16 {
+                if cov.get(x, y) {
+                    pixels.push((x, y));
+                }
+            }
+        }
+        cov.drain(|_, _| {});
+        pixels
+    };
+    for (upper, lower) in [([a, b, c], [a, c, d]), ([c, b, a], [d, c, a])] {
+        let both = fill(&[upper, lower]);
+        // Centres on the left and top edges are in, on the right and bottom out.
+        assert_eq!(both, block(4..12, 4..12));
+        let (u, l) = (fill(&[upper]), fill(&[lower]));
+        assert_eq!(u.len() + l.len(), 64, "each diagonal centre counted once");
+        assert!(u.iter().all(|p| !l.contains(p)));
+        // The diagonal is the upper-right triangle's left edge and the lower-left one's
+        // right edge: its centres belong to the upper-right one.
+        assert!(u.contains(&(4, 4)) && u.contains(&(11, 11)) && !l.contains(&(7, 7)));
+    }
+}
+
+#[test]
+fn horizontal_edges_follow_the_top_left_rule() {
+    let mut cov = Coverage::default();
+    cov.shape(8, 8);
+    // Top edge y = 2.5 (centres of row 2) in, bottom edge y = 5.5 (row 5) out.
+    cov.fill_convex(&[vec2(1.0, 2.5), vec2(7.0, 2.5), vec2(4.0, 5.5)]);
+    assert!(cov.get(4, 2) && !cov.get(4, 5) && cov.get(4, 4));
+    cov.drain(|_, _| {});
+    cov.fill_convex(&[vec2(4.0, 2.5), vec2(7.0, 5.5), vec2(1.0, 5.5)]);
+    assert!(!cov.get(4, 2) && !cov.get(4, 5) && cov.get(4, 3));
+    let mut words = 0;
+    cov.drain(|_, bits| words += bits.count_ones());
+    // Row 3 spans x in [3, 5] (centres 3.5, 4.5), row 4 x in [2, 6] (2.5 to 5.5).
+    assert_eq!(words, 2 + 4);
+}
+
+#[test]
+fn near_plane_clips_before_the_divide() {
+    let mut out = [Vec4::ZERO; 5];
+    // One vertex behind the near plane (z < -w): the quad left has two new vertices
+    // on the plane z = -w.
+    let tri = [
+        Vec4::new(0.0, 0.0, 0.0, 1.0),
+        Vec4::new(1.0, 0.0, 0.0, 1.0),
+        Vec4::new(0.0, 1.0, -3.0, 1.0),
+    ];
+    let n = clip_triangle(tri, &mut out);
+    assert_eq!(n, 4);
+    for v in &out[..n] {
+        assert!(v.z + v.w >= -1e-6);
+    }
+    // The edges to the clipped vertex cross the plane a third and two thirds along.
+    for on_plane in [
+        Vec4::new(2.0 / 3.0, 1.0 / 3.0, -1.0, 1.0),
+        Vec4::new(0.0, 1.0 / 3.0, -1.0, 1.0),
+    ] {
+        assert!(
+            out[..n].iter().any(|v| v.abs_diff_eq(on_plane, 1e-6)),
+            "{:?}",
+            &out[..n]
+        );
+    }
+    assert_eq!(
+        clip_triangle(tri.map(|v| v - Vec4::new(0.0, 0.0, 5.0, 0.0)), &mut out),
+        0
+    );
+
+    // A floor 1 below the eye, reaching from behind the camera to 105 ahead, seen
+    // looking along +z: it covers the lower half of the image and nothing above the
+    // horizon (without clipping, its vertices behind the eye would flip upwards).
+    let camera = Camera::Orbit(orbit(-FRAC_PI_2, 0.0, 5.0, 60.0, 0.1, 1000.0));
+    let target = ImageTarget::from_mask("t".into(), &white(80, 60), camera, 1.0, -1.0).unwrap();
+    let scorer = cube_scorer(target, SMOOTH);
+    let floor = [cube(vec3(200.0, 0.01, 110.0), vec3(0.0, -1.0, 45.0))];
+    // The far edge projects to ndc y = -s2 / 105: pixel row 30.3, so rows 30 to 59.
+    assert_eq!(covered(&scorer, &floor), block(0..80, 30..60));
+}
+
+#[test]
+fn mask_and_weight_map_fitness_from_hand_counts() {
+    // 4 x 2 pixels; the identity camera maps x in [-1, 0] to columns 0 and 1.
+    let levels = [[0u8, 100, 200, 255], [50, 128, 0, 0]];
+    let image = GrayImage::from_fn(4, 2, |x, y| Luma([levels[y as usize][x as usize]]));
+    let image = DynamicImage::ImageLuma8(image);
+    let model = [cube(vec3(1.0, 2.0, 1.0), vec3(-0.5, 0.0, 0.0))];
+
+    // Mask: covered levels 0, 100, 50 (target) and 128 (not).
+    let mask = ImageTarget::from_mask("m".into(), &image, IDENTITY, 2.0, -1.0).unwrap();
+    assert_eq!(mask.target_pixels(), 5);
+    let weighted = cube_scorer(mask.clone(), WEIGHTED);
+    let counts = weighted.count(&model, &mut weighted.scratch());
+    let t = counts.targets()[0];
+    assert_eq!(
+        (t.covered, t.on_target, t.off_target, t.level_sum),
+        (4, 3, 1, 255)
+    );
+    assert_eq!(weighted.fitness(&counts), 3.0 * 2.0 - 1.0);
+    let smooth = cube_scorer(
+        mask,
+        Form::Smooth {
+            good: 2.0,
+            bad: 3.0,
+        },
+    );
+    let f = smooth.fitness(&smooth.count(&model, &mut smooth.scratch()));
+    let expected = 2.0 * smoothstep(0.0, 5.0, 3.0) - 3.0 * smoothstep(0.0, 5.0, 1.0);
+    assert!((f - expected).abs() < 1e-12);
+
+    // Weight map 1 - 2 g / 255: covered weights 1, 1 - 200/255, 1 - 100/255, 1 - 256/255.
+    let map = ImageTarget::from_weight_map("w".into(), &image, IDENTITY, 1.0, -1.0).unwrap();
+    assert_eq!(map.target_pixels(), 5);
+    let weighted = cube_scorer(map, WEIGHTED);
+    let counts = weighted.count(&model, &mut weighted.scratch());
+    let t = counts.targets()[0];
+    assert_eq!((t.covered, t.on_target, t.level_sum), (4, 3, 278));
+    let expected = 4.0 - 2.0 * 278.0 / 255.0;
+    assert!((weighted.fitness(&counts) - expected).abs() < 1e-12);
+}
+
+#[test]
+fn several_targets_add_up() {
+    let a = ImageTarget::from_mask("a".into(), &white(4, 2), IDENTITY, 1.0, -1.0).unwrap();
+    let b = ImageTarget::from_weight_map("b".into(), &white(8, 8), IDENTITY, 1.0, -0.5).unwrap();
+    let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"]).unwrap();
+    let scorer = SilhouetteScorer::new(vec![a, b], &meshes, WEIGHTED).unwrap();
+    let model = [cube(Vec3::ONE, Vec3::ZERO)];
+    let counts = scorer.count(&model, &mut scorer.scratch());
+    let covered: Vec<u32> = counts.targets().iter().map(|t| t.covered).collect();
+    // The cube spans ndc [-0.5, 0.5]: columns 1..3 of 4 x rows 0.5..1.5 of 2; 2..6 of 8.
+    assert_eq!(covered, [2, 16]);
+    assert_eq!(scorer.fitness(&counts), -2.0 - 0.5 * 16.0);
+}
+
+#[test]
+fn box_fast_path_agrees_with_triangles() {
+    let camera = Camera::Orbit(OrbitCamera {
+        lookat: vec3(0.0, 1.0, 0.0),
+        ..orbit(0.4, 0.3, 12.0, 60.0, 0.1, 100.0)
+    });
+    let target = ImageTarget::from_mask("t".into(), &white(160, 120), camera, 1.0, -1.0).unwrap();
+    let fast = cube_scorer(target, SMOOTH);
+    assert!(fast.meshes[0].hull.is_some(), "the cube is convex");
+    let mut slow = fast.clone();
+    slow.meshes[0].hull = None;
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let (mut s1, mut s2) = (fast.scratch(), slow.scratch());
+    for _ in 0..200 {
+        let model: Vec<Instance> = (0..rng.random_range(1..20))
+            .map(|_| {
+                let scale = Vec3::from(rng.random::<[f32; 3]>()) * 3.0 + 0.05;
+                let at = (Vec3::from(rng.random::<[f32; 3]>()) - 0.5) * 10.0;
+                let rotation = glam::Quat::from_euler(
+                    glam::EulerRot::YXZ,
+                    rng.random::<f32>() * 6.3,
+                    rng.random::<f32>() * 6.3,
+                    rng.random::<f32>() * 6.3,
+                );
+                Instance {
+                    transform: Affine3A::from_scale_rotation_translation(scale, rotation, at),
+                    mesh: CUBE,
+                }
+            })
+            .collect();
+        let (a, b) = (fast.count(&model, &mut s1), slow.count(&model, &mut s2));
+        let (a, b) = (a.targets()[0].covered, b.targets()[0].covered);
+        // Hull edges are the silhouette triangles' edges; only centres within rounding
+        // of an edge through a hidden collinear corner may differ.
+        assert!(a.abs_diff(b) <= model.len() as u32, "{a} vs {b}");
+    }
+}
+
+#[test]
+fn convex_hull_of_a_square_with_inner_points() {
+    let mut points = [
+        vec2(0.0, 0.0),
+        vec2(2.0, 0.0),
+        vec2(1.0, 1.0),
+        vec2(2.0, 2.0),
+        vec2(0.0, 2.0),
+        vec2(0.5, 1.5),
+    ];
+    let mut hull = [Vec2::ZERO; MAX_POLYGON + 1];
+    let n = convex_hull(&mut points, &mut hull);
+    assert_eq!(n, 4);
+    for corner in [
+        vec2(0.0, 0.0),
+        vec2(2.0, 0.0),
+        vec2(2.0, 2.0),
+        vec2(0.0, 2.0),
+    ] {
+        assert!(hull[..n].contains(&corner));
+    }
+}
+
+#[test]
+fn camera_errors_name_the_field_and_the_valid_range() {
+    let good = orbit(0.0, 0.0, 5.0, 60.0, 0.1, 100.0);
+    assert_eq!(Camera::Orbit(good).validate(), Ok(()));
+    let cases = [
+        (
+            OrbitCamera {
+                radius: 0.0,
+                ..good
+            },
+            "camera `radius` is 0; it must be greater than 0",
+        ),
+        (
+            OrbitCamera {
+                fov_degrees: 180.0,
+                ..good
+            },
+            "camera `fov` is 180 degrees; it must lie strictly between 0 and 180",
+        ),
+        (
+            OrbitCamera {
+                near: 100.0,
+                ..good
+            },
+            "camera `near` is 100 and `far` is 100; they must satisfy 0 < near < far",
+        ),
+        (
+            OrbitCamera {
+                phi: f32::NAN,
+                ..good
+            },
+            "camera `phi` is NaN; it must be a finite number",
+        ),
+    ];
+    for (camera, message) in cases {
+        assert_eq!(
+            Camera::Orbit(camera).validate().unwrap_err().to_string(),
+            message
+        );
+    }
+    let bad = Camera::Matrices {
+        view: Mat4::IDENTITY,
+        projection: Mat4::from_diagonal(Vec4::splat(f32::INFINITY)),
+    };
+    assert_eq!(
+        bad.validate().unwrap_err().to_string(),
+        "camera `projection` matrix has a non-finite entry"
+    );
+    let err = ImageTarget::from_mask(
+        "sky".into(),
+        &white(4, 4),
+        Camera::Orbit(OrbitCamera {
+            radius: -1.0,
+            ..good
+        }),
+        1.0,
+        -1.0,
+    )
+    .unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "target `sky`: camera `radius` is -1; it must be greater than 0"
+    );
+}
+
+#[test]
+fn target_errors_name_the_image_and_the_limit() {
+    let err = ImageTarget::from_mask("e".into(), &white(0, 3), IDENTITY, 1.0, -1.0).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "target `e`: the image is 0 x 3; it must have at least one pixel"
+    );
+    let err = ImageTarget::from_weight_map("big".into(), &white(4097, 4096), IDENTITY, 1.0, 0.0)
+        .unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "target `big`: the image is 4097 x 4096; at most 16777216 pixels are supported \
+         (for example 4096 x 4096)"
+    );
+    let err =
+        ImageTarget::from_mask("w".into(), &white(2, 2), IDENTITY, f32::NAN, 0.0).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "target `w`: weight `on` is NaN; it must be a finite number"
+    );
+}
+
+#[test]
+fn scorer_errors_name_the_limit() {
+    let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"]).unwrap();
+    let t = ImageTarget::from_mask("t".into(), &white(4, 4), IDENTITY, 1.0, -1.0).unwrap();
+    let err = SilhouetteScorer::new(vec![t.clone(); 9], &meshes, SMOOTH).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "9 target images given; a silhouette scorer takes at most 8"
+    );
+    assert!(SilhouetteScorer::new(vec![t.clone(); 8], &meshes, SMOOTH).is_ok());
+    assert_eq!(
+        SilhouetteScorer::new(Vec::new(), &meshes, SMOOTH).unwrap_err(),
+        SilhouetteError::NoTargets
+    );
+    let err = SilhouetteScorer::new(vec![t.clone()], &meshes, Form::Weighted { overlap: 1.0 })
+        .unwrap_err();
+    assert!(err.to_string().contains("`overlap` is 1"), "{err}");
+    let scorer = SilhouetteScorer::new(vec![t], &meshes, SMOOTH).unwrap();
+    let err = scorer.coverage_mask(0, &[], &mut [false; 15]).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "a coverage mask of 15 pixels given for target `t`, which has 16"
+    );
+    let err = scorer.coverage_mask(2, &[], &mut [false; 16]).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "target 2 asked for; the scorer has 1 targets (0..1)"
+    );
+}
+
+#[test]
+fn the_shader_validates() {
+    crate::gpu::validate_wgsl(gpu::SHADER).unwrap();
+}
+
+#[test]
+fn the_tree_meshes_take_the_hull_path_and_a_concave_mesh_does_not() {
+    let trunk = crate::Mesh::from_obj_str(
+        "trunk",
+        include_str!("../../../../generators/meshes/trunk.obj"),
+    );
+    let leaf = crate::Mesh::from_obj_str(
+        "leaf",
+        include_str!("../../../../generators/meshes/leaf.obj"),
+    );
+    let mut library = MeshLibrary::new();
+    library.register("trunk", trunk.unwrap()).unwrap();
+    library.register("leaf", leaf.unwrap()).unwrap();
+    // A cube with one corner pushed in is concave.
+    let mut dented = crate::Mesh::unit_cube();
+    for p in &mut dented.positions {
+        if *p == Vec3::splat(0.5) {
+            *p = Vec3::splat(0.1);
+        }
+    }
+    library.register("dented", dented).unwrap();
+    let bound = library
+        .bind_names("T", &["cube", "trunk", "leaf", "dented"])
+        .unwrap();
+    let prepared = meshes::prepare(&bound);
+    let hulls: Vec<bool> = prepared.iter().map(|m| m.hull.is_some()).collect();
+    assert_eq!(hulls, [true, true, true, false]);
+}
