@@ -1,6 +1,12 @@
 //! Command-line interface: argument parsing and dispatch to the commands.
 
+mod backend;
+mod genomes;
+mod render;
 mod sample;
+mod score;
+mod target;
+mod voxels;
 
 use anyhow::Context;
 use clap::{Parser, Subcommand};
@@ -22,6 +28,13 @@ pub struct Cli {
 enum Command {
     /// Write random models of a published generator, drawn from its own distribution.
     Sample(sample::SampleArgs),
+    /// Print the counts and fitness of saved genomes in a scene, one JSON object each.
+    Score(score::ScoreArgs),
+    /// Write a reachable target made from a fixed derivation: a volume OBJ or a
+    /// silhouette PNG through the scene's camera.
+    Target(target::TargetArgs),
+    /// Write shaded previews of saved genomes and, for image targets, overlays.
+    Render(render::RenderArgs),
 }
 
 /// Runs the command `args` asks for.
@@ -34,5 +47,8 @@ pub fn run(args: Cli) -> anyhow::Result<()> {
     let pool = pool.build().context("could not start the worker threads")?;
     pool.install(|| match args.command {
         Command::Sample(sample) => sample::run(&sample),
+        Command::Score(score) => score::run(&score),
+        Command::Target(target) => target::run(&target),
+        Command::Render(render) => render::run(&render),
     })
 }

@@ -19,6 +19,8 @@
 
 use std::sync::OnceLock;
 
+pub use wgpu;
+
 /// Why the GPU backend cannot be used, or failed.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]

@@ -11,7 +11,9 @@
 //! scratch buffer per worker.
 //!
 //! [`volume`] scores how well models fill weighted target volumes on a voxel grid, on
-//! the CPU or, for grammars made of boxes, on the GPU with identical counts.
+//! the CPU or, for grammars made of boxes, on the GPU with identical counts;
+//! [`silhouette`] scores how well their projections through cameras match target
+//! images, on the CPU or the GPU (equal to within a few edge pixels).
 //!
 //! ```
 //! use shapegen_runtime::score::{LengthPenalty, smoothstep};

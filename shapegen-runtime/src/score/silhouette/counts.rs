@@ -28,11 +28,23 @@ pub struct TargetCounts {
 /// let counts = SilhouetteCounts::new(&[one]).unwrap();
 /// assert_eq!(counts.targets(), [one]);
 /// assert!(SilhouetteCounts::new(&[one; 9]).is_none());
+/// assert_eq!(
+///     serde_json::to_string(&counts).unwrap(),
+///     r#"[{"covered":3,"on_target":2,"off_target":1,"level_sum":255}]"#
+/// );
 /// ```
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+///
+/// It serializes as the list of its targets' counts.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct SilhouetteCounts {
     len: u8,
     per_target: [TargetCounts; MAX_TARGETS],
+}
+
+impl Serialize for SilhouetteCounts {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_seq(self.targets())
+    }
 }
 
 impl SilhouetteCounts {

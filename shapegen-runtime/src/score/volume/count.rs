@@ -105,11 +105,13 @@ impl Tally<'_> {
 }
 
 impl VolumeScorer {
-    /// Counts the model made of `instances` with `scratch`, leaving it cleared.
+    /// Counts the model made of `instances` with `scratch`, leaving it cleared; with
+    /// `keep`, also writes the covered in-grid voxels there as a bitset.
     pub(crate) fn count_model(
         &self,
         instances: &[Instance],
         scratch: &mut VolumeScratch,
+        keep: Option<&mut Vec<u64>>,
     ) -> VolumeCounts {
         let VolumeScratch {
             covered,
@@ -154,6 +156,13 @@ impl VolumeScorer {
             }
         }
         let (classes, overlap, out_of_grid) = (tally.classes, tally.overlap, tally.out_of_grid);
+        if let Some(out) = keep {
+            out.clear();
+            out.resize(covered.len(), 0);
+            for &w in touched.iter() {
+                out[w as usize] = covered[w as usize];
+            }
+        }
         for &w in touched.iter() {
             covered[w as usize] = 0;
         }

@@ -140,7 +140,8 @@ pub struct VolumeCounts {
     /// Hits of lattice points outside the grid, one per instance and point.
     pub out_of_grid: u64,
     /// Distinct covered voxels of each class ([`VoxelClasses::weights`]); classes the
-    /// scene lacks stay 0.
+    /// scene lacks stay 0. Not serialized: `inside` and `outside` sum them up.
+    #[serde(skip)]
     pub classes: [u64; MAX_CLASSES],
 }
 
@@ -226,6 +227,36 @@ impl VolumeScorer {
         &self.meshes
     }
 
+    /// Counts the model made of `instances` as [`Scorer::count`] does, and writes the
+    /// in-grid voxels it covers to `covered` as a bitset: voxel `v` (numbered as
+    /// [`Grid::index`] numbers them) is bit `v % 64` of word `v / 64`.
+    ///
+    /// ```
+    /// # use glam::Vec3;
+    /// # use shapegen_runtime::{CUBE, Instance, Mesh, MeshLibrary};
+    /// # use shapegen_runtime::score::{Form, Scorer};
+    /// # use shapegen_runtime::score::volume::{Grid, VolumeScorer, VolumeTarget};
+    /// let grid = Grid::new(Vec3::splat(-1.0), Vec3::splat(1.0), [4, 4, 4])?;
+    /// let target = VolumeTarget { name: "t".into(), mesh: Mesh::unit_cube(), inside: 1.0, outside: -1.0 };
+    /// let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"])?;
+    /// let scorer = VolumeScorer::new(grid, &[target], &meshes, Form::Weighted { overlap: 0.0 })?;
+    /// let cube = [Instance { transform: glam::Affine3A::IDENTITY, mesh: CUBE }];
+    /// let mut covered = Vec::new();
+    /// let counts = scorer.coverage(&cube, &mut scorer.scratch(), &mut covered);
+    /// let n: u32 = covered.iter().map(|w| w.count_ones()).sum();
+    /// assert_eq!((counts.inside, n), (8, 8));
+    /// assert!(covered[0] & 1 << grid.index([1, 1, 1]).unwrap() != 0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn coverage(
+        &self,
+        instances: &[Instance],
+        scratch: &mut VolumeScratch,
+        covered: &mut Vec<u64>,
+    ) -> VolumeCounts {
+        self.count_model(instances, scratch, Some(covered))
+    }
+
     /// Whether instances of mesh `id` take the exact integer path (the mesh is the
     /// unit cube); `None` for an id the grammar lacks, whose instances cover nothing.
     #[inline]
@@ -243,7 +274,7 @@ impl Scorer for VolumeScorer {
     }
 
     fn count(&self, instances: &[Instance], scratch: &mut VolumeScratch) -> VolumeCounts {
-        self.count_model(instances, scratch)
+        self.count_model(instances, scratch, None)
     }
 
     fn fitness(&self, counts: &VolumeCounts) -> f64 {

@@ -1,0 +1,116 @@
+//! `shapegen target`: a reachable target made from a fixed derivation, through the
+//! scene's own grid or cameras.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+use clap::Args;
+use generators::GeneratorVisitor;
+use image::{GrayImage, Luma};
+use shapegen::Grammar;
+use shapegen::genome::Limits;
+use shapegen::scene::{Scene, SceneScorer};
+use shapegen::score::Scorer;
+
+use super::genomes::load_genome;
+use super::voxels::voxel_surface_obj;
+
+/// Arguments of `shapegen target`.
+#[derive(Debug, Args)]
+pub struct TargetArgs {
+    /// The scene file (TOML) whose grid or cameras the target is made for.
+    scene: PathBuf,
+    /// The genome to make the target of: a single genome or a set.
+    #[arg(long)]
+    genome: PathBuf,
+    /// Which genome of a set.
+    #[arg(long, default_value_t = 0)]
+    index: usize,
+    /// Where to write: a volume scene writes `PATH` as `.obj` (the surface of the voxels the
+    /// model covers), a silhouette scene `PATH` as `.png` (black where the model covers,
+    /// one file per camera, numbered when there are several).
+    #[arg(long)]
+    out: PathBuf,
+}
+
+/// Runs `shapegen target`.
+pub fn run(args: &TargetArgs) -> anyhow::Result<()> {
+    let scene = Scene::load(&args.scene)?;
+    scene.generator.visit(Target {
+        args,
+        scene: &scene,
+    })
+}
+
+struct Target<'a> {
+    args: &'a TargetArgs,
+    scene: &'a Scene,
+}
+
+impl GeneratorVisitor for Target<'_> {
+    type Output = anyhow::Result<()>;
+
+    fn visit<G: Grammar>(self, _: Limits) -> anyhow::Result<()> {
+        let args = self.args;
+        let genome = load_genome::<G>(&args.genome, args.index)?;
+        let scorer = SceneScorer::new::<G>(self.scene)?;
+        let mut instances = Vec::new();
+        genome.derive_into(&mut instances);
+        if let Some(parent) = args.out.parent().filter(|p| !p.as_os_str().is_empty()) {
+            std::fs::create_dir_all(parent)
+                .with_context(|| format!("cannot create `{}`", parent.display()))?;
+        }
+
+        if let Some(volume) = &scorer.volume {
+            let mut covered = Vec::new();
+            let counts = volume.coverage(&instances, &mut volume.scratch(), &mut covered);
+            let voxels = counts.inside + counts.outside;
+            anyhow::ensure!(
+                voxels > 0,
+                "the model covers no voxel of the scene's grid; pick another genome or grid"
+            );
+            let (obj, faces) = voxel_surface_obj(volume.grid(), &covered);
+            let path = args.out.with_extension("obj");
+            write(&path, obj.as_bytes())?;
+            println!("wrote {} ({voxels} voxels, {faces} faces)", path.display());
+        }
+        if let Some(silhouette) = &scorer.silhouette {
+            let targets = silhouette.targets();
+            for (k, target) in targets.iter().enumerate() {
+                let (w, h) = (target.width(), target.height());
+                let mut mask = vec![false; w as usize * h as usize];
+                silhouette.coverage_mask(k, &instances, &mut mask)?;
+                let covered = mask.iter().filter(|&&c| c).count();
+                anyhow::ensure!(
+                    covered > 0,
+                    "the model covers no pixel through camera {k}; pick another genome"
+                );
+                let image = GrayImage::from_fn(w, h, |x, y| {
+                    Luma([if mask[(y * w + x) as usize] { 0 } else { 255 }])
+                });
+                let path = numbered(&args.out, k, targets.len(), "png");
+                image
+                    .save(&path)
+                    .with_context(|| format!("cannot write `{}`", path.display()))?;
+                println!(
+                    "wrote {} ({covered} target pixels, {w} x {h})",
+                    path.display()
+                );
+            }
+        }
+        Ok(())
+    }
+}
+
+/// `path` with extension `ext`, and `_k` after its stem when there are several files.
+pub fn numbered(path: &Path, k: usize, of: usize, ext: &str) -> PathBuf {
+    if of <= 1 {
+        return path.with_extension(ext);
+    }
+    let stem = path.file_stem().unwrap_or_default().to_string_lossy();
+    path.with_file_name(format!("{stem}_{k}.{ext}"))
+}
+
+fn write(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    std::fs::write(path, bytes).with_context(|| format!("cannot write `{}`", path.display()))
+}

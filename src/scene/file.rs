@@ -1,0 +1,148 @@
+//! The scene file as written: TOML tables deserialized strictly (unknown keys are
+//! errors), before paths are resolved and values checked.
+
+use serde::Deserialize;
+
+/// A whole scene file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct SceneFile {
+    pub generator: String,
+    #[serde(default)]
+    pub meshes: std::collections::BTreeMap<String, String>,
+    pub limits: LimitsFile,
+    #[serde(default)]
+    pub fitness: FitnessFile,
+    pub volume: Option<VolumeFile>,
+    pub silhouette: Option<SilhouetteFile>,
+}
+
+/// `[limits]`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct LimitsFile {
+    pub min_len: u32,
+    pub optimal_len: u32,
+    pub max_len: u32,
+    pub max_depth: u32,
+}
+
+/// `[fitness]`
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct FitnessFile {
+    #[serde(default)]
+    pub form: FormName,
+    #[serde(default)]
+    pub length: f64,
+}
+
+/// `fitness.form`
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum FormName {
+    /// The original implementation's smoothstep form.
+    #[default]
+    Smooth,
+    /// The paper's weighted sum.
+    Weighted,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+fn minus_one() -> f64 {
+    -1.0
+}
+
+/// `[volume]`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct VolumeFile {
+    pub grid: GridFile,
+    #[serde(default = "one")]
+    pub good: f64,
+    #[serde(default = "one")]
+    pub bad: f64,
+    #[serde(default)]
+    pub overlap: f64,
+    #[serde(default)]
+    pub target: Vec<VolumeTargetFile>,
+}
+
+/// `volume.grid`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct GridFile {
+    pub min: [f32; 3],
+    pub max: [f32; 3],
+    pub resolution: [u32; 3],
+}
+
+/// `[[volume.target]]`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct VolumeTargetFile {
+    pub mesh: String,
+    #[serde(default = "one")]
+    pub inside: f64,
+    #[serde(default = "minus_one")]
+    pub outside: f64,
+}
+
+/// `[silhouette]`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct SilhouetteFile {
+    #[serde(default = "one")]
+    pub good: f64,
+    #[serde(default = "one")]
+    pub bad: f64,
+    #[serde(default)]
+    pub target: Vec<ImageTargetFile>,
+}
+
+/// `[[silhouette.target]]`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct ImageTargetFile {
+    pub image: String,
+    #[serde(default)]
+    pub kind: ImageKind,
+    /// Mask images: weight of dark pixels. Weight maps: weight of black.
+    pub on: Option<f32>,
+    /// Mask images: weight of light pixels. Weight maps: weight of white.
+    pub off: Option<f32>,
+    pub camera: CameraFile,
+}
+
+/// `silhouette.target.kind`
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum ImageKind {
+    /// Black and white: dark pixels are the target.
+    #[default]
+    Mask,
+    /// Grey levels mapped linearly from `on` (black) to `off` (white).
+    Weights,
+}
+
+/// `silhouette.target.camera`: an orbit camera or explicit matrices.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct CameraFile {
+    pub width: u32,
+    pub height: u32,
+    pub phi: Option<f32>,
+    pub theta: Option<f32>,
+    pub radius: Option<f32>,
+    pub lookat: Option<[f32; 3]>,
+    pub fov: Option<f32>,
+    pub near: Option<f32>,
+    pub far: Option<f32>,
+    /// Row-major 4 x 4 view matrix.
+    pub view: Option<[[f32; 4]; 4]>,
+    /// Row-major 4 x 4 projection matrix.
+    pub projection: Option<[[f32; 4]; 4]>,
+}

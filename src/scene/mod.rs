@@ -1,0 +1,136 @@
+//! Scene files: what a run aims at.
+//!
+//! A scene is a TOML file naming a published generator, the meshes it uses, the genome
+//! limits, and one or both scorers with their targets: a volume to fill or avoid, and
+//! silhouettes seen through cameras. Paths in it are relative to the scene file.
+//!
+//! ```toml
+//! generator = "spaceship"            # spaceship, tree or city
+//!
+//! [meshes]                           # optional: replace or add meshes by name
+//! cube = "meshes/cube.obj"
+//!
+//! [limits]
+//! min_len = 4                        # genes
+//! optimal_len = 10                   # where the length penalty starts
+//! max_len = 100
+//! max_depth = 15
+//!
+//! [fitness]
+//! form = "smooth"                    # "smooth" (original implementation) or "weighted" (paper)
+//! length = 0.1                       # smooth form: weight * S(optimal_len, max_len, genes)
+//!
+//! [volume]
+//! grid = { min = [-5, -5, -2], max = [5, 5, 18], resolution = [100, 200, 100] }
+//! good = 2.0                         # smooth form weights
+//! bad = 15.0
+//! overlap = 0.0                      # weighted form: subtracted per repeated voxel hit
+//! [[volume.target]]
+//! mesh = "target.obj"
+//! inside = 1.0                       # weight of voxels inside (negative avoids)
+//! outside = -1.0                     # weight of voxels outside
+//!
+//! [silhouette]
+//! good = 1.0
+//! bad = 1.0
+//! [[silhouette.target]]
+//! image = "skyline.png"              # its size must be the camera's
+//! kind = "mask"                      # dark pixels weigh `on` (1), light ones `off` (-1);
+//!                                    # "weights": grey levels from `on` (black) to `off` (white)
+//! camera = { phi = -3.05, theta = 0.05, radius = 12.4, lookat = [1.8, 4.7, -0.6],
+//!            fov = 60, near = 0.1, far = 100, width = 800, height = 600 }
+//! # or: camera = { view = [[..], [..], [..], [..]], projection = [..], width = .., height = .. }
+//! ```
+//!
+//! Unknown keys, missing files, values out of range and images whose size differs from
+//! their camera's are all refused with the file, the key and the reason.
+
+mod error;
+mod evaluate;
+mod file;
+mod resolve;
+
+use std::path::{Path, PathBuf};
+
+use generators::Published;
+use shapegen_runtime::genome::Limits;
+use shapegen_runtime::geometry::MeshLibrary;
+use shapegen_runtime::score::silhouette::ImageTarget;
+use shapegen_runtime::score::volume::{Grid, VolumeTarget};
+use shapegen_runtime::score::{Form, LengthPenalty};
+
+pub use error::SceneError;
+pub use evaluate::{Backend, BackendChoice, SceneCounts, SceneScorer};
+
+/// A loaded and checked scene.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// The scene file.
+    pub path: PathBuf,
+    /// The generator whose models are scored.
+    pub generator: Published,
+    /// The generator's default meshes with the scene's replacements and additions.
+    pub meshes: MeshLibrary,
+    /// Genome limits of the search.
+    pub limits: Limits,
+    /// The genome length where the length penalty starts.
+    pub optimal_len: u32,
+    /// The genome-length term of the fitness.
+    pub length: LengthPenalty,
+    /// The volume scorer's settings, when the scene has one.
+    pub volume: Option<VolumeGoal>,
+    /// The silhouette scorer's settings, when the scene has one.
+    pub silhouette: Option<SilhouetteGoal>,
+}
+
+/// The `[volume]` table, resolved: the grid, the targets loaded, and the fitness form.
+#[derive(Clone, Debug)]
+pub struct VolumeGoal {
+    /// The voxel grid.
+    pub grid: Grid,
+    /// The target meshes and their weights.
+    pub targets: Vec<VolumeTarget>,
+    /// How counts become fitness.
+    pub form: Form,
+}
+
+/// The `[silhouette]` table, resolved: the target images with their cameras, and the
+/// fitness form.
+#[derive(Clone, Debug)]
+pub struct SilhouetteGoal {
+    /// The target images.
+    pub targets: Vec<ImageTarget>,
+    /// How counts become fitness.
+    pub form: Form,
+}
+
+impl Scene {
+    /// Loads and checks the scene file at `path`.
+    pub fn load(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+            path: path.to_owned(),
+            source,
+        })?;
+        Scene::parse(&text, path)
+    }
+
+    /// Checks the scene written in `text`, as if read from `path` (paths in it are
+    /// relative to `path`'s folder).
+    pub fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
+        let file: file::SceneFile = toml::from_str(text).map_err(|err| SceneError::Syntax {
+            path: path.to_owned(),
+            message: err.to_string().trim_end().to_owned(),
+        })?;
+        resolve::Resolver::new(path).scene(file)
+    }
+
+    /// An error about `key` of this scene.
+    pub(crate) fn invalid(&self, key: &str, reason: String) -> SceneError {
+        SceneError::Invalid {
+            path: self.path.clone(),
+            key: key.to_owned(),
+            reason,
+        }
+    }
+}

@@ -1,0 +1,334 @@
+//! From the scene file as written to a checked [`Scene`]: paths resolved against the
+//! scene's folder, files loaded, values checked, every error naming its key.
+
+use std::path::{Path, PathBuf};
+
+use glam::{Mat4, Vec3};
+use shapegen_runtime::genome::Limits;
+use shapegen_runtime::geometry::Mesh;
+use shapegen_runtime::score::silhouette::{Camera, ImageTarget, OrbitCamera};
+use shapegen_runtime::score::volume::{Grid, VolumeTarget};
+use shapegen_runtime::score::{Form, LengthPenalty};
+
+use super::file::{
+    CameraFile, FormName, ImageKind, ImageTargetFile, LimitsFile, SceneFile, SilhouetteFile,
+    VolumeFile,
+};
+use super::{Scene, SceneError, SilhouetteGoal, VolumeGoal};
+
+pub(super) struct Resolver<'a> {
+    path: &'a Path,
+    dir: PathBuf,
+}
+
+impl<'a> Resolver<'a> {
+    pub fn new(path: &'a Path) -> Self {
+        let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        Resolver { path, dir }
+    }
+
+    fn invalid(&self, key: impl Into<String>, reason: impl Into<String>) -> SceneError {
+        SceneError::Invalid {
+            path: self.path.to_owned(),
+            key: key.into(),
+            reason: reason.into(),
+        }
+    }
+
+    /// A path written in the scene, relative to the scene's folder, which must name an
+    /// existing file.
+    fn file(&self, key: &str, written: &str) -> Result<PathBuf, SceneError> {
+        if written.is_empty() {
+            return Err(self.invalid(key, "the path is empty"));
+        }
+        let path = self.dir.join(written);
+        if !path.is_file() {
+            return Err(self.invalid(
+                key,
+                format!(
+                    "`{}` is not a file (paths are relative to the scene file's folder)",
+                    path.display()
+                ),
+            ));
+        }
+        Ok(path)
+    }
+
+    fn finite(&self, key: &str, value: f64) -> Result<f64, SceneError> {
+        if value.is_finite() {
+            Ok(value)
+        } else {
+            Err(self.invalid(key, format!("{value} is not a finite number")))
+        }
+    }
+
+    fn non_negative(&self, key: &str, value: f64) -> Result<f64, SceneError> {
+        if value.is_finite() && value >= 0.0 {
+            Ok(value)
+        } else {
+            Err(self.invalid(key, format!("{value} must be a finite number >= 0")))
+        }
+    }
+
+    pub fn scene(&self, file: SceneFile) -> Result<Scene, SceneError> {
+        let generator = file
+            .generator
+            .parse()
+            .map_err(|err| self.invalid("generator", format!("{err}")))?;
+
+        let mut meshes = generators::default_meshes();
+        for (name, written) in &file.meshes {
+            let key = format!("meshes.{name}");
+            let path = self.file(&key, written)?;
+            meshes
+                .register_obj(name.clone(), &path)
+                .map_err(|err| self.invalid(&key, err.to_string()))?;
+        }
+
+        let (limits, optimal_len) = self.limits(&file.limits)?;
+        let length = LengthPenalty {
+            weight: self.non_negative("fitness.length", file.fitness.length)?,
+            from: f64::from(optimal_len),
+            to: f64::from(limits.max_len),
+        };
+        let form = file.fitness.form;
+
+        let volume = file
+            .volume
+            .as_ref()
+            .map(|v| self.volume(v, form))
+            .transpose()?;
+        let silhouette = file
+            .silhouette
+            .as_ref()
+            .map(|s| self.silhouette(s, form))
+            .transpose()?;
+        if volume.is_none() && silhouette.is_none() {
+            return Err(self.invalid(
+                "volume",
+                "the scene has nothing to score: add a [volume] or [silhouette] table",
+            ));
+        }
+
+        Ok(Scene {
+            path: self.path.to_owned(),
+            generator,
+            meshes,
+            limits,
+            optimal_len,
+            length,
+            volume,
+            silhouette,
+        })
+    }
+
+    fn limits(&self, l: &LimitsFile) -> Result<(Limits, u32), SceneError> {
+        if l.min_len == 0 {
+            return Err(self.invalid("limits.min_len", "must be at least 1 (the root gene)"));
+        }
+        if l.max_len < l.min_len {
+            return Err(self.invalid(
+                "limits.max_len",
+                format!("{} is below limits.min_len = {}", l.max_len, l.min_len),
+            ));
+        }
+        if !(l.min_len..=l.max_len).contains(&l.optimal_len) {
+            return Err(self.invalid(
+                "limits.optimal_len",
+                format!(
+                    "{} must lie between limits.min_len = {} and limits.max_len = {}",
+                    l.optimal_len, l.min_len, l.max_len
+                ),
+            ));
+        }
+        if l.max_depth == 0 {
+            return Err(self.invalid("limits.max_depth", "must be at least 1 (the root)"));
+        }
+        let limits = Limits {
+            min_len: l.min_len,
+            max_len: l.max_len,
+            max_depth: l.max_depth,
+        };
+        Ok((limits, l.optimal_len))
+    }
+
+    fn form(
+        &self,
+        table: &str,
+        form: FormName,
+        good: f64,
+        bad: f64,
+        overlap: f64,
+    ) -> Result<Form, SceneError> {
+        Ok(match form {
+            FormName::Smooth => Form::Smooth {
+                good: self.finite(&format!("{table}.good"), good)?,
+                bad: self.finite(&format!("{table}.bad"), bad)?,
+            },
+            FormName::Weighted => Form::Weighted {
+                overlap: self.finite(&format!("{table}.overlap"), overlap)?,
+            },
+        })
+    }
+
+    fn volume(&self, v: &VolumeFile, form: FormName) -> Result<VolumeGoal, SceneError> {
+        let grid = Grid::new(
+            Vec3::from(v.grid.min),
+            Vec3::from(v.grid.max),
+            v.grid.resolution,
+        )
+        .map_err(|err| self.invalid("volume.grid", err.to_string()))?;
+        if v.target.is_empty() {
+            return Err(self.invalid(
+                "volume.target",
+                "no target: add at least one [[volume.target]] with a `mesh`",
+            ));
+        }
+        let mut targets = Vec::with_capacity(v.target.len());
+        for (i, t) in v.target.iter().enumerate() {
+            let key = format!("volume.target[{i}]");
+            let path = self.file(&format!("{key}.mesh"), &t.mesh)?;
+            let mesh = Mesh::from_obj(&path)
+                .map_err(|err| self.invalid(format!("{key}.mesh"), err.to_string()))?;
+            targets.push(VolumeTarget {
+                name: t.mesh.clone(),
+                mesh,
+                inside: self.finite(&format!("{key}.inside"), t.inside)?,
+                outside: self.finite(&format!("{key}.outside"), t.outside)?,
+            });
+        }
+        let form = self.form("volume", form, v.good, v.bad, v.overlap)?;
+        Ok(VolumeGoal {
+            grid,
+            targets,
+            form,
+        })
+    }
+
+    fn silhouette(&self, s: &SilhouetteFile, form: FormName) -> Result<SilhouetteGoal, SceneError> {
+        if s.target.is_empty() {
+            return Err(self.invalid(
+                "silhouette.target",
+                "no target: add at least one [[silhouette.target]] with an `image` and a `camera`",
+            ));
+        }
+        let targets = s
+            .target
+            .iter()
+            .enumerate()
+            .map(|(i, t)| self.image_target(&format!("silhouette.target[{i}]"), t))
+            .collect::<Result<Vec<_>, _>>()?;
+        let form = self.form("silhouette", form, s.good, s.bad, 0.0)?;
+        Ok(SilhouetteGoal { targets, form })
+    }
+
+    fn image_target(&self, key: &str, t: &ImageTargetFile) -> Result<ImageTarget, SceneError> {
+        let camera = self.camera(&format!("{key}.camera"), &t.camera)?;
+        let image_key = format!("{key}.image");
+        let path = self.file(&image_key, &t.image)?;
+        let image = image::open(&path).map_err(|err| {
+            self.invalid(
+                &image_key,
+                format!("cannot read `{}`: {err}", path.display()),
+            )
+        })?;
+        let (width, height) = (image.width(), image.height());
+        if (width, height) != (t.camera.width, t.camera.height) {
+            return Err(self.invalid(
+                &image_key,
+                format!(
+                    "the image is {width} x {height} pixels but its camera renders {} x {}; \
+                     make them equal",
+                    t.camera.width, t.camera.height
+                ),
+            ));
+        }
+        let on = f64::from(t.on.unwrap_or(1.0));
+        let off = f64::from(t.off.unwrap_or(-1.0));
+        let on = self.finite(&format!("{key}.on"), on)? as f32;
+        let off = self.finite(&format!("{key}.off"), off)? as f32;
+        let name = t.image.clone();
+        let target = match t.kind {
+            ImageKind::Mask => ImageTarget::from_mask(name, &image, camera, on, off),
+            ImageKind::Weights => ImageTarget::from_weight_map(name, &image, camera, on, off),
+        };
+        target.map_err(|err| self.invalid(&image_key, err.to_string()))
+    }
+
+    fn camera(&self, key: &str, c: &CameraFile) -> Result<Camera, SceneError> {
+        if c.width == 0 || c.height == 0 {
+            return Err(self.invalid(
+                key,
+                format!(
+                    "the image size {} x {} must be at least 1 x 1",
+                    c.width, c.height
+                ),
+            ));
+        }
+        let orbit = [
+            c.phi.is_some(),
+            c.theta.is_some(),
+            c.radius.is_some(),
+            c.lookat.is_some(),
+            c.fov.is_some(),
+            c.near.is_some(),
+            c.far.is_some(),
+        ];
+        let matrices = [c.view.is_some(), c.projection.is_some()];
+        let camera = match (orbit.iter().any(|&b| b), matrices.iter().any(|&b| b)) {
+            (true, false) => {
+                let missing: Vec<&str> = ["phi", "theta", "radius", "lookat", "fov", "near", "far"]
+                    .into_iter()
+                    .zip(orbit)
+                    .filter(|&(_, present)| !present)
+                    .map(|(name, _)| name)
+                    .collect();
+                if !missing.is_empty() {
+                    return Err(self.invalid(
+                        key,
+                        format!("an orbit camera also needs {}", missing.join(", ")),
+                    ));
+                }
+                Camera::Orbit(OrbitCamera {
+                    phi: c.phi.unwrap_or_default(),
+                    theta: c.theta.unwrap_or_default(),
+                    radius: c.radius.unwrap_or_default(),
+                    lookat: Vec3::from(c.lookat.unwrap_or_default()),
+                    fov_degrees: c.fov.unwrap_or_default(),
+                    near: c.near.unwrap_or_default(),
+                    far: c.far.unwrap_or_default(),
+                })
+            }
+            (false, true) => match (c.view, c.projection) {
+                (Some(view), Some(projection)) => Camera::Matrices {
+                    view: Mat4::from_cols_array_2d(&view).transpose(),
+                    projection: Mat4::from_cols_array_2d(&projection).transpose(),
+                },
+                _ => {
+                    return Err(self.invalid(
+                        key,
+                        "a matrix camera needs both `view` and `projection` (4 rows of 4 numbers each)",
+                    ));
+                }
+            },
+            (true, true) => {
+                return Err(self.invalid(
+                    key,
+                    "give either an orbit camera (phi, theta, radius, lookat, fov, near, far) \
+                     or matrices (view, projection), not both",
+                ));
+            }
+            (false, false) => {
+                return Err(self.invalid(
+                    key,
+                    "no camera: give phi, theta, radius, lookat, fov, near and far, \
+                     or view and projection matrices",
+                ));
+            }
+        };
+        camera
+            .validate()
+            .map_err(|err| self.invalid(key, err.to_string()))?;
+        Ok(camera)
+    }
+}

@@ -1,0 +1,252 @@
+//! Scene files: the paper scenes load, and every kind of mistake is refused with the
+//! file, the key and the reason.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use shapegen::scene::{Scene, SceneError};
+
+/// A folder with a target mesh (`cube.obj`), an 8 x 6 target image (`target.png`) and
+/// whatever scene text a test writes.
+struct Fixture {
+    dir: tempfile::TempDir,
+}
+
+const VOLUME: &str = r#"
+generator = "spaceship"
+[limits]
+min_len = 4
+optimal_len = 10
+max_len = 100
+max_depth = 15
+[volume]
+grid = { min = [-1, -1, -1], max = [1, 1, 1], resolution = [8, 8, 8] }
+[[volume.target]]
+mesh = "cube.obj"
+"#;
+
+const SILHOUETTE: &str = r#"
+generator = "city"
+[limits]
+min_len = 1
+optimal_len = 100
+max_len = 201
+max_depth = 8
+[[silhouette.target]]
+image = "target.png"
+camera = { phi = 0, theta = 0, radius = 5, lookat = [0, 0, 0], fov = 60, near = 0.1, far = 100, width = 8, height = 6 }
+"#;
+
+impl Fixture {
+    fn new() -> Fixture {
+        let dir = tempfile::tempdir().unwrap();
+        fs::write(dir.path().join("cube.obj"), shapegen_cube_obj()).unwrap();
+        image::GrayImage::from_fn(8, 6, |x, _| image::Luma([if x < 4 { 0 } else { 255 }]))
+            .save(dir.path().join("target.png"))
+            .unwrap();
+        Fixture { dir }
+    }
+
+    fn path(&self) -> PathBuf {
+        self.dir.path().join("scene.toml")
+    }
+
+    fn load(&self, text: &str) -> Result<Scene, SceneError> {
+        fs::write(self.path(), text).unwrap();
+        Scene::load(self.path())
+    }
+
+    /// Loads `text`, expecting an error about `key` whose message holds `reason`.
+    fn refuses(&self, text: &str, key: &str, reason: &str) {
+        let err = self.load(text).expect_err("the scene must be refused");
+        let message = err.to_string();
+        assert!(
+            message.contains(&self.path().display().to_string()),
+            "names the file: {message}"
+        );
+        assert!(message.contains(key), "names `{key}`: {message}");
+        assert!(message.contains(reason), "says `{reason}`: {message}");
+    }
+}
+
+fn shapegen_cube_obj() -> String {
+    let mut obj = String::new();
+    for i in 0..8 {
+        let c = |bit: i32| if i & bit == 0 { -0.5 } else { 0.5 };
+        obj += &format!("v {} {} {}\n", c(1), c(2), c(4));
+    }
+    // Faces of the cube on vertices numbered by their (x, y, z) bits, counter-clockwise
+    // from outside.
+    for f in [
+        [1, 3, 7, 5],
+        [2, 6, 8, 4],
+        [1, 5, 6, 2],
+        [3, 4, 8, 7],
+        [1, 2, 4, 3],
+        [5, 7, 8, 6],
+    ] {
+        obj += &format!("f {} {} {} {}\n", f[0], f[1], f[2], f[3]);
+    }
+    obj
+}
+
+#[test]
+fn well_formed_scenes_load() {
+    let fixture = Fixture::new();
+    let volume = fixture.load(VOLUME).unwrap();
+    assert_eq!(volume.generator, generators::Published::Spaceship);
+    assert_eq!((volume.limits.min_len, volume.optimal_len), (4, 10));
+    assert!(volume.volume.is_some() && volume.silhouette.is_none());
+    let silhouette = fixture.load(SILHOUETTE).unwrap();
+    assert!(silhouette.volume.is_none());
+    assert_eq!(silhouette.silhouette.unwrap().targets.len(), 1);
+}
+
+#[test]
+fn paper_scenes_load() {
+    let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper");
+    if !Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/paper-scenes")
+        .is_dir()
+    {
+        eprintln!("skipping: the published scene files (../shared/paper-scenes) are absent");
+        return;
+    }
+    for name in ["spaceship_volume", "city_whale", "tree_sketch1"] {
+        let scene = Scene::load(scenes.join(format!("{name}.toml")))
+            .unwrap_or_else(|err| panic!("{name}: {err}"));
+        assert_eq!(scene.limits.min_len, 4, "{name}");
+    }
+}
+
+#[test]
+fn unknown_keys_are_refused_with_their_line() {
+    let fixture = Fixture::new();
+    let text = VOLUME.replace("[volume]\n", "[volume]\ngird = 3\n");
+    fixture.refuses(&text, "gird", "line 9");
+    fixture.refuses(&format!("{VOLUME}\nseed = 1\n"), "seed", "unknown field");
+}
+
+#[test]
+fn unknown_generators_are_refused() {
+    let fixture = Fixture::new();
+    let text = VOLUME.replace("\"spaceship\"", "\"castle\"");
+    fixture.refuses(&text, "generator", "spaceship, tree and city");
+}
+
+#[test]
+fn missing_files_are_refused() {
+    let fixture = Fixture::new();
+    fixture.refuses(
+        &VOLUME.replace("cube.obj", "nowhere.obj"),
+        "volume.target[0].mesh",
+        "relative to the scene file",
+    );
+    fixture.refuses(
+        &SILHOUETTE.replace("target.png", "nowhere.png"),
+        "silhouette.target[0].image",
+        "not a file",
+    );
+    let text = format!("{VOLUME}\n[meshes]\ntrunk = \"missing/trunk.obj\"\n");
+    fixture.refuses(&text, "meshes.trunk", "not a file");
+}
+
+#[test]
+fn bad_limits_are_refused() {
+    let fixture = Fixture::new();
+    fixture.refuses(
+        &VOLUME.replace("max_len = 100", "max_len = 3"),
+        "limits.max_len",
+        "below limits.min_len",
+    );
+    fixture.refuses(
+        &VOLUME.replace("optimal_len = 10", "optimal_len = 200"),
+        "limits.optimal_len",
+        "between",
+    );
+    fixture.refuses(
+        &VOLUME.replace("max_depth = 15", "max_depth = 0"),
+        "limits.max_depth",
+        "at least 1",
+    );
+}
+
+#[test]
+fn empty_or_inverted_grids_are_refused() {
+    let fixture = Fixture::new();
+    fixture.refuses(
+        &VOLUME.replace("max = [1, 1, 1]", "max = [1, -1, 1]"),
+        "volume.grid",
+        "min",
+    );
+    fixture.refuses(
+        &VOLUME.replace("max = [1, 1, 1]", "max = [1, 1, -1]"),
+        "volume.grid",
+        "min",
+    );
+    fixture.refuses(
+        &VOLUME.replace("resolution = [8, 8, 8]", "resolution = [8, 0, 8]"),
+        "volume.grid",
+        "resolution",
+    );
+    fixture.refuses(
+        &VOLUME.replace("[[volume.target]]\nmesh = \"cube.obj\"\n", ""),
+        "volume.target",
+        "no target",
+    );
+}
+
+#[test]
+fn images_must_match_their_camera() {
+    let fixture = Fixture::new();
+    fixture.refuses(
+        &SILHOUETTE.replace("width = 8", "width = 800"),
+        "silhouette.target[0].image",
+        "8 x 6 pixels but its camera renders 800 x 6",
+    );
+}
+
+#[test]
+fn cameras_are_checked() {
+    let fixture = Fixture::new();
+    fixture.refuses(
+        &SILHOUETTE.replace("fov = 60, ", ""),
+        "silhouette.target[0].camera",
+        "also needs fov",
+    );
+    fixture.refuses(
+        &SILHOUETTE.replace("near = 0.1", "near = -1"),
+        "silhouette.target[0].camera",
+        "near",
+    );
+    fixture.refuses(
+        &SILHOUETTE.replace(
+            "phi = 0, theta = 0, radius = 5, lookat = [0, 0, 0], fov = 60, near = 0.1, far = 100, ",
+            "",
+        ),
+        "silhouette.target[0].camera",
+        "no camera",
+    );
+}
+
+#[test]
+fn bad_values_are_refused() {
+    let fixture = Fixture::new();
+    fixture.refuses(
+        &format!("{VOLUME}\n[fitness]\nlength = -1\n"),
+        "fitness.length",
+        ">= 0",
+    );
+    fixture.refuses(
+        &VOLUME.replace("mesh = \"cube.obj\"", "mesh = \"cube.obj\"\ninside = nan"),
+        "volume.target[0].inside",
+        "finite",
+    );
+    fixture.refuses(
+        &format!("{VOLUME}\n[fitness]\nform = \"fancy\"\n"),
+        "form",
+        "smooth",
+    );
+    let nothing = VOLUME.split("[volume]").next().unwrap();
+    fixture.refuses(nothing, "volume", "nothing to score");
+}
