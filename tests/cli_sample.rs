@@ -128,7 +128,7 @@ fn bad_input_is_refused_with_a_clear_message() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("out");
     let out = out.to_str().unwrap();
-    let cases: [(&[&str], &str); 3] = [
+    let cases: [(&[&str], &str); 4] = [
         (
             &["sample", "-g", "house", "-o", out],
             "unknown generator `house`; the published generators are spaceship, tree and city",
@@ -140,6 +140,10 @@ fn bad_input_is_refused_with_a_clear_message() {
         (
             &["--threads", "0", "sample", "-g", "tree", "-o", out],
             "--threads",
+        ),
+        (
+            &["sample", "-g", "city", "--genes", "500", "-o", out],
+            "--genes 500 must lie between 1 and the largest genome, 300 genes",
         ),
     ];
     for (args, expected) in cases {
@@ -156,4 +160,17 @@ fn bad_input_is_refused_with_a_clear_message() {
     assert!(!run.status.success());
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(stderr.contains(file.to_str().unwrap()), "{stderr}");
+}
+
+#[test]
+fn genes_grows_models_to_a_length() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().to_str().unwrap();
+    let run = shapegen(&["sample", "-g", "tree", "-n", "5", "--genes", "150", "-o", out]);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let set = GenomeSet::<Tree>::load(tmp.path().join("genomes.json")).unwrap();
+    // Random genomes are grown to a length drawn around the one asked for; drawn from
+    // the generator's own distribution, trees are a few dozen genes.
+    let mean = set.genomes.iter().map(|g| g.len()).sum::<usize>() / set.genomes.len();
+    assert!((100..=200).contains(&mean), "mean length {mean}");
 }

@@ -250,3 +250,50 @@ fn bad_values_are_refused() {
     let nothing = VOLUME.split("[volume]").next().unwrap();
     fixture.refuses(nothing, "volume", "nothing to score");
 }
+
+/// Scores the genome file beside each of the project's own scenes' targets with the
+/// scene itself: each target was made from that genome, so it scores at the optimum.
+#[test]
+fn project_scenes_are_reachable() {
+    use generators::GeneratorVisitor;
+    use shapegen::genome::Limits;
+    use shapegen::scene::{BackendChoice, SceneScorer};
+    use shapegen::score::InstanceBatch;
+    use shapegen::{Genome, Grammar};
+
+    struct Check<'a>(&'a Scene, &'a Path);
+    impl GeneratorVisitor for Check<'_> {
+        type Output = (f64, shapegen::scene::SceneCounts);
+        fn visit<G: Grammar>(self, _: Limits) -> Self::Output {
+            let genome = Genome::<G>::load_json(self.1).unwrap();
+            let scorer = SceneScorer::new::<G>(self.0).unwrap();
+            let backend = scorer.on(BackendChoice::Cpu, None).unwrap();
+            let mut batch = InstanceBatch::new();
+            batch.push_genome(&genome);
+            let mut counts = Vec::new();
+            backend.count(&batch, &mut counts).unwrap();
+            (scorer.fitness(&counts[0], genome.len()), counts[0])
+        }
+    }
+
+    let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    for (name, optimum) in [
+        ("city_skyline", 1.0),
+        ("spaceship_fill", 2.0),
+        ("tree_sketch", 1.0),
+    ] {
+        let scene = Scene::load(scenes.join(format!("{name}.toml"))).unwrap();
+        let genome = scenes.join(format!("targets/{name}.genome.json"));
+        let (fitness, counts) = scene.generator.visit(Check(&scene, &genome));
+        if let Some(v) = counts.volume {
+            assert_eq!(v.outside + v.out_of_grid, 0, "{name}: {v:?}");
+        }
+        if let Some(s) = counts.silhouette {
+            assert_eq!(s.targets()[0].off_target, 0, "{name}: {s:?}");
+        }
+        assert!(
+            (fitness - optimum).abs() < 1e-3,
+            "{name}: fitness {fitness}"
+        );
+    }
+}

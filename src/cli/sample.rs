@@ -35,6 +35,11 @@ pub struct SampleArgs {
     /// Deepest derivation tree (default: the generator's paper scene).
     #[arg(long, value_name = "LEVELS")]
     max_depth: Option<u32>,
+    /// Grow each model to about this many genes (the optimizers' initial population)
+    /// instead of drawing it from the generator's own distribution, whose models are
+    /// often small.
+    #[arg(long, value_name = "GENES")]
+    genes: Option<u32>,
 }
 
 /// Runs `shapegen sample`.
@@ -57,6 +62,13 @@ impl GeneratorVisitor for Sample<'_> {
             max_depth: args.max_depth.unwrap_or(paper.max_depth),
         };
         let ops = Operators::<G>::new(limits).context("bad --max-len or --max-depth")?;
+        if let Some(genes) = args.genes {
+            anyhow::ensure!(
+                (1..=limits.max_len).contains(&genes),
+                "--genes {genes} must lie between 1 and the largest genome, {} genes",
+                limits.max_len
+            );
+        }
         let meshes = generators::default_meshes()
             .bind(G::GRAPH)
             .context("the generator's meshes")?;
@@ -67,7 +79,13 @@ impl GeneratorVisitor for Sample<'_> {
             .into_par_iter()
             .map_init(
                 || ops.clone(),
-                |ops, i| ops.sample(&mut model_rng(args.seed, i)),
+                |ops, i| {
+                    let rng = &mut model_rng(args.seed, i);
+                    match args.genes {
+                        Some(genes) => ops.random(genes, rng),
+                        None => ops.sample(rng),
+                    }
+                },
             )
             .collect();
 
