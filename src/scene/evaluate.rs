@@ -211,3 +211,4 @@ impl Backend<'_> {
         Ok(())
     }
 }
+
