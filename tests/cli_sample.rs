@@ -166,8 +166,14 @@ fn bad_input_is_refused_with_a_clear_message() {
 fn genes_grows_models_to_a_length() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().to_str().unwrap();
-    let run = shapegen(&["sample", "-g", "tree", "-n", "5", "--genes", "150", "-o", out]);
-    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let run = shapegen(&[
+        "sample", "-g", "tree", "-n", "5", "--genes", "150", "-o", out,
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
     let set = GenomeSet::<Tree>::load(tmp.path().join("genomes.json")).unwrap();
     // Random genomes are grown to a length drawn around the one asked for; drawn from
     // the generator's own distribution, trees are a few dozen genes.
