@@ -211,4 +211,3 @@ impl Backend<'_> {
         Ok(())
     }
 }
-
