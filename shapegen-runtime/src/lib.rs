@@ -11,6 +11,7 @@ pub mod geometry;
 pub mod gpu;
 pub mod graph;
 pub mod ops;
+pub mod optimize;
 pub mod param;
 pub mod score;
 

@@ -1,0 +1,61 @@
+//! Errors of the optimizers.
+
+use crate::genome::LimitsError;
+
+use super::EvaluateError;
+
+/// A settings field outside its valid range.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{field} = {value} is invalid: it must be {valid}")]
+pub struct SettingsError {
+    /// The field's name, as in scene files.
+    pub field: &'static str,
+    /// The value given, printed.
+    pub value: String,
+    /// The valid range, in words.
+    pub valid: &'static str,
+}
+
+impl SettingsError {
+    /// A settings error for `field` holding `value`, which must be `valid`.
+    pub(crate) fn new(field: &'static str, value: impl ToString, valid: &'static str) -> Self {
+        SettingsError {
+            field,
+            value: value.to_string(),
+            valid,
+        }
+    }
+}
+
+/// Checks that `value` lies in `[lo, hi]` (and is not NaN).
+pub(crate) fn check_range(
+    field: &'static str,
+    value: f64,
+    lo: f64,
+    hi: f64,
+    valid: &'static str,
+) -> Result<(), SettingsError> {
+    if value >= lo && value <= hi {
+        Ok(())
+    } else {
+        Err(SettingsError::new(field, value, valid))
+    }
+}
+
+/// Why an optimizer could not start, resume or go on.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum OptimizeError {
+    /// A settings field is out of range.
+    #[error(transparent)]
+    Settings(#[from] SettingsError),
+    /// The genome limits cannot be met.
+    #[error("genome limits: {0}")]
+    Limits(#[from] LimitsError),
+    /// The evaluator failed.
+    #[error(transparent)]
+    Evaluate(#[from] EvaluateError),
+    /// A checkpoint does not fit its settings (population size, fitness count, ...).
+    #[error("checkpoint: {0}")]
+    Checkpoint(String),
+}

@@ -1,0 +1,440 @@
+//! The genetic algorithm, the paper's Algorithm 1.
+
+use rand::{Rng, RngExt};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use super::error::check_range;
+use super::fitness::{Roulette, bits_vec, compare, rank};
+use super::run::{Method, Progress, drive, grammar_struct_traits, stream};
+use super::{Budget, Evaluator, Observer, OptimizeError, RunResult, SettingsError};
+use crate::derive::Grammar;
+use crate::genome::{Genome, Limits};
+use crate::ops::Operators;
+
+/// Settings of the [`Ga`]. Loads from scene files with serde; missing fields take the
+/// [`Default`] values, unknown fields are errors.
+///
+/// The default is the good setting of the CESCG study (ALGORITHMS.md, section 4):
+/// population 200, elitism 30, initial length 20, 50 generations, mutation 30% with
+/// uniform grow / cut / alter, tournament of 10. Crossover retries
+/// [`CROSSOVER_RETRIES`](crate::ops::CROSSOVER_RETRIES) times, as the original did.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct GaSettings {
+    /// Individuals per generation; at least 2.
+    pub population: u32,
+    /// Best individuals copied unchanged into the next generation (their fitness is
+    /// kept, not recomputed); less than `population`.
+    pub elitism: u32,
+    /// Initial genomes are grown from the axiom to a length drawn uniformly from
+    /// `[L/2, 3L/2]` around this `L` (within the limits); at least 1.
+    pub initial_length: u32,
+    /// Generations after the initial one, the default generation budget.
+    pub generations: u64,
+    /// Chance that a pair of parents is mutated instead of crossed over; in `[0, 1]`.
+    pub mutation_probability: f64,
+    /// Relative weight of grow among mutations; finite and not negative.
+    pub grow_weight: f64,
+    /// Relative weight of cut among mutations; finite and not negative.
+    pub cut_weight: f64,
+    /// Relative weight of alter among mutations; finite and not negative. The three
+    /// weights must not all be 0.
+    pub alter_weight: f64,
+    /// Size of the tournament choosing the first parent; at least 1.
+    pub tournament: u32,
+}
+
+impl Default for GaSettings {
+    fn default() -> Self {
+        GaSettings {
+            population: 200,
+            elitism: 30,
+            initial_length: 20,
+            generations: 50,
+            mutation_probability: 0.3,
+            grow_weight: 1.0,
+            cut_weight: 1.0,
+            alter_weight: 1.0,
+            tournament: 10,
+        }
+    }
+}
+
+impl GaSettings {
+    /// The paper's spaceship-volume scene: population 150, elitism 30, initial length 50,
+    /// 130 generations, mutation 30% split grow / cut / alter 45 / 45 / 10.
+    pub fn paper_spaceship() -> Self {
+        GaSettings {
+            population: 150,
+            elitism: 30,
+            initial_length: 50,
+            generations: 130,
+            mutation_probability: 0.3,
+            grow_weight: 45.0,
+            cut_weight: 45.0,
+            alter_weight: 10.0,
+            tournament: 10,
+        }
+    }
+
+    /// The paper's tree-sketch scene: population 200, elitism 30, initial length 250,
+    /// 1500 generations, mutation 30% split 35 / 35 / 30.
+    pub fn paper_tree() -> Self {
+        GaSettings {
+            population: 200,
+            elitism: 30,
+            initial_length: 250,
+            generations: 1500,
+            mutation_probability: 0.3,
+            grow_weight: 35.0,
+            cut_weight: 35.0,
+            alter_weight: 30.0,
+            tournament: 10,
+        }
+    }
+
+    /// The paper's city-skyline (whale) scene: population 100, elitism 30, initial
+    /// length 50, 100 generations, mutation 30% split 45 / 45 / 10.
+    pub fn paper_city() -> Self {
+        GaSettings {
+            population: 100,
+            initial_length: 50,
+            generations: 100,
+            ..GaSettings::paper_spaceship()
+        }
+    }
+
+    /// Checks every field; the error names the first one out of range.
+    ///
+    /// ```
+    /// use shapegen_runtime::optimize::GaSettings;
+    ///
+    /// let bad = GaSettings { elitism: 200, ..GaSettings::default() };
+    /// assert_eq!(bad.validate().unwrap_err().field, "elitism");
+    /// ```
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        if self.population < 2 {
+            return Err(SettingsError::new(
+                "population",
+                self.population,
+                "at least 2",
+            ));
+        }
+        if self.elitism >= self.population {
+            return Err(SettingsError::new(
+                "elitism",
+                self.elitism,
+                "less than the population",
+            ));
+        }
+        if self.initial_length == 0 {
+            return Err(SettingsError::new("initial_length", 0, "at least 1"));
+        }
+        check_range(
+            "mutation_probability",
+            self.mutation_probability,
+            0.0,
+            1.0,
+            "between 0 and 1",
+        )?;
+        let valid = "finite and not negative";
+        check_range("grow_weight", self.grow_weight, 0.0, f64::MAX, valid)?;
+        check_range("cut_weight", self.cut_weight, 0.0, f64::MAX, valid)?;
+        check_range("alter_weight", self.alter_weight, 0.0, f64::MAX, valid)?;
+        let total = self.grow_weight + self.cut_weight + self.alter_weight;
+        if !(total > 0.0 && total.is_finite()) {
+            return Err(SettingsError::new(
+                "alter_weight",
+                self.alter_weight,
+                "positive when grow_weight and cut_weight are 0 (the weights' sum must be finite and positive)",
+            ));
+        }
+        if self.tournament == 0 {
+            return Err(SettingsError::new("tournament", 0, "at least 1"));
+        }
+        Ok(())
+    }
+
+    /// A budget of [`generations`](Self::generations) generations.
+    pub fn budget(&self) -> Budget {
+        Budget::generations(self.generations)
+    }
+}
+
+/// A checkpoint of a [`Ga`]: serialize it (e.g. with `serde_json`) and give it to
+/// [`Ga::resume`] to go on exactly as an uninterrupted run would.
+///
+/// The random streams are fixed by the seed and the generation number, so the state
+/// holds no generator positions beyond those.
+#[derive(Serialize, Deserialize)]
+#[serde(
+    deny_unknown_fields,
+    bound(serialize = "G: Grammar", deserialize = "G: Grammar")
+)]
+pub struct GaState<G> {
+    /// The settings.
+    pub settings: GaSettings,
+    /// The genome limits.
+    pub limits: Limits,
+    /// Generation, evaluations, best so far, history.
+    pub progress: Progress<G>,
+    /// The current population, best first after the first generation.
+    pub population: Vec<Genome<G>>,
+    /// Its cached fitness.
+    #[serde(with = "bits_vec")]
+    pub fitness: Vec<f64>,
+}
+
+grammar_struct_traits!(GaState {
+    settings,
+    limits,
+    progress,
+    population,
+    fitness
+});
+
+/// The genetic algorithm (ALGORITHMS.md, section 4): each generation keeps the
+/// `elitism` best unchanged, with their cached fitness, and fills the rest in pairs:
+/// parent 1 by k-tournament, parent 2 by roulette on shifted fitness (see below); with
+/// the mutation probability both are copied and mutated once each (grow, cut or alter
+/// by their weights; a mutation the limits forbid leaves the copy as it is), otherwise
+/// they are crossed over (if no crossover is found the children are copies of the
+/// parents). Only the new children are evaluated.
+///
+/// Fitness: NaN loses every tournament and has roulette weight 0; roulette weights are
+/// `f - f_min` over finite values, or uniform over the `+inf` individuals if any.
+///
+/// Breeding runs in parallel with rayon; every pair draws from its own stream
+/// (seed, generation, pair), so results never depend on the thread count.
+///
+/// ```
+/// use shapegen_runtime::optimize::{Budget, FnEvaluator, Ga, GaSettings, Silent};
+/// use shapegen_runtime::prelude::*;
+///
+/// generator! {
+///     /// A chain of blocks.
+///     pub Chain {
+///         axiom Seg;
+///         node Seg {
+///             children { next: Seg = 0.5 }
+///             derive(s) {
+///                 s.emit(CUBE);
+///                 if let Some(next) = next { s.translate(vec3(0.0, 1.0, 0.0)).derive(next); }
+///             }
+///         }
+///     }
+/// }
+///
+/// // Look for chains of 12 blocks.
+/// let settings = GaSettings { population: 20, elitism: 4, initial_length: 4, ..GaSettings::default() };
+/// let mut ga = Ga::<Chain>::new(settings, Limits::new(1, 30, 30)?, 7)?;
+/// let mut eval = FnEvaluator(|g: &Genome<Chain>| -(g.len() as f64 - 12.0).abs());
+/// let result = ga.run(&mut eval, &Budget::generations(30), &mut Silent)?;
+/// assert_eq!(result.best.len(), 12);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub struct Ga<G> {
+    settings: GaSettings,
+    ops: Operators<G>,
+    progress: Progress<G>,
+    population: Vec<Genome<G>>,
+    fitness: Vec<f64>,
+    next: Vec<Genome<G>>,
+    next_fitness: Vec<f64>,
+    order: Vec<u32>,
+    roulette: Roulette,
+}
+
+impl<G: Grammar> std::fmt::Debug for Ga<G> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Ga")
+            .field("settings", &self.settings)
+            .field("progress", &self.progress)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<G: Grammar> Ga<G> {
+    /// A GA with these settings, keeping genomes within `limits`, seeded with `seed`.
+    pub fn new(settings: GaSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {
+        settings.validate()?;
+        let n = settings.population as usize;
+        let empty = || Genome::from_parts(Vec::new(), 0);
+        Ok(Ga {
+            settings,
+            ops: Operators::new(limits)?,
+            progress: Progress::new(seed),
+            population: (0..n).map(|_| empty()).collect(),
+            fitness: vec![f64::NAN; n],
+            next: (0..n).map(|_| empty()).collect(),
+            next_fitness: vec![f64::NAN; n],
+            order: Vec::with_capacity(n),
+            roulette: Roulette::default(),
+        })
+    }
+
+    /// Resumes from a checkpoint; fails if it does not fit its own settings.
+    pub fn resume(state: GaState<G>) -> Result<Self, OptimizeError> {
+        let mut ga = Ga::new(state.settings, state.limits, state.progress.seed)?;
+        let n = state.settings.population as usize;
+        let started = !state.progress.history.is_empty();
+        if started && (state.population.len() != n || state.fitness.len() != n) {
+            return Err(OptimizeError::Checkpoint(format!(
+                "{} genomes and {} fitness values for a population of {n}",
+                state.population.len(),
+                state.fitness.len()
+            )));
+        }
+        if started {
+            ga.population = state.population;
+            ga.fitness = state.fitness;
+        }
+        ga.progress = state.progress;
+        Ok(ga)
+    }
+
+    /// The state to resume from.
+    pub fn checkpoint(&self) -> GaState<G> {
+        GaState {
+            settings: self.settings,
+            limits: *self.ops.limits(),
+            progress: self.progress.clone(),
+            population: self.population.clone(),
+            fitness: self.fitness.clone(),
+        }
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &GaSettings {
+        &self.settings
+    }
+
+    /// Runs until `budget` or `observer` stops it; a later call goes on from there.
+    pub fn run(
+        &mut self,
+        evaluator: &mut impl Evaluator<G>,
+        budget: &Budget,
+        observer: &mut impl Observer<G>,
+    ) -> Result<RunResult<G>, OptimizeError> {
+        drive(self, evaluator, budget, observer)
+    }
+}
+
+impl<G: Grammar> Method<G> for Ga<G> {
+    fn step_cost(&self) -> u64 {
+        u64::from(self.settings.population - self.settings.elitism)
+    }
+
+    fn start<E: Evaluator<G>>(&mut self, evaluator: &mut E) -> Result<(), OptimizeError> {
+        let (seed, len) = (self.progress.seed, self.settings.initial_length);
+        let ops = &self.ops;
+        self.population.par_iter_mut().enumerate().for_each_init(
+            || ops.clone(),
+            |ops, (i, g)| ops.random_into(len, g, &mut stream(seed, 0, i as u64)),
+        );
+        evaluator.evaluate(&self.population, &mut self.fitness)?;
+        self.progress.evaluations += self.population.len() as u64;
+        Ok(())
+    }
+
+    fn step<E: Evaluator<G>>(&mut self, evaluator: &mut E) -> Result<(), OptimizeError> {
+        let elite = self.settings.elitism as usize;
+        rank(&self.fitness, &mut self.order);
+        self.roulette.build(&self.fitness);
+        for (k, &i) in self.order[..elite].iter().enumerate() {
+            self.next[k].clone_from(&self.population[i as usize]);
+            self.next_fitness[k] = self.fitness[i as usize];
+        }
+        let generation = self.progress.generation + 1;
+        let breed = Breed {
+            settings: &self.settings,
+            population: &self.population,
+            fitness: &self.fitness,
+            roulette: &self.roulette,
+        };
+        let (seed, ops) = (self.progress.seed, &self.ops);
+        self.next[elite..]
+            .par_chunks_mut(2)
+            .enumerate()
+            .for_each_init(
+                || (ops.clone(), Genome::from_parts(Vec::new(), 0)),
+                |(ops, spare), (pair, children)| {
+                    let rng = &mut stream(seed, generation, pair as u64);
+                    let (a, b) = match children {
+                        [a, b] => (a, b),
+                        [a] => (a, &mut *spare),
+                        _ => unreachable!("chunks hold one or two children"),
+                    };
+                    breed.pair(ops, a, b, rng);
+                },
+            );
+        evaluator.evaluate(&self.next[elite..], &mut self.next_fitness[elite..])?;
+        self.progress.evaluations += self.step_cost();
+        std::mem::swap(&mut self.population, &mut self.next);
+        std::mem::swap(&mut self.fitness, &mut self.next_fitness);
+        Ok(())
+    }
+
+    fn parts(&mut self) -> (&mut Progress<G>, &[Genome<G>], &[f64]) {
+        (&mut self.progress, &self.population, &self.fitness)
+    }
+}
+
+/// What breeding a pair reads: the current generation and its selection wheel.
+struct Breed<'a, G> {
+    settings: &'a GaSettings,
+    population: &'a [Genome<G>],
+    fitness: &'a [f64],
+    roulette: &'a Roulette,
+}
+
+impl<G: Grammar> Breed<'_, G> {
+    /// Breeds two children into `a` and `b`.
+    fn pair(
+        &self,
+        ops: &mut Operators<G>,
+        a: &mut Genome<G>,
+        b: &mut Genome<G>,
+        rng: &mut impl Rng,
+    ) {
+        let p1 = &self.population[self.tournament(rng)];
+        let p2 = &self.population[self.roulette.spin(rng)];
+        if rng.random::<f64>() < self.settings.mutation_probability {
+            a.clone_from(p1);
+            self.mutate(ops, a, rng);
+            b.clone_from(p2);
+            self.mutate(ops, b, rng);
+        } else if !ops.crossover_into(p1, p2, a, b, rng) {
+            a.clone_from(p1);
+            b.clone_from(p2);
+        }
+    }
+
+    /// Best of `tournament` individuals drawn uniformly with replacement (the first drawn
+    /// wins ties).
+    fn tournament(&self, rng: &mut impl Rng) -> usize {
+        let n = self.population.len();
+        let mut best = rng.random_range(0..n);
+        for _ in 1..self.settings.tournament {
+            let i = rng.random_range(0..n);
+            if compare(self.fitness[i], self.fitness[best]).is_gt() {
+                best = i;
+            }
+        }
+        best
+    }
+
+    /// One mutation, grow / cut / alter by their weights.
+    fn mutate(&self, ops: &mut Operators<G>, g: &mut Genome<G>, rng: &mut impl Rng) {
+        let s = self.settings;
+        let r = rng.random::<f64>() * (s.grow_weight + s.cut_weight + s.alter_weight);
+        if r < s.grow_weight {
+            ops.grow(g, rng);
+        } else if r < s.grow_weight + s.cut_weight {
+            ops.cut(g, rng);
+        } else {
+            ops.alter(g, rng);
+        }
+    }
+}

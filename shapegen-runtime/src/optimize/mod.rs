@@ -1,0 +1,32 @@
+//! Optimizers searching a grammar's derivation trees for models that score well, starting
+//! with the genetic algorithm ([`Ga`]).
+//!
+//! All are generic over the grammar and over an [`Evaluator`], which scores a whole
+//! population at once. They share:
+//! - [`Budget`]s of generations, evaluations and wall time (the first reached stops);
+//! - an [`Observer`] called after every generation with a [`Snapshot`], which can stop
+//!   the run;
+//! - determinism: every random choice comes from a ChaCha8 stream fixed by the seed, the
+//!   generation and the individual, so results never depend on the thread count;
+//! - checkpoints ([`GaState`]; serde) from which a resumed
+//!   run ends exactly as an uninterrupted one;
+//! - a [`RunResult`] with the best genome and the per-generation history.
+//!
+//! Fitness is higher-is-better. NaN is the worst value everywhere: it ranks last, has
+//! zero selection weight, is never accepted by a Metropolis test and never becomes the
+//! best so far while any other value exists. `+inf` and `-inf` are ordinary extremes in
+//! ranking; each method's documentation says how its weights treat them. Population
+//! statistics (mean, std) are over the finite values.
+
+mod error;
+mod evaluate;
+mod fitness;
+mod ga;
+mod run;
+
+pub use error::{OptimizeError, SettingsError};
+pub use evaluate::{EvaluateError, Evaluator, FnEvaluator};
+pub use ga::{Ga, GaSettings, GaState};
+pub use run::{
+    Budget, Control, HistoryEntry, Observer, Progress, RunResult, Silent, Snapshot, StopReason,
+};

@@ -1,0 +1,405 @@
+//! The optimizers on the published generators, with cheap deterministic evaluators
+//! computed from the derived instances.
+
+use generators::{City, Spaceship, city, spaceship};
+use glam::Vec3;
+use shapegen_runtime::optimize::*;
+use shapegen_runtime::prelude::*;
+
+/// City: buildings taller than 5 count 1 each, shorter ones cost 0.3 each.
+struct Skyline {
+    instances: Vec<Instance>,
+    calls: u64,
+    genomes: u64,
+}
+
+impl Skyline {
+    fn new() -> Self {
+        Skyline {
+            instances: Vec::new(),
+            calls: 0,
+            genomes: 0,
+        }
+    }
+
+    fn score(&mut self, g: &Genome<City>) -> f64 {
+        g.derive_into(&mut self.instances);
+        self.instances
+            .iter()
+            .map(|i| {
+                if i.transform.matrix3.y_axis.length() > 5.0 {
+                    1.0
+                } else {
+                    -0.3
+                }
+            })
+            .sum()
+    }
+}
+
+impl Evaluator<City> for Skyline {
+    fn evaluate(&mut self, genomes: &[Genome<City>], out: &mut [f64]) -> Result<(), EvaluateError> {
+        self.calls += 1;
+        self.genomes += genomes.len() as u64;
+        for (g, o) in genomes.iter().zip(out) {
+            *o = self.score(g);
+        }
+        Ok(())
+    }
+}
+
+/// Spaceship: minus the L1 distance of the model's bounding box to a target box.
+struct BoxTarget {
+    instances: Vec<Instance>,
+}
+
+impl BoxTarget {
+    const MIN: Vec3 = Vec3::new(-2.0, -0.5, -4.0);
+    const MAX: Vec3 = Vec3::new(2.0, 0.5, 4.0);
+
+    fn new() -> Self {
+        BoxTarget {
+            instances: Vec::new(),
+        }
+    }
+}
+
+impl Evaluator<Spaceship> for BoxTarget {
+    fn evaluate(
+        &mut self,
+        genomes: &[Genome<Spaceship>],
+        out: &mut [f64],
+    ) -> Result<(), EvaluateError> {
+        for (g, o) in genomes.iter().zip(out) {
+            g.derive_into(&mut self.instances);
+            let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+            for i in &self.instances {
+                let m = i.transform.matrix3;
+                let half = (m.x_axis.abs() + m.y_axis.abs() + m.z_axis.abs()) * 0.5;
+                let c = Vec3::from(i.transform.translation);
+                lo = lo.min(c - Vec3::from(half));
+                hi = hi.max(c + Vec3::from(half));
+            }
+            *o = if self.instances.is_empty() {
+                -100.0
+            } else {
+                -f64::from(
+                    (lo - BoxTarget::MIN).abs().element_sum()
+                        + (hi - BoxTarget::MAX).abs().element_sum(),
+                )
+            };
+        }
+        Ok(())
+    }
+}
+
+fn small_ga() -> GaSettings {
+    GaSettings {
+        population: 40,
+        elitism: 8,
+        initial_length: 30,
+        generations: 15,
+        ..GaSettings::paper_city()
+    }
+}
+
+fn initial_best<G: Grammar>(result: &RunResult<G>) -> f64 {
+    result.history[0].best
+}
+
+/// The history without wall-clock times, which differ between runs.
+fn timeless(h: &[HistoryEntry]) -> Vec<(u64, u64, u64, u64, u64)> {
+    h.iter()
+        .map(|e| {
+            (
+                e.generation,
+                e.evaluations,
+                e.best.to_bits(),
+                e.mean.to_bits(),
+                e.std.to_bits(),
+            )
+        })
+        .collect()
+}
+
+fn same_result<G: Grammar>(a: &RunResult<G>, b: &RunResult<G>) {
+    assert_eq!(a.best, b.best);
+    assert_eq!(a.best_fitness.to_bits(), b.best_fitness.to_bits());
+    assert_eq!(a.evaluations, b.evaluations);
+    assert_eq!(a.generations, b.generations);
+    assert_eq!(timeless(&a.history), timeless(&b.history));
+}
+
+fn threads<T: Send>(n: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(n)
+        .build()
+        .unwrap()
+        .install(f)
+}
+
+#[test]
+fn ga_improves_on_its_initial_population() {
+    for seed in [1, 2, 3] {
+        let mut ga = Ga::<City>::new(small_ga(), city::PAPER_LIMITS, seed).unwrap();
+        let r = ga
+            .run(&mut Skyline::new(), &small_ga().budget(), &mut Silent)
+            .unwrap();
+        assert!(
+            r.best_fitness > initial_best(&r) + 2.0,
+            "seed {seed}: {r:?}"
+        );
+        let mut ga = Ga::<Spaceship>::new(small_ga(), spaceship::PAPER_LIMITS, seed).unwrap();
+        let r = ga
+            .run(&mut BoxTarget::new(), &small_ga().budget(), &mut Silent)
+            .unwrap();
+        assert!(
+            r.best_fitness > initial_best(&r),
+            "seed {seed}: {:?}",
+            r.history
+        );
+        assert!(r.history.windows(2).all(|w| w[1].best >= w[0].best));
+    }
+}
+
+#[test]
+fn ga_beats_random_sampling_at_equal_evaluations() {
+    let settings = small_ga();
+    let mut wins = 0;
+    for seed in 0..5 {
+        let mut ga = Ga::<City>::new(settings, city::PAPER_LIMITS, seed).unwrap();
+        let r = ga
+            .run(&mut Skyline::new(), &settings.budget(), &mut Silent)
+            .unwrap();
+        let mut ops = Operators::<City>::new(city::PAPER_LIMITS).unwrap();
+        let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(seed);
+        let mut eval = Skyline::new();
+        let random_best = (0..r.evaluations)
+            .map(|_| {
+                let g = ops.random(settings.initial_length, &mut rng);
+                eval.score(&g)
+            })
+            .fold(f64::NEG_INFINITY, f64::max);
+        wins += u32::from(r.best_fitness > random_best);
+    }
+    assert_eq!(wins, 5);
+}
+
+#[test]
+fn ga_elites_are_not_reevaluated() {
+    let s = small_ga();
+    let mut ga = Ga::<City>::new(s, city::PAPER_LIMITS, 9).unwrap();
+    let mut eval = Skyline::new();
+    let r = ga
+        .run(&mut eval, &Budget::generations(5), &mut Silent)
+        .unwrap();
+    assert_eq!(eval.calls, 6);
+    let expected = u64::from(s.population) + 5 * u64::from(s.population - s.elitism);
+    assert_eq!(eval.genomes, expected);
+    assert_eq!(r.evaluations, expected);
+}
+
+#[test]
+fn ga_same_seed_same_result_at_any_thread_count() {
+    let run = || {
+        let mut ga = Ga::<City>::new(small_ga(), city::PAPER_LIMITS, 5).unwrap();
+        ga.run(&mut Skyline::new(), &Budget::generations(8), &mut Silent)
+            .unwrap()
+    };
+    same_result(&threads(1, run), &threads(2, run));
+}
+
+#[test]
+fn ga_resume_equals_uninterrupted() {
+    let full = Ga::<City>::new(small_ga(), city::PAPER_LIMITS, 4)
+        .unwrap()
+        .run(&mut Skyline::new(), &Budget::generations(10), &mut Silent)
+        .unwrap();
+    let mut first = Ga::<City>::new(small_ga(), city::PAPER_LIMITS, 4).unwrap();
+    first
+        .run(&mut Skyline::new(), &Budget::generations(4), &mut Silent)
+        .unwrap();
+    let json = serde_json::to_string(&first.checkpoint()).unwrap();
+    let state: GaState<City> = serde_json::from_str(&json).unwrap();
+    let resumed = Ga::resume(state)
+        .unwrap()
+        .run(&mut Skyline::new(), &Budget::generations(10), &mut Silent)
+        .unwrap();
+    same_result(&full, &resumed);
+}
+
+/// Scores like [`Skyline`] but gives NaN to every third genome and -inf/+inf to some.
+struct Poisoned(Skyline, u64);
+
+impl Evaluator<City> for Poisoned {
+    fn evaluate(&mut self, genomes: &[Genome<City>], out: &mut [f64]) -> Result<(), EvaluateError> {
+        self.0.evaluate(genomes, out)?;
+        for o in out.iter_mut() {
+            self.1 += 1;
+            if self.1.is_multiple_of(3) {
+                *o = f64::NAN;
+            } else if self.1.is_multiple_of(17) {
+                *o = f64::NEG_INFINITY;
+            }
+        }
+        Ok(())
+    }
+}
+
+#[test]
+fn ga_survives_nan_fitness() {
+    let mut ga = Ga::<City>::new(small_ga(), city::PAPER_LIMITS, 2).unwrap();
+    let r = ga
+        .run(
+            &mut Poisoned(Skyline::new(), 0),
+            &Budget::generations(10),
+            &mut Silent,
+        )
+        .unwrap();
+    assert!(r.best_fitness.is_finite() && r.best_fitness > initial_best(&r));
+    assert!(r.history.iter().all(|h| h.mean.is_finite()));
+    // All NaN: nothing breaks, the best stays NaN.
+    let mut ga = Ga::<City>::new(small_ga(), city::PAPER_LIMITS, 2).unwrap();
+    let r = ga
+        .run(
+            &mut FnEvaluator(|_: &Genome<City>| f64::NAN),
+            &Budget::generations(3),
+            &mut Silent,
+        )
+        .unwrap();
+    assert!(r.best_fitness.is_nan());
+    // +inf is the best value there is.
+    let mut ga = Ga::<City>::new(small_ga(), city::PAPER_LIMITS, 2).unwrap();
+    let r = ga
+        .run(
+            &mut FnEvaluator(|g: &Genome<City>| {
+                if g.len().is_multiple_of(7) {
+                    f64::INFINITY
+                } else {
+                    g.len() as f64
+                }
+            }),
+            &Budget::generations(3),
+            &mut Silent,
+        )
+        .unwrap();
+    assert_eq!(r.best_fitness, f64::INFINITY);
+}
+
+#[test]
+fn ga_settings_are_validated() {
+    let check = |s: GaSettings, field: &str| {
+        let e = s.validate().unwrap_err();
+        assert_eq!(e.field, field, "{e}");
+        assert!(matches!(
+            Ga::<City>::new(s, city::PAPER_LIMITS, 0),
+            Err(OptimizeError::Settings(_))
+        ));
+    };
+    let d = GaSettings::default();
+    check(GaSettings { population: 1, ..d }, "population");
+    check(GaSettings { elitism: 200, ..d }, "elitism");
+    check(
+        GaSettings {
+            initial_length: 0,
+            ..d
+        },
+        "initial_length",
+    );
+    check(
+        GaSettings {
+            mutation_probability: 1.5,
+            ..d
+        },
+        "mutation_probability",
+    );
+    check(
+        GaSettings {
+            mutation_probability: f64::NAN,
+            ..d
+        },
+        "mutation_probability",
+    );
+    check(
+        GaSettings {
+            cut_weight: -1.0,
+            ..d
+        },
+        "cut_weight",
+    );
+    check(
+        GaSettings {
+            grow_weight: 0.0,
+            cut_weight: 0.0,
+            alter_weight: 0.0,
+            ..d
+        },
+        "alter_weight",
+    );
+    check(GaSettings { tournament: 0, ..d }, "tournament");
+    for s in [
+        GaSettings::paper_spaceship(),
+        GaSettings::paper_tree(),
+        GaSettings::paper_city(),
+        d,
+    ] {
+        s.validate().unwrap();
+    }
+    let parsed: GaSettings = serde_json::from_str(r#"{"population": 50}"#).unwrap();
+    assert_eq!(
+        parsed,
+        GaSettings {
+            population: 50,
+            ..d
+        }
+    );
+    assert!(serde_json::from_str::<GaSettings>(r#"{"populaton": 50}"#).is_err());
+}
+
+#[test]
+fn ga_budgets_are_honoured() {
+    let s = small_ga();
+    let mut ga = Ga::<City>::new(s, city::PAPER_LIMITS, 3).unwrap();
+    let r = ga
+        .run(&mut Skyline::new(), &Budget::generations(3), &mut Silent)
+        .unwrap();
+    assert_eq!((r.generations, r.stopped), (3, StopReason::Generations));
+    assert_eq!(r.history.len(), 4);
+    // 40 + 32k <= 150: three generations fit, a fourth would not.
+    let mut ga = Ga::<City>::new(s, city::PAPER_LIMITS, 3).unwrap();
+    let r = ga
+        .run(&mut Skyline::new(), &Budget::evaluations(150), &mut Silent)
+        .unwrap();
+    assert_eq!(
+        (r.generations, r.evaluations, r.stopped),
+        (3, 136, StopReason::Evaluations)
+    );
+    let mut ga = Ga::<City>::new(s, city::PAPER_LIMITS, 3).unwrap();
+    let r = ga
+        .run(
+            &mut Skyline::new(),
+            &Budget::generations(100).and_wall_time(std::time::Duration::ZERO),
+            &mut Silent,
+        )
+        .unwrap();
+    assert_eq!((r.generations, r.stopped), (0, StopReason::WallTime));
+    // The observer stops it, and sees every generation.
+    let mut seen = Vec::new();
+    let mut ga = Ga::<City>::new(s, city::PAPER_LIMITS, 3).unwrap();
+    let r = ga
+        .run(
+            &mut Skyline::new(),
+            &Budget::default(),
+            &mut |snap: &Snapshot<'_, City>| {
+                seen.push((snap.generation, snap.evaluations));
+                if snap.generation == 2 {
+                    Control::Stop
+                } else {
+                    Control::Continue
+                }
+            },
+        )
+        .unwrap();
+    assert_eq!((r.generations, r.stopped), (2, StopReason::Observer));
+    assert_eq!(seen, [(0, 40), (1, 72), (2, 104)]);
+}
