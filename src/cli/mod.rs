@@ -2,7 +2,9 @@
 
 mod backend;
 mod genomes;
+mod plot;
 mod render;
+mod run;
 mod sample;
 mod score;
 mod target;
@@ -33,6 +35,8 @@ enum Command {
     /// Write a reachable target made from a fixed derivation: a volume OBJ or a
     /// silhouette PNG through the scene's camera.
     Target(target::TargetArgs),
+    /// Evolve models toward a scene's goal and write the best found.
+    Run(run::RunArgs),
     /// Write shaded previews of saved genomes and, for image targets, overlays.
     Render(render::RenderArgs),
 }
@@ -50,5 +54,6 @@ pub fn run(args: Cli) -> anyhow::Result<()> {
         Command::Score(score) => score::run(&score),
         Command::Target(target) => target::run(&target),
         Command::Render(render) => render::run(&render),
+        Command::Run(args) => run::run(&args),
     })
 }

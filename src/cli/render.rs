@@ -11,6 +11,7 @@ use shapegen::Grammar;
 use shapegen::export::{Palette, Preview};
 use shapegen::genome::Limits;
 use shapegen::scene::{Scene, SceneScorer};
+use shapegen::score::silhouette::ImageTarget;
 
 use super::genomes::load_genomes;
 use super::target::numbered;
@@ -99,14 +100,7 @@ impl GeneratorVisitor for Render<'_> {
                         let (w, h) = (target.width(), target.height());
                         let mut mask = vec![false; w as usize * h as usize];
                         silhouette.coverage_mask(k, instances, &mut mask)?;
-                        let overlay = RgbImage::from_fn(w, h, |x, y| {
-                            match (target.is_target(x, y), mask[(y * w + x) as usize]) {
-                                (true, true) => BOTH,
-                                (true, false) => TARGET,
-                                (false, true) => MODEL,
-                                (false, false) => NEITHER,
-                            }
-                        });
+                        let overlay = overlay(target, &mask);
                         let stem = args.out.join(format!("overlay_{i:0width$}"));
                         let path = numbered(&stem, k, targets.len(), "png");
                         overlay
@@ -128,4 +122,18 @@ impl GeneratorVisitor for Render<'_> {
         );
         Ok(())
     }
+}
+
+/// The overlay of a model's coverage `mask` on `target`: target alone blue, model alone
+/// red, both green, neither white.
+pub fn overlay(target: &ImageTarget, mask: &[bool]) -> RgbImage {
+    let w = target.width();
+    RgbImage::from_fn(w, target.height(), |x, y| {
+        match (target.is_target(x, y), mask[(y * w + x) as usize]) {
+            (true, true) => BOTH,
+            (true, false) => TARGET,
+            (false, true) => MODEL,
+            (false, false) => NEITHER,
+        }
+    })
 }

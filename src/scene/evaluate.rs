@@ -2,13 +2,14 @@
 //! counted at once, on the CPU or the GPU, and their counts turned into fitness.
 
 use serde::Serialize;
-use shapegen_runtime::Grammar;
 use shapegen_runtime::gpu::{GpuContext, GpuError, wgpu};
+use shapegen_runtime::optimize::{EvaluateError, Evaluator};
 use shapegen_runtime::score::silhouette::{
     GpuSilhouetteScorer, SilhouetteCounts, SilhouetteScorer,
 };
 use shapegen_runtime::score::volume::{GpuVolumeScorer, VolumeCounts, VolumeScorer};
 use shapegen_runtime::score::{InstanceBatch, LengthPenalty, Scorer, count_batch};
+use shapegen_runtime::{Genome, Grammar};
 
 use super::{Scene, SceneError};
 
@@ -98,7 +99,7 @@ impl SceneScorer {
             scorer: self,
             volume: None,
             silhouette: None,
-            description: format!("CPU ({} threads{why})", rayon::current_num_threads()),
+            description: format!("CPU{why}"),
         };
         let context = match (choice, gpu) {
             (BackendChoice::Cpu, _) => return Ok(cpu("")),
@@ -107,11 +108,11 @@ impl SceneScorer {
                     "--gpu asks for the GPU, but no GPU adapter was found".into(),
                 ));
             }
-            (BackendChoice::Auto, None) => return Ok(cpu("; no GPU adapter")),
+            (BackendChoice::Auto, None) => return Ok(cpu(" (no GPU adapter)")),
             (BackendChoice::Auto, Some(context))
                 if context.info.device_type == wgpu::DeviceType::Cpu =>
             {
-                return Ok(cpu(&format!("; passed over {}", context.describe())));
+                return Ok(cpu(&format!(" (passed over {})", context.describe())));
             }
             (_, Some(context)) => context,
         };
@@ -123,7 +124,7 @@ impl SceneScorer {
                 description: format!("GPU: {}", context.describe()),
             }),
             Err(err) if choice == BackendChoice::Gpu => Err(SceneError::Backend(err.to_string())),
-            Err(err) => Ok(cpu(&format!("; {err}"))),
+            Err(err) => Ok(cpu(&format!(" ({err})"))),
         }
     }
 
@@ -169,7 +170,7 @@ pub struct Backend<'a> {
 }
 
 impl Backend<'_> {
-    /// The backend in words: `CPU (2 threads; no GPU adapter)`, `GPU: NVIDIA H200
+    /// The backend in words: `CPU (no GPU adapter)`, `GPU: NVIDIA H200
     /// (vulkan, discrete GPU)`, ...
     pub fn describe(&self) -> &str {
         &self.description
@@ -207,6 +208,42 @@ impl Backend<'_> {
             for (slot, c) in out.iter_mut().zip(counts) {
                 slot.silhouette = Some(c);
             }
+        }
+        Ok(())
+    }
+}
+
+/// Scores populations for an optimizer with a scene's scorers on a backend: derives
+/// every genome into one reused batch, counts it, and subtracts the length term.
+pub struct SceneEvaluator<'a> {
+    backend: &'a Backend<'a>,
+    batch: InstanceBatch,
+    counts: Vec<SceneCounts>,
+}
+
+impl<'a> SceneEvaluator<'a> {
+    /// An evaluator counting on `backend`.
+    pub fn new(backend: &'a Backend<'a>) -> Self {
+        SceneEvaluator {
+            backend,
+            batch: InstanceBatch::new(),
+            counts: Vec::new(),
+        }
+    }
+}
+
+impl<G: Grammar> Evaluator<G> for SceneEvaluator<'_> {
+    fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError> {
+        self.batch.clear();
+        for genome in genomes {
+            self.batch.push_genome(genome);
+        }
+        self.backend
+            .count(&self.batch, &mut self.counts)
+            .map_err(|err| EvaluateError(err.to_string()))?;
+        let scorer = self.backend.scorer();
+        for ((slot, counts), genome) in out.iter_mut().zip(&self.counts).zip(genomes) {
+            *slot = scorer.fitness(counts, genome.len());
         }
         Ok(())
     }

@@ -15,6 +15,9 @@ pub(super) struct SceneFile {
     pub fitness: FitnessFile,
     pub volume: Option<VolumeFile>,
     pub silhouette: Option<SilhouetteFile>,
+    /// `[optimizer]`: kept as a table, checked against the optimizer's own settings.
+    #[serde(default)]
+    pub optimizer: toml::Table,
 }
 
 /// `[limits]`

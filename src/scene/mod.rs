@@ -40,14 +40,23 @@
 //! camera = { phi = -3.05, theta = 0.05, radius = 12.4, lookat = [1.8, 4.7, -0.6],
 //!            fov = 60, near = 0.1, far = 100, width = 800, height = 600 }
 //! # or: camera = { view = [[..], [..], [..], [..]], projection = [..], width = .., height = .. }
+//!
+//! [optimizer]                        # optional: the paper's settings for the generator
+//! method = "ga"
+//! seed = 1
+//! seconds = 60                       # budgets: time, evaluations, generations
+//! generations = 100
+//! population = 100                   # and any other field of the GA's settings
 //! ```
 //!
 //! Unknown keys, missing files, values out of range and images whose size differs from
 //! their camera's are all refused with the file, the key and the reason.
+//! [`Scene::load_with`] applies `key=value` overrides (`--set`) before checking.
 
 mod error;
 mod evaluate;
 mod file;
+mod optimizer;
 mod resolve;
 
 use std::path::{Path, PathBuf};
@@ -60,7 +69,8 @@ use shapegen_runtime::score::volume::{Grid, VolumeTarget};
 use shapegen_runtime::score::{Form, LengthPenalty};
 
 pub use error::SceneError;
-pub use evaluate::{Backend, BackendChoice, SceneCounts, SceneScorer};
+pub use evaluate::{Backend, BackendChoice, SceneCounts, SceneEvaluator, SceneScorer};
+pub use optimizer::OptimizerGoal;
 
 /// A loaded and checked scene.
 #[derive(Clone, Debug)]
@@ -81,6 +91,8 @@ pub struct Scene {
     pub volume: Option<VolumeGoal>,
     /// The silhouette scorer's settings, when the scene has one.
     pub silhouette: Option<SilhouetteGoal>,
+    /// The optimizer, its settings, seed and budget.
+    pub optimizer: OptimizerGoal,
 }
 
 /// The `[volume]` table, resolved: the grid, the targets loaded, and the fitness form.
@@ -107,21 +119,41 @@ pub struct SilhouetteGoal {
 impl Scene {
     /// Loads and checks the scene file at `path`.
     pub fn load(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
+        Scene::load_with(path, &[])
+    }
+
+    /// Loads the scene file at `path` with `key=value` overrides applied first, as
+    /// `--set optimizer.population=200` gives them.
+    pub fn load_with(path: impl AsRef<Path>, sets: &[String]) -> Result<Scene, SceneError> {
         let path = path.as_ref();
         let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
             path: path.to_owned(),
             source,
         })?;
-        Scene::parse(&text, path)
+        Scene::parse_with(&text, path, sets)
     }
 
     /// Checks the scene written in `text`, as if read from `path` (paths in it are
     /// relative to `path`'s folder).
     pub fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
-        let file: file::SceneFile = toml::from_str(text).map_err(|err| SceneError::Syntax {
+        Scene::parse_with(text, path, &[])
+    }
+
+    fn parse_with(text: &str, path: &Path, sets: &[String]) -> Result<Scene, SceneError> {
+        let syntax = |message: String| SceneError::Syntax {
             path: path.to_owned(),
-            message: err.to_string().trim_end().to_owned(),
-        })?;
+            message: message.trim_end().to_owned(),
+        };
+        let file: file::SceneFile = if sets.is_empty() {
+            toml::from_str(text).map_err(|err| syntax(err.to_string()))?
+        } else {
+            let mut table: toml::Table =
+                toml::from_str(text).map_err(|err| syntax(err.to_string()))?;
+            optimizer::apply_overrides(&mut table, sets).map_err(syntax)?;
+            toml::Value::Table(table)
+                .try_into()
+                .map_err(|err: toml::de::Error| syntax(format!("after --set: {}", err.message())))?
+        };
         resolve::Resolver::new(path).scene(file)
     }
 

@@ -110,7 +110,11 @@ impl<'a> Resolver<'a> {
             ));
         }
 
+        let optimizer = super::optimizer::resolve(generator, file.optimizer)
+            .map_err(|(key, reason)| self.invalid(key, reason))?;
+
         Ok(Scene {
+            optimizer,
             path: self.path.to_owned(),
             generator,
             meshes,

@@ -1,0 +1,422 @@
+//! `shapegen run`: evolves models toward a scene's goal and writes what it found, kept
+//! consistent on disk at every moment so that an interrupted run loses nothing.
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use anyhow::Context;
+use clap::Args;
+use generators::GeneratorVisitor;
+use image::{Rgb, RgbImage};
+use serde::{Deserialize, Serialize};
+use shapegen::export::{Palette, Preview, glb_bytes, write_mtl, write_obj};
+use shapegen::genome::Limits;
+use shapegen::optimize::{Control, Ga, GaState, RunResult, Snapshot, StopReason};
+use shapegen::scene::{Scene, SceneEvaluator, SceneScorer};
+use shapegen::{Genome, Grammar};
+
+use super::backend::BackendArgs;
+use super::plot;
+use super::render::overlay;
+
+/// Arguments of `shapegen run`.
+#[derive(Debug, Args)]
+pub struct RunArgs {
+    /// The scene file (TOML); a resumed run takes its checkpoint's.
+    #[arg(required_unless_present = "resume", conflicts_with = "resume")]
+    scene: Option<PathBuf>,
+    /// Seed of the run (overrides `optimizer.seed`).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Wall-time budget in seconds (overrides `optimizer.seconds`).
+    #[arg(long)]
+    seconds: Option<f64>,
+    /// Generations after the initial population (overrides `optimizer.generations`).
+    #[arg(long)]
+    generations: Option<u64>,
+    /// Overrides any scene value, e.g. `--set optimizer.population=200`; repeatable.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    sets: Vec<String>,
+    #[command(flatten)]
+    backend: BackendArgs,
+    /// Folder to write into; created if missing.
+    #[arg(long, required_unless_present = "resume")]
+    out: Option<PathBuf>,
+    /// Continue the run saved in this folder (its `checkpoint.json`) to its budget, and
+    /// write there; ends with the same result as a run that was never interrupted.
+    #[arg(long, value_name = "DIR", conflicts_with = "out")]
+    resume: Option<PathBuf>,
+}
+
+/// What `checkpoint.json` holds.
+#[derive(Serialize, Deserialize)]
+#[serde(bound(serialize = "G: Grammar", deserialize = "G: Grammar"))]
+struct Checkpoint<G> {
+    /// The scene, as given on the command line of the run that started.
+    scene: PathBuf,
+    /// Its overrides.
+    sets: Vec<String>,
+    /// The optimizer's state.
+    ga: GaState<G>,
+}
+
+/// `summary.json`.
+#[derive(Serialize)]
+struct Summary<'a> {
+    best_fitness: f64,
+    evaluations: u64,
+    generations: u64,
+    elapsed_s: f64,
+    seed: u64,
+    method: &'a str,
+    backend: &'a str,
+    genes: usize,
+    instances: usize,
+    stopped: &'a str,
+}
+
+/// Runs `shapegen run`.
+pub fn run(args: &RunArgs) -> anyhow::Result<()> {
+    let (dir, scene_path, mut sets) = match &args.resume {
+        Some(dir) => {
+            let text = read(&dir.join("checkpoint.json"))?;
+            let head: Head = serde_json::from_str(&text).with_context(|| {
+                format!(
+                    "`{}` is not a checkpoint",
+                    dir.join("checkpoint.json").display()
+                )
+            })?;
+            (dir.clone(), head.scene, head.sets)
+        }
+        None => (
+            args.out.clone().context("--out is required")?,
+            args.scene.clone().context("the scene is required")?,
+            Vec::new(),
+        ),
+    };
+    sets.extend(args.sets.iter().cloned());
+    if let Some(seed) = args.seed {
+        sets.push(format!("optimizer.seed={seed}"));
+    }
+    if let Some(s) = args.seconds {
+        sets.push(format!("optimizer.seconds={s:?}"));
+    }
+    if let Some(g) = args.generations {
+        sets.push(format!("optimizer.generations={g}"));
+    }
+    let scene = Scene::load_with(&scene_path, &sets)?;
+    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create `{}`", dir.display()))?;
+    scene.generator.visit(Run {
+        args,
+        scene: &scene,
+        scene_path: &scene_path,
+        sets: &sets,
+        dir: &dir,
+    })
+}
+
+/// The part of a checkpoint that says which scene it belongs to.
+#[derive(Deserialize)]
+struct Head {
+    scene: PathBuf,
+    sets: Vec<String>,
+}
+
+struct Run<'a> {
+    args: &'a RunArgs,
+    scene: &'a Scene,
+    scene_path: &'a Path,
+    sets: &'a [String],
+    dir: &'a Path,
+}
+
+impl GeneratorVisitor for Run<'_> {
+    type Output = anyhow::Result<()>;
+
+    fn visit<G: Grammar>(self, _: Limits) -> anyhow::Result<()> {
+        let goal = &self.scene.optimizer;
+        let mut ga = match &self.args.resume {
+            Some(dir) => {
+                let text = read(&dir.join("checkpoint.json"))?;
+                let checkpoint: Checkpoint<G> = serde_json::from_str(&text).with_context(|| {
+                    format!(
+                        "`{}` is not a checkpoint of this scene",
+                        dir.join("checkpoint.json").display()
+                    )
+                })?;
+                Ga::resume(checkpoint.ga)?
+            }
+            None => Ga::<G>::new(goal.ga, self.scene.limits, goal.seed)?,
+        };
+        let scorer = SceneScorer::new::<G>(self.scene)?;
+        let gpu = self.args.backend.open();
+        let backend = scorer.on(self.args.backend.choice(), gpu.as_ref())?;
+        eprintln!(
+            "evolving {} on {}",
+            self.scene.generator,
+            backend.describe()
+        );
+        let mut evaluator = SceneEvaluator::new(&backend);
+
+        let stop = Arc::new(AtomicBool::new(false));
+        let flag = Arc::clone(&stop);
+        // A second handler cannot be set in one process (tests run commands as processes).
+        let _ = ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst));
+
+        let budget = goal.budget();
+        let total = budget.generations.unwrap_or(u64::MAX);
+        let outputs = Outputs::new::<G>(self.scene, &scorer)?;
+        let start = Instant::now();
+        let mut last_save = Instant::now();
+        let mut progress = Progress::new(goal, std::io::stderr().is_terminal());
+        let mut best_written = f64::NAN;
+        let result = loop {
+            // One generation at a time, so that the run can be saved between them.
+            let done = ga.checkpoint().progress.generation;
+            let step = shapegen::optimize::Budget {
+                generations: Some((done + 1).min(total)),
+                ..budget
+            };
+            let mut observe = |s: &Snapshot<'_, G>| {
+                progress.show(s, start);
+                if stop.load(Ordering::SeqCst) {
+                    Control::Stop
+                } else {
+                    Control::Continue
+                }
+            };
+            let result = ga.run(&mut evaluator, &step, &mut observe)?;
+            let finished = match result.stopped {
+                StopReason::Generations => result.generations >= total,
+                _ => true,
+            };
+            if finished || last_save.elapsed() >= Duration::from_secs(1) {
+                if best_written.to_bits() != result.best_fitness.to_bits() {
+                    outputs.best(self.dir, &result.best)?;
+                    best_written = result.best_fitness;
+                }
+                outputs.curves(self.dir, &result)?;
+                let checkpoint = Checkpoint {
+                    scene: self.scene_path.to_owned(),
+                    sets: self.sets.to_vec(),
+                    ga: ga.checkpoint(),
+                };
+                atomic_write(
+                    &self.dir.join("checkpoint.json"),
+                    serde_json::to_string(&checkpoint)?.as_bytes(),
+                )?;
+                last_save = Instant::now();
+            }
+            if finished {
+                break result;
+            }
+        };
+        progress.finish();
+
+        let mut instances = Vec::new();
+        result.best.derive_into(&mut instances);
+        let summary = Summary {
+            best_fitness: result.best_fitness,
+            evaluations: result.evaluations,
+            generations: result.generations,
+            elapsed_s: result.history.last().map_or(0.0, |h| h.elapsed_s),
+            seed: goal.seed,
+            method: "ga",
+            backend: backend.describe(),
+            genes: result.best.len(),
+            instances: instances.len(),
+            stopped: match result.stopped {
+                StopReason::Generations => "generations",
+                StopReason::Evaluations => "evaluations",
+                StopReason::WallTime => "time",
+                StopReason::Observer => "interrupted",
+            },
+        };
+        atomic_write(
+            &self.dir.join("summary.json"),
+            serde_json::to_string_pretty(&summary)?.as_bytes(),
+        )?;
+        println!(
+            "best fitness {:.4} after {} generations and {} evaluations ({}); wrote best.obj, \
+             best.glb, best.png{}, best.genome.json, fitness.csv, fitness.png and summary.json to {}",
+            result.best_fitness,
+            result.generations,
+            result.evaluations,
+            summary.stopped,
+            if outputs.has_overlay() {
+                ", overlay.png"
+            } else {
+                ""
+            },
+            self.dir.display()
+        );
+        Ok(())
+    }
+}
+
+/// Writes the run's files.
+struct Outputs<'a> {
+    scorer: &'a SceneScorer,
+    meshes: shapegen::BoundMeshes,
+    palette: Palette,
+}
+
+impl<'a> Outputs<'a> {
+    fn new<G: Grammar>(scene: &Scene, scorer: &'a SceneScorer) -> anyhow::Result<Outputs<'a>> {
+        Ok(Outputs {
+            scorer,
+            meshes: scene.meshes.bind(G::GRAPH)?,
+            palette: Palette::new(),
+        })
+    }
+
+    fn has_overlay(&self) -> bool {
+        self.scorer.silhouette.is_some()
+    }
+
+    /// The best model: OBJ with its MTL, GLB, a shaded picture, the overlay and the genome.
+    fn best<G: Grammar>(&self, dir: &Path, best: &Genome<G>) -> anyhow::Result<()> {
+        let mut instances = Vec::new();
+        best.derive_into(&mut instances);
+        let (mut obj, mut mtl) = (Vec::new(), Vec::new());
+        write_obj(
+            &mut obj,
+            "best.mtl",
+            &instances,
+            &self.meshes,
+            &self.palette,
+        )?;
+        write_mtl(&mut mtl, &instances, &self.meshes, &self.palette)?;
+        atomic_write(&dir.join("best.mtl"), &mtl)?;
+        atomic_write(&dir.join("best.obj"), &obj)?;
+        atomic_write(
+            &dir.join("best.glb"),
+            &glb_bytes(&instances, &self.meshes, &self.palette)?,
+        )?;
+        atomic_write(&dir.join("best.genome.json"), best.to_json().as_bytes())?;
+        let target = self
+            .scorer
+            .silhouette
+            .as_ref()
+            .map(|s| (s, &s.targets()[0]));
+        let preview = match target {
+            Some((_, t)) => Preview {
+                view_projection: t.view_projection(),
+                width: t.width(),
+                height: t.height(),
+            },
+            None => Preview::framing(&instances, &self.meshes, 800, 600),
+        };
+        save_png(
+            &dir.join("best.png"),
+            &preview.render(&instances, &self.meshes, &self.palette)?,
+        )?;
+        if let Some((silhouette, t)) = target {
+            let (w, h) = (t.width(), t.height());
+            let mut mask = vec![false; w as usize * h as usize];
+            silhouette.coverage_mask(0, &instances, &mut mask)?;
+            let overlay = overlay(t, &mask);
+            save_png(&dir.join("overlay.png"), &overlay)?;
+        }
+        Ok(())
+    }
+
+    /// `fitness.csv` and `fitness.png` (best in dark blue, mean in orange).
+    fn curves<G>(&self, dir: &Path, result: &RunResult<G>) -> anyhow::Result<()> {
+        let mut csv = String::from("generation,elapsed_s,evaluations,best,mean,std\n");
+        for h in &result.history {
+            csv += &format!(
+                "{},{:.3},{},{},{},{}\n",
+                h.generation, h.elapsed_s, h.evaluations, h.best, h.mean, h.std
+            );
+        }
+        atomic_write(&dir.join("fitness.csv"), csv.as_bytes())?;
+        let best: Vec<f64> = result.history.iter().map(|h| h.best).collect();
+        let mean: Vec<f64> = result.history.iter().map(|h| h.mean).collect();
+        let picture = plot::curves(
+            640,
+            400,
+            &[(Rgb([230, 140, 40]), &mean), (Rgb([30, 60, 140]), &best)],
+        );
+        save_png(&dir.join("fitness.png"), &picture)
+    }
+}
+
+/// One line of progress per generation: rewritten in place on a terminal, every tenth
+/// generation otherwise.
+struct Progress {
+    terminal: bool,
+    total: Option<u64>,
+    seconds: Option<f64>,
+}
+
+impl Progress {
+    fn new(goal: &shapegen::scene::OptimizerGoal, terminal: bool) -> Progress {
+        Progress {
+            terminal,
+            total: Some(goal.ga.generations),
+            seconds: goal.seconds,
+        }
+    }
+
+    fn show<G>(&mut self, s: &Snapshot<'_, G>, start: Instant) {
+        let rate = s.evaluations as f64 / start.elapsed().as_secs_f64().max(1e-9);
+        let elapsed = s.elapsed.as_secs_f64();
+        let by_generations = self
+            .total
+            .filter(|&t| s.generation > 0 && t > 0)
+            .map(|t| elapsed / s.generation as f64 * (t.saturating_sub(s.generation)) as f64);
+        let left = match (by_generations, self.seconds) {
+            (Some(a), Some(b)) => a.min(b - elapsed),
+            (a, b) => a.or(b.map(|b| b - elapsed)).unwrap_or(0.0),
+        }
+        .max(0.0);
+        let line = format!(
+            "generation {:>4}{}  best {:>9.5}  mean {:>9.5}  {:>7.0} evaluations/s  {:>4.0} s left",
+            s.generation,
+            self.total.map(|t| format!("/{t}")).unwrap_or_default(),
+            s.best_fitness,
+            s.mean,
+            rate,
+            left
+        );
+        if self.terminal {
+            eprint!("\r{line}");
+        } else if s.generation.is_multiple_of(10) {
+            eprintln!("{line}");
+        }
+    }
+
+    fn finish(&self) {
+        if self.terminal {
+            eprintln!();
+        }
+    }
+}
+
+fn read(path: &Path) -> anyhow::Result<String> {
+    std::fs::read_to_string(path).with_context(|| format!("cannot read `{}`", path.display()))
+}
+
+fn save_png(path: &Path, image: &RgbImage) -> anyhow::Result<()> {
+    let mut bytes = Vec::new();
+    image.write_to(
+        &mut std::io::Cursor::new(&mut bytes),
+        image::ImageFormat::Png,
+    )?;
+    atomic_write(path, &bytes)
+}
+
+/// Writes `bytes` to a temporary file beside `path`, then renames it over `path`: a
+/// reader (or a run killed midway) sees the old file or the new one, never half of one.
+fn atomic_write(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    let tmp = path.with_extension(format!(
+        "{}.tmp",
+        path.extension().and_then(|e| e.to_str()).unwrap_or("")
+    ));
+    std::fs::write(&tmp, bytes).with_context(|| format!("cannot write `{}`", tmp.display()))?;
+    std::fs::rename(&tmp, path).with_context(|| format!("cannot write `{}`", path.display()))
+}

@@ -1,0 +1,262 @@
+//! `shapegen run` end to end on a small scene: the files it writes, the same result at
+//! any thread count, resuming, and mistakes.
+
+use std::fs;
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn shapegen(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_shapegen"))
+        .args(args)
+        .output()
+        .expect("the shapegen binary runs")
+}
+
+fn ok(args: &[&str]) -> String {
+    let run = shapegen(args);
+    assert!(
+        run.status.success(),
+        "shapegen {args:?} failed: {}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    String::from_utf8(run.stdout).unwrap()
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// A city scene at 160 x 120 whose target is the silhouette of a sampled city.
+fn scene(dir: &Path) -> std::path::PathBuf {
+    let text = r#"
+generator = "city"
+[limits]
+min_len = 4
+optimal_len = 100
+max_len = 201
+max_depth = 8
+[fitness]
+length = 0.02
+[silhouette]
+[[silhouette.target]]
+image = "skyline.png"
+camera = { phi = -1.5708, theta = 0.06, radius = 25, lookat = [0, 4.2, 0], fov = 45, near = 0.1, far = 200, width = 160, height = 90 }
+[optimizer]
+population = 24
+elitism = 4
+initial_length = 40
+generations = 8
+"#;
+    let path = dir.join("skyline.toml");
+    fs::write(&path, text).unwrap();
+    image::GrayImage::from_pixel(160, 90, image::Luma([255]))
+        .save(dir.join("skyline.png"))
+        .unwrap();
+    ok(&[
+        "sample",
+        "-g",
+        "city",
+        "-n",
+        "1",
+        "-s",
+        "3",
+        "-o",
+        s(&dir.join("c")),
+    ]);
+    let genomes = dir.join("c/genomes.json");
+    ok(&[
+        "target",
+        s(&path),
+        "--genome",
+        s(&genomes),
+        "--out",
+        s(&dir.join("skyline.png")),
+    ]);
+    path
+}
+
+fn summary(dir: &Path) -> serde_json::Value {
+    let mut v: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    v.as_object_mut().unwrap().remove("elapsed_s");
+    v
+}
+
+#[test]
+fn a_run_writes_everything_and_does_not_depend_on_threads() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene(dir.path());
+    let one = dir.path().join("one");
+    let two = dir.path().join("two");
+    let out = ok(&[
+        "--threads",
+        "1",
+        "run",
+        s(&scene),
+        "--cpu",
+        "--seed",
+        "5",
+        "--out",
+        s(&one),
+    ]);
+    assert!(out.contains("best fitness"), "{out}");
+    ok(&[
+        "--threads",
+        "2",
+        "run",
+        s(&scene),
+        "--cpu",
+        "--seed",
+        "5",
+        "--out",
+        s(&two),
+    ]);
+    for file in [
+        "best.obj",
+        "best.mtl",
+        "best.glb",
+        "best.png",
+        "overlay.png",
+        "best.genome.json",
+        "fitness.csv",
+        "fitness.png",
+        "summary.json",
+        "checkpoint.json",
+    ] {
+        assert!(one.join(file).is_file(), "{file} written");
+    }
+    let a = summary(&one);
+    assert_eq!(
+        a,
+        summary(&two),
+        "same seed, same summary at 1 and 2 threads"
+    );
+    assert_eq!(a["generations"], 8);
+    assert_eq!(a["evaluations"], 24 + 8 * 20);
+    assert_eq!(
+        (a["seed"].as_u64(), a["method"].as_str()),
+        (Some(5), Some("ga"))
+    );
+    assert_eq!(a["backend"], "CPU");
+    let csv = fs::read_to_string(one.join("fitness.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 9);
+    assert!(csv.starts_with("generation,elapsed_s,evaluations,best,mean,std\n"));
+    // The best fitness never drops, and the run improved on its initial population.
+    let best: Vec<f64> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(3).unwrap().parse().unwrap())
+        .collect();
+    assert!(best.windows(2).all(|w| w[1] >= w[0]));
+    assert!(best[8] > best[0], "{best:?}");
+    let overlay = image::open(one.join("overlay.png")).unwrap();
+    assert_eq!((overlay.width(), overlay.height()), (160, 90));
+}
+
+#[test]
+fn a_resumed_run_ends_as_an_uninterrupted_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene(dir.path());
+    let whole = dir.path().join("whole");
+    let parts = dir.path().join("parts");
+    ok(&["run", s(&scene), "--cpu", "--out", s(&whole)]);
+    ok(&[
+        "run",
+        s(&scene),
+        "--cpu",
+        "--generations",
+        "3",
+        "--out",
+        s(&parts),
+    ]);
+    assert_eq!(summary(&parts)["generations"], 3);
+    ok(&["run", "--resume", s(&parts), "--cpu", "--generations", "8"]);
+    assert_eq!(summary(&parts), summary(&whole));
+    assert_eq!(
+        fs::read_to_string(parts.join("best.genome.json")).unwrap(),
+        fs::read_to_string(whole.join("best.genome.json")).unwrap()
+    );
+}
+
+#[test]
+fn mistakes_are_explained() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene(dir.path());
+    let out = dir.path().join("out");
+    let cases: [(&[&str], &str); 5] = [
+        (
+            &["--set", "optimizer.populaton=5"],
+            "unknown field `populaton`",
+        ),
+        (&["--set", "optimizer.elitism=30"], "optimizer.elitism"),
+        (&["--set", "optimizer"], "write it as key=value"),
+        (
+            &["--set", "optimizer.method=\"smc\""],
+            "the method is \"ga\"",
+        ),
+        (&["--seconds=-1"], "optimizer.seconds"),
+    ];
+    for (extra, expected) in cases {
+        let mut args = vec!["run", s(&scene), "--cpu", "--out", s(&out)];
+        args.extend_from_slice(extra);
+        let run = shapegen(&args);
+        assert!(!run.status.success(), "{extra:?} succeeded");
+        let err = String::from_utf8_lossy(&run.stderr);
+        assert!(err.contains(expected), "{extra:?}: {err}");
+    }
+    let run = shapegen(&["run", "--resume", s(dir.path())]);
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        !run.status.success() && err.contains("checkpoint.json"),
+        "{err}"
+    );
+}
+
+#[test]
+fn an_interrupted_run_keeps_what_it_found() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene(dir.path());
+    let out = dir.path().join("out");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_shapegen"))
+        .args([
+            "run",
+            s(&scene),
+            "--cpu",
+            "--generations",
+            "1000000",
+            "--out",
+            s(&out),
+        ])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let checkpoint = out.join("checkpoint.json");
+    let start = std::time::Instant::now();
+    while !checkpoint.exists() {
+        assert!(start.elapsed().as_secs() < 60, "no checkpoint written");
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    assert!(
+        child.wait().unwrap().success(),
+        "an interrupted run ends cleanly"
+    );
+    let summary = summary(&out);
+    assert_eq!(summary["stopped"], "interrupted");
+    let genome = fs::read_to_string(out.join("best.genome.json")).unwrap();
+    assert!(genome.contains("\"generator\": \"City\""));
+    // The run can go on from where it stopped.
+    ok(&[
+        "run",
+        "--resume",
+        s(&out),
+        "--cpu",
+        "--generations",
+        &(summary["generations"].as_u64().unwrap() + 2).to_string(),
+    ]);
+}
