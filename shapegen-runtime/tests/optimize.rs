@@ -403,3 +403,105 @@ fn ga_budgets_are_honoured() {
     assert_eq!((r.generations, r.stopped), (2, StopReason::Observer));
     assert_eq!(seen, [(0, 40), (1, 72), (2, 104)]);
 }
+
+fn small_smc(order: Order) -> SmcSettings {
+    SmcSettings {
+        particles: 40,
+        steps: 12,
+        ..SmcSettings::paper_city(order)
+    }
+}
+
+#[test]
+fn smc_and_sosmc_improve_on_the_axiom() {
+    for order in [Order::Chromosome, Order::Stochastic] {
+        for seed in [1, 2, 3] {
+            let s = small_smc(order);
+            let r = Smc::<City>::new(s, city::PAPER_LIMITS, seed)
+                .unwrap()
+                .run(&mut Skyline::new(), &s.budget(), &mut Silent)
+                .unwrap();
+            assert!(
+                r.best_fitness >= initial_best(&r) + 2.0,
+                "{order:?} {seed}: {r:?}"
+            );
+            assert!(r.history.last().unwrap().mean > r.history[0].mean);
+            let r = Smc::<Spaceship>::new(s, spaceship::PAPER_LIMITS, seed)
+                .unwrap()
+                .run(&mut BoxTarget::new(), &s.budget(), &mut Silent)
+                .unwrap();
+            assert!(r.best_fitness > initial_best(&r), "{order:?} {seed}: {r:?}");
+        }
+    }
+}
+
+#[test]
+fn smc_same_seed_same_result_at_any_thread_count() {
+    for order in [Order::Chromosome, Order::Stochastic] {
+        let run = || {
+            Smc::<City>::new(small_smc(order), city::PAPER_LIMITS, 5)
+                .unwrap()
+                .run(&mut Skyline::new(), &Budget::generations(8), &mut Silent)
+                .unwrap()
+        };
+        same_result(&threads(1, run), &threads(2, run));
+    }
+}
+
+#[test]
+fn smc_resume_equals_uninterrupted() {
+    for order in [Order::Chromosome, Order::Stochastic] {
+        let s = small_smc(order);
+        let full = Smc::<City>::new(s, city::PAPER_LIMITS, 4)
+            .unwrap()
+            .run(&mut Skyline::new(), &Budget::generations(10), &mut Silent)
+            .unwrap();
+        let mut first = Smc::<City>::new(s, city::PAPER_LIMITS, 4).unwrap();
+        first
+            .run(&mut Skyline::new(), &Budget::generations(3), &mut Silent)
+            .unwrap();
+        let json = serde_json::to_string(&first.checkpoint()).unwrap();
+        let state: SmcState<City> = serde_json::from_str(&json).unwrap();
+        let resumed = Smc::resume(state)
+            .unwrap()
+            .run(&mut Skyline::new(), &Budget::generations(10), &mut Silent)
+            .unwrap();
+        same_result(&full, &resumed);
+    }
+}
+
+#[test]
+fn smc_survives_nan_fitness_and_honours_budgets() {
+    for order in [Order::Chromosome, Order::Stochastic] {
+        let s = small_smc(order);
+        let r = Smc::<City>::new(s, city::PAPER_LIMITS, 2)
+            .unwrap()
+            .run(&mut Poisoned(Skyline::new(), 0), &s.budget(), &mut Silent)
+            .unwrap();
+        assert!(r.best_fitness.is_finite() && r.best_fitness > initial_best(&r));
+        let r = Smc::<City>::new(s, city::PAPER_LIMITS, 2)
+            .unwrap()
+            .run(&mut Skyline::new(), &Budget::evaluations(130), &mut Silent)
+            .unwrap();
+        assert_eq!(
+            (r.generations, r.evaluations, r.stopped),
+            (2, 120, StopReason::Evaluations)
+        );
+    }
+    let bad = SmcSettings {
+        particles: 0,
+        ..SmcSettings::default()
+    };
+    assert_eq!(bad.validate().unwrap_err().field, "particles");
+    let bad = SmcSettings {
+        max_grows_per_step: 0,
+        ..SmcSettings::default()
+    };
+    assert!(matches!(
+        Smc::<City>::new(bad, city::PAPER_LIMITS, 0),
+        Err(OptimizeError::Settings(e)) if e.field == "max_grows_per_step"
+    ));
+    let parsed: SmcSettings = serde_json::from_str(r#"{"order": "stochastic"}"#).unwrap();
+    assert_eq!(parsed, SmcSettings::paper_spaceship(Order::Stochastic));
+    assert!(serde_json::from_str::<SmcSettings>(r#"{"order": "random"}"#).is_err());
+}
