@@ -403,3 +403,283 @@ fn ga_budgets_are_honoured() {
     assert_eq!((r.generations, r.stopped), (2, StopReason::Observer));
     assert_eq!(seen, [(0, 40), (1, 72), (2, 104)]);
 }
+
+fn small_smc(order: Order) -> SmcSettings {
+    SmcSettings {
+        particles: 40,
+        steps: 12,
+        ..SmcSettings::paper_city(order)
+    }
+}
+
+#[test]
+fn smc_and_sosmc_improve_on_the_axiom() {
+    for order in [Order::Chromosome, Order::Stochastic] {
+        for seed in [1, 2, 3] {
+            let s = small_smc(order);
+            let r = Smc::<City>::new(s, city::PAPER_LIMITS, seed)
+                .unwrap()
+                .run(&mut Skyline::new(), &s.budget(), &mut Silent)
+                .unwrap();
+            assert!(
+                r.best_fitness >= initial_best(&r) + 2.0,
+                "{order:?} {seed}: {r:?}"
+            );
+            assert!(r.history.last().unwrap().mean > r.history[0].mean);
+            let r = Smc::<Spaceship>::new(s, spaceship::PAPER_LIMITS, seed)
+                .unwrap()
+                .run(&mut BoxTarget::new(), &s.budget(), &mut Silent)
+                .unwrap();
+            assert!(r.best_fitness > initial_best(&r), "{order:?} {seed}: {r:?}");
+        }
+    }
+}
+
+#[test]
+fn smc_same_seed_same_result_at_any_thread_count() {
+    for order in [Order::Chromosome, Order::Stochastic] {
+        let run = || {
+            Smc::<City>::new(small_smc(order), city::PAPER_LIMITS, 5)
+                .unwrap()
+                .run(&mut Skyline::new(), &Budget::generations(8), &mut Silent)
+                .unwrap()
+        };
+        same_result(&threads(1, run), &threads(2, run));
+    }
+}
+
+#[test]
+fn smc_resume_equals_uninterrupted() {
+    for order in [Order::Chromosome, Order::Stochastic] {
+        let s = small_smc(order);
+        let full = Smc::<City>::new(s, city::PAPER_LIMITS, 4)
+            .unwrap()
+            .run(&mut Skyline::new(), &Budget::generations(10), &mut Silent)
+            .unwrap();
+        let mut first = Smc::<City>::new(s, city::PAPER_LIMITS, 4).unwrap();
+        first
+            .run(&mut Skyline::new(), &Budget::generations(3), &mut Silent)
+            .unwrap();
+        let json = serde_json::to_string(&first.checkpoint()).unwrap();
+        let state: SmcState<City> = serde_json::from_str(&json).unwrap();
+        let resumed = Smc::resume(state)
+            .unwrap()
+            .run(&mut Skyline::new(), &Budget::generations(10), &mut Silent)
+            .unwrap();
+        same_result(&full, &resumed);
+    }
+}
+
+#[test]
+fn smc_survives_nan_fitness_and_honours_budgets() {
+    for order in [Order::Chromosome, Order::Stochastic] {
+        let s = small_smc(order);
+        let r = Smc::<City>::new(s, city::PAPER_LIMITS, 2)
+            .unwrap()
+            .run(&mut Poisoned(Skyline::new(), 0), &s.budget(), &mut Silent)
+            .unwrap();
+        assert!(r.best_fitness.is_finite() && r.best_fitness > initial_best(&r));
+        let r = Smc::<City>::new(s, city::PAPER_LIMITS, 2)
+            .unwrap()
+            .run(&mut Skyline::new(), &Budget::evaluations(130), &mut Silent)
+            .unwrap();
+        assert_eq!(
+            (r.generations, r.evaluations, r.stopped),
+            (2, 120, StopReason::Evaluations)
+        );
+    }
+    let bad = SmcSettings {
+        particles: 0,
+        ..SmcSettings::default()
+    };
+    assert_eq!(bad.validate().unwrap_err().field, "particles");
+    let bad = SmcSettings {
+        max_grows_per_step: 0,
+        ..SmcSettings::default()
+    };
+    assert!(matches!(
+        Smc::<City>::new(bad, city::PAPER_LIMITS, 0),
+        Err(OptimizeError::Settings(e)) if e.field == "max_grows_per_step"
+    ));
+    let parsed: SmcSettings = serde_json::from_str(r#"{"order": "stochastic"}"#).unwrap();
+    assert_eq!(parsed, SmcSettings::paper_spaceship(Order::Stochastic));
+    assert!(serde_json::from_str::<SmcSettings>(r#"{"order": "random"}"#).is_err());
+}
+
+fn small_mcmc() -> McmcSettings {
+    McmcSettings {
+        chains: 16,
+        iterations: 30,
+        initial_length: 30,
+        ..McmcSettings::paper_city()
+    }
+}
+
+#[test]
+fn mcmc_improves_on_its_initial_chains() {
+    // Chains move slowly: the test asks the chains' mean to rise well above where it
+    // started.
+    for seed in [1, 2, 3] {
+        let s = McmcSettings {
+            iterations: 60,
+            ..small_mcmc()
+        };
+        let r = Mcmc::<City>::new(s, city::PAPER_LIMITS, seed)
+            .unwrap()
+            .run(&mut Skyline::new(), &s.budget(), &mut Silent)
+            .unwrap();
+        let (first, last) = (r.history[0], r.history[r.history.len() - 1]);
+        assert!(last.mean > first.mean + 1.0, "{seed}: {first:?} {last:?}");
+        let r = Mcmc::<Spaceship>::new(s, spaceship::PAPER_LIMITS, seed)
+            .unwrap()
+            .run(&mut BoxTarget::new(), &s.budget(), &mut Silent)
+            .unwrap();
+        let (first, last) = (r.history[0], r.history[r.history.len() - 1]);
+        assert!(last.mean > first.mean, "{seed}: {first:?} {last:?}");
+    }
+}
+
+#[test]
+fn mcmc_temperatures_follow_the_acceptance_targets_and_anneal() {
+    let s = McmcSettings {
+        anneal_interval: 2,
+        ..small_mcmc()
+    };
+    let mut mcmc = Mcmc::<City>::new(s, city::PAPER_LIMITS, 1).unwrap();
+    mcmc.run(&mut Skyline::new(), &Budget::generations(0), &mut Silent)
+        .unwrap();
+    let t = mcmc.temperatures().to_vec();
+    let ratio = t[t.len() - 1] / t[0];
+    assert!((ratio - 0.01f64.ln() / 0.7f64.ln()).abs() < 1e-9, "{t:?}");
+    assert!(t.windows(2).all(|w| w[1] > w[0]));
+    mcmc.run(&mut Skyline::new(), &Budget::generations(4), &mut Silent)
+        .unwrap();
+    let annealed = mcmc.temperatures();
+    assert!((annealed[0] - t[0] / 1.1 / 1.1).abs() < 1e-12);
+}
+
+#[test]
+fn mcmc_same_seed_same_result_at_any_thread_count() {
+    let run = || {
+        Mcmc::<City>::new(small_mcmc(), city::PAPER_LIMITS, 5)
+            .unwrap()
+            .run(&mut Skyline::new(), &Budget::generations(10), &mut Silent)
+            .unwrap()
+    };
+    same_result(&threads(1, run), &threads(2, run));
+}
+
+#[test]
+fn mcmc_resume_equals_uninterrupted() {
+    let s = small_mcmc();
+    let full = Mcmc::<City>::new(s, city::PAPER_LIMITS, 4)
+        .unwrap()
+        .run(&mut Skyline::new(), &Budget::generations(12), &mut Silent)
+        .unwrap();
+    let mut first = Mcmc::<City>::new(s, city::PAPER_LIMITS, 4).unwrap();
+    first
+        .run(&mut Skyline::new(), &Budget::generations(5), &mut Silent)
+        .unwrap();
+    let json = serde_json::to_string(&first.checkpoint()).unwrap();
+    let state: McmcState<City> = serde_json::from_str(&json).unwrap();
+    let resumed = Mcmc::resume(state)
+        .unwrap()
+        .run(&mut Skyline::new(), &Budget::generations(12), &mut Silent)
+        .unwrap();
+    same_result(&full, &resumed);
+}
+
+#[test]
+fn mcmc_survives_nan_fitness_and_honours_budgets() {
+    let s = small_mcmc();
+    let r = Mcmc::<City>::new(s, city::PAPER_LIMITS, 2)
+        .unwrap()
+        .run(&mut Poisoned(Skyline::new(), 0), &s.budget(), &mut Silent)
+        .unwrap();
+    assert!(r.best_fitness.is_finite() && r.best_fitness > initial_best(&r));
+    let r = Mcmc::<City>::new(s, city::PAPER_LIMITS, 2)
+        .unwrap()
+        .run(
+            &mut FnEvaluator(|_: &Genome<City>| f64::NAN),
+            &Budget::generations(3),
+            &mut Silent,
+        )
+        .unwrap();
+    assert!(r.best_fitness.is_nan());
+    // Each iteration may use 16 + 16 delayed-rejection evaluations.
+    let mut eval = Skyline::new();
+    let r = Mcmc::<City>::new(s, city::PAPER_LIMITS, 2)
+        .unwrap()
+        .run(&mut eval, &Budget::evaluations(200), &mut Silent)
+        .unwrap();
+    assert_eq!(r.stopped, StopReason::Evaluations);
+    assert!(
+        r.evaluations <= 200 && r.evaluations + 32 > 200,
+        "{}",
+        r.evaluations
+    );
+    assert_eq!(eval.genomes, r.evaluations);
+    let d = McmcSettings::default();
+    for (bad, field) in [
+        (McmcSettings { chains: 0, ..d }, "chains"),
+        (
+            McmcSettings {
+                jump_probability: -0.1,
+                ..d
+            },
+            "jump_probability",
+        ),
+        (
+            McmcSettings {
+                anneal_factor: 0.5,
+                ..d
+            },
+            "anneal_factor",
+        ),
+        (
+            McmcSettings {
+                anneal_interval: 0,
+                ..d
+            },
+            "anneal_interval",
+        ),
+        (
+            McmcSettings {
+                delayed_rejection: 99,
+                ..d
+            },
+            "delayed_rejection",
+        ),
+        (
+            McmcSettings {
+                hot_acceptance: 1.0,
+                ..d
+            },
+            "hot_acceptance",
+        ),
+        (
+            McmcSettings {
+                cold_acceptance: 0.8,
+                ..d
+            },
+            "cold_acceptance",
+        ),
+        (
+            McmcSettings {
+                initial_length: 0,
+                ..d
+            },
+            "initial_length",
+        ),
+    ] {
+        assert_eq!(bad.validate().unwrap_err().field, field);
+    }
+    for s in [
+        McmcSettings::paper_spaceship(),
+        McmcSettings::paper_tree(),
+        McmcSettings::paper_city(),
+    ] {
+        s.validate().unwrap();
+    }
+    assert!(serde_json::from_str::<McmcSettings>(r#"{"chain": 3}"#).is_err());
+}

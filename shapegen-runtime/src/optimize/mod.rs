@@ -1,5 +1,7 @@
-//! Optimizers searching a grammar's derivation trees for models that score well, starting
-//! with the genetic algorithm ([`Ga`]).
+//! Optimizers searching a grammar's derivation trees for models that score well:
+//! the genetic algorithm ([`Ga`]) and sequential Monte Carlo in chromosome order or with
+//! stochastic futures ([`Smc`], [`Order`]), and reversible-jump MCMC with parallel
+//! tempering ([`Mcmc`]).
 //!
 //! All are generic over the grammar and over an [`Evaluator`], which scores a whole
 //! population at once. They share:
@@ -8,7 +10,7 @@
 //!   the run;
 //! - determinism: every random choice comes from a ChaCha8 stream fixed by the seed, the
 //!   generation and the individual, so results never depend on the thread count;
-//! - checkpoints ([`GaState`]; serde) from which a resumed
+//! - checkpoints ([`GaState`], [`SmcState`], [`McmcState`]; serde) from which a resumed
 //!   run ends exactly as an uninterrupted one;
 //! - a [`RunResult`] with the best genome and the per-generation history.
 //!
@@ -22,11 +24,16 @@ mod error;
 mod evaluate;
 mod fitness;
 mod ga;
+mod grow;
+mod mcmc;
 mod run;
+mod smc;
 
 pub use error::{OptimizeError, SettingsError};
 pub use evaluate::{EvaluateError, Evaluator, FnEvaluator};
 pub use ga::{Ga, GaSettings, GaState};
+pub use mcmc::{Mcmc, McmcSettings, McmcState};
 pub use run::{
     Budget, Control, HistoryEntry, Observer, Progress, RunResult, Silent, Snapshot, StopReason,
 };
+pub use smc::{Cursor, Order, Smc, SmcSettings, SmcState};
