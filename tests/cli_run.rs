@@ -191,8 +191,8 @@ fn mistakes_are_explained() {
         (&["--set", "optimizer.elitism=30"], "optimizer.elitism"),
         (&["--set", "optimizer"], "write it as key=value"),
         (
-            &["--set", "optimizer.method=\"smc\""],
-            "the method is \"ga\"",
+            &["--method", "annealing"],
+            "the methods are ga, smc, sosmc and rjmcmc",
         ),
         (&["--seconds=-1"], "optimizer.seconds"),
     ];
@@ -259,4 +259,34 @@ fn an_interrupted_run_keeps_what_it_found() {
         "--generations",
         &(summary["generations"].as_u64().unwrap() + 2).to_string(),
     ]);
+}
+
+#[test]
+fn every_method_runs_and_resumes_exactly() {
+    let dir = tempfile::tempdir().unwrap();
+    let ga_scene = scene(dir.path());
+    // The same scene without the GA's settings.
+    let text = fs::read_to_string(&ga_scene).unwrap();
+    let scene = dir.path().join("any.toml");
+    fs::write(&scene, text.split("[optimizer]").next().unwrap()).unwrap();
+    for (method, size) in [
+        ("smc", "optimizer.particles=16"),
+        ("sosmc", "optimizer.particles=16"),
+        ("rjmcmc", "optimizer.chains=6"),
+    ] {
+        let whole = dir.path().join(format!("{method}_whole"));
+        let parts = dir.path().join(format!("{method}_parts"));
+        let base = ["run", s(&scene), "--cpu", "--method", method, "--set", size];
+        ok(&[&base[..], &["--generations", "6", "--out", s(&whole)]].concat());
+        ok(&[&base[..], &["--generations", "2", "--out", s(&parts)]].concat());
+        ok(&["run", "--resume", s(&parts), "--cpu", "--generations", "6"]);
+        let summary = summary(&whole);
+        assert_eq!(summary["method"], method);
+        assert_eq!(summary["generations"], 6);
+        assert_eq!(
+            summary,
+            self::summary(&parts),
+            "{method}: resumed equals uninterrupted"
+        );
+    }
 }

@@ -7,6 +7,7 @@ mod render;
 mod run;
 mod sample;
 mod score;
+mod search;
 mod target;
 mod voxels;
 

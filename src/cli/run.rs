@@ -14,13 +14,14 @@ use image::{Rgb, RgbImage};
 use serde::{Deserialize, Serialize};
 use shapegen::export::{Palette, Preview, glb_bytes, write_mtl, write_obj};
 use shapegen::genome::Limits;
-use shapegen::optimize::{Control, Ga, GaState, RunResult, Snapshot, StopReason};
+use shapegen::optimize::{Control, RunResult, Snapshot, StopReason};
 use shapegen::scene::{Scene, SceneEvaluator, SceneScorer};
 use shapegen::{Genome, Grammar};
 
 use super::backend::BackendArgs;
 use super::plot;
 use super::render::overlay;
+use super::search::{Search, SearchState};
 
 /// Arguments of `shapegen run`.
 #[derive(Debug, Args)]
@@ -28,13 +29,17 @@ pub struct RunArgs {
     /// The scene file (TOML); a resumed run takes its checkpoint's.
     #[arg(required_unless_present = "resume", conflicts_with = "resume")]
     scene: Option<PathBuf>,
+    /// The search method: ga, smc, sosmc or rjmcmc (overrides `optimizer.method`).
+    #[arg(long)]
+    method: Option<String>,
     /// Seed of the run (overrides `optimizer.seed`).
     #[arg(long)]
     seed: Option<u64>,
     /// Wall-time budget in seconds (overrides `optimizer.seconds`).
     #[arg(long)]
     seconds: Option<f64>,
-    /// Generations after the initial population (overrides `optimizer.generations`).
+    /// Generations after the initial population: the GA's generations, SMC's steps,
+    /// RJMCMC's iterations (overrides `optimizer.generations`).
     #[arg(long)]
     generations: Option<u64>,
     /// Overrides any scene value, e.g. `--set optimizer.population=200`; repeatable.
@@ -54,13 +59,13 @@ pub struct RunArgs {
 /// What `checkpoint.json` holds.
 #[derive(Serialize, Deserialize)]
 #[serde(bound(serialize = "G: Grammar", deserialize = "G: Grammar"))]
-struct Checkpoint<G> {
+struct Checkpoint<G: Grammar> {
     /// The scene, as given on the command line of the run that started.
     scene: PathBuf,
     /// Its overrides.
     sets: Vec<String>,
     /// The optimizer's state.
-    ga: GaState<G>,
+    search: SearchState<G>,
 }
 
 /// `summary.json`.
@@ -98,6 +103,9 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         ),
     };
     sets.extend(args.sets.iter().cloned());
+    if let Some(method) = &args.method {
+        sets.push(format!("optimizer.method={method:?}"));
+    }
     if let Some(seed) = args.seed {
         sets.push(format!("optimizer.seed={seed}"));
     }
@@ -138,7 +146,8 @@ impl GeneratorVisitor for Run<'_> {
 
     fn visit<G: Grammar>(self, _: Limits) -> anyhow::Result<()> {
         let goal = &self.scene.optimizer;
-        let mut ga = match &self.args.resume {
+        let mut done = 0;
+        let mut search = match &self.args.resume {
             Some(dir) => {
                 let text = read(&dir.join("checkpoint.json"))?;
                 let checkpoint: Checkpoint<G> = serde_json::from_str(&text).with_context(|| {
@@ -147,9 +156,10 @@ impl GeneratorVisitor for Run<'_> {
                         dir.join("checkpoint.json").display()
                     )
                 })?;
-                Ga::resume(checkpoint.ga)?
+                done = checkpoint.search.generation();
+                Search::resume(checkpoint.search)?
             }
-            None => Ga::<G>::new(goal.ga, self.scene.limits, goal.seed)?,
+            None => Search::<G>::start(goal, self.scene.limits)?,
         };
         let scorer = SceneScorer::new::<G>(self.scene)?;
         let gpu = self.args.backend.open();
@@ -175,7 +185,6 @@ impl GeneratorVisitor for Run<'_> {
         let mut best_written = f64::NAN;
         let result = loop {
             // One generation at a time, so that the run can be saved between them.
-            let done = ga.checkpoint().progress.generation;
             let step = shapegen::optimize::Budget {
                 generations: Some((done + 1).min(total)),
                 ..budget
@@ -188,7 +197,8 @@ impl GeneratorVisitor for Run<'_> {
                     Control::Continue
                 }
             };
-            let result = ga.run(&mut evaluator, &step, &mut observe)?;
+            let result = search.run(&mut evaluator, &step, &mut observe)?;
+            done = result.generations;
             let finished = match result.stopped {
                 StopReason::Generations => result.generations >= total,
                 _ => true,
@@ -202,7 +212,7 @@ impl GeneratorVisitor for Run<'_> {
                 let checkpoint = Checkpoint {
                     scene: self.scene_path.to_owned(),
                     sets: self.sets.to_vec(),
-                    ga: ga.checkpoint(),
+                    search: search.checkpoint(),
                 };
                 atomic_write(
                     &self.dir.join("checkpoint.json"),
@@ -224,7 +234,7 @@ impl GeneratorVisitor for Run<'_> {
             generations: result.generations,
             elapsed_s: result.history.last().map_or(0.0, |h| h.elapsed_s),
             seed: goal.seed,
-            method: "ga",
+            method: goal.method.name(),
             backend: backend.describe(),
             genes: result.best.len(),
             instances: instances.len(),
@@ -357,7 +367,7 @@ impl Progress {
     fn new(goal: &shapegen::scene::OptimizerGoal, terminal: bool) -> Progress {
         Progress {
             terminal,
-            total: Some(goal.ga.generations),
+            total: Some(goal.generations()),
             seconds: goal.seconds,
         }
     }

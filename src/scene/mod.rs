@@ -70,7 +70,7 @@ use shapegen_runtime::score::{Form, LengthPenalty};
 
 pub use error::SceneError;
 pub use evaluate::{Backend, BackendChoice, SceneCounts, SceneEvaluator, SceneScorer};
-pub use optimizer::OptimizerGoal;
+pub use optimizer::{Method, MethodSettings, OptimizerGoal};
 
 /// A loaded and checked scene.
 #[derive(Clone, Debug)]

@@ -3,39 +3,97 @@
 use std::time::Duration;
 
 use generators::Published;
-use shapegen_runtime::optimize::{Budget, GaSettings};
+use serde::Serialize;
+use serde::de::DeserializeOwned;
+use shapegen_runtime::optimize::{
+    Budget, GaSettings, McmcSettings, Order, SettingsError, SmcSettings,
+};
+
+/// The search methods.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// The genetic algorithm.
+    Ga,
+    /// Sequential Monte Carlo, growing in chromosome order.
+    Smc,
+    /// Sequential Monte Carlo with stochastic futures.
+    Sosmc,
+    /// Reversible-jump MCMC with parallel tempering.
+    Rjmcmc,
+}
+
+impl Method {
+    /// Every method.
+    pub const ALL: [Method; 4] = [Method::Ga, Method::Smc, Method::Sosmc, Method::Rjmcmc];
+
+    /// Its name in scene files and on the command line.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Method::Ga => "ga",
+            Method::Smc => "smc",
+            Method::Sosmc => "sosmc",
+            Method::Rjmcmc => "rjmcmc",
+        }
+    }
+}
+
+/// A method with its settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MethodSettings {
+    /// The genetic algorithm.
+    Ga(GaSettings),
+    /// SMC or SOSMC (its `order` says which).
+    Smc(SmcSettings),
+    /// Reversible-jump MCMC.
+    Mcmc(McmcSettings),
+}
 
 /// The `[optimizer]` table, resolved. Keys the method does not know are refused.
 ///
 /// ```toml
 /// [optimizer]
-/// method = "ga"          # the genetic algorithm
+/// method = "ga"          # ga, smc, sosmc or rjmcmc
 /// seed = 1
 /// seconds = 60           # wall-time budget (optional)
 /// evaluations = 100000   # evaluation budget (optional)
-/// generations = 100      # the GA's settings: population, elitism, initial_length,
-/// population = 100       # generations, mutation_probability, grow_weight,
-///                        # cut_weight, alter_weight, tournament
+/// generations = 100      # GA generations, SMC steps, RJMCMC iterations
+///                        # then the method's own settings: for the GA population,
+/// population = 100       # elitism, initial_length, generations, mutation_probability,
+///                        # grow_weight, cut_weight, alter_weight, tournament; for SMC
+///                        # and SOSMC particles, steps, max_grows_per_step; for RJMCMC
+///                        # chains, iterations, initial_length, jump_probability, ...
 /// ```
 ///
-/// Settings the table leaves out are the paper's for the scene's generator.
+/// Settings the table leaves out are the paper's for the method and the scene's
+/// generator.
 #[derive(Clone, Debug, PartialEq)]
 pub struct OptimizerGoal {
+    /// The method.
+    pub method: Method,
     /// Seed of every random stream of the run.
     pub seed: u64,
     /// Wall-time budget.
     pub seconds: Option<f64>,
     /// Evaluation budget.
     pub evaluations: Option<u64>,
-    /// The genetic algorithm's settings.
-    pub ga: GaSettings,
+    /// The method's settings.
+    pub settings: MethodSettings,
 }
 
 impl OptimizerGoal {
+    /// Generations (steps, iterations) the method's settings ask for.
+    pub fn generations(&self) -> u64 {
+        match self.settings {
+            MethodSettings::Ga(s) => s.generations,
+            MethodSettings::Smc(s) => s.steps,
+            MethodSettings::Mcmc(s) => s.iterations,
+        }
+    }
+
     /// The run's budget: the settings' generations, and the time and evaluation limits
     /// when given.
     pub fn budget(&self) -> Budget {
-        let mut budget = self.ga.budget();
+        let mut budget = Budget::generations(self.generations());
         if let Some(s) = self.seconds {
             budget = budget.and_wall_time(Duration::from_secs_f64(s));
         }
@@ -46,32 +104,70 @@ impl OptimizerGoal {
     }
 }
 
-/// The paper's GA settings for `generator`'s scene.
-pub(super) fn paper_ga(generator: Published) -> GaSettings {
-    match generator {
-        Published::Spaceship => GaSettings::paper_spaceship(),
-        Published::Tree => GaSettings::paper_tree(),
-        Published::City => GaSettings::paper_city(),
+/// The paper's settings of `method` for `generator`'s scene.
+fn paper(method: Method, generator: Published) -> MethodSettings {
+    use Published::{City, Spaceship, Tree};
+    let order = if method == Method::Sosmc {
+        Order::Stochastic
+    } else {
+        Order::Chromosome
+    };
+    match (method, generator) {
+        (Method::Ga, Spaceship) => MethodSettings::Ga(GaSettings::paper_spaceship()),
+        (Method::Ga, Tree) => MethodSettings::Ga(GaSettings::paper_tree()),
+        (Method::Ga, City) => MethodSettings::Ga(GaSettings::paper_city()),
+        (Method::Smc | Method::Sosmc, Spaceship) => {
+            MethodSettings::Smc(SmcSettings::paper_spaceship(order))
+        }
+        (Method::Smc | Method::Sosmc, Tree) => MethodSettings::Smc(SmcSettings::paper_tree(order)),
+        (Method::Smc | Method::Sosmc, City) => MethodSettings::Smc(SmcSettings::paper_city(order)),
+        (Method::Rjmcmc, Spaceship) => MethodSettings::Mcmc(McmcSettings::paper_spaceship()),
+        (Method::Rjmcmc, Tree) => MethodSettings::Mcmc(McmcSettings::paper_tree()),
+        (Method::Rjmcmc, City) => MethodSettings::Mcmc(McmcSettings::paper_city()),
     }
 }
 
-/// Resolves the `[optimizer]` table over the generator's paper settings; errors are
-/// `(key, reason)`.
+/// `base` with the keys of `table` over it, checked by `validate`.
+fn merged<T: Serialize + DeserializeOwned>(
+    base: T,
+    table: toml::Table,
+    validate: impl Fn(&T) -> Result<(), SettingsError>,
+) -> Result<T, (String, String)> {
+    let mut merged =
+        toml::Table::try_from(base).map_err(|err| (String::from("optimizer"), err.to_string()))?;
+    merged.extend(table);
+    let settings: T = toml::Value::Table(merged)
+        .try_into()
+        .map_err(|err: toml::de::Error| (String::from("optimizer"), err.message().to_owned()))?;
+    validate(&settings).map_err(|err| (format!("optimizer.{}", err.field), err.to_string()))?;
+    Ok(settings)
+}
+
+/// Resolves the `[optimizer]` table over the paper's settings for the method and the
+/// generator; errors are `(key, reason)`.
 pub(super) fn resolve(
     generator: Published,
     mut table: toml::Table,
 ) -> Result<OptimizerGoal, (String, String)> {
     let key = |k: &str| format!("optimizer.{k}");
-    match table.remove("method") {
-        None => {}
-        Some(toml::Value::String(m)) if m == "ga" => {}
+    let method = match table.remove("method") {
+        None => Method::Ga,
+        Some(toml::Value::String(m)) => Method::ALL
+            .into_iter()
+            .find(|x| x.name() == m)
+            .ok_or_else(|| {
+                (
+                    key("method"),
+                    format!("\"{m}\" is not a method; the methods are ga, smc, sosmc and rjmcmc"),
+                )
+            })?,
         Some(other) => {
             return Err((
                 key("method"),
-                format!("{other} is not a method; the method is \"ga\""),
+                format!("{other} is not a method; the methods are ga, smc, sosmc and rjmcmc"),
             ));
         }
-    }
+    };
     let seed = match table.remove("seed") {
         None => 1,
         Some(toml::Value::Integer(s)) if s >= 0 => s as u64,
@@ -99,20 +195,35 @@ pub(super) fn resolve(
             ));
         }
     };
-    // The paper's settings, with the table's keys over them.
-    let mut merged = toml::Table::try_from(paper_ga(generator))
-        .map_err(|err| (key("method"), err.to_string()))?;
-    merged.extend(table);
-    let ga: GaSettings = toml::Value::Table(merged)
-        .try_into()
-        .map_err(|err: toml::de::Error| (String::from("optimizer"), err.message().to_owned()))?;
-    ga.validate()
-        .map_err(|err| (key(err.field), err.to_string()))?;
+    // `generations` names the GA's generations, SMC's steps and RJMCMC's iterations.
+    let rename = |table: &mut toml::Table, to: &str| {
+        if let Some(g) = table.remove("generations") {
+            table.insert(to.to_owned(), g);
+        }
+    };
+    let settings = match paper(method, generator) {
+        MethodSettings::Ga(base) => MethodSettings::Ga(merged(base, table, GaSettings::validate)?),
+        MethodSettings::Smc(base) => {
+            if table.contains_key("order") {
+                return Err((
+                    key("order"),
+                    "is set by the method: \"smc\" or \"sosmc\"".into(),
+                ));
+            }
+            rename(&mut table, "steps");
+            MethodSettings::Smc(merged(base, table, SmcSettings::validate)?)
+        }
+        MethodSettings::Mcmc(base) => {
+            rename(&mut table, "iterations");
+            MethodSettings::Mcmc(merged(base, table, McmcSettings::validate)?)
+        }
+    };
     Ok(OptimizerGoal {
+        method,
         seed,
         seconds,
         evaluations,
-        ga,
+        settings,
     })
 }
 
