@@ -1,30 +1,13 @@
 //! `shapegen run` end to end on a small scene: the files it writes, the same result at
 //! any thread count, resuming, and mistakes.
 
+mod support;
+
 use std::fs;
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Command;
 
-fn shapegen(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_shapegen"))
-        .args(args)
-        .output()
-        .expect("the shapegen binary runs")
-}
-
-fn ok(args: &[&str]) -> String {
-    let run = shapegen(args);
-    assert!(
-        run.status.success(),
-        "shapegen {args:?} failed: {}",
-        String::from_utf8_lossy(&run.stderr)
-    );
-    String::from_utf8(run.stdout).unwrap()
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
+use support::{ok, s, shapegen};
 
 /// A city scene at 160 x 120 whose target is the silhouette of a sampled city.
 fn scene(dir: &Path) -> std::path::PathBuf {

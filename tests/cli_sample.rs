@@ -1,20 +1,16 @@
 //! `shapegen sample` end to end: the files it writes, their determinism at any thread
 //! count, and its errors.
 
+mod support;
+
 use std::fs;
 use std::path::Path;
-use std::process::{Command, Output};
+
+use support::shapegen;
 
 use generators::{City, Spaceship, Tree};
 use shapegen::Grammar;
 use shapegen::genome::GenomeSet;
-
-fn shapegen(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_shapegen"))
-        .args(args)
-        .output()
-        .expect("the shapegen binary runs")
-}
 
 fn sample(generator: &str, threads: &str, out: &Path) {
     let out_arg = out.to_str().unwrap();

@@ -1,36 +1,12 @@
 //! `shapegen score`, `target` and `render` end to end: reachable targets score as the
 //! optimum, backends agree, previews are written, mistakes are explained.
 
+mod support;
+
 use std::fs;
 use std::path::Path;
-use std::process::{Command, Output};
 
-fn shapegen(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_shapegen"))
-        .args(args)
-        .output()
-        .expect("the shapegen binary runs")
-}
-
-fn ok(args: &[&str]) -> String {
-    let run = shapegen(args);
-    assert!(
-        run.status.success(),
-        "shapegen {args:?} failed: {}",
-        String::from_utf8_lossy(&run.stderr)
-    );
-    String::from_utf8(run.stdout).unwrap()
-}
-
-fn fails(args: &[&str]) -> String {
-    let run = shapegen(args);
-    assert!(!run.status.success(), "shapegen {args:?} should fail");
-    String::from_utf8(run.stderr).unwrap()
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
+use support::{fails, ok, s, shapegen};
 
 /// The JSON lines `shapegen score` prints.
 fn score(scene: &Path, genomes: &Path, backend: &str) -> Vec<serde_json::Value> {

@@ -179,7 +179,6 @@ impl GeneratorVisitor for Run<'_> {
         let budget = goal.budget();
         let total = budget.generations.unwrap_or(u64::MAX);
         let outputs = Outputs::new::<G>(self.scene, &scorer)?;
-        let start = Instant::now();
         let mut last_save = Instant::now();
         let mut progress = Progress::new(goal, std::io::stderr().is_terminal());
         let mut best_written = f64::NAN;
@@ -190,7 +189,7 @@ impl GeneratorVisitor for Run<'_> {
                 ..budget
             };
             let mut observe = |s: &Snapshot<'_, G>| {
-                progress.show(s, start);
+                progress.show(s);
                 if stop.load(Ordering::SeqCst) {
                     Control::Stop
                 } else {
@@ -359,7 +358,7 @@ impl<'a> Outputs<'a> {
 /// generation otherwise.
 struct Progress {
     terminal: bool,
-    total: Option<u64>,
+    total: u64,
     seconds: Option<f64>,
 }
 
@@ -367,31 +366,26 @@ impl Progress {
     fn new(goal: &shapegen::scene::OptimizerGoal, terminal: bool) -> Progress {
         Progress {
             terminal,
-            total: Some(goal.generations()),
+            total: goal.generations(),
             seconds: goal.seconds,
         }
     }
 
-    fn show<G>(&mut self, s: &Snapshot<'_, G>, start: Instant) {
-        let rate = s.evaluations as f64 / start.elapsed().as_secs_f64().max(1e-9);
+    fn show<G>(&mut self, s: &Snapshot<'_, G>) {
+        // Both count from the start of the run, resumed parts included.
         let elapsed = s.elapsed.as_secs_f64();
-        let by_generations = self
-            .total
-            .filter(|&t| s.generation > 0 && t > 0)
-            .map(|t| elapsed / s.generation as f64 * (t.saturating_sub(s.generation)) as f64);
+        let rate = s.evaluations as f64 / elapsed.max(1e-9);
+        let by_generations = (s.generation > 0).then(|| {
+            elapsed / s.generation as f64 * self.total.saturating_sub(s.generation) as f64
+        });
         let left = match (by_generations, self.seconds) {
             (Some(a), Some(b)) => a.min(b - elapsed),
             (a, b) => a.or(b.map(|b| b - elapsed)).unwrap_or(0.0),
         }
         .max(0.0);
         let line = format!(
-            "generation {:>4}{}  best {:>9.5}  mean {:>9.5}  {:>7.0} evaluations/s  {:>4.0} s left",
-            s.generation,
-            self.total.map(|t| format!("/{t}")).unwrap_or_default(),
-            s.best_fitness,
-            s.mean,
-            rate,
-            left
+            "generation {:>4}/{}  best {:>9.5}  mean {:>9.5}  {:>7.0} evaluations/s  {:>4.0} s left",
+            s.generation, self.total, s.best_fitness, s.mean, rate, left
         );
         if self.terminal {
             eprint!("\r{line}");

@@ -96,12 +96,22 @@ impl InstanceBatch {
 /// Counts every model of `batch` with `scorer` on the current rayon pool, writing model
 /// `i`'s counts to `out[i]`. The result does not depend on the number of threads.
 ///
+/// The models are dealt out in a few chunks per worker thread, each counted with one
+/// scratch buffer, so a batch allocates a handful of scratch buffers however many models
+/// it holds.
+///
 /// # Panics
 /// If `out.len() != batch.len()`.
 pub fn count_batch<S: Scorer>(scorer: &S, batch: &InstanceBatch, out: &mut [S::Counts]) {
     assert_eq!(out.len(), batch.len(), "one counts slot per model");
-    out.par_iter_mut().enumerate().for_each_init(
-        || scorer.scratch(),
-        |scratch, (i, slot)| *slot = scorer.count(batch.model(i), scratch),
-    );
+    let chunks = 4 * rayon::current_num_threads();
+    let chunk = out.len().div_ceil(chunks).max(1);
+    out.par_chunks_mut(chunk)
+        .enumerate()
+        .for_each(|(c, slots)| {
+            let mut scratch = scorer.scratch();
+            for (i, slot) in slots.iter_mut().enumerate() {
+                *slot = scorer.count(batch.model(c * chunk + i), &mut scratch);
+            }
+        });
 }
