@@ -7,8 +7,8 @@
 //! counts the same way gives the same fitness.
 //!
 //! Whole populations are scored at once: their instances go into one
-//! [`InstanceBatch`], and [`count_batch`] counts every model on the rayon pool with one
-//! scratch buffer per worker.
+//! [`InstanceBatch`], and [`count_batch`] counts every model on the rayon pool, in a few
+//! chunks per worker thread with one scratch buffer each.
 //!
 //! [`volume`] scores how well models fill weighted target volumes on a voxel grid, on
 //! the CPU or, for grammars made of boxes, on the GPU with identical counts;
