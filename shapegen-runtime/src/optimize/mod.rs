@@ -27,6 +27,7 @@ mod ga;
 mod grow;
 mod mcmc;
 mod run;
+mod sense;
 mod smc;
 
 pub use error::{OptimizeError, SettingsError};
@@ -36,4 +37,5 @@ pub use mcmc::{Mcmc, McmcSettings, McmcState};
 pub use run::{
     Budget, Control, HistoryEntry, Observer, Progress, RunResult, Silent, Snapshot, StopReason,
 };
+pub use sense::Sense;
 pub use smc::{Cursor, Order, Smc, SmcSettings, SmcState};
