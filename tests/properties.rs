@@ -1,4 +1,4 @@
-//! Properties of the published generators (spaceship, tree, city) under their paper
+//! Properties of the published generators (spaceship, tree, city, building) under their paper
 //! limits: any sequence of genetic operators keeps every genome valid and within the
 //! limits, and derivable into finite instances; JSON round-trips random genomes exactly;
 //! derivation and the operators are deterministic; and grow and cut choose with the
@@ -28,7 +28,7 @@ fn paper_initial_len(g: Published) -> u32 {
     match g {
         Published::Spaceship => 50,
         Published::Tree => 250,
-        Published::City => 50,
+        Published::City | Published::Building => 50,
     }
 }
 

@@ -1,10 +1,12 @@
 //! The published shapegen generators: the spaceship, the three-branch tree and the city
 //! of the ShapeGenetics paper, with the exact geometry, ranges and probabilities of the
-//! original implementation, so that the paper's targets and cameras line up with them.
+//! original implementation, so that the paper's targets and cameras line up with them;
+//! and a CGA-style building generator whose genomes are building programs.
 //!
 //! [`Published`] names them at run time (for command-line tools) and hands the chosen
 //! one, as a type, to a [`GeneratorVisitor`].
 
+pub mod building;
 pub mod city;
 mod meshes;
 pub mod spaceship;
@@ -16,8 +18,9 @@ use std::str::FromStr;
 use shapegen_runtime::Grammar;
 use shapegen_runtime::genome::Limits;
 
+pub use building::Building;
 pub use city::City;
-pub use meshes::{LEAF_OBJ, TRUNK_OBJ, default_meshes};
+pub use meshes::{LEAF_OBJ, TRUNK_OBJ, default_meshes, low_poly_sphere};
 pub use spaceship::Spaceship;
 pub use tree::Tree;
 
@@ -39,27 +42,38 @@ pub enum Published {
     Tree,
     /// [`City`].
     City,
+    /// [`Building`].
+    Building,
 }
 
 impl Published {
     /// All published generators.
-    pub const ALL: [Published; 3] = [Published::Spaceship, Published::Tree, Published::City];
+    pub const ALL: [Published; 4] = [
+        Published::Spaceship,
+        Published::Tree,
+        Published::City,
+        Published::Building,
+    ];
 
-    /// The generator's name on the command line and in files: `spaceship`, `tree`, `city`.
+    /// The generator's name on the command line and in files: `spaceship`, `tree`,
+    /// `city`, `building`.
     pub const fn name(self) -> &'static str {
         match self {
             Published::Spaceship => "spaceship",
             Published::Tree => "tree",
             Published::City => "city",
+            Published::Building => "building",
         }
     }
 
-    /// The genome limits of the generator's paper scene.
+    /// The genome limits of the generator's paper scene ([`building::LIMITS`] for the
+    /// building, which has none).
     pub const fn paper_limits(self) -> Limits {
         match self {
             Published::Spaceship => spaceship::PAPER_LIMITS,
             Published::Tree => tree::PAPER_LIMITS,
             Published::City => city::PAPER_LIMITS,
+            Published::Building => building::LIMITS,
         }
     }
 
@@ -70,6 +84,7 @@ impl Published {
             Published::Spaceship => visitor.visit::<Spaceship>(limits),
             Published::Tree => visitor.visit::<Tree>(limits),
             Published::City => visitor.visit::<City>(limits),
+            Published::Building => visitor.visit::<Building>(limits),
         }
     }
 }
@@ -82,7 +97,7 @@ impl fmt::Display for Published {
 
 /// The name given is not that of a published generator.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("unknown generator `{0}`; the published generators are spaceship, tree and city")]
+#[error("unknown generator `{0}`; the published generators are spaceship, tree, city and building")]
 pub struct UnknownGenerator(pub String);
 
 impl FromStr for Published {

@@ -17,7 +17,7 @@ use shapegen::{Genome, Grammar};
 /// Arguments of `shapegen sample`.
 #[derive(Debug, Args)]
 pub struct SampleArgs {
-    /// The generator: spaceship, tree or city.
+    /// The generator: spaceship, tree, city or building.
     #[arg(long, short)]
     generator: Published,
     /// How many models to write.

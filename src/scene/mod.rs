@@ -5,7 +5,7 @@
 //! silhouettes seen through cameras. Paths in it are relative to the scene file.
 //!
 //! ```toml
-//! generator = "spaceship"            # spaceship, tree or city
+//! generator = "spaceship"            # spaceship, tree, city or building
 //!
 //! [meshes]                           # optional: replace or add meshes by name
 //! cube = "meshes/cube.obj"

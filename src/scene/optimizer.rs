@@ -106,7 +106,7 @@ impl OptimizerGoal {
 
 /// The paper's settings of `method` for `generator`'s scene.
 fn paper(method: Method, generator: Published) -> MethodSettings {
-    use Published::{City, Spaceship, Tree};
+    use Published::{Building, City, Spaceship, Tree};
     let order = if method == Method::Sosmc {
         Order::Stochastic
     } else {
@@ -115,15 +115,17 @@ fn paper(method: Method, generator: Published) -> MethodSettings {
     match (method, generator) {
         (Method::Ga, Spaceship) => MethodSettings::Ga(GaSettings::paper_spaceship()),
         (Method::Ga, Tree) => MethodSettings::Ga(GaSettings::paper_tree()),
-        (Method::Ga, City) => MethodSettings::Ga(GaSettings::paper_city()),
+        (Method::Ga, City | Building) => MethodSettings::Ga(GaSettings::paper_city()),
         (Method::Smc | Method::Sosmc, Spaceship) => {
             MethodSettings::Smc(SmcSettings::paper_spaceship(order))
         }
         (Method::Smc | Method::Sosmc, Tree) => MethodSettings::Smc(SmcSettings::paper_tree(order)),
-        (Method::Smc | Method::Sosmc, City) => MethodSettings::Smc(SmcSettings::paper_city(order)),
+        (Method::Smc | Method::Sosmc, City | Building) => {
+            MethodSettings::Smc(SmcSettings::paper_city(order))
+        }
         (Method::Rjmcmc, Spaceship) => MethodSettings::Mcmc(McmcSettings::paper_spaceship()),
         (Method::Rjmcmc, Tree) => MethodSettings::Mcmc(McmcSettings::paper_tree()),
-        (Method::Rjmcmc, City) => MethodSettings::Mcmc(McmcSettings::paper_city()),
+        (Method::Rjmcmc, City | Building) => MethodSettings::Mcmc(McmcSettings::paper_city()),
     }
 }
 
