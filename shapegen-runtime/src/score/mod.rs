@@ -13,7 +13,9 @@
 //! [`volume`] scores how well models fill weighted target volumes on a voxel grid, on
 //! the CPU or, for grammars made of boxes, on the GPU with identical counts;
 //! [`silhouette`] scores how well their projections through cameras match target
-//! images, on the CPU or the GPU (equal to within a few edge pixels).
+//! images, on the CPU or the GPU (equal to within a few edge pixels). [`objective`]
+//! measures geometric objectives (height, distinct normals, footprint, orthographic
+//! projection matches) on models, one value each, for multi-objective searches.
 //!
 //! ```
 //! use shapegen_runtime::score::{LengthPenalty, smoothstep};
@@ -26,6 +28,7 @@
 
 mod batch;
 mod form;
+pub mod objective;
 pub mod silhouette;
 pub mod volume;
 

@@ -49,7 +49,7 @@ mod camera;
 mod counts;
 mod gpu;
 mod meshes;
-mod raster;
+pub(in crate::score) mod raster;
 mod scorer;
 mod target;
 #[cfg(test)]

@@ -15,7 +15,7 @@ pub(super) const MAX_POLYGON: usize = 128;
 /// 64-bit words), with the list of the words that became non-zero, so that reading and
 /// clearing costs what was covered rather than the whole image.
 #[derive(Clone, Debug, Default)]
-pub(super) struct Coverage {
+pub(in crate::score) struct Coverage {
     words: Vec<u64>,
     touched: Vec<u32>,
     stride: usize,
@@ -24,13 +24,13 @@ pub(super) struct Coverage {
 }
 
 /// Words per row of an image `width` pixels wide.
-pub(super) fn row_words(width: u32) -> usize {
+pub(in crate::score) fn row_words(width: u32) -> usize {
     (width as usize).div_ceil(64)
 }
 
 impl Coverage {
     /// Prepares an empty coverage of `width` x `height` pixels, keeping the memory.
-    pub(super) fn shape(&mut self, width: u32, height: u32) {
+    pub(in crate::score) fn shape(&mut self, width: u32, height: u32) {
         debug_assert!(self.touched.is_empty(), "coverage cleared before reshaping");
         self.stride = row_words(width);
         self.width = width;
@@ -65,7 +65,7 @@ impl Coverage {
     /// Hands every non-zero word (its index and bits) to `visit` and clears the
     /// coverage.
     #[inline]
-    pub(super) fn drain(&mut self, mut visit: impl FnMut(usize, u64)) {
+    pub(in crate::score) fn drain(&mut self, mut visit: impl FnMut(usize, u64)) {
         for &w in &self.touched {
             let word = &mut self.words[w as usize];
             visit(w as usize, *word);
@@ -75,7 +75,7 @@ impl Coverage {
     }
 
     /// Whether pixel `(x, y)` is covered.
-    pub(super) fn get(&self, x: u32, y: u32) -> bool {
+    pub(in crate::score) fn get(&self, x: u32, y: u32) -> bool {
         let bit = x as usize % 64;
         let word = self.words[y as usize * self.stride + x as usize / 64];
         word >> bit & 1 == 1
@@ -83,7 +83,7 @@ impl Coverage {
 
     /// Fills the convex polygon `poly` (pixel coordinates, either winding); degenerate
     /// polygons cover nothing.
-    pub(super) fn fill_convex(&mut self, poly: &[Vec2]) {
+    pub(in crate::score) fn fill_convex(&mut self, poly: &[Vec2]) {
         let n = poly.len();
         if n < 3 {
             return;

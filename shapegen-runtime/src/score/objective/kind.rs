@@ -1,0 +1,189 @@
+//! The objectives and how each is measured.
+
+use glam::{Vec2, Vec3};
+
+use super::ObjectiveError;
+use super::normals::{cluster, spread};
+use super::projection::{ProjectionMatch, View};
+use super::surface::Surface;
+use crate::optimize::Sense;
+use crate::score::silhouette::raster::Coverage;
+
+/// One geometric objective: a raw value measured on a model's [`Surface`], with the
+/// direction ([`sense`](Self::sense)) in which it is better.
+///
+/// ```
+/// use glam::{Affine3A, Vec2};
+/// use shapegen_runtime::optimize::Sense;
+/// use shapegen_runtime::score::objective::{Objective, ObjectiveScratch, Surface};
+/// use shapegen_runtime::{CUBE, Instance, MeshLibrary};
+///
+/// let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"])?;
+/// let cube = Surface::from_instances(&[Instance { transform: Affine3A::IDENTITY, mesh: CUBE }], &meshes);
+/// let mut scratch = ObjectiveScratch::default();
+///
+/// let height = Objective::Height { target: 2.0 };
+/// assert_eq!(height.measure(&cube, &mut scratch), 1.5);
+/// assert_eq!((height.name(), height.sense()), ("height", Sense::Minimize));
+///
+/// let normals = Objective::UniqueNormals { tolerance_deg: 1.0 };
+/// assert_eq!(normals.measure(&cube, &mut scratch), 6.0);
+///
+/// let footprint = Objective::FootprintExcess { min: Vec2::splat(-0.25), max: Vec2::splat(1.0) };
+/// assert_eq!(footprint.measure(&cube, &mut scratch), 0.5);
+/// # Ok::<(), shapegen_runtime::MeshError>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub enum Objective {
+    /// Distance of the model's top to a target height, `|max_y - target|`, `max_y` the
+    /// largest `y` of the surface's vertices ([`Sense::Minimize`]). An empty model
+    /// stands on the ground, `max_y = 0`: its value is `|target|`.
+    Height {
+        /// The height the model's top should reach.
+        target: f32,
+    },
+    /// Number of distinct face normals ([`Sense::Maximize`]). The surface's normals are
+    /// clustered greedily in triangle order: each joins the first distinct normal found
+    /// so far within `tolerance_deg` of it (`n . r >= cos(tolerance)`), else it is a new
+    /// distinct normal. Any two distinct normals are thus more than the tolerance apart;
+    /// a unit cube has 6; an empty model 0. Use a tolerance above rounding (a degree,
+    /// say), so that the two triangles of a rotated quad agree.
+    UniqueNormals {
+        /// Largest angle, in degrees (0 to 180), between normals counted as one.
+        tolerance_deg: f32,
+    },
+    /// Sum over the distinct normals (as for [`UniqueNormals`](Self::UniqueNormals)) of
+    /// the angle in radians to the nearest other distinct normal ([`Sense::Maximize`]);
+    /// 0 with fewer than two. A cube: `6 * pi / 2`.
+    NormalSpread {
+        /// Largest angle, in degrees (0 to 180), between normals counted as one.
+        tolerance_deg: f32,
+    },
+    /// How far the model's x/z extent `[lo, hi]` (its bounding box) exceeds the
+    /// rectangle `[min, max]` (`x`, then `z`): `sum over x, z of max(0, min - lo) +
+    /// max(0, hi - max)` ([`Sense::Minimize`]); 0 for an empty model.
+    FootprintExcess {
+        /// Smallest allowed `x` and `z`.
+        min: Vec2,
+        /// Largest allowed `x` and `z`.
+        max: Vec2,
+    },
+    /// Fraction of the pixels of an orthographic projection that match a target image,
+    /// in `[0, 1]` ([`Sense::Maximize`]); see [`ProjectionMatch`].
+    Projection(ProjectionMatch),
+}
+
+/// Reusable working memory for measuring [objectives](Objective): one per worker.
+#[derive(Clone, Debug, Default)]
+pub struct ObjectiveScratch {
+    coverage: Coverage,
+    distinct: Vec<Vec3>,
+    /// The tolerance `distinct` was clustered with, for the surface being measured.
+    distinct_for: Option<f32>,
+}
+
+impl ObjectiveScratch {
+    /// Forgets what was computed for the previous surface.
+    pub(super) fn forget(&mut self) {
+        self.distinct_for = None;
+    }
+
+    /// The distinct normals of `surface` at `tolerance_deg`, reused when the last ones
+    /// were clustered for the same surface at the same tolerance.
+    fn distinct(&mut self, surface: &Surface, tolerance_deg: f32) -> &[Vec3] {
+        if self.distinct_for != Some(tolerance_deg) {
+            cluster(surface.normals(), tolerance_deg, &mut self.distinct);
+            self.distinct_for = Some(tolerance_deg);
+        }
+        &self.distinct
+    }
+}
+
+impl Objective {
+    /// The direction in which the objective's value is better.
+    pub fn sense(&self) -> Sense {
+        match self {
+            Objective::Height { .. } | Objective::FootprintExcess { .. } => Sense::Minimize,
+            Objective::UniqueNormals { .. }
+            | Objective::NormalSpread { .. }
+            | Objective::Projection(_) => Sense::Maximize,
+        }
+    }
+
+    /// The kind of objective, in snake case: `height`, `unique_normals`,
+    /// `normal_spread`, `footprint_excess`, `top_match` or `front_match`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Objective::Height { .. } => "height",
+            Objective::UniqueNormals { .. } => "unique_normals",
+            Objective::NormalSpread { .. } => "normal_spread",
+            Objective::FootprintExcess { .. } => "footprint_excess",
+            Objective::Projection(p) => match p.view() {
+                View::Top => "top_match",
+                View::Front => "front_match",
+            },
+        }
+    }
+
+    /// Checks the parameters: finite numbers, tolerances from 0 to 180 degrees, and a
+    /// footprint with `min <= max` in both coordinates (a [`ProjectionMatch`] is checked
+    /// when it is made).
+    pub fn validate(&self) -> Result<(), ObjectiveError> {
+        match *self {
+            Objective::Height { target } if !target.is_finite() => Err(ObjectiveError::Parameter {
+                field: "target",
+                value: target,
+                valid: "a finite number",
+            }),
+            Objective::UniqueNormals { tolerance_deg }
+            | Objective::NormalSpread { tolerance_deg }
+                if !(0.0..=180.0).contains(&tolerance_deg) =>
+            {
+                Err(ObjectiveError::Parameter {
+                    field: "tolerance_deg",
+                    value: tolerance_deg,
+                    valid: "an angle from 0 to 180 degrees",
+                })
+            }
+            Objective::FootprintExcess { min, max }
+                if !(min.is_finite() && max.is_finite() && min.cmple(max).all()) =>
+            {
+                Err(ObjectiveError::Footprint { min, max })
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// The objective's raw value for `surface` (see each variant for its formula).
+    pub fn measure(&self, surface: &Surface, scratch: &mut ObjectiveScratch) -> f64 {
+        scratch.forget();
+        self.measure_same(surface, scratch)
+    }
+
+    /// [`measure`](Self::measure), reusing the distinct normals `scratch` holds if they
+    /// were clustered for this `surface` (the caller calls
+    /// [`forget`](ObjectiveScratch::forget) between surfaces).
+    pub(super) fn measure_same(&self, surface: &Surface, scratch: &mut ObjectiveScratch) -> f64 {
+        match self {
+            Objective::Height { target } => {
+                let top = surface.bounds().map_or(0.0, |(_, hi)| hi.y);
+                (f64::from(top) - f64::from(*target)).abs()
+            }
+            Objective::UniqueNormals { tolerance_deg } => {
+                scratch.distinct(surface, *tolerance_deg).len() as f64
+            }
+            Objective::NormalSpread { tolerance_deg } => {
+                spread(scratch.distinct(surface, *tolerance_deg))
+            }
+            Objective::FootprintExcess { min, max } => surface.bounds().map_or(0.0, |(lo, hi)| {
+                let (lo, hi) = (Vec2::new(lo.x, lo.z), Vec2::new(hi.x, hi.z));
+                let excess = |limit: f32, v: f32| (f64::from(v) - f64::from(limit)).max(0.0);
+                excess(lo.x, min.x)
+                    + excess(lo.y, min.y)
+                    + excess(max.x, hi.x)
+                    + excess(max.y, hi.y)
+            }),
+            Objective::Projection(p) => p.score_with(surface, &mut scratch.coverage),
+        }
+    }
+}

@@ -1,0 +1,160 @@
+//! Geometric objectives measured on derived models, for multi-objective searches.
+//!
+//! A model's instances become a [`Surface`]: its world-space triangles, each with its
+//! unit face normal. Each [`Objective`] measures one raw value on it, with a
+//! [`Sense`](crate::optimize::Sense) saying whether higher or lower is better: the
+//! distance of the model's top to a target height, the number of distinct face normals,
+//! how far apart those normals are, how far the footprint exceeds a rectangle, and how
+//! well a top-down or front orthographic projection matches a black-and-white target
+//! image ([`ProjectionMatch`], rasterized as the silhouette scorer does).
+//!
+//! An [`ObjectiveSet`] names the objectives of a search and measures whole populations
+//! ([`InstanceBatch`](crate::score::InstanceBatch)es) on the rayon pool, one row of
+//! values per model; [`ObjectiveSet::weighted`] and [`WeightedObjectives`] turn the
+//! values into one fitness, so that one objective or a weighted combination drives the
+//! single-objective searches.
+//!
+//! ```
+//! use glam::{Affine3A, Quat, Vec3};
+//! use shapegen_runtime::score::objective::{Objective, ObjectiveScratch, Surface};
+//! use shapegen_runtime::{CUBE, Instance, MeshLibrary};
+//!
+//! let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"])?;
+//! let turned = Affine3A::from_quat(Quat::from_rotation_y(std::f32::consts::FRAC_PI_4));
+//! let model = [
+//!     Instance { transform: Affine3A::IDENTITY, mesh: CUBE },
+//!     Instance { transform: turned, mesh: CUBE },
+//! ];
+//! let surface = Surface::from_instances(&model, &meshes);
+//! let unique = Objective::UniqueNormals { tolerance_deg: 1.0 };
+//! // Both cubes share their top and bottom; their sides point 8 ways.
+//! assert_eq!(unique.measure(&surface, &mut ObjectiveScratch::default()), 10.0);
+//! # Ok::<(), shapegen_runtime::MeshError>(())
+//! ```
+
+mod kind;
+mod normals;
+mod projection;
+mod set;
+mod surface;
+
+pub use kind::{Objective, ObjectiveScratch};
+pub use projection::{ProjectionMatch, View};
+pub use set::{ObjectiveSet, WeightedObjectives};
+pub use surface::Surface;
+
+use glam::Vec2;
+
+/// Why an objective or a set of objectives cannot be built or used.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ObjectiveError {
+    /// A projection target image has no pixel.
+    #[error("the projection image is {width} x {height}; it must have at least one pixel")]
+    EmptyImage {
+        /// Image width.
+        width: u32,
+        /// Image height.
+        height: u32,
+    },
+    /// A projection target image has too many pixels.
+    #[error(
+        "the projection image is {width} x {height}; at most {max} pixels are supported \
+         (for example 4096 x 4096)"
+    )]
+    TooLarge {
+        /// Image width.
+        width: u32,
+        /// Image height.
+        height: u32,
+        /// [`MAX_TARGET_PIXELS`](crate::score::silhouette::MAX_TARGET_PIXELS).
+        max: u64,
+    },
+    /// A projection mask does not have one entry per pixel.
+    #[error("the projection mask has {len} entries; a {width} x {height} image needs {}", *width as u64 * *height as u64)]
+    MaskSize {
+        /// Entries given.
+        len: usize,
+        /// Image width.
+        width: u32,
+        /// Image height.
+        height: u32,
+    },
+    /// A projection area is not finite or has no extent.
+    #[error(
+        "the projection area runs from `area_min` {min} to `area_max` {max}; both must be \
+         finite and `area_min` below `area_max` in each coordinate"
+    )]
+    Area {
+        /// The corner given as smallest.
+        min: Vec2,
+        /// The corner given as largest.
+        max: Vec2,
+    },
+    /// A footprint rectangle is not finite or inverted.
+    #[error(
+        "the footprint runs from `min` {min} to `max` {max} (x, z); both must be finite \
+         and `min` at most `max` in each coordinate"
+    )]
+    Footprint {
+        /// The corner given as smallest.
+        min: Vec2,
+        /// The corner given as largest.
+        max: Vec2,
+    },
+    /// A number parameter is out of range.
+    #[error("`{field}` is {value}; it must be {valid}")]
+    Parameter {
+        /// The parameter.
+        field: &'static str,
+        /// Its value.
+        value: f32,
+        /// What would be valid.
+        valid: &'static str,
+    },
+    /// A set was given no objective.
+    #[error("no objectives given; a set needs at least one")]
+    NoObjectives,
+    /// An objective of a set has an empty name.
+    #[error("objective {index} has an empty name")]
+    EmptyName {
+        /// Its position in the set.
+        index: usize,
+    },
+    /// Two objectives of a set have the same name.
+    #[error("two objectives are named `{0}`; names must be unique")]
+    DuplicateName(String),
+    /// An objective of a set is invalid.
+    #[error("objective `{name}`: {source}")]
+    Entry {
+        /// The objective's name.
+        name: String,
+        /// What is wrong with it.
+        #[source]
+        source: Box<ObjectiveError>,
+    },
+    /// Weights do not match the objectives.
+    #[error("{given} weights given for {expected} objectives; give one per objective")]
+    WeightCount {
+        /// Weights given.
+        given: usize,
+        /// Objectives in the set.
+        expected: usize,
+    },
+    /// A weight is infinite or NaN.
+    #[error("the weight of objective `{name}` is {value}; it must be a finite number")]
+    Weight {
+        /// The objective's name.
+        name: String,
+        /// The weight.
+        value: f64,
+    },
+    /// Values do not match the objectives.
+    #[error("{given} values given for {expected} objectives; give one per objective")]
+    ValueCount {
+        /// Values given.
+        given: usize,
+        /// Objectives in the set.
+        expected: usize,
+    },
+}
