@@ -327,12 +327,8 @@ impl<G: Grammar> Method<G> for Ga<G> {
     }
 
     fn start<E: Evaluator<G>>(&mut self, evaluator: &mut E) -> Result<(), OptimizeError> {
-        let (seed, len) = (self.progress.seed, self.settings.initial_length);
-        let ops = &self.ops;
-        self.population.par_iter_mut().enumerate().for_each_init(
-            || ops.clone(),
-            |ops, (i, g)| ops.random_into(len, g, &mut stream(seed, 0, i as u64)),
-        );
+        let seed = self.progress.seed;
+        random_population(&self.ops, &self.settings, seed, &mut self.population);
         evaluator.evaluate(&self.population, &mut self.fitness)?;
         self.progress.evaluations += self.population.len() as u64;
         Ok(())
@@ -346,29 +342,19 @@ impl<G: Grammar> Method<G> for Ga<G> {
             self.next[k].clone_from(&self.population[i as usize]);
             self.next_fitness[k] = self.fitness[i as usize];
         }
-        let generation = self.progress.generation + 1;
         let breed = Breed {
             settings: &self.settings,
             population: &self.population,
             fitness: &self.fitness,
             roulette: &self.roulette,
         };
-        let (seed, ops) = (self.progress.seed, &self.ops);
-        self.next[elite..]
-            .par_chunks_mut(2)
-            .enumerate()
-            .for_each_init(
-                || (ops.clone(), Genome::from_parts(Vec::new(), 0)),
-                |(ops, spare), (pair, children)| {
-                    let rng = &mut stream(seed, generation, pair as u64);
-                    let (a, b) = match children {
-                        [a, b] => (a, b),
-                        [a] => (a, &mut *spare),
-                        _ => unreachable!("chunks hold one or two children"),
-                    };
-                    breed.pair(ops, a, b, rng);
-                },
-            );
+        let generation = self.progress.generation + 1;
+        breed.children(
+            &self.ops,
+            self.progress.seed,
+            generation,
+            &mut self.next[elite..],
+        );
         evaluator.evaluate(&self.next[elite..], &mut self.next_fitness[elite..])?;
         self.progress.evaluations += self.step_cost();
         std::mem::swap(&mut self.population, &mut self.next);
@@ -381,15 +367,60 @@ impl<G: Grammar> Method<G> for Ga<G> {
     }
 }
 
-/// What breeding a pair reads: the current generation and its selection wheel.
-struct Breed<'a, G> {
-    settings: &'a GaSettings,
-    population: &'a [Genome<G>],
-    fitness: &'a [f64],
-    roulette: &'a Roulette,
+/// Grows the initial population in parallel: genome `i` from stream (seed, 0, `i`), to a
+/// length around the settings' initial length.
+pub(crate) fn random_population<G: Grammar>(
+    ops: &Operators<G>,
+    settings: &GaSettings,
+    seed: u64,
+    population: &mut [Genome<G>],
+) {
+    let len = settings.initial_length;
+    population.par_iter_mut().enumerate().for_each_init(
+        || ops.clone(),
+        |ops, (i, g)| ops.random_into(len, g, &mut stream(seed, 0, i as u64)),
+    );
+}
+
+/// What breeding reads: the current generation, the higher-is-better fitness it is
+/// selected on (the GA's own fitness, or a multi-objective selection fitness) and the
+/// roulette wheel built on that fitness.
+pub(crate) struct Breed<'a, G> {
+    /// Mutation probability and weights, tournament size.
+    pub(crate) settings: &'a GaSettings,
+    /// The parents to choose from.
+    pub(crate) population: &'a [Genome<G>],
+    /// Their selection fitness, one per genome.
+    pub(crate) fitness: &'a [f64],
+    /// The roulette wheel built on `fitness`.
+    pub(crate) roulette: &'a Roulette,
 }
 
 impl<G: Grammar> Breed<'_, G> {
+    /// Breeds `children` in parallel, in pairs: pair `p` (children `2p` and `2p + 1`; the
+    /// last pair may hold one) draws from stream (seed, `generation`, `p`), so the
+    /// children never depend on the thread count.
+    pub(crate) fn children(
+        &self,
+        ops: &Operators<G>,
+        seed: u64,
+        generation: u64,
+        children: &mut [Genome<G>],
+    ) {
+        children.par_chunks_mut(2).enumerate().for_each_init(
+            || (ops.clone(), Genome::from_parts(Vec::new(), 0)),
+            |(ops, spare), (pair, children)| {
+                let rng = &mut stream(seed, generation, pair as u64);
+                let (a, b) = match children {
+                    [a, b] => (a, b),
+                    [a] => (a, &mut *spare),
+                    _ => unreachable!("chunks hold one or two children"),
+                };
+                self.pair(ops, a, b, rng);
+            },
+        );
+    }
+
     /// Breeds two children into `a` and `b`.
     fn pair(
         &self,

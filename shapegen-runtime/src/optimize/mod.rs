@@ -1,7 +1,8 @@
 //! Optimizers searching a grammar's derivation trees for models that score well:
 //! the genetic algorithm ([`Ga`]) and sequential Monte Carlo in chromosome order or with
 //! stochastic futures ([`Smc`], [`Order`]), and reversible-jump MCMC with parallel
-//! tempering ([`Mcmc`]).
+//! tempering ([`Mcmc`]); and, in [`multi`], the multi-objective GA ([`multi::MultiGa`]) with
+//! its selection on several objectives (Pareto fronts, summed rank, weighted sum).
 //!
 //! All are generic over the grammar and over an [`Evaluator`], which scores a whole
 //! population at once. They share:
@@ -26,6 +27,7 @@ mod fitness;
 mod ga;
 mod grow;
 mod mcmc;
+pub mod multi;
 mod run;
 mod sense;
 mod smc;

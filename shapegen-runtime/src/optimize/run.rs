@@ -67,6 +67,32 @@ impl Budget {
     }
 }
 
+impl Budget {
+    /// Why a run that has done `generations` generations and `evaluations` evaluations in
+    /// `elapsed_s` seconds must stop before a generation costing up to `cost` evaluations;
+    /// `None` if it may go on.
+    pub(crate) fn stop(
+        &self,
+        generations: u64,
+        evaluations: u64,
+        cost: u64,
+        elapsed_s: f64,
+    ) -> Option<StopReason> {
+        if self.generations.is_some_and(|n| generations >= n) {
+            Some(StopReason::Generations)
+        } else if self
+            .evaluations
+            .is_some_and(|n| evaluations.saturating_add(cost) > n)
+        {
+            Some(StopReason::Evaluations)
+        } else if self.wall_time.is_some_and(|t| elapsed_s >= t.as_secs_f64()) {
+            Some(StopReason::WallTime)
+        } else {
+            None
+        }
+    }
+}
+
 /// What an [`Observer`] wants after a generation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Control {
@@ -298,22 +324,7 @@ pub(crate) fn drive<G: Grammar, M: Method<G>>(
     loop {
         let cost = method.step_cost();
         let p = method.parts().0;
-        let reason = if budget.generations.is_some_and(|n| p.generation >= n) {
-            Some(StopReason::Generations)
-        } else if budget
-            .evaluations
-            .is_some_and(|n| p.evaluations.saturating_add(cost) > n)
-        {
-            Some(StopReason::Evaluations)
-        } else if budget
-            .wall_time
-            .is_some_and(|t| elapsed() >= t.as_secs_f64())
-        {
-            Some(StopReason::WallTime)
-        } else {
-            None
-        };
-        if let Some(reason) = reason {
+        if let Some(reason) = budget.stop(p.generation, p.evaluations, cost, elapsed()) {
             method.parts().0.elapsed_s = elapsed();
             return Ok(finish(method, reason));
         }
