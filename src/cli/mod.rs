@@ -1,7 +1,10 @@
 //! Command-line interface: argument parsing and dispatch to the commands.
 
 mod backend;
+mod compare;
+mod files;
 mod genomes;
+mod interrupt;
 mod plot;
 mod render;
 mod run;
@@ -38,6 +41,9 @@ enum Command {
     Target(target::TargetArgs),
     /// Evolve models toward a scene's goal and write the best found.
     Run(run::RunArgs),
+    /// Run several methods on one scene, each several times on the same seeds with the
+    /// same wall-time budget, and write their curves and a summary side by side.
+    Compare(compare::CompareArgs),
     /// Write shaded previews of saved genomes and, for image targets, overlays.
     Render(render::RenderArgs),
 }
@@ -56,5 +62,6 @@ pub fn run(args: Cli) -> anyhow::Result<()> {
         Command::Target(target) => target::run(&target),
         Command::Render(render) => render::run(&render),
         Command::Run(args) => run::run(&args),
+        Command::Compare(args) => compare::run(&args),
     })
 }

@@ -1,4 +1,7 @@
-//! A fitness curve as a picture: best and mean fitness against generations.
+//! Fitness curves as pictures: best and mean fitness against generations for one run,
+//! and several methods' mean curves with their spread against time for a comparison.
+
+mod font;
 
 use image::{Rgb, RgbImage};
 
@@ -74,5 +77,256 @@ fn line(image: &mut RgbImage, a: (f64, f64), b: (f64, f64), colour: Rgb<u8>) {
                 image.put_pixel(px, py, colour);
             }
         }
+    }
+}
+
+/// One curve of [`bands`]: a mean and its standard deviation per point of a common grid.
+pub struct Band<'a> {
+    /// The legend's name for it.
+    pub name: &'a str,
+    /// Its colour.
+    pub colour: Rgb<u8>,
+    /// The mean per grid point; non-finite values leave gaps.
+    pub mean: &'a [f64],
+    /// The standard deviation per grid point, shaded as mean +- std.
+    pub std: &'a [f64],
+}
+
+/// Space around the plot area of [`bands`]: left (tick labels), right, top (the y
+/// label), bottom (tick labels and the x label).
+const LEFT: u32 = 80;
+const RIGHT: u32 = 24;
+const TOP: u32 = 40;
+const BOTTOM: u32 = 56;
+/// Font pixels per glyph pixel.
+const SCALE: u32 = 2;
+/// How much of a band's colour its shading mixes in.
+const SHADE: f64 = 0.2;
+
+/// Plots each band's mean as a line over its shaded mean +- std, against x from 0 to
+/// `x_max` (point `i` of `n` at `x_max * i / (n - 1)`), with numbered axes, the axis
+/// labels `labels` (x, y) and a legend naming the bands. The y range spans every finite
+/// mean +- std.
+pub fn bands(
+    width: u32,
+    height: u32,
+    x_max: f64,
+    labels: (&str, &str),
+    bands: &[Band<'_>],
+) -> RgbImage {
+    let mut image = RgbImage::from_pixel(width, height, BACKGROUND);
+    let (left, right) = (f64::from(LEFT), f64::from(width.saturating_sub(RIGHT)));
+    let (bottom, top) = (f64::from(height.saturating_sub(BOTTOM)), f64::from(TOP));
+    let (lo, hi) = y_range(bands);
+    let x_max = if x_max.is_finite() && x_max > 0.0 {
+        x_max
+    } else {
+        1.0
+    };
+    let px = |x: f64| left + (right - left) * x / x_max;
+    let py = |y: f64| bottom + (top - bottom) * (y - lo) / (hi - lo);
+
+    let y_ticks = ticks(lo, hi, 6.0);
+    let x_ticks = ticks(0.0, x_max, 8.0);
+    for &(v, _) in &y_ticks {
+        let y = py(v) as u32;
+        for x in LEFT..=width.saturating_sub(RIGHT) {
+            image.put_pixel(x, y, GRID);
+        }
+    }
+    for &(v, _) in &x_ticks {
+        let x = px(v) as u32;
+        for y in TOP..=height.saturating_sub(BOTTOM) {
+            image.put_pixel(x, y, GRID);
+        }
+    }
+
+    for band in bands {
+        shade(&mut image, band, (left, right), &py);
+    }
+    for band in bands {
+        let n = band.mean.len();
+        let at = |i: usize| px(x_max * i as f64 / (n.max(2) - 1) as f64);
+        for (i, pair) in band.mean.windows(2).enumerate() {
+            if pair[0].is_finite() && pair[1].is_finite() {
+                line(
+                    &mut image,
+                    (at(i), py(pair[0])),
+                    (at(i + 1), py(pair[1])),
+                    band.colour,
+                );
+            }
+        }
+    }
+
+    let (x_axis, y_axis) = (height.saturating_sub(BOTTOM), LEFT);
+    for x in LEFT..=width.saturating_sub(RIGHT) {
+        image.put_pixel(x, x_axis, AXES);
+    }
+    for y in TOP..=x_axis {
+        image.put_pixel(y_axis, y, AXES);
+    }
+    let glyph_h = font::HEIGHT * SCALE;
+    for (v, label) in &y_ticks {
+        let y = py(*v) as u32;
+        for x in LEFT.saturating_sub(5)..LEFT {
+            image.put_pixel(x, y, AXES);
+        }
+        let w = font::text_width(label, SCALE);
+        let x = LEFT.saturating_sub(8 + w);
+        font::draw(
+            &mut image,
+            x,
+            y.saturating_sub(glyph_h / 2),
+            label,
+            SCALE,
+            AXES,
+        );
+    }
+    for (v, label) in &x_ticks {
+        let x = px(*v) as u32;
+        for y in x_axis..x_axis + 5 {
+            image.put_pixel(x, y, AXES);
+        }
+        let w = font::text_width(label, SCALE);
+        font::draw(
+            &mut image,
+            x.saturating_sub(w / 2),
+            x_axis + 8,
+            label,
+            SCALE,
+            AXES,
+        );
+    }
+    let (x_label, y_label) = labels;
+    let w = font::text_width(x_label, SCALE);
+    font::draw(
+        &mut image,
+        (LEFT + width.saturating_sub(RIGHT)) / 2 - w / 2,
+        x_axis + 12 + glyph_h,
+        x_label,
+        SCALE,
+        AXES,
+    );
+    font::draw(
+        &mut image,
+        8,
+        TOP.saturating_sub(glyph_h + 10),
+        y_label,
+        SCALE,
+        AXES,
+    );
+    legend(&mut image, bands);
+    image
+}
+
+/// The y range of `bands`: every finite mean +- std, with a little room above and below.
+fn y_range(bands: &[Band<'_>]) -> (f64, f64) {
+    let mut lo = f64::INFINITY;
+    let mut hi = f64::NEG_INFINITY;
+    for band in bands {
+        for (&m, &s) in band.mean.iter().zip(band.std) {
+            let s = if s.is_finite() { s } else { 0.0 };
+            for v in [m - s, m + s] {
+                if v.is_finite() {
+                    lo = lo.min(v);
+                    hi = hi.max(v);
+                }
+            }
+        }
+    }
+    if lo >= hi {
+        let c = if lo.is_finite() { lo } else { 0.0 };
+        return (c - 1.0, c + 1.0);
+    }
+    let pad = (hi - lo) * 0.05;
+    (lo - pad, hi + pad)
+}
+
+/// Round tick values in `lo..=hi`, about `count` of them, with their labels.
+fn ticks(lo: f64, hi: f64, count: f64) -> Vec<(f64, String)> {
+    let raw = (hi - lo) / count;
+    let magnitude = 10f64.powf(raw.log10().floor());
+    let step = magnitude
+        * match raw / magnitude {
+            f if f <= 1.0 => 1.0,
+            f if f <= 2.0 => 2.0,
+            f if f <= 5.0 => 5.0,
+            _ => 10.0,
+        };
+    let decimals = (-step.log10().floor()).max(0.0) as usize;
+    let first = (lo / step).ceil() as i64;
+    let last = (hi / step).floor() as i64;
+    (first..=last)
+        .map(|k| {
+            let v = k as f64 * step;
+            // `k == 0` prints "0", never "-0".
+            let shown = if k == 0 { 0.0 } else { v };
+            (v, format!("{shown:.decimals$}"))
+        })
+        .collect()
+}
+
+/// Shades `band`'s mean +- std, column by column across the plot area.
+fn shade(
+    image: &mut RgbImage,
+    band: &Band<'_>,
+    (left, right): (f64, f64),
+    py: &impl Fn(f64) -> f64,
+) {
+    let n = band.mean.len();
+    if n == 0 {
+        return;
+    }
+    for x in left as u32..=right as u32 {
+        let i = (((f64::from(x) - left) / (right - left)) * (n - 1) as f64).round() as usize;
+        let (m, s) = (band.mean[i.min(n - 1)], band.std[i.min(n - 1)]);
+        if !(m.is_finite() && s.is_finite()) {
+            continue;
+        }
+        let (a, b) = (py(m + s), py(m - s));
+        for y in a.round() as u32..=b.round() as u32 {
+            if x < image.width() && y < image.height() {
+                let old = image.get_pixel(x, y).0;
+                let mix =
+                    |o: u8, c: u8| (f64::from(o) * (1.0 - SHADE) + f64::from(c) * SHADE) as u8;
+                image.put_pixel(x, y, Rgb([0, 1, 2].map(|k| mix(old[k], band.colour.0[k]))));
+            }
+        }
+    }
+}
+
+/// The bands' names beside their colours, boxed, at the bottom right of the plot area.
+fn legend(image: &mut RgbImage, bands: &[Band<'_>]) {
+    let row = font::HEIGHT * SCALE + 8;
+    let swatch = 24;
+    let longest = bands
+        .iter()
+        .map(|b| font::text_width(b.name, SCALE))
+        .max()
+        .unwrap_or(0);
+    let (w, h) = (swatch + 18 + longest, row * bands.len() as u32 + 8);
+    let right = image.width().saturating_sub(RIGHT + 12);
+    let bottom = image.height().saturating_sub(BOTTOM + 12);
+    let (x0, y0) = (right.saturating_sub(w), bottom.saturating_sub(h));
+    for y in y0..=bottom {
+        for x in x0..=right {
+            let edge = y == y0 || y == bottom || x == x0 || x == right;
+            image.put_pixel(x, y, if edge { AXES } else { BACKGROUND });
+        }
+    }
+    for (k, band) in bands.iter().enumerate() {
+        let y = y0 + 6 + row * k as u32;
+        let mid = f64::from(y + font::HEIGHT * SCALE / 2);
+        let x = f64::from(x0 + 6);
+        for dy in [-2.0, 0.0] {
+            line(
+                image,
+                (x, mid + dy),
+                (x + f64::from(swatch), mid + dy),
+                band.colour,
+            );
+        }
+        font::draw(image, x0 + swatch + 12, y, band.name, SCALE, AXES);
     }
 }

@@ -3,14 +3,13 @@
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
 use anyhow::Context;
 use clap::Args;
 use generators::GeneratorVisitor;
-use image::{Rgb, RgbImage};
+use image::Rgb;
 use serde::{Deserialize, Serialize};
 use shapegen::export::{Palette, Preview, glb_bytes, write_mtl, write_obj};
 use shapegen::genome::Limits;
@@ -19,6 +18,8 @@ use shapegen::scene::{Scene, SceneEvaluator, SceneScorer};
 use shapegen::{Genome, Grammar};
 
 use super::backend::BackendArgs;
+use super::files::{atomic_write, read, save_png};
+use super::interrupt;
 use super::plot;
 use super::render::overlay;
 use super::search::{Search, SearchState};
@@ -171,10 +172,7 @@ impl GeneratorVisitor for Run<'_> {
         );
         let mut evaluator = SceneEvaluator::new(&backend);
 
-        let stop = Arc::new(AtomicBool::new(false));
-        let flag = Arc::clone(&stop);
-        // A second handler cannot be set in one process (tests run commands as processes).
-        let _ = ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst));
+        let stop = interrupt::flag();
 
         let budget = goal.budget();
         let total = budget.generations.unwrap_or(u64::MAX);
@@ -399,28 +397,4 @@ impl Progress {
             eprintln!();
         }
     }
-}
-
-fn read(path: &Path) -> anyhow::Result<String> {
-    std::fs::read_to_string(path).with_context(|| format!("cannot read `{}`", path.display()))
-}
-
-fn save_png(path: &Path, image: &RgbImage) -> anyhow::Result<()> {
-    let mut bytes = Vec::new();
-    image.write_to(
-        &mut std::io::Cursor::new(&mut bytes),
-        image::ImageFormat::Png,
-    )?;
-    atomic_write(path, &bytes)
-}
-
-/// Writes `bytes` to a temporary file beside `path`, then renames it over `path`: a
-/// reader (or a run killed midway) sees the old file or the new one, never half of one.
-fn atomic_write(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    let tmp = path.with_extension(format!(
-        "{}.tmp",
-        path.extension().and_then(|e| e.to_str()).unwrap_or("")
-    ));
-    std::fs::write(&tmp, bytes).with_context(|| format!("cannot write `{}`", tmp.display()))?;
-    std::fs::rename(&tmp, path).with_context(|| format!("cannot write `{}`", path.display()))
 }

@@ -1,0 +1,520 @@
+//! `shapegen compare`: runs several search methods on one scene, each several times on
+//! the same seeds and with the same wall-time budget, and writes their results side by
+//! side: every run's history, a summary per method and a picture of the mean curves.
+//!
+//! Each method takes its settings as `shapegen run --method M` does (the scene's
+//! `[optimizer]` table over the paper's settings for the method and the generator), with
+//! three changes that make the runs comparable:
+//! - the wall budget `--seconds` is the only time limit, and the methods' own generation
+//!   counts (`generations`, `steps`, `iterations`, from the paper or the scene) are not
+//!   limits: a method that would have finished its published generations goes on until
+//!   the time is spent. SMC and SOSMC then go on resampling their particles, which stop
+//!   changing once every particle is complete, so their best stays where it was;
+//! - an evaluation budget (`optimizer.evaluations`) still stops a run, so that a
+//!   comparison can be made at equal evaluations, and exactly repeated;
+//! - run `r` (from 0) of every method uses the seed `base + r`, where `base` is `--seed`
+//!   or the scene's `optimizer.seed`: in each run the methods start from the same seed,
+//!   and `shapegen run --method M --seed S` repeats a run.
+//!
+//! Runs go run-major (run 0 of every method, then run 1, ...) so that slow drifts of the
+//! machine's load hit every method alike.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::Ordering;
+use std::time::Duration;
+
+use anyhow::Context;
+use clap::Args;
+use generators::GeneratorVisitor;
+use image::Rgb;
+use serde::Serialize;
+use shapegen::Grammar;
+use shapegen::genome::Limits;
+use shapegen::optimize::{Budget, Control, HistoryEntry, Snapshot, StopReason};
+use shapegen::scene::{Method, OptimizerGoal, Scene, SceneEvaluator, SceneScorer};
+
+use super::backend::BackendArgs;
+use super::files::{atomic_write, save_png};
+use super::interrupt;
+use super::plot::{self, Band};
+use super::search::Search;
+
+/// Points of the common time grid the curves are sampled on.
+const GRID_POINTS: usize = 400;
+/// Size of `compare.png`.
+const PLOT_SIZE: (u32, u32) = (800, 500);
+
+/// Arguments of `shapegen compare`.
+#[derive(Debug, Args)]
+pub struct CompareArgs {
+    /// The scene file (TOML).
+    scene: PathBuf,
+    /// The methods to compare, comma-separated, in the order they run and are listed:
+    /// any of ga, smc, sosmc and rjmcmc.
+    #[arg(long, value_delimiter = ',', default_value = "ga,smc,sosmc,rjmcmc")]
+    methods: Vec<String>,
+    /// Runs of each method (at least 1).
+    #[arg(long, default_value_t = 3)]
+    runs: u64,
+    /// Wall-time budget of every run, in seconds (> 0).
+    #[arg(long)]
+    seconds: f64,
+    /// Base seed: run r of every method uses seed + r (default: `optimizer.seed`).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Overrides any scene value, e.g. `--set optimizer.evaluations=5000`; repeatable.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    sets: Vec<String>,
+    #[command(flatten)]
+    backend: BackendArgs,
+    /// Folder to write into; created if missing.
+    #[arg(long)]
+    out: PathBuf,
+}
+
+/// Runs `shapegen compare`.
+pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
+    let methods = parse_methods(&args.methods)?;
+    anyhow::ensure!(
+        args.runs >= 1,
+        "--runs {}: give at least 1 run per method",
+        args.runs
+    );
+    anyhow::ensure!(
+        args.seconds.is_finite() && args.seconds > 0.0,
+        "--seconds {}: give a wall-time budget of more than 0 seconds",
+        args.seconds
+    );
+    // Each method's goal, as `shapegen run --method M` resolves it.
+    let mut scenes = Vec::with_capacity(methods.len());
+    for &method in &methods {
+        let mut sets = args.sets.clone();
+        sets.push(format!("optimizer.method={:?}", method.name()));
+        scenes.push(Scene::load_with(&args.scene, &sets)?);
+    }
+    let base = args.seed.unwrap_or(scenes[0].optimizer.seed);
+    let seeds = (0..args.runs)
+        .map(|r| base.checked_add(r))
+        .collect::<Option<Vec<u64>>>()
+        .with_context(|| {
+            format!(
+                "--seed {base}: with {} runs the seeds would pass {}",
+                args.runs,
+                u64::MAX
+            )
+        })?;
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("cannot create `{}`", args.out.display()))?;
+    scenes[0].generator.visit(Compare {
+        args,
+        methods: &methods,
+        scenes: &scenes,
+        seeds: &seeds,
+    })
+}
+
+/// The methods `names` lists, in order.
+fn parse_methods(names: &[String]) -> anyhow::Result<Vec<Method>> {
+    let valid = || {
+        Method::ALL
+            .iter()
+            .map(|m| m.name())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let names: Vec<&str> = names
+        .iter()
+        .map(|n| n.trim())
+        .filter(|n| !n.is_empty())
+        .collect();
+    anyhow::ensure!(
+        !names.is_empty(),
+        "--methods is empty: give one or more of {}",
+        valid()
+    );
+    let mut methods = Vec::with_capacity(names.len());
+    for name in names {
+        let method = Method::ALL
+            .into_iter()
+            .find(|m| m.name() == name)
+            .with_context(|| {
+                format!(
+                    "--methods: `{name}` is not a method; the methods are {}",
+                    valid()
+                )
+            })?;
+        anyhow::ensure!(
+            !methods.contains(&method),
+            "--methods: `{name}` is listed twice"
+        );
+        methods.push(method);
+    }
+    Ok(methods)
+}
+
+struct Compare<'a> {
+    args: &'a CompareArgs,
+    methods: &'a [Method],
+    /// The scene as each method sees it.
+    scenes: &'a [Scene],
+    /// Seed of each run.
+    seeds: &'a [u64],
+}
+
+/// One finished run.
+struct Finished {
+    method: Method,
+    run: u64,
+    seed: u64,
+    best: f64,
+    evaluations: u64,
+    history: Vec<HistoryEntry>,
+}
+
+impl GeneratorVisitor for Compare<'_> {
+    type Output = anyhow::Result<()>;
+
+    fn visit<G: Grammar>(self, _: Limits) -> anyhow::Result<()> {
+        let scorer = SceneScorer::new::<G>(&self.scenes[0])?;
+        let gpu = self.args.backend.open();
+        let backend = scorer.on(self.args.backend.choice(), gpu.as_ref())?;
+        let total = self.seeds.len() * self.methods.len();
+        eprintln!(
+            "comparing {} on {}: {} runs of {} s",
+            self.methods
+                .iter()
+                .map(|m| m.name())
+                .collect::<Vec<_>>()
+                .join(", "),
+            backend.describe(),
+            total,
+            self.args.seconds
+        );
+        let mut evaluator = SceneEvaluator::new(&backend);
+        let stop = interrupt::flag();
+        let mut done: Vec<Finished> = Vec::with_capacity(total);
+        let outputs = Outputs {
+            args: self.args,
+            methods: self.methods,
+            seeds: self.seeds,
+            backend: backend.describe(),
+        };
+        for (run, &seed) in self.seeds.iter().enumerate() {
+            for (&method, scene) in self.methods.iter().zip(self.scenes) {
+                let goal = OptimizerGoal {
+                    seed,
+                    ..scene.optimizer.clone()
+                };
+                let budget = Budget {
+                    generations: None,
+                    evaluations: goal.evaluations,
+                    wall_time: Some(Duration::from_secs_f64(self.args.seconds)),
+                };
+                let mut search = Search::<G>::start(&goal, scene.limits)?;
+                let mut observe = |_: &Snapshot<'_, G>| {
+                    if stop.load(Ordering::SeqCst) {
+                        Control::Stop
+                    } else {
+                        Control::Continue
+                    }
+                };
+                let result = search.run(&mut evaluator, &budget, &mut observe)?;
+                if result.stopped == StopReason::Observer {
+                    outputs.write(&done)?;
+                    anyhow::bail!(
+                        "interrupted during run {run} of {}: wrote the {} complete runs of {total} to {}",
+                        method.name(),
+                        done.len(),
+                        self.args.out.display()
+                    );
+                }
+                let dir = self
+                    .args
+                    .out
+                    .join("runs")
+                    .join(format!("{}-{run}", method.name()));
+                std::fs::create_dir_all(&dir)
+                    .with_context(|| format!("cannot create `{}`", dir.display()))?;
+                atomic_write(
+                    &dir.join("best.genome.json"),
+                    result.best.to_json().as_bytes(),
+                )?;
+                let elapsed = result.history.last().map_or(0.0, |h| h.elapsed_s);
+                eprintln!(
+                    "{:<6} run {run} (seed {seed}): best {:.5}  {} evaluations  {elapsed:.1} s  [{}/{total}]",
+                    method.name(),
+                    result.best_fitness,
+                    result.evaluations,
+                    done.len() + 1
+                );
+                done.push(Finished {
+                    method,
+                    run: run as u64,
+                    seed,
+                    best: result.best_fitness,
+                    evaluations: result.evaluations,
+                    history: result.history,
+                });
+                outputs.write(&done)?;
+            }
+        }
+        println!(
+            "compared {} runs; wrote compare.csv, compare.png, summary.json and runs/ to {}",
+            done.len(),
+            self.args.out.display()
+        );
+        Ok(())
+    }
+}
+
+/// Writes `compare.csv`, `summary.json` and `compare.png` for the runs done so far.
+struct Outputs<'a> {
+    args: &'a CompareArgs,
+    methods: &'a [Method],
+    seeds: &'a [u64],
+    backend: &'a str,
+}
+
+/// `summary.json`.
+#[derive(Serialize)]
+struct Summary<'a> {
+    scene: &'a Path,
+    seconds: f64,
+    base_seed: u64,
+    /// How each run's seed follows from the base seed.
+    seed_rule: &'static str,
+    seeds: &'a [u64],
+    backend: &'a str,
+    /// Whether every planned run finished.
+    complete: bool,
+    methods: Vec<MethodSummary>,
+}
+
+/// One method's part of `summary.json`.
+#[derive(Serialize)]
+struct MethodSummary {
+    method: &'static str,
+    runs: usize,
+    /// Mean over runs of each run's final best fitness.
+    final_mean: f64,
+    /// Their sample standard deviation (0 for one run).
+    final_std: f64,
+    /// The best fitness of all runs.
+    best: f64,
+    /// The run that found it.
+    best_run: Option<u64>,
+    /// Mean evaluations per run.
+    evaluations: f64,
+    /// Each run's final best fitness, by run.
+    finals: Vec<f64>,
+}
+
+impl Outputs<'_> {
+    fn write(&self, done: &[Finished]) -> anyhow::Result<()> {
+        let dir = &self.args.out;
+        let mut csv = String::from("method,run,seed,elapsed_s,evaluations,best\n");
+        for f in done {
+            for h in &f.history {
+                writeln!(
+                    csv,
+                    "{},{},{},{:.4},{},{}",
+                    f.method.name(),
+                    f.run,
+                    f.seed,
+                    h.elapsed_s,
+                    h.evaluations,
+                    h.best
+                )?;
+            }
+        }
+        atomic_write(&dir.join("compare.csv"), csv.as_bytes())?;
+
+        let summary = Summary {
+            scene: &self.args.scene,
+            seconds: self.args.seconds,
+            base_seed: self.seeds[0],
+            seed_rule: "run r uses base_seed + r",
+            seeds: self.seeds,
+            backend: self.backend,
+            complete: done.len() == self.seeds.len() * self.methods.len(),
+            methods: self.methods.iter().map(|&m| summarize(m, done)).collect(),
+        };
+        atomic_write(
+            &dir.join("summary.json"),
+            serde_json::to_string_pretty(&summary)?.as_bytes(),
+        )?;
+
+        let curves: Vec<(Method, Vec<f64>, Vec<f64>)> = self
+            .methods
+            .iter()
+            .map(|&m| {
+                let runs: Vec<&[HistoryEntry]> = done
+                    .iter()
+                    .filter(|f| f.method == m)
+                    .map(|f| f.history.as_slice())
+                    .collect();
+                let (mean, std) = curve(&runs, self.args.seconds, GRID_POINTS);
+                (m, mean, std)
+            })
+            .collect();
+        let bands: Vec<Band<'_>> = curves
+            .iter()
+            .map(|(m, mean, std)| Band {
+                name: m.name(),
+                colour: colour(*m),
+                mean,
+                std,
+            })
+            .collect();
+        let picture = plot::bands(
+            PLOT_SIZE.0,
+            PLOT_SIZE.1,
+            self.args.seconds,
+            ("seconds", "best fitness (mean +- std over runs)"),
+            &bands,
+        );
+        save_png(&dir.join("compare.png"), &picture)
+    }
+}
+
+/// `method`'s summary over its runs in `done`.
+fn summarize(method: Method, done: &[Finished]) -> MethodSummary {
+    let runs: Vec<&Finished> = done.iter().filter(|f| f.method == method).collect();
+    let finals: Vec<f64> = runs.iter().map(|f| f.best).collect();
+    let (final_mean, final_std) = mean_std(&finals);
+    let best = runs
+        .iter()
+        .filter(|f| !f.best.is_nan())
+        .max_by(|a, b| a.best.total_cmp(&b.best));
+    MethodSummary {
+        method: method.name(),
+        runs: runs.len(),
+        final_mean,
+        final_std,
+        best: best.map_or(f64::NAN, |f| f.best),
+        best_run: best.map(|f| f.run),
+        evaluations: runs.iter().map(|f| f.evaluations as f64).sum::<f64>()
+            / runs.len().max(1) as f64,
+        finals,
+    }
+}
+
+/// Mean and sample standard deviation (0 for one value) of `values`; NaN for none.
+fn mean_std(values: &[f64]) -> (f64, f64) {
+    let n = values.len() as f64;
+    if values.is_empty() {
+        return (f64::NAN, f64::NAN);
+    }
+    let mean = values.iter().sum::<f64>() / n;
+    if values.len() == 1 {
+        return (mean, 0.0);
+    }
+    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    (mean, var.sqrt())
+}
+
+/// The mean and standard deviation over `runs` of the best fitness so far, at `points`
+/// times evenly spaced over `0..=seconds`. A run's best at time t is that of its last
+/// history entry by t (a step function), and its last value once it has ended; a point
+/// before every run has its first entry is NaN (a gap in the plot).
+fn curve(runs: &[&[HistoryEntry]], seconds: f64, points: usize) -> (Vec<f64>, Vec<f64>) {
+    let mut next = vec![0usize; runs.len()];
+    let mut values = Vec::with_capacity(runs.len());
+    let mut mean = Vec::with_capacity(points);
+    let mut std = Vec::with_capacity(points);
+    for k in 0..points {
+        let t = seconds * k as f64 / (points - 1) as f64;
+        values.clear();
+        for (history, i) in runs.iter().zip(&mut next) {
+            while *i < history.len() && history[*i].elapsed_s <= t {
+                *i += 1;
+            }
+            if *i > 0 {
+                values.push(history[*i - 1].best);
+            }
+        }
+        let (m, s) = if values.len() == runs.len() {
+            mean_std(&values)
+        } else {
+            (f64::NAN, f64::NAN)
+        };
+        mean.push(m);
+        std.push(s);
+    }
+    (mean, std)
+}
+
+/// Each method's colour in the pictures, the same in every comparison.
+fn colour(method: Method) -> Rgb<u8> {
+    match method {
+        Method::Ga => Rgb([30, 80, 200]),
+        Method::Smc => Rgb([230, 120, 20]),
+        Method::Sosmc => Rgb([30, 150, 60]),
+        Method::Rjmcmc => Rgb([200, 30, 40]),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn entry(elapsed_s: f64, best: f64) -> HistoryEntry {
+        HistoryEntry {
+            generation: 0,
+            elapsed_s,
+            evaluations: 0,
+            best,
+            mean: best,
+            std: 0.0,
+        }
+    }
+
+    #[test]
+    fn curves_are_step_functions_held_to_the_end() {
+        let a = [entry(0.5, 1.0), entry(1.5, 3.0)];
+        let b = [entry(0.2, 2.0), entry(0.9, 5.0)];
+        let (mean, std) = curve(&[&a, &b], 2.0, 5);
+        // t = 0: no run has its first entry yet.
+        assert!(mean[0].is_nan() && std[0].is_nan());
+        // t = 0.5: a = 1, b = 2; t = 1: 1 and 5; t = 1.5: 3 and 5; t = 2: held.
+        assert_eq!(&mean[1..], &[1.5, 3.0, 4.0, 4.0]);
+        assert_eq!(std[1], 0.5f64.sqrt());
+        assert_eq!(std[2], 8f64.sqrt());
+    }
+
+    #[test]
+    fn spread_is_the_sample_standard_deviation() {
+        assert_eq!(mean_std(&[2.0]), (2.0, 0.0));
+        assert_eq!(mean_std(&[1.0, 3.0]), (2.0, 2f64.sqrt()));
+        assert!(mean_std(&[]).0.is_nan());
+    }
+
+    #[test]
+    fn methods_keep_their_order_and_mistakes_are_named() {
+        let names = |s: &[&str]| s.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        assert_eq!(
+            parse_methods(&names(&["rjmcmc", "ga"])).unwrap(),
+            [Method::Rjmcmc, Method::Ga]
+        );
+        let err = parse_methods(&names(&["ga", "pso"]))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("`pso`") && err.contains("ga, smc, sosmc, rjmcmc"),
+            "{err}"
+        );
+        assert!(
+            parse_methods(&names(&[""]))
+                .unwrap_err()
+                .to_string()
+                .contains("empty")
+        );
+        assert!(
+            parse_methods(&names(&["ga", "ga"]))
+                .unwrap_err()
+                .to_string()
+                .contains("twice")
+        );
+    }
+}

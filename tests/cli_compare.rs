@@ -1,0 +1,318 @@
+//! `shapegen compare` end to end on a small scene: the files it writes, the seeds of the
+//! runs, equal results at equal evaluations, Ctrl-C and mistakes.
+
+mod support;
+
+use std::collections::BTreeMap;
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use support::{fails, ok, s};
+
+/// A city scene at 160 x 90 whose target is the silhouette of a sampled city, with the
+/// paper's settings for every method.
+fn scene(dir: &Path) -> PathBuf {
+    let text = r#"
+generator = "city"
+[limits]
+min_len = 4
+optimal_len = 100
+max_len = 201
+max_depth = 8
+[fitness]
+length = 0.02
+[silhouette]
+[[silhouette.target]]
+image = "skyline.png"
+camera = { phi = -1.5708, theta = 0.06, radius = 25, lookat = [0, 4.2, 0], fov = 45, near = 0.1, far = 200, width = 160, height = 90 }
+[optimizer]
+seed = 4
+"#;
+    let path = dir.join("skyline.toml");
+    fs::write(&path, text).unwrap();
+    image::GrayImage::from_pixel(160, 90, image::Luma([255]))
+        .save(dir.join("skyline.png"))
+        .unwrap();
+    let c = dir.join("c");
+    ok(&["sample", "-g", "city", "-n", "1", "-s", "3", "-o", s(&c)]);
+    let genomes = c.join("genomes.json");
+    let target = dir.join("skyline.png");
+    ok(&[
+        "target",
+        s(&path),
+        "--genome",
+        s(&genomes),
+        "--out",
+        s(&target),
+    ]);
+    path
+}
+
+/// One row of `compare.csv`.
+#[derive(Debug)]
+struct Row {
+    method: String,
+    run: u64,
+    seed: u64,
+    elapsed_s: f64,
+    evaluations: u64,
+    best: f64,
+}
+
+fn rows(dir: &Path) -> Vec<Row> {
+    let csv = fs::read_to_string(dir.join("compare.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next(),
+        Some("method,run,seed,elapsed_s,evaluations,best")
+    );
+    lines
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            assert_eq!(f.len(), 6, "{l}");
+            Row {
+                method: f[0].to_owned(),
+                run: f[1].parse().unwrap(),
+                seed: f[2].parse().unwrap(),
+                elapsed_s: f[3].parse().unwrap(),
+                evaluations: f[4].parse().unwrap(),
+                best: f[5].parse().unwrap(),
+            }
+        })
+        .collect()
+}
+
+/// The rows of each (method, run), in order.
+fn by_run(rows: &[Row]) -> BTreeMap<(String, u64), Vec<&Row>> {
+    let mut runs: BTreeMap<(String, u64), Vec<&Row>> = BTreeMap::new();
+    for r in rows {
+        runs.entry((r.method.clone(), r.run)).or_default().push(r);
+    }
+    runs
+}
+
+fn summary(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
+}
+
+#[test]
+fn a_comparison_writes_every_run_on_shared_seeds() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene(dir.path());
+    let out = dir.path().join("out");
+    ok(&[
+        "compare",
+        s(&scene),
+        "--methods",
+        "rjmcmc,ga,sosmc",
+        "--runs",
+        "2",
+        "--seconds",
+        "0.6",
+        "--seed",
+        "7",
+        // Published generation counts do not end a compare run: only time does.
+        "--set",
+        "optimizer.generations=1",
+        "--cpu",
+        "--out",
+        s(&out),
+    ]);
+    let rows = rows(&out);
+    let runs = by_run(&rows);
+    let methods = ["rjmcmc", "ga", "sosmc"];
+    assert_eq!(runs.len(), 6, "every method and run present");
+    for m in methods {
+        for r in 0..2 {
+            let run = &runs[&(m.to_owned(), r)];
+            // Run r of every method uses the base seed + r.
+            assert!(run.iter().all(|row| row.seed == 7 + r), "{m} {r}");
+            assert!(run.len() > 2, "{m} run {r} went past 1 generation");
+            assert!(run.windows(2).all(|w| w[1].best >= w[0].best
+                && w[1].evaluations > w[0].evaluations
+                && w[1].elapsed_s >= w[0].elapsed_s));
+            let last = run.last().unwrap();
+            assert!(last.elapsed_s >= 0.6 && last.elapsed_s < 5.0, "{m} {r}");
+            let genome = out.join(format!("runs/{m}-{r}/best.genome.json"));
+            assert!(fs::read_to_string(genome).unwrap().contains("\"City\""));
+        }
+    }
+
+    let summary = summary(&out);
+    assert_eq!(summary["seconds"], 0.6);
+    assert_eq!(summary["base_seed"], 7);
+    assert_eq!(summary["seeds"], serde_json::json!([7, 8]));
+    assert_eq!(summary["backend"], "CPU");
+    assert_eq!(summary["complete"], true);
+    assert!(summary["scene"].as_str().unwrap().ends_with("skyline.toml"));
+    let listed: Vec<&str> = summary["methods"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m["method"].as_str().unwrap())
+        .collect();
+    assert_eq!(listed, methods, "methods in the order given");
+    for m in summary["methods"].as_array().unwrap() {
+        let name = m["method"].as_str().unwrap();
+        let finals: Vec<f64> = (0..2)
+            .map(|r| runs[&(name.to_owned(), r)].last().unwrap().best)
+            .collect();
+        let evaluations: Vec<u64> = (0..2)
+            .map(|r| runs[&(name.to_owned(), r)].last().unwrap().evaluations)
+            .collect();
+        assert_eq!(m["runs"], 2);
+        let mean = (finals[0] + finals[1]) / 2.0;
+        assert!(
+            (m["final_mean"].as_f64().unwrap() - mean).abs() < 1e-12,
+            "{m}"
+        );
+        let std = (finals[0] - finals[1]).abs() / 2f64.sqrt();
+        assert!(
+            (m["final_std"].as_f64().unwrap() - std).abs() < 1e-12,
+            "{m}"
+        );
+        assert_eq!(m["best"].as_f64().unwrap(), finals[0].max(finals[1]));
+        assert_eq!(
+            m["evaluations"].as_f64().unwrap(),
+            (evaluations[0] + evaluations[1]) as f64 / 2.0
+        );
+    }
+
+    let picture = image::open(out.join("compare.png")).unwrap();
+    assert_eq!((picture.width(), picture.height()), (800, 500));
+}
+
+#[test]
+fn equal_evaluation_budgets_give_equal_results_at_any_thread_count() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene(dir.path());
+    let finals = |threads: &str, name: &str| {
+        let out = dir.path().join(name);
+        ok(&[
+            "--threads",
+            threads,
+            "compare",
+            s(&scene),
+            "--runs",
+            "2",
+            "--seconds",
+            "1000",
+            "--set",
+            "optimizer.evaluations=400",
+            "--cpu",
+            "--out",
+            s(&out),
+        ]);
+        let rows = rows(&out);
+        let runs = by_run(&rows);
+        assert_eq!(runs.len(), 8);
+        runs.into_iter()
+            .map(|(k, v)| {
+                let last = v.last().unwrap();
+                assert!(last.evaluations <= 400, "{k:?}");
+                (k, last.best.to_bits(), last.evaluations)
+            })
+            .collect::<Vec<_>>()
+    };
+    let one = finals("1", "one");
+    assert_eq!(one, finals("2", "two"));
+    // Every method sees the scene's seed 4 in run 0 and 5 in run 1, and the two runs differ.
+    let ga: Vec<_> = one.iter().filter(|(k, ..)| k.0 == "ga").collect();
+    assert_ne!(ga[0].1, ga[1].1, "different seeds, different runs");
+    assert_eq!(
+        summary(&dir.path().join("one"))["seeds"],
+        serde_json::json!([4, 5])
+    );
+}
+
+#[test]
+fn ctrl_c_keeps_the_complete_runs_and_fails() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene(dir.path());
+    let out = dir.path().join("out");
+    let child = Command::new(env!("CARGO_BIN_EXE_shapegen"))
+        .args([
+            "compare",
+            s(&scene),
+            "--methods",
+            "ga,smc",
+            "--runs",
+            "20",
+            "--seconds",
+            "0.3",
+            "--cpu",
+            "--out",
+            s(&out),
+        ])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while !out.join("summary.json").exists() {
+        assert!(start.elapsed().as_secs() < 60, "no run finished");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let output = child.wait_with_output().unwrap();
+    assert!(!output.status.success(), "an interrupted comparison fails");
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert!(stderr.contains("interrupted"), "{stderr}");
+    let summary = summary(&out);
+    assert_eq!(summary["complete"], false);
+    let rows = rows(&out);
+    let runs = by_run(&rows);
+    let complete: u64 = summary["methods"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m["runs"].as_u64().unwrap())
+        .sum();
+    assert!((1..40).contains(&complete), "{complete}");
+    assert_eq!(
+        runs.len() as u64,
+        complete,
+        "only complete runs are written"
+    );
+}
+
+#[test]
+fn mistakes_are_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene(dir.path());
+    let out = dir.path().join("out");
+    let base = ["compare", s(&scene), "--cpu", "--out", s(&out)];
+    let err = |extra: &[&str]| fails(&[&base[..], extra].concat());
+    assert!(err(&["--seconds", "1", "--runs", "0"]).contains("--runs 0"));
+    for bad in ["0", "-1", "NaN", "inf"] {
+        let e = err(&["--runs", "1", &format!("--seconds={bad}")]);
+        assert!(e.contains("--seconds"), "{bad}: {e}");
+        assert!(!e.contains("panicked"), "{e}");
+    }
+    let e = err(&["--seconds", "1", "--methods", "ga,pso"]);
+    assert!(
+        e.contains("`pso`") && e.contains("ga, smc, sosmc, rjmcmc"),
+        "{e}"
+    );
+    assert!(err(&["--seconds", "1", "--methods", ""]).contains("--methods is empty"));
+    let e = err(&["--seconds", "1", "--set", "optimizer.population=0"]);
+    assert!(e.contains("optimizer.population"), "{e}");
+    let e = fails(&[
+        "compare",
+        s(&dir.path().join("missing.toml")),
+        "--seconds",
+        "1",
+        "--out",
+        s(&out),
+    ]);
+    assert!(e.contains("missing.toml"), "{e}");
+    assert!(
+        !out.exists(),
+        "nothing written for a command that cannot start"
+    );
+}
