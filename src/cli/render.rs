@@ -11,6 +11,7 @@ use shapegen::Grammar;
 use shapegen::export::{Palette, Preview};
 use shapegen::genome::Limits;
 use shapegen::scene::{Scene, SceneScorer};
+use shapegen::score::objective::{Objective, ObjectiveSet, ProjectionMatch, Surface};
 use shapegen::score::silhouette::ImageTarget;
 
 use super::genomes::load_genomes;
@@ -65,15 +66,24 @@ impl GeneratorVisitor for Render<'_> {
     fn visit<G: Grammar>(self, _: Limits) -> anyhow::Result<()> {
         let args = self.args;
         let genomes = load_genomes::<G>(&args.genomes)?;
-        let scorer = SceneScorer::new::<G>(self.scene)?;
+        let scorer = match self.scene.objectives {
+            Some(_) => None,
+            None => Some(SceneScorer::new::<G>(self.scene)?),
+        };
         let meshes = self.scene.meshes.bind(G::GRAPH)?;
         std::fs::create_dir_all(&args.out)
             .with_context(|| format!("cannot create `{}`", args.out.display()))?;
         let targets = scorer
-            .silhouette
             .as_ref()
+            .and_then(|s| s.silhouette.as_ref())
             .map(|s| s.targets())
             .unwrap_or_default();
+        let has_overlays = !targets.is_empty()
+            || self
+                .scene
+                .objectives
+                .as_ref()
+                .is_some_and(|goal| !projections(&goal.set).is_empty());
         let width = genomes.len().saturating_sub(1).max(1).ilog10() as usize + 1;
         let palette = Palette::new();
 
@@ -95,7 +105,18 @@ impl GeneratorVisitor for Render<'_> {
                     .render(instances, &meshes, &palette)?
                     .save(&path)
                     .with_context(|| format!("cannot write `{}`", path.display()))?;
-                if let Some(silhouette) = &scorer.silhouette {
+                if let Some(goal) = &self.scene.objectives {
+                    let surface = Surface::from_instances(instances, &meshes);
+                    let views = projections(&goal.set);
+                    for (k, (_, projection)) in views.iter().enumerate() {
+                        let stem = args.out.join(format!("overlay_{i:0width$}"));
+                        let path = numbered(&stem, k, views.len(), "png");
+                        projection_overlay(projection, &surface)
+                            .save(&path)
+                            .with_context(|| format!("cannot write `{}`", path.display()))?;
+                    }
+                }
+                if let Some(silhouette) = scorer.as_ref().and_then(|s| s.silhouette.as_ref()) {
                     for (k, target) in targets.iter().enumerate() {
                         let (w, h) = (target.width(), target.height());
                         let mut mask = vec![false; w as usize * h as usize];
@@ -110,7 +131,7 @@ impl GeneratorVisitor for Render<'_> {
                 }
                 anyhow::Ok(())
             })?;
-        let overlays = if targets.is_empty() {
+        let overlays = if !has_overlays {
             ""
         } else {
             " and overlays (target blue, model red, both green)"
@@ -124,16 +145,41 @@ impl GeneratorVisitor for Render<'_> {
     }
 }
 
+/// The projection objectives of `set`, under their names.
+pub fn projections(set: &ObjectiveSet) -> Vec<(&str, &ProjectionMatch)> {
+    set.entries()
+        .iter()
+        .filter_map(|(name, objective)| match objective {
+            Objective::Projection(p) => Some((name.as_str(), p)),
+            _ => None,
+        })
+        .collect()
+}
+
 /// The overlay of a model's coverage `mask` on `target`: target alone blue, model alone
 /// red, both green, neither white.
 pub fn overlay(target: &ImageTarget, mask: &[bool]) -> RgbImage {
     let w = target.width();
-    RgbImage::from_fn(w, target.height(), |x, y| {
-        match (target.is_target(x, y), mask[(y * w + x) as usize]) {
-            (true, true) => BOTH,
-            (true, false) => TARGET,
-            (false, true) => MODEL,
-            (false, false) => NEITHER,
-        }
+    overlay_with(w, target.height(), |x, y| {
+        (target.is_target(x, y), mask[(y * w + x) as usize])
+    })
+}
+
+/// The overlay of a model's orthographic projection on a projection objective's target,
+/// coloured as [`overlay`]'s.
+pub fn projection_overlay(projection: &ProjectionMatch, surface: &Surface) -> RgbImage {
+    let covered = projection.render(surface);
+    overlay_with(projection.width(), projection.height(), |x, y| {
+        (projection.mask(x, y), covered.get_pixel(x, y).0[0] == 0)
+    })
+}
+
+/// An overlay picture from `(is target, is covered)` per pixel.
+fn overlay_with(width: u32, height: u32, pixel: impl Fn(u32, u32) -> (bool, bool)) -> RgbImage {
+    RgbImage::from_fn(width, height, |x, y| match pixel(x, y) {
+        (true, true) => BOTH,
+        (true, false) => TARGET,
+        (false, true) => MODEL,
+        (false, false) => NEITHER,
     })
 }

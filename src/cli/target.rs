@@ -10,9 +10,12 @@ use image::{GrayImage, Luma};
 use shapegen::Grammar;
 use shapegen::genome::Limits;
 use shapegen::scene::{Scene, SceneScorer};
+use shapegen::Instance;
 use shapegen::score::Scorer;
+use shapegen::score::objective::{ObjectiveSet, Surface};
 
 use super::genomes::load_genome;
+use super::render::projections;
 use super::voxels::voxel_surface_obj;
 
 /// Arguments of `shapegen target`.
@@ -28,7 +31,8 @@ pub struct TargetArgs {
     index: usize,
     /// Where to write: a volume scene writes `PATH` as `.obj` (the surface of the voxels the
     /// model covers), a silhouette scene `PATH` as `.png` (black where the model covers,
-    /// one file per camera, numbered when there are several).
+    /// one file per camera, numbered when there are several), a scene with objectives
+    /// `PATH` as `.png` for each top_match or front_match objective (numbered likewise).
     #[arg(long)]
     out: PathBuf,
 }
@@ -53,13 +57,16 @@ impl GeneratorVisitor for Target<'_> {
     fn visit<G: Grammar>(self, _: Limits) -> anyhow::Result<()> {
         let args = self.args;
         let genome = load_genome::<G>(&args.genome, args.index)?;
-        let scorer = SceneScorer::new::<G>(self.scene)?;
         let mut instances = Vec::new();
         genome.derive_into(&mut instances);
         if let Some(parent) = args.out.parent().filter(|p| !p.as_os_str().is_empty()) {
             std::fs::create_dir_all(parent)
                 .with_context(|| format!("cannot create `{}`", parent.display()))?;
         }
+        if let Some(goal) = &self.scene.objectives {
+            return projection_targets::<G>(self.scene, &goal.set, &instances, &args.out);
+        }
+        let scorer = SceneScorer::new::<G>(self.scene)?;
 
         if let Some(volume) = &scorer.volume {
             let mut covered = Vec::new();
@@ -100,6 +107,42 @@ impl GeneratorVisitor for Target<'_> {
         }
         Ok(())
     }
+}
+
+/// Writes the image of every projection objective of `set` for the model made of
+/// `instances`, black where it covers: `out` as `.png`, numbered when there are several.
+fn projection_targets<G: Grammar>(
+    scene: &Scene,
+    set: &ObjectiveSet,
+    instances: &[Instance],
+    out: &Path,
+) -> anyhow::Result<()> {
+    let meshes = scene.meshes.bind(G::GRAPH)?;
+    let surface = Surface::from_instances(instances, &meshes);
+    let views = projections(set);
+    anyhow::ensure!(
+        !views.is_empty(),
+        "the scene has no top_match or front_match objective to make an image for"
+    );
+    for (k, (name, projection)) in views.iter().enumerate() {
+        let image = projection.render(&surface);
+        let covered = image.pixels().filter(|p| p.0[0] == 0).count();
+        anyhow::ensure!(
+            covered > 0,
+            "the model covers no pixel of objective `{name}`'s area; pick another genome"
+        );
+        let path = numbered(out, k, views.len(), "png");
+        image
+            .save(&path)
+            .with_context(|| format!("cannot write `{}`", path.display()))?;
+        println!(
+            "wrote {} for `{name}` ({covered} target pixels, {} x {})",
+            path.display(),
+            image.width(),
+            image.height()
+        );
+    }
+    Ok(())
 }
 
 /// `path` with extension `ext`, and `_k` after its stem when there are several files.

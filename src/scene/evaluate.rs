@@ -53,9 +53,18 @@ impl SceneScorer {
     /// The scene's scorers for grammar `G`, which must be the scene's generator.
     ///
     /// # Errors
-    /// [`SceneError::Invalid`] when the scene's meshes lack one the grammar uses or a
-    /// target cannot be used.
+    /// [`SceneError::Invalid`] when the scene's meshes lack one the grammar uses, a
+    /// target cannot be used, or the scene's goal is [`objectives`](Scene::objectives).
     pub fn new<G: Grammar>(scene: &Scene) -> Result<SceneScorer, SceneError> {
+        if scene.objectives.is_some() {
+            return Err(scene.invalid(
+                "objective",
+                "the scene's goal is several objectives, which have no single fitness: \
+                 search it with the multi-objective GA (`shapegen run` does) and measure \
+                 it with an ObjectiveEvaluator"
+                    .into(),
+            ));
+        }
         let meshes = scene
             .meshes
             .bind(G::GRAPH)

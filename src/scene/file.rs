@@ -15,6 +15,11 @@ pub(super) struct SceneFile {
     pub fitness: FitnessFile,
     pub volume: Option<VolumeFile>,
     pub silhouette: Option<SilhouetteFile>,
+    /// `[[objective]]`: the objectives of a multi-objective scene.
+    #[serde(default)]
+    pub objective: Vec<super::objective::ObjectiveFile>,
+    /// `[selection]`: how a multi-objective scene's objective vectors are ranked.
+    pub selection: Option<shapegen_runtime::optimize::multi::Selection>,
     /// `[optimizer]`: kept as a table, checked against the optimizer's own settings.
     #[serde(default)]
     pub optimizer: toml::Table,

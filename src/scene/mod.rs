@@ -56,6 +56,7 @@
 mod error;
 mod evaluate;
 mod file;
+mod objective;
 mod optimizer;
 mod resolve;
 
@@ -64,12 +65,15 @@ use std::path::{Path, PathBuf};
 use generators::Published;
 use shapegen_runtime::genome::Limits;
 use shapegen_runtime::geometry::MeshLibrary;
+use shapegen_runtime::optimize::multi::{MultiGaSettings, Selection};
+use shapegen_runtime::score::objective::ObjectiveSet;
 use shapegen_runtime::score::silhouette::ImageTarget;
 use shapegen_runtime::score::volume::{Grid, VolumeTarget};
 use shapegen_runtime::score::{Form, LengthPenalty};
 
 pub use error::SceneError;
 pub use evaluate::{Backend, BackendChoice, SceneCounts, SceneEvaluator, SceneScorer};
+pub use objective::ObjectiveEvaluator;
 pub use optimizer::{Method, MethodSettings, OptimizerGoal};
 
 /// A loaded and checked scene.
@@ -91,8 +95,23 @@ pub struct Scene {
     pub volume: Option<VolumeGoal>,
     /// The silhouette scorer's settings, when the scene has one.
     pub silhouette: Option<SilhouetteGoal>,
-    /// The optimizer, its settings, seed and budget.
+    /// The objectives of a multi-objective scene (`[[objective]]` tables), which has no
+    /// volume or silhouette goal.
+    pub objectives: Option<ObjectiveGoal>,
+    /// The optimizer, its settings, seed and budget. A multi-objective scene's method
+    /// is the GA, whose settings breed for [`multi_settings`](Self::multi_settings).
     pub optimizer: OptimizerGoal,
+}
+
+/// The `[[objective]]` tables and the `[selection]` table, resolved.
+#[derive(Clone, Debug)]
+pub struct ObjectiveGoal {
+    /// The objectives, under their names, in the file's order.
+    pub set: ObjectiveSet,
+    /// How their values are ranked for selection.
+    pub selection: Selection,
+    /// Most models kept in the non-dominated archive (`optimizer.archive`).
+    pub archive: u32,
 }
 
 /// The `[volume]` table, resolved: the grid, the targets loaded, and the fitness form.
@@ -155,6 +174,21 @@ impl Scene {
                 .map_err(|err: toml::de::Error| syntax(format!("after --set: {}", err.message())))?
         };
         resolve::Resolver::new(path).scene(file)
+    }
+
+    /// The multi-objective GA's settings of a scene with objectives: the `[optimizer]`
+    /// table's GA settings with the `[selection]` and the archive size; `None` for a
+    /// scene without objectives.
+    pub fn multi_settings(&self) -> Option<MultiGaSettings> {
+        let goal = self.objectives.as_ref()?;
+        let MethodSettings::Ga(ga) = self.optimizer.settings else {
+            return None;
+        };
+        Some(MultiGaSettings {
+            ga,
+            selection: goal.selection.clone(),
+            archive: goal.archive,
+        })
     }
 
     /// An error about `key` of this scene.

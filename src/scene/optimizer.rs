@@ -5,6 +5,7 @@ use std::time::Duration;
 use generators::Published;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
+use shapegen_runtime::optimize::multi::MultiGaSettings;
 use shapegen_runtime::optimize::{
     Budget, GaSettings, McmcSettings, Order, SettingsError, SmcSettings,
 };
@@ -115,7 +116,8 @@ fn paper(method: Method, generator: Published) -> MethodSettings {
     match (method, generator) {
         (Method::Ga, Spaceship) => MethodSettings::Ga(GaSettings::paper_spaceship()),
         (Method::Ga, Tree) => MethodSettings::Ga(GaSettings::paper_tree()),
-        (Method::Ga, City | Building) => MethodSettings::Ga(GaSettings::paper_city()),
+        (Method::Ga, City) => MethodSettings::Ga(GaSettings::paper_city()),
+        (Method::Ga, Building) => MethodSettings::Ga(MultiGaSettings::thesis().ga),
         (Method::Smc | Method::Sosmc, Spaceship) => {
             MethodSettings::Smc(SmcSettings::paper_spaceship(order))
         }
@@ -227,6 +229,19 @@ pub(super) fn resolve(
         evaluations,
         settings,
     })
+}
+
+/// Takes `archive` (the multi-objective GA's archive size) out of an `[optimizer]`
+/// table: its value, or the default of [`MultiGaSettings`]; errors are `(key, reason)`.
+pub(super) fn take_archive(table: &mut toml::Table) -> Result<u32, (String, String)> {
+    match table.remove("archive") {
+        None => Ok(MultiGaSettings::default().archive),
+        Some(toml::Value::Integer(n)) if (1..=i64::from(u32::MAX)).contains(&n) => Ok(n as u32),
+        Some(other) => Err((
+            "optimizer.archive".into(),
+            format!("{other} must be a whole number >= 1"),
+        )),
+    }
 }
 
 /// Applies `key=value` overrides (`--set optimizer.population=200`) to a scene's TOML

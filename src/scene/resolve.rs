@@ -14,7 +14,7 @@ use super::file::{
     CameraFile, FormName, ImageKind, ImageTargetFile, LimitsFile, SceneFile, SilhouetteFile,
     VolumeFile,
 };
-use super::{Scene, SceneError, SilhouetteGoal, VolumeGoal};
+use super::{Method, ObjectiveGoal, Scene, SceneError, SilhouetteGoal, VolumeGoal};
 
 pub(super) struct Resolver<'a> {
     path: &'a Path,
@@ -27,7 +27,7 @@ impl<'a> Resolver<'a> {
         Resolver { path, dir }
     }
 
-    fn invalid(&self, key: impl Into<String>, reason: impl Into<String>) -> SceneError {
+    pub(super) fn invalid(&self, key: impl Into<String>, reason: impl Into<String>) -> SceneError {
         SceneError::Invalid {
             path: self.path.to_owned(),
             key: key.into(),
@@ -37,7 +37,7 @@ impl<'a> Resolver<'a> {
 
     /// A path written in the scene, relative to the scene's folder, which must name an
     /// existing file.
-    fn file(&self, key: &str, written: &str) -> Result<PathBuf, SceneError> {
+    pub(super) fn file(&self, key: &str, written: &str) -> Result<PathBuf, SceneError> {
         if written.is_empty() {
             return Err(self.invalid(key, "the path is empty"));
         }
@@ -103,15 +103,57 @@ impl<'a> Resolver<'a> {
             .as_ref()
             .map(|s| self.silhouette(s, form))
             .transpose()?;
-        if volume.is_none() && silhouette.is_none() {
+        let mut table = file.optimizer;
+        let objectives = if file.objective.is_empty() {
+            if volume.is_none() && silhouette.is_none() {
+                return Err(self.invalid(
+                    "volume",
+                    "the scene has nothing to score: add a [volume] or [silhouette] table, \
+                     or [[objective]] tables",
+                ));
+            }
+            if file.selection.is_some() {
+                return Err(self.invalid(
+                    "selection",
+                    "ranks the objectives of [[objective]] tables, and the scene has none",
+                ));
+            }
+            None
+        } else {
+            if volume.is_some() || silhouette.is_some() {
+                return Err(self.invalid(
+                    "objective",
+                    "a scene scores either by [volume] / [silhouette] or by [[objective]] \
+                     tables, not both",
+                ));
+            }
+            let set = self.objectives(&file.objective)?;
+            let selection = file.selection.unwrap_or_default();
+            selection
+                .validate()
+                .and_then(|()| selection.check_objectives(set.len()))
+                .map_err(|err| self.invalid(err.field, err.to_string()))?;
+            let archive = super::optimizer::take_archive(&mut table)
+                .map_err(|(key, reason)| self.invalid(key, reason))?;
+            Some(ObjectiveGoal {
+                set,
+                selection,
+                archive,
+            })
+        };
+
+        let optimizer = super::optimizer::resolve(generator, table)
+            .map_err(|(key, reason)| self.invalid(key, reason))?;
+        if objectives.is_some() && optimizer.method != Method::Ga {
             return Err(self.invalid(
-                "volume",
-                "the scene has nothing to score: add a [volume] or [silhouette] table",
+                "optimizer.method",
+                format!(
+                    "\"{}\": scenes with [[objective]] tables are searched by the \
+                     multi-objective GA; the method must be \"ga\"",
+                    optimizer.method.name()
+                ),
             ));
         }
-
-        let optimizer = super::optimizer::resolve(generator, file.optimizer)
-            .map_err(|(key, reason)| self.invalid(key, reason))?;
 
         Ok(Scene {
             optimizer,
@@ -123,6 +165,7 @@ impl<'a> Resolver<'a> {
             length,
             volume,
             silhouette,
+            objectives,
         })
     }
 

@@ -1,0 +1,164 @@
+//! The `[[objective]]` tables of a multi-objective scene: what each objective measures,
+//! resolved into an [`ObjectiveSet`], and the evaluator that measures whole populations.
+
+use glam::Vec2;
+use serde::Deserialize;
+use shapegen_runtime::geometry::BoundMeshes;
+use shapegen_runtime::optimize::multi::MultiEvaluator;
+use shapegen_runtime::optimize::{EvaluateError, Sense};
+use shapegen_runtime::score::InstanceBatch;
+use shapegen_runtime::score::objective::{Objective, ObjectiveSet, ProjectionMatch, View};
+use shapegen_runtime::{Genome, Grammar};
+
+use super::resolve::Resolver;
+use super::{Scene, SceneError};
+
+/// One `[[objective]]` table as written. Which keys apply depends on `kind`; the
+/// resolver refuses the others by name.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct ObjectiveFile {
+    pub kind: String,
+    pub name: Option<String>,
+    pub target: Option<f32>,
+    pub tolerance_deg: Option<f32>,
+    pub min: Option<[f32; 2]>,
+    pub max: Option<[f32; 2]>,
+    pub image: Option<String>,
+}
+
+/// The objective kinds and the keys each takes besides `kind` and `name`.
+const KINDS: [(&str, &[&str]); 6] = [
+    ("height", &["target"]),
+    ("unique_normals", &["tolerance_deg"]),
+    ("normal_spread", &["tolerance_deg"]),
+    ("footprint_excess", &["min", "max"]),
+    ("top_match", &["image", "min", "max"]),
+    ("front_match", &["image", "min", "max"]),
+];
+
+/// Default tolerance between normals counted as one, in degrees.
+const TOLERANCE_DEG: f32 = 1.0;
+
+impl Resolver<'_> {
+    /// The objectives of `[[objective]]` tables, in order.
+    pub(super) fn objectives(&self, files: &[ObjectiveFile]) -> Result<ObjectiveSet, SceneError> {
+        let mut entries = Vec::with_capacity(files.len());
+        for (i, file) in files.iter().enumerate() {
+            let key = |k: &str| format!("objective[{i}].{k}");
+            let Some(&(kind, keys)) = KINDS.iter().find(|(name, _)| *name == file.kind) else {
+                let valid: Vec<&str> = KINDS.iter().map(|(name, _)| *name).collect();
+                return Err(self.invalid(
+                    key("kind"),
+                    format!("\"{}\" is not an objective; the kinds are {}", file.kind, valid.join(", ")),
+                ));
+            };
+            let given = [
+                ("target", file.target.is_some()),
+                ("tolerance_deg", file.tolerance_deg.is_some()),
+                ("min", file.min.is_some()),
+                ("max", file.max.is_some()),
+                ("image", file.image.is_some()),
+            ];
+            if let Some((extra, _)) = given.iter().find(|(k, set)| *set && !keys.contains(k)) {
+                return Err(self.invalid(
+                    key(extra),
+                    format!("is not used by kind \"{kind}\", which takes {}", keys.join(", ")),
+                ));
+            }
+            let needed = |k: &str| self.invalid(key(k), format!("is needed by kind \"{kind}\""));
+            let rect = || -> Result<(Vec2, Vec2), SceneError> {
+                let min = file.min.ok_or_else(|| needed("min"))?;
+                let max = file.max.ok_or_else(|| needed("max"))?;
+                Ok((Vec2::from(min), Vec2::from(max)))
+            };
+            let tolerance_deg = file.tolerance_deg.unwrap_or(TOLERANCE_DEG);
+            let objective = match kind {
+                "height" => Objective::Height {
+                    target: file.target.ok_or_else(|| needed("target"))?,
+                },
+                "unique_normals" => Objective::UniqueNormals { tolerance_deg },
+                "normal_spread" => Objective::NormalSpread { tolerance_deg },
+                "footprint_excess" => {
+                    let (min, max) = rect()?;
+                    Objective::FootprintExcess { min, max }
+                }
+                _ => {
+                    let view = if kind == "top_match" { View::Top } else { View::Front };
+                    let written = file.image.as_deref().ok_or_else(|| needed("image"))?;
+                    let path = self.file(&key("image"), written)?;
+                    let image = image::open(&path)
+                        .map_err(|err| self.invalid(key("image"), format!("`{}`: {err}", path.display())))?
+                        .into_luma8();
+                    let (min, max) = rect()?;
+                    Objective::Projection(
+                        ProjectionMatch::from_image(view, min, max, &image)
+                            .map_err(|err| self.invalid(key("image"), err.to_string()))?,
+                    )
+                }
+            };
+            entries.push((file.name.clone().unwrap_or_else(|| kind.to_owned()), objective));
+        }
+        ObjectiveSet::new(entries).map_err(|err| self.invalid("objective", err.to_string()))
+    }
+}
+
+/// Measures a multi-objective scene's objectives on whole populations of grammar `G`:
+/// derives the genomes into one batch and measures it on the rayon pool. Its buffers are
+/// kept between populations.
+#[derive(Debug)]
+pub struct ObjectiveEvaluator<'a> {
+    set: &'a ObjectiveSet,
+    meshes: BoundMeshes,
+    batch: InstanceBatch,
+}
+
+impl<'a> ObjectiveEvaluator<'a> {
+    /// The evaluator of `scene`'s objectives for grammar `G`, the scene's generator.
+    ///
+    /// # Errors
+    /// [`SceneError::Invalid`] when the scene has no objectives or its meshes lack one
+    /// the grammar uses.
+    pub fn new<G: Grammar>(scene: &'a Scene) -> Result<ObjectiveEvaluator<'a>, SceneError> {
+        let goal = scene.objectives.as_ref().ok_or_else(|| {
+            scene.invalid(
+                "objective",
+                "the scene has no [[objective]] tables to measure".into(),
+            )
+        })?;
+        let meshes = scene
+            .meshes
+            .bind(G::GRAPH)
+            .map_err(|err| scene.invalid("meshes", err.to_string()))?;
+        Ok(ObjectiveEvaluator {
+            set: &goal.set,
+            meshes,
+            batch: InstanceBatch::new(),
+        })
+    }
+
+    /// The objectives measured.
+    pub fn set(&self) -> &ObjectiveSet {
+        self.set
+    }
+
+    /// The grammar's meshes, bound.
+    pub fn meshes(&self) -> &BoundMeshes {
+        &self.meshes
+    }
+}
+
+impl<G: Grammar> MultiEvaluator<G> for ObjectiveEvaluator<'_> {
+    fn senses(&self) -> &[Sense] {
+        self.set.senses()
+    }
+
+    fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError> {
+        self.batch.clear();
+        for genome in genomes {
+            self.batch.push_genome(genome);
+        }
+        self.set.measure_batch(&self.batch, &self.meshes, out);
+        Ok(())
+    }
+}
