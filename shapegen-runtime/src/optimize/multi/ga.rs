@@ -83,6 +83,18 @@ pub struct MultiSnapshot<'a, G> {
     pub front: &'a [Member<G>],
 }
 
+impl<G: Grammar> std::fmt::Debug for MultiSnapshot<'_, G> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("MultiSnapshot")
+            .field("generation", &self.generation)
+            .field("elapsed", &self.elapsed)
+            .field("evaluations", &self.evaluations)
+            .field("best", &self.best)
+            .field("front", &self.front)
+            .finish()
+    }
+}
+
 /// Called after every generation of a [`MultiGa`] (the initial population's included).
 pub trait MultiObserver<G: Grammar> {
     /// Sees a snapshot; returns whether to go on.

@@ -49,6 +49,27 @@ pub fn dominates(a: &[f64], b: &[f64], senses: &[Sense]) -> bool {
     strictly
 }
 
+/// Which of `a` and `b` dominates the other, in one pass: `Less` if `a` dominates,
+/// `Greater` if `b` does, `Equal` if neither.
+fn dominance(a: &[f64], b: &[f64], senses: &[Sense]) -> Ordering {
+    let (mut a_better, mut b_better) = (false, false);
+    for ((&x, &y), &s) in a.iter().zip(b).zip(senses) {
+        match better_first(s, x, y) {
+            Ordering::Less => a_better = true,
+            Ordering::Greater => b_better = true,
+            Ordering::Equal => {}
+        }
+        if a_better && b_better {
+            return Ordering::Equal;
+        }
+    }
+    match (a_better, b_better) {
+        (true, false) => Ordering::Less,
+        (false, true) => Ordering::Greater,
+        _ => Ordering::Equal,
+    }
+}
+
 /// The non-dominated fronts of a population, with reusable buffers.
 ///
 /// Front 1 holds the individuals no one dominates; front `r + 1` those dominated only by
@@ -86,10 +107,10 @@ impl Fronts {
         self.count.resize(n, 0);
         for p in 0..n {
             for q in p + 1..n {
-                if dominates(row(p), row(q), senses) {
-                    self.count[q] += 1;
-                } else if dominates(row(q), row(p), senses) {
-                    self.count[p] += 1;
+                match dominance(row(p), row(q), senses) {
+                    Ordering::Less => self.count[q] += 1,
+                    Ordering::Greater => self.count[p] += 1,
+                    Ordering::Equal => {}
                 }
             }
         }
@@ -420,5 +441,98 @@ pub fn selection_fitness(
             &mut scratch.first,
             out,
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{RngExt, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// Populations of `n` rows of `k` small integers (many ties), some NaN.
+    fn population(rng: &mut ChaCha8Rng, n: usize, k: usize) -> Vec<f64> {
+        (0..n * k)
+            .map(|_| match rng.random_range(0..12) {
+                0 => f64::NAN,
+                v => f64::from(v % 5),
+            })
+            .collect()
+    }
+
+    fn senses(k: usize) -> Vec<Sense> {
+        (0..k)
+            .map(|j| [Sense::Maximize, Sense::Minimize][j % 2])
+            .collect()
+    }
+
+    #[test]
+    fn fronts_match_peeling_the_non_dominated() {
+        let mut rng = ChaCha8Rng::seed_from_u64(1);
+        let mut fronts = Fronts::default();
+        for (n, k) in [(1, 1), (7, 1), (30, 2), (40, 3), (25, 4)] {
+            let values = population(&mut rng, n, k);
+            let s = senses(k);
+            fronts.sort(&values, k, &s);
+            let row = |i: usize| &values[i * k..(i + 1) * k];
+            let mut left: Vec<usize> = (0..n).collect();
+            let mut rank = 1;
+            while !left.is_empty() {
+                let (front, rest): (Vec<usize>, Vec<usize>) = left
+                    .iter()
+                    .partition(|&&i| !left.iter().any(|&j| dominates(row(j), row(i), &s)));
+                let expect: Vec<u32> = front.iter().map(|&i| i as u32).collect();
+                assert_eq!(fronts.front(rank - 1), expect, "n {n} k {k}");
+                assert!(front.iter().all(|&i| fronts.ranks()[i] == rank as u32));
+                left = rest;
+                rank += 1;
+            }
+            assert_eq!(fronts.len(), rank - 1);
+        }
+    }
+
+    #[test]
+    fn summed_rank_counts_the_strictly_better() {
+        let mut rng = ChaCha8Rng::seed_from_u64(2);
+        let (mut order, mut out) = (Vec::new(), Vec::new());
+        for (n, k) in [(1, 1), (9, 2), (33, 3)] {
+            let values = population(&mut rng, n, k);
+            let s = senses(k);
+            // Competition rank: one plus the number of strictly better individuals.
+            let r = |i: usize, j: usize| {
+                1 + (0..n)
+                    .filter(|&q| s[j].better(values[q * k + j], values[i * k + j]))
+                    .count()
+            };
+            for normalized in [false, true] {
+                out.clear();
+                out.resize(n, 0.0);
+                summed_rank(&values, k, &s, normalized, &mut order, &mut out);
+                for (i, &o) in out.iter().enumerate() {
+                    let expect: f64 = (0..k)
+                        .map(|j| {
+                            let worst = (0..n).map(|q| r(q, j)).max().unwrap();
+                            let scale = if normalized { 1.0 / worst as f64 } else { 1.0 };
+                            r(i, j) as f64 * scale
+                        })
+                        .sum();
+                    assert!((o - expect).abs() < 1e-12, "{o} vs {expect}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn first_of_equals_marks_the_lowest_index_of_each_group() {
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        let values = population(&mut rng, 50, 2);
+        let mut first = vec![false; 50];
+        first_of_equals(&values, 2, &mut Vec::new(), &mut first);
+        let same = |a: usize, b: usize| {
+            (0..2).all(|j| compare(values[a * 2 + j], values[b * 2 + j]).is_eq())
+        };
+        for (i, &f) in first.iter().enumerate() {
+            assert_eq!(f, !(0..i).any(|e| same(e, i)), "row {i}");
+        }
     }
 }
