@@ -340,6 +340,23 @@ fn a_top_projection_covers_pixel_centres_inside_the_box() {
 }
 
 #[test]
+fn pixel_centres_on_an_edge_follow_the_top_left_rule() {
+    // x from 1.5 to 3.5 and z from 1.5 to 2.5 run through pixel centres: those on the
+    // left and top edges are covered, those on the right and bottom edges are not.
+    let model = [cuboid(Vec3::new(1.5, 0.0, 1.5), Vec3::new(3.5, 1.0, 2.5))];
+    let top =
+        ProjectionMatch::new(View::Top, Vec2::ZERO, Vec2::splat(8.0), 8, 8, &mask_of(&[])).unwrap();
+    let image = top.render(&surface(&model));
+    let black: Vec<(u32, u32)> = image
+        .enumerate_pixels()
+        .filter(|(_, _, p)| p.0 == [0])
+        .map(|(x, y, _)| (x, y))
+        .collect();
+    assert_eq!(black, [(1, 1), (2, 1)]);
+    assert_eq!(top.score(&surface(&model)), 62.0 / 64.0);
+}
+
+#[test]
 fn a_front_projection_has_world_up_at_the_top_of_the_image() {
     // y from 6 to 7 is row 1 of 8 over y in [0, 8]; x from 0 to 2 is columns 0 and 1.
     let model = [cuboid(Vec3::new(0.0, 6.0, -3.0), Vec3::new(2.0, 7.0, 3.0))];
