@@ -3,6 +3,7 @@
 mod backend;
 mod compare;
 mod files;
+mod front;
 mod genomes;
 mod interrupt;
 mod plot;

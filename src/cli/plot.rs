@@ -115,109 +115,192 @@ pub fn bands(
     bands: &[Band<'_>],
 ) -> RgbImage {
     let mut image = RgbImage::from_pixel(width, height, BACKGROUND);
-    let (left, right) = (f64::from(LEFT), f64::from(width.saturating_sub(RIGHT)));
-    let (bottom, top) = (f64::from(height.saturating_sub(BOTTOM)), f64::from(TOP));
-    let (lo, hi) = y_range(bands);
     let x_max = if x_max.is_finite() && x_max > 0.0 {
         x_max
     } else {
         1.0
     };
-    let px = |x: f64| left + (right - left) * x / x_max;
-    let py = |y: f64| bottom + (top - bottom) * (y - lo) / (hi - lo);
-
-    let y_ticks = ticks(lo, hi, 6.0);
-    let x_ticks = ticks(0.0, x_max, 8.0);
-    for &(v, _) in &y_ticks {
-        let y = py(v) as u32;
-        for x in LEFT..=width.saturating_sub(RIGHT) {
-            image.put_pixel(x, y, GRID);
-        }
-    }
-    for &(v, _) in &x_ticks {
-        let x = px(v) as u32;
-        for y in TOP..=height.saturating_sub(BOTTOM) {
-            image.put_pixel(x, y, GRID);
-        }
-    }
-
+    let axes = Axes::draw(&mut image, (0.0, x_max), y_range(bands), labels);
     for band in bands {
-        shade(&mut image, band, (left, right), &py);
+        shade(&mut image, band, (axes.left, axes.right), &|y| axes.py(y));
     }
     for band in bands {
         let n = band.mean.len();
-        let at = |i: usize| px(x_max * i as f64 / (n.max(2) - 1) as f64);
+        let at = |i: usize| axes.px(x_max * i as f64 / (n.max(2) - 1) as f64);
         for (i, pair) in band.mean.windows(2).enumerate() {
             if pair[0].is_finite() && pair[1].is_finite() {
                 line(
                     &mut image,
-                    (at(i), py(pair[0])),
-                    (at(i + 1), py(pair[1])),
+                    (at(i), axes.py(pair[0])),
+                    (at(i + 1), axes.py(pair[1])),
                     band.colour,
                 );
             }
         }
     }
-
-    let (x_axis, y_axis) = (height.saturating_sub(BOTTOM), LEFT);
-    for x in LEFT..=width.saturating_sub(RIGHT) {
-        image.put_pixel(x, x_axis, AXES);
-    }
-    for y in TOP..=x_axis {
-        image.put_pixel(y_axis, y, AXES);
-    }
-    let glyph_h = font::HEIGHT * SCALE;
-    for (v, label) in &y_ticks {
-        let y = py(*v) as u32;
-        for x in LEFT.saturating_sub(5)..LEFT {
-            image.put_pixel(x, y, AXES);
-        }
-        let w = font::text_width(label, SCALE);
-        let x = LEFT.saturating_sub(8 + w);
-        font::draw(
-            &mut image,
-            x,
-            y.saturating_sub(glyph_h / 2),
-            label,
-            SCALE,
-            AXES,
-        );
-    }
-    for (v, label) in &x_ticks {
-        let x = px(*v) as u32;
-        for y in x_axis..x_axis + 5 {
-            image.put_pixel(x, y, AXES);
-        }
-        let w = font::text_width(label, SCALE);
-        font::draw(
-            &mut image,
-            x.saturating_sub(w / 2),
-            x_axis + 8,
-            label,
-            SCALE,
-            AXES,
-        );
-    }
-    let (x_label, y_label) = labels;
-    let w = font::text_width(x_label, SCALE);
-    font::draw(
-        &mut image,
-        (LEFT + width.saturating_sub(RIGHT)) / 2 - w / 2,
-        x_axis + 12 + glyph_h,
-        x_label,
-        SCALE,
-        AXES,
-    );
-    font::draw(
-        &mut image,
-        8,
-        TOP.saturating_sub(glyph_h + 10),
-        y_label,
-        SCALE,
-        AXES,
-    );
     legend(&mut image, bands);
     image
+}
+
+/// Plots `points` `(x, y)` as dots, against numbered axes spanning every finite point
+/// (with a little room), labelled `labels` (x, y). Points with a non-finite coordinate
+/// are left out.
+pub fn scatter(
+    width: u32,
+    height: u32,
+    labels: (&str, &str),
+    points: &[(f64, f64)],
+    colour: Rgb<u8>,
+) -> RgbImage {
+    let mut image = RgbImage::from_pixel(width, height, BACKGROUND);
+    let finite: Vec<(f64, f64)> = points
+        .iter()
+        .copied()
+        .filter(|(x, y)| x.is_finite() && y.is_finite())
+        .collect();
+    let range = |values: &mut dyn Iterator<Item = f64>| {
+        let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+        padded(lo, hi)
+    };
+    let xs = range(&mut finite.iter().map(|p| p.0));
+    let ys = range(&mut finite.iter().map(|p| p.1));
+    let axes = Axes::draw(&mut image, xs, ys, labels);
+    for &(x, y) in &finite {
+        let (cx, cy) = (axes.px(x), axes.py(y));
+        for dy in -3i32..=3 {
+            for dx in -3i32..=3 {
+                if dx * dx + dy * dy > 10 {
+                    continue;
+                }
+                let (px, py) = ((cx + f64::from(dx)) as u32, (cy + f64::from(dy)) as u32);
+                if px < image.width() && py < image.height() {
+                    image.put_pixel(px, py, colour);
+                }
+            }
+        }
+    }
+    image
+}
+
+/// Writes `text` at the top-left corner of `image`, on a white box.
+pub fn label(image: &mut RgbImage, text: &str) {
+    let (w, h) = (font::text_width(text, SCALE) + 8, font::HEIGHT * SCALE + 8);
+    for y in 0..h.min(image.height()) {
+        for x in 0..w.min(image.width()) {
+            image.put_pixel(x, y, BACKGROUND);
+        }
+    }
+    font::draw(image, 4, 4, text, SCALE, AXES);
+}
+
+/// The plot area of [`bands`] and [`scatter`] and its mapping from data to pixels.
+struct Axes {
+    left: f64,
+    right: f64,
+    bottom: f64,
+    top: f64,
+    x: (f64, f64),
+    y: (f64, f64),
+}
+
+impl Axes {
+    /// Draws the grid, the axes with their ticks and numbers, and the axis labels for the
+    /// data ranges `x` and `y` on `image`.
+    fn draw(image: &mut RgbImage, x: (f64, f64), y: (f64, f64), labels: (&str, &str)) -> Axes {
+        let (width, height) = image.dimensions();
+        let axes = Axes {
+            left: f64::from(LEFT),
+            right: f64::from(width.saturating_sub(RIGHT)),
+            bottom: f64::from(height.saturating_sub(BOTTOM)),
+            top: f64::from(TOP),
+            x,
+            y,
+        };
+        let y_ticks = ticks(y.0, y.1, 6.0);
+        let x_ticks = ticks(x.0, x.1, 8.0);
+        for &(v, _) in &y_ticks {
+            let py = axes.py(v) as u32;
+            for px in LEFT..=width.saturating_sub(RIGHT) {
+                image.put_pixel(px, py, GRID);
+            }
+        }
+        for &(v, _) in &x_ticks {
+            let px = axes.px(v) as u32;
+            for py in TOP..=height.saturating_sub(BOTTOM) {
+                image.put_pixel(px, py, GRID);
+            }
+        }
+        let (x_axis, y_axis) = (height.saturating_sub(BOTTOM), LEFT);
+        for px in LEFT..=width.saturating_sub(RIGHT) {
+            image.put_pixel(px, x_axis, AXES);
+        }
+        for py in TOP..=x_axis {
+            image.put_pixel(y_axis, py, AXES);
+        }
+        let glyph_h = font::HEIGHT * SCALE;
+        for (v, label) in &y_ticks {
+            let py = axes.py(*v) as u32;
+            for px in LEFT.saturating_sub(5)..LEFT {
+                image.put_pixel(px, py, AXES);
+            }
+            let w = font::text_width(label, SCALE);
+            let px = LEFT.saturating_sub(8 + w);
+            font::draw(
+                image,
+                px,
+                py.saturating_sub(glyph_h / 2),
+                label,
+                SCALE,
+                AXES,
+            );
+        }
+        for (v, label) in &x_ticks {
+            let px = axes.px(*v) as u32;
+            for py in x_axis..x_axis + 5 {
+                image.put_pixel(px, py, AXES);
+            }
+            let w = font::text_width(label, SCALE);
+            font::draw(
+                image,
+                px.saturating_sub(w / 2),
+                x_axis + 8,
+                label,
+                SCALE,
+                AXES,
+            );
+        }
+        let (x_label, y_label) = labels;
+        let w = font::text_width(x_label, SCALE);
+        font::draw(
+            image,
+            (LEFT + width.saturating_sub(RIGHT)) / 2 - w / 2,
+            x_axis + 12 + glyph_h,
+            x_label,
+            SCALE,
+            AXES,
+        );
+        font::draw(
+            image,
+            8,
+            TOP.saturating_sub(glyph_h + 10),
+            y_label,
+            SCALE,
+            AXES,
+        );
+        axes
+    }
+
+    /// The pixel column of data value `x`.
+    fn px(&self, x: f64) -> f64 {
+        self.left + (self.right - self.left) * (x - self.x.0) / (self.x.1 - self.x.0)
+    }
+
+    /// The pixel row of data value `y`.
+    fn py(&self, y: f64) -> f64 {
+        self.bottom + (self.top - self.bottom) * (y - self.y.0) / (self.y.1 - self.y.0)
+    }
 }
 
 /// The y range of `bands`: every finite mean +- std, with a little room above and below.
@@ -235,6 +318,12 @@ fn y_range(bands: &[Band<'_>]) -> (f64, f64) {
             }
         }
     }
+    padded(lo, hi)
+}
+
+/// The range `lo..hi` with 5% room on each side; one unit each side of a single value,
+/// and `-1..1` when there is no value.
+fn padded(lo: f64, hi: f64) -> (f64, f64) {
     if lo >= hi {
         let c = if lo.is_finite() { lo } else { 0.0 };
         return (c - 1.0, c + 1.0);

@@ -19,6 +19,7 @@ use shapegen::{Genome, Grammar};
 
 use super::backend::BackendArgs;
 use super::files::{atomic_write, read, save_png};
+use super::front::FrontRun;
 use super::interrupt;
 use super::plot;
 use super::render::overlay;
@@ -146,6 +147,16 @@ impl GeneratorVisitor for Run<'_> {
     type Output = anyhow::Result<()>;
 
     fn visit<G: Grammar>(self, _: Limits) -> anyhow::Result<()> {
+        if self.scene.objectives.is_some() {
+            return FrontRun {
+                scene: self.scene,
+                scene_path: self.scene_path,
+                sets: self.sets,
+                dir: self.dir,
+                resume: self.args.resume.as_deref(),
+            }
+            .run::<G>();
+        }
         let goal = &self.scene.optimizer;
         let mut done = 0;
         let mut search = match &self.args.resume {

@@ -8,9 +8,9 @@ use clap::Args;
 use generators::GeneratorVisitor;
 use image::{GrayImage, Luma};
 use shapegen::Grammar;
+use shapegen::Instance;
 use shapegen::genome::Limits;
 use shapegen::scene::{Scene, SceneScorer};
-use shapegen::Instance;
 use shapegen::score::Scorer;
 use shapegen::score::objective::{ObjectiveSet, Surface};
 

@@ -50,7 +50,11 @@ impl Resolver<'_> {
                 let valid: Vec<&str> = KINDS.iter().map(|(name, _)| *name).collect();
                 return Err(self.invalid(
                     key("kind"),
-                    format!("\"{}\" is not an objective; the kinds are {}", file.kind, valid.join(", ")),
+                    format!(
+                        "\"{}\" is not an objective; the kinds are {}",
+                        file.kind,
+                        valid.join(", ")
+                    ),
                 ));
             };
             let given = [
@@ -63,7 +67,10 @@ impl Resolver<'_> {
             if let Some((extra, _)) = given.iter().find(|(k, set)| *set && !keys.contains(k)) {
                 return Err(self.invalid(
                     key(extra),
-                    format!("is not used by kind \"{kind}\", which takes {}", keys.join(", ")),
+                    format!(
+                        "is not used by kind \"{kind}\", which takes {}",
+                        keys.join(", ")
+                    ),
                 ));
             }
             let needed = |k: &str| self.invalid(key(k), format!("is needed by kind \"{kind}\""));
@@ -84,11 +91,17 @@ impl Resolver<'_> {
                     Objective::FootprintExcess { min, max }
                 }
                 _ => {
-                    let view = if kind == "top_match" { View::Top } else { View::Front };
+                    let view = if kind == "top_match" {
+                        View::Top
+                    } else {
+                        View::Front
+                    };
                     let written = file.image.as_deref().ok_or_else(|| needed("image"))?;
                     let path = self.file(&key("image"), written)?;
                     let image = image::open(&path)
-                        .map_err(|err| self.invalid(key("image"), format!("`{}`: {err}", path.display())))?
+                        .map_err(|err| {
+                            self.invalid(key("image"), format!("`{}`: {err}", path.display()))
+                        })?
                         .into_luma8();
                     let (min, max) = rect()?;
                     Objective::Projection(
@@ -97,7 +110,10 @@ impl Resolver<'_> {
                     )
                 }
             };
-            entries.push((file.name.clone().unwrap_or_else(|| kind.to_owned()), objective));
+            entries.push((
+                file.name.clone().unwrap_or_else(|| kind.to_owned()),
+                objective,
+            ));
         }
         ObjectiveSet::new(entries).map_err(|err| self.invalid("objective", err.to_string()))
     }
@@ -138,7 +154,7 @@ impl<'a> ObjectiveEvaluator<'a> {
     }
 
     /// The objectives measured.
-    pub fn set(&self) -> &ObjectiveSet {
+    pub fn set(&self) -> &'a ObjectiveSet {
         self.set
     }
 

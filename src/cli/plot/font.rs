@@ -1,5 +1,5 @@
 //! A 5 x 7 pixel font for the plots' numbers and labels: digits, lower-case letters,
-//! `.`, `-`, `+`, parentheses and space.
+//! `.`, `-`, `+`, `_`, parentheses and space.
 
 use image::{Rgb, RgbImage};
 
@@ -50,6 +50,9 @@ fn glyph(c: char) -> Option<[u8; 7]> {
         ],
         '+' => [
             0b00000, 0b00100, 0b00100, 0b11111, 0b00100, 0b00100, 0b00000,
+        ],
+        '_' => [
+            0b00000, 0b00000, 0b00000, 0b00000, 0b00000, 0b00000, 0b11111,
         ],
         '(' => [
             0b00010, 0b00100, 0b01000, 0b01000, 0b01000, 0b00100, 0b00010,

@@ -1,0 +1,440 @@
+//! `shapegen run` on a scene with `[[objective]]` tables: the multi-objective GA, and
+//! the non-dominated front it finds written as models, a contact sheet, a CSV and
+//! scatter plots, kept consistent on disk at every moment.
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::Ordering;
+use std::time::{Duration, Instant};
+
+use anyhow::Context;
+use image::{Rgb, RgbImage};
+use serde::{Deserialize, Serialize};
+use shapegen::export::{Palette, Preview, glb_bytes};
+use shapegen::genome::GenomeSet;
+use shapegen::optimize::multi::{
+    Member, MultiGa, MultiGaState, MultiResult, MultiSnapshot, Ranking,
+};
+use shapegen::optimize::{Budget, Control, Sense, StopReason};
+use shapegen::scene::{ObjectiveEvaluator, Scene};
+use shapegen::score::objective::{ObjectiveSet, Surface};
+use shapegen::{BoundMeshes, Grammar, Instance};
+
+use super::files::{atomic_write, read, save_png};
+use super::interrupt;
+use super::plot;
+use super::render::{projection_overlay, projections};
+
+/// Most models drawn on the contact sheet; a larger front is shown evenly thinned.
+const SHEET_MODELS: usize = 100;
+/// Columns of the contact sheet.
+const SHEET_COLUMNS: usize = 10;
+/// Side of one contact-sheet picture, in pixels.
+const SHEET_CELL: u32 = 200;
+
+/// What `checkpoint.json` holds for a multi-objective run.
+#[derive(Serialize, Deserialize)]
+#[serde(bound(serialize = "G: Grammar", deserialize = "G: Grammar"))]
+struct Checkpoint<G: Grammar> {
+    /// The scene, as given on the command line of the run that started.
+    scene: PathBuf,
+    /// Its overrides.
+    sets: Vec<String>,
+    /// The optimizer's state.
+    multi: MultiGaState<G>,
+}
+
+/// One objective in `summary.json`.
+#[derive(Serialize)]
+struct ObjectiveSummary<'a> {
+    name: &'a str,
+    kind: &'a str,
+    sense: Sense,
+    /// The best value in the front.
+    best: f64,
+}
+
+/// `summary.json` of a multi-objective run.
+#[derive(Serialize)]
+struct Summary<'a> {
+    front: usize,
+    evaluations: u64,
+    generations: u64,
+    elapsed_s: f64,
+    seed: u64,
+    method: &'a str,
+    ranking: &'a str,
+    objectives: Vec<ObjectiveSummary<'a>>,
+    stopped: &'a str,
+}
+
+/// Where a multi-objective run comes from and goes to.
+pub struct FrontRun<'a> {
+    /// The loaded scene, overrides applied.
+    pub scene: &'a Scene,
+    /// The scene file as given.
+    pub scene_path: &'a Path,
+    /// The overrides.
+    pub sets: &'a [String],
+    /// The output folder.
+    pub dir: &'a Path,
+    /// The folder of the run to resume, if any.
+    pub resume: Option<&'a Path>,
+}
+
+impl FrontRun<'_> {
+    /// Runs the multi-objective GA on grammar `G` to the scene's budget, saving as it
+    /// goes, and writes the front.
+    pub fn run<G: Grammar>(&self) -> anyhow::Result<()> {
+        let settings = self
+            .scene
+            .multi_settings()
+            .context("the scene has no objectives")?;
+        let goal = &self.scene.optimizer;
+        let mut ga = match self.resume {
+            Some(dir) => {
+                let path = dir.join("checkpoint.json");
+                let checkpoint: Checkpoint<G> =
+                    serde_json::from_str(&read(&path)?).with_context(|| {
+                        format!(
+                            "`{}` is not a checkpoint of a multi-objective run of this scene",
+                            path.display()
+                        )
+                    })?;
+                MultiGa::resume(checkpoint.multi)?
+            }
+            None => MultiGa::<G>::new(settings, self.scene.limits, goal.seed)?,
+        };
+        let mut evaluator = ObjectiveEvaluator::new::<G>(self.scene)?;
+        let set = evaluator.set();
+        let names: Vec<&str> = set.names().collect();
+        eprintln!(
+            "evolving {} against {} objectives ({}) with the multi-objective GA, {} ranking, \
+             on the CPU",
+            self.scene.generator,
+            set.len(),
+            names.join(", "),
+            ranking_name(&ga.settings().selection.ranking),
+        );
+        let outputs = Outputs {
+            set,
+            meshes: evaluator.meshes().clone(),
+            palette: Palette::new(),
+        };
+
+        let stop = interrupt::flag();
+        let budget = goal.budget();
+        let total = budget.generations.unwrap_or(u64::MAX);
+        let mut done = ga.checkpoint().generation;
+        let terminal = std::io::stderr().is_terminal();
+        let mut last_save = Instant::now();
+        let result = loop {
+            // One generation at a time, so that the run can be saved between them.
+            let step = Budget {
+                generations: Some((done + 1).min(total)),
+                ..budget
+            };
+            let mut observe = |s: &MultiSnapshot<'_, G>| {
+                progress(s, &names, total, terminal);
+                if stop.load(Ordering::SeqCst) {
+                    Control::Stop
+                } else {
+                    Control::Continue
+                }
+            };
+            let result = ga.run(&mut evaluator, &step, &mut observe)?;
+            done = result.generations;
+            let finished = match result.stopped {
+                StopReason::Generations => result.generations >= total,
+                _ => true,
+            };
+            if finished || last_save.elapsed() >= Duration::from_secs(1) {
+                outputs.table(self.dir, &result)?;
+                let checkpoint = Checkpoint {
+                    scene: self.scene_path.to_owned(),
+                    sets: self.sets.to_vec(),
+                    multi: ga.checkpoint(),
+                };
+                atomic_write(
+                    &self.dir.join("checkpoint.json"),
+                    serde_json::to_string(&checkpoint)?.as_bytes(),
+                )?;
+                last_save = Instant::now();
+            }
+            if finished {
+                break result;
+            }
+        };
+        if terminal {
+            eprintln!();
+        }
+        let front = sorted(&result.front, set.senses());
+        outputs.models(self.dir, &front)?;
+        outputs.sheet(self.dir, &front)?;
+        outputs.scatters(self.dir, &front)?;
+        outputs.overlays(self.dir, &front)?;
+
+        let stopped = match result.stopped {
+            StopReason::Generations => "generations",
+            StopReason::Evaluations => "evaluations",
+            StopReason::WallTime => "time",
+            StopReason::Observer => "interrupted",
+        };
+        let objectives = set
+            .entries()
+            .iter()
+            .zip(set.senses())
+            .enumerate()
+            .map(|(i, ((name, objective), &sense))| ObjectiveSummary {
+                name,
+                kind: objective.name(),
+                sense,
+                best: best_value(&front, i, sense),
+            })
+            .collect();
+        let summary = Summary {
+            front: front.len(),
+            evaluations: result.evaluations,
+            generations: result.generations,
+            elapsed_s: result.history.last().map_or(0.0, |h| h.elapsed_s),
+            seed: goal.seed,
+            method: "ga",
+            ranking: ranking_name(&ga.settings().selection.ranking),
+            objectives,
+            stopped,
+        };
+        atomic_write(
+            &self.dir.join("summary.json"),
+            serde_json::to_string_pretty(&summary)?.as_bytes(),
+        )?;
+        println!(
+            "{} non-dominated models after {} generations and {} evaluations ({stopped}); wrote \
+             front/ (one .glb each), front.csv, front.genomes.json, contact_sheet.png, \
+             scatter_*.png, history.csv and summary.json to {}",
+            front.len(),
+            result.generations,
+            result.evaluations,
+            self.dir.display()
+        );
+        Ok(())
+    }
+}
+
+/// The ranking's name in scene files.
+fn ranking_name(ranking: &Ranking) -> &'static str {
+    match ranking {
+        Ranking::WeightedSum { .. } => "weighted_sum",
+        Ranking::Pareto => "pareto",
+        Ranking::SummedRank => "summed_rank",
+        Ranking::NormalizedSummedRank => "normalized_summed_rank",
+    }
+}
+
+/// The front ordered by its first objective, best first (then by the others), so that
+/// files and pictures read along the trade-off.
+fn sorted<'a, G>(front: &'a [Member<G>], senses: &[Sense]) -> Vec<&'a Member<G>> {
+    let mut order: Vec<&Member<G>> = front.iter().collect();
+    order.sort_by(|a, b| {
+        senses
+            .iter()
+            .zip(a.values.iter().zip(&b.values))
+            .map(|(s, (&x, &y))| s.oriented(y).total_cmp(&s.oriented(x)))
+            .find(|o| o.is_ne())
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    order
+}
+
+/// The best value of objective `i` in `front` (NaN for an empty front).
+fn best_value<G>(front: &[&Member<G>], i: usize, sense: Sense) -> f64 {
+    front
+        .iter()
+        .map(|m| m.values[i])
+        .reduce(|a, b| if sense.better(b, a) { b } else { a })
+        .unwrap_or(f64::NAN)
+}
+
+/// One line of progress per generation: rewritten in place on a terminal, every tenth
+/// generation otherwise.
+fn progress<G>(s: &MultiSnapshot<'_, G>, names: &[&str], total: u64, terminal: bool) {
+    let elapsed = s.elapsed.as_secs_f64();
+    let best: Vec<String> = names
+        .iter()
+        .zip(s.best)
+        .map(|(name, v)| format!("{name} {v:.4}"))
+        .collect();
+    let line = format!(
+        "generation {:>4}/{}  front {:>4}  best {}  {:>6.0} evaluations/s",
+        s.generation,
+        total,
+        s.front.len(),
+        best.join("  "),
+        s.evaluations as f64 / elapsed.max(1e-9)
+    );
+    if terminal {
+        eprint!("\r{line}");
+    } else if s.generation.is_multiple_of(10) {
+        eprintln!("{line}");
+    }
+}
+
+/// Writes a multi-objective run's files.
+struct Outputs<'a> {
+    set: &'a ObjectiveSet,
+    meshes: BoundMeshes,
+    palette: Palette,
+}
+
+impl Outputs<'_> {
+    /// `front.csv`, `front.genomes.json` and `history.csv`: cheap enough to keep current
+    /// while the run goes on, so that an interrupted run keeps its front.
+    fn table<G: Grammar>(&self, dir: &Path, result: &MultiResult<G>) -> anyhow::Result<()> {
+        let front = sorted(&result.front, self.set.senses());
+        let names: Vec<&str> = self.set.names().collect();
+        let mut csv = format!("model,genes,{}\n", names.join(","));
+        for (i, member) in front.iter().enumerate() {
+            let values: Vec<String> = member.values.iter().map(f64::to_string).collect();
+            csv += &format!("{i},{},{}\n", member.genome.len(), values.join(","));
+        }
+        atomic_write(&dir.join("front.csv"), csv.as_bytes())?;
+        let genomes = GenomeSet::new(front.iter().map(|m| m.genome.clone()).collect());
+        atomic_write(
+            &dir.join("front.genomes.json"),
+            genomes.to_json().as_bytes(),
+        )?;
+        let best: Vec<String> = names.iter().map(|n| format!("best_{n}")).collect();
+        let mut history = format!(
+            "generation,elapsed_s,evaluations,front,{}\n",
+            best.join(",")
+        );
+        for h in &result.history {
+            let values: Vec<String> = h.best.iter().map(f64::to_string).collect();
+            history += &format!(
+                "{},{:.3},{},{},{}\n",
+                h.generation,
+                h.elapsed_s,
+                h.evaluations,
+                h.front,
+                values.join(",")
+            );
+        }
+        atomic_write(&dir.join("history.csv"), history.as_bytes())
+    }
+
+    /// `front/model_NNN.glb`, numbered as in `front.csv`; models of an earlier, larger
+    /// front are removed.
+    fn models<G: Grammar>(&self, dir: &Path, front: &[&Member<G>]) -> anyhow::Result<()> {
+        let folder = dir.join("front");
+        std::fs::create_dir_all(&folder)
+            .with_context(|| format!("cannot create `{}`", folder.display()))?;
+        let mut instances = Vec::new();
+        for (i, member) in front.iter().enumerate() {
+            member.genome.derive_into(&mut instances);
+            atomic_write(
+                &folder.join(format!("model_{i:03}.glb")),
+                &glb_bytes(&instances, &self.meshes, &self.palette)?,
+            )?;
+        }
+        for entry in std::fs::read_dir(&folder)? {
+            let path = entry?.path();
+            let stale = path
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .and_then(|s| s.strip_prefix("model_"))
+                .and_then(|n| n.parse::<usize>().ok())
+                .is_some_and(|n| n >= front.len());
+            if stale {
+                std::fs::remove_file(&path)
+                    .with_context(|| format!("cannot remove `{}`", path.display()))?;
+            }
+        }
+        Ok(())
+    }
+
+    /// `contact_sheet.png`: shaded previews of the front (at most [`SHEET_MODELS`],
+    /// evenly thinned), all through one camera framing every model shown, each with its
+    /// number in `front.csv`.
+    fn sheet<G: Grammar>(&self, dir: &Path, front: &[&Member<G>]) -> anyhow::Result<()> {
+        let step = front.len().div_ceil(SHEET_MODELS).max(1);
+        let shown: Vec<(usize, Vec<Instance>)> = front
+            .iter()
+            .enumerate()
+            .step_by(step)
+            .map(|(i, m)| {
+                let mut instances = Vec::new();
+                m.genome.derive_into(&mut instances);
+                (i, instances)
+            })
+            .collect();
+        let all: Vec<Instance> = shown.iter().flat_map(|(_, v)| v.iter().copied()).collect();
+        let preview = Preview::framing(&all, &self.meshes, SHEET_CELL, SHEET_CELL);
+        let columns = shown.len().clamp(1, SHEET_COLUMNS);
+        let rows = shown.len().div_ceil(columns).max(1);
+        let mut sheet = RgbImage::from_pixel(
+            SHEET_CELL * columns as u32,
+            SHEET_CELL * rows as u32,
+            Rgb([255, 255, 255]),
+        );
+        for (k, (i, instances)) in shown.iter().enumerate() {
+            let mut cell = preview.render(instances, &self.meshes, &self.palette)?;
+            plot::label(&mut cell, &i.to_string());
+            let (x, y) = ((k % columns) as u32, (k / columns) as u32);
+            image::imageops::replace(
+                &mut sheet,
+                &cell,
+                i64::from(x * SHEET_CELL),
+                i64::from(y * SHEET_CELL),
+            );
+        }
+        save_png(&dir.join("contact_sheet.png"), &sheet)
+    }
+
+    /// `scatter_A_B.png` for every pair of objectives: the front's values, A across and B
+    /// up.
+    fn scatters<G>(&self, dir: &Path, front: &[&Member<G>]) -> anyhow::Result<()> {
+        let names: Vec<&str> = self.set.names().collect();
+        for a in 0..names.len() {
+            for b in a + 1..names.len() {
+                let points: Vec<(f64, f64)> =
+                    front.iter().map(|m| (m.values[a], m.values[b])).collect();
+                let picture =
+                    plot::scatter(640, 480, (names[a], names[b]), &points, Rgb([30, 60, 140]));
+                save_png(
+                    &dir.join(format!("scatter_{}_{}.png", names[a], names[b])),
+                    &picture,
+                )?;
+            }
+        }
+        Ok(())
+    }
+
+    /// `overlay_NAME.png` for every projection objective: the target and the front's
+    /// best model for that objective (target alone blue, model alone red, both green).
+    fn overlays<G: Grammar>(&self, dir: &Path, front: &[&Member<G>]) -> anyhow::Result<()> {
+        let mut instances = Vec::new();
+        for (name, projection) in projections(self.set) {
+            let i = self
+                .set
+                .names()
+                .position(|n| n == name)
+                .context("a projection of the set")?;
+            let sense = self.set.senses()[i];
+            let Some(best) = front.iter().copied().reduce(|a, b| {
+                if sense.better(b.values[i], a.values[i]) {
+                    b
+                } else {
+                    a
+                }
+            }) else {
+                continue;
+            };
+            best.genome.derive_into(&mut instances);
+            let surface = Surface::from_instances(&instances, &self.meshes);
+            save_png(
+                &dir.join(format!("overlay_{name}.png")),
+                &projection_overlay(projection, &surface),
+            )?;
+        }
+        Ok(())
+    }
+}
