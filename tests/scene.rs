@@ -297,3 +297,173 @@ fn project_scenes_are_reachable() {
         );
     }
 }
+
+const OBJECTIVES: &str = r#"
+generator = "building"
+[limits]
+min_len = 2
+optimal_len = 60
+max_len = 300
+max_depth = 20
+[[objective]]
+name = "top"
+kind = "top_match"
+image = "target.png"
+min = [-8, -6]
+max = [8, 6]
+[[objective]]
+kind = "unique_normals"
+[[objective]]
+kind = "height"
+target = 30
+"#;
+
+#[test]
+fn objective_scenes_load() {
+    use shapegen::optimize::Sense;
+    use shapegen::optimize::multi::Ranking;
+    use shapegen::score::objective::Objective;
+
+    let fixture = Fixture::new();
+    let scene = fixture
+        .load(&format!(
+            "{OBJECTIVES}\n[selection]\nranking = \"summed_rank\"\ndiversity_penalty = 5\n\
+             [optimizer]\npopulation = 40\nelitism = 4\narchive = 25\n"
+        ))
+        .unwrap();
+    let goal = scene.objectives.as_ref().unwrap();
+    let names: Vec<&str> = goal.set.names().collect();
+    assert_eq!(names, ["top", "unique_normals", "height"]);
+    assert_eq!(
+        goal.set.senses(),
+        [Sense::Maximize, Sense::Maximize, Sense::Minimize]
+    );
+    assert_eq!(
+        goal.set.entries()[1].1,
+        Objective::UniqueNormals { tolerance_deg: 1.0 }
+    );
+    let settings = scene.multi_settings().unwrap();
+    assert_eq!(settings.selection.ranking, Ranking::SummedRank);
+    assert_eq!(settings.selection.diversity_penalty, 5.0);
+    assert_eq!((settings.ga.population, settings.ga.elitism), (40, 4));
+    assert_eq!(settings.archive, 25);
+    // The scene has no single fitness.
+    let err = shapegen::scene::SceneScorer::new::<generators::Building>(&scene).unwrap_err();
+    assert!(err.to_string().contains("multi-objective"), "{err}");
+
+    // Defaults: Pareto ranking with the thesis's penalty and GA settings.
+    let scene = fixture.load(OBJECTIVES).unwrap();
+    let settings = scene.multi_settings().unwrap();
+    assert_eq!(settings.selection.ranking, Ranking::Pareto);
+    assert_eq!(settings.selection.diversity_penalty, 20.0);
+    assert_eq!(settings.ga.population, 300);
+    assert!(Scene::load(fixture.path()).unwrap().volume.is_none());
+}
+
+#[test]
+fn objective_mistakes_are_refused() {
+    let fixture = Fixture::new();
+    fixture.refuses(
+        &OBJECTIVES.replace("kind = \"height\"", "kind = \"tallness\""),
+        "objective[2].kind",
+        "the kinds are height, unique_normals",
+    );
+    fixture.refuses(
+        &OBJECTIVES.replace("target = 30", ""),
+        "objective[2].target",
+        "needed by kind \"height\"",
+    );
+    fixture.refuses(
+        &OBJECTIVES.replace("target = 30", "target = 30\nimage = \"target.png\""),
+        "objective[2].image",
+        "not used by kind \"height\"",
+    );
+    fixture.refuses(
+        &OBJECTIVES.replace("max = [8, 6]", ""),
+        "objective[0].max",
+        "needed by kind \"top_match\"",
+    );
+    fixture.refuses(
+        &OBJECTIVES.replace("image = \"target.png\"", "image = \"missing.png\""),
+        "objective[0].image",
+        "is not a file",
+    );
+    fixture.refuses(
+        &OBJECTIVES.replace("max = [8, 6]", "max = [-9, 6]"),
+        "objective[0].image",
+        "area_min",
+    );
+    fixture.refuses(
+        &OBJECTIVES.replace(
+            "kind = \"unique_normals\"",
+            "kind = \"unique_normals\"\nname = \"top\"",
+        ),
+        "objective",
+        "two objectives are named `top`",
+    );
+    fixture.refuses(
+        &OBJECTIVES.replace(
+            "kind = \"unique_normals\"",
+            "kind = \"unique_normals\"\ntolerance_deg = -1",
+        ),
+        "objective",
+        "tolerance_deg",
+    );
+    fixture.refuses(
+        &format!("{OBJECTIVES}\n[optimizer]\nmethod = \"rjmcmc\"\n"),
+        "optimizer.method",
+        "must be \"ga\"",
+    );
+    fixture.refuses(
+        &format!("{OBJECTIVES}\n[optimizer]\narchive = 0\n"),
+        "optimizer.archive",
+        ">= 1",
+    );
+    fixture.refuses(
+        &format!("{OBJECTIVES}\n[selection]\nranking = \"weighted_sum\"\nweights = [1, 2]\n"),
+        "selection.weights",
+        "one weight per objective",
+    );
+    fixture.refuses(
+        &format!(
+            "{OBJECTIVES}\n[volume]\ngrid = {{ min = [-1, -1, -1], max = [1, 1, 1], \
+             resolution = [8, 8, 8] }}\n[[volume.target]]\nmesh = \"cube.obj\"\n"
+        ),
+        "objective",
+        "not both",
+    );
+    fixture.refuses(
+        &format!("{VOLUME}\n[selection]\nranking = \"pareto\"\n"),
+        "selection",
+        "the scene has none",
+    );
+    let err = fixture
+        .load(&format!("{OBJECTIVES}\n[selection]\nranking = \"best\"\n"))
+        .unwrap_err();
+    assert!(err.to_string().contains("pareto"), "{err}");
+}
+
+/// The building scene's projection targets were made from the genome beside them, so
+/// that genome matches both exactly.
+#[test]
+fn the_building_scene_is_reachable() {
+    use generators::Building;
+    use shapegen::optimize::multi::MultiEvaluator;
+    use shapegen::scene::ObjectiveEvaluator;
+
+    let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let scene = Scene::load(scenes.join("building.toml")).unwrap();
+    let genome = shapegen::genome::GenomeSet::<Building>::from_json(
+        &fs::read_to_string(scenes.join("targets/building.genome.json")).unwrap(),
+    )
+    .unwrap()
+    .genomes
+    .remove(0);
+    let mut evaluator = ObjectiveEvaluator::new::<Building>(&scene).unwrap();
+    let names: Vec<&str> = evaluator.set().names().collect();
+    assert_eq!(names, ["top", "front", "facets"]);
+    let mut values = [0.0; 3];
+    MultiEvaluator::<Building>::evaluate(&mut evaluator, &[genome], &mut values).unwrap();
+    assert_eq!(values[..2], [1.0, 1.0]);
+    assert!(values[2] >= 6.0, "{values:?}");
+}

@@ -86,6 +86,14 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
         "--seconds {}: give a wall-time budget of more than 0 seconds",
         args.seconds
     );
+    let scene = Scene::load_with(&args.scene, &args.sets)?;
+    anyhow::ensure!(
+        scene.objectives.is_none(),
+        "`{}` has [[objective]] tables: compare measures single-objective methods by one \
+         fitness, and a multi-objective scene is searched by the multi-objective GA \
+         (`shapegen run`)",
+        args.scene.display()
+    );
     // Each method's goal, as `shapegen run --method M` resolves it.
     let mut scenes = Vec::with_capacity(methods.len());
     for &method in &methods {

@@ -1,0 +1,215 @@
+//! `shapegen run` on a scene with objectives, end to end on a tiny building scene: the
+//! front's files, determinism at any thread count, resume, and the other commands on
+//! such a scene.
+
+mod support;
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use support::{fails, ok, s};
+
+/// A tiny multi-objective building scene: a 16 x 16 footprint target (the lot's left
+/// half), distinct normals and a height of 20; population 16 for 5 generations.
+fn scene(dir: &Path) -> PathBuf {
+    image::GrayImage::from_fn(16, 16, |x, y| {
+        let inside = (3..8).contains(&x) && (3..13).contains(&y);
+        image::Luma([if inside { 0 } else { 255 }])
+    })
+    .save(dir.join("top.png"))
+    .unwrap();
+    let path = dir.join("scene.toml");
+    fs::write(
+        &path,
+        r#"
+generator = "building"
+[limits]
+min_len = 2
+optimal_len = 30
+max_len = 60
+max_depth = 12
+[[objective]]
+name = "top"
+kind = "top_match"
+image = "top.png"
+min = [-8, -8]
+max = [8, 8]
+[[objective]]
+name = "facets"
+kind = "unique_normals"
+[[objective]]
+kind = "height"
+target = 20
+[selection]
+ranking = "pareto"
+[optimizer]
+seed = 3
+population = 16
+elitism = 2
+initial_length = 10
+generations = 5
+archive = 40
+"#,
+    )
+    .unwrap();
+    path
+}
+
+fn read(dir: &Path, file: &str) -> String {
+    fs::read_to_string(dir.join(file)).unwrap()
+}
+
+fn summary(dir: &Path) -> serde_json::Value {
+    let mut v: serde_json::Value = serde_json::from_str(&read(dir, "summary.json")).unwrap();
+    v.as_object_mut().unwrap().remove("elapsed_s");
+    v
+}
+
+#[test]
+fn a_front_run_writes_the_whole_front_at_any_thread_count() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene(dir.path());
+    let one = dir.path().join("one");
+    let two = dir.path().join("two");
+    let out = ok(&["--threads", "1", "run", s(&scene), "--out", s(&one)]);
+    assert!(out.contains("non-dominated models"), "{out}");
+    ok(&["--threads", "2", "run", s(&scene), "--out", s(&two)]);
+
+    let summary = summary(&one);
+    assert_eq!(summary["generations"], 5);
+    assert_eq!(summary["evaluations"], 16 + 5 * 14);
+    assert_eq!(summary["ranking"], "pareto");
+    assert_eq!(summary["objectives"][2]["name"], "height");
+    assert_eq!(summary["objectives"][2]["sense"], "minimize");
+    let front = summary["front"].as_u64().unwrap() as usize;
+    assert!((1..=40).contains(&front), "{summary}");
+
+    let csv = read(&one, "front.csv");
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("model,genes,top,facets,height"));
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), front);
+    for (i, row) in rows.iter().enumerate() {
+        assert_eq!(row[0], i as f64);
+        assert!(
+            (0.0..=1.0).contains(&row[2]),
+            "a match is a fraction: {row:?}"
+        );
+        assert!(row[3] >= 1.0 && row[4] >= 0.0, "{row:?}");
+    }
+    // No member dominates another.
+    let dominates = |a: &[f64], b: &[f64]| {
+        let (ge, gt) = (
+            a[2] >= b[2] && a[3] >= b[3] && a[4] <= b[4],
+            a[2] > b[2] || a[3] > b[3] || a[4] < b[4],
+        );
+        ge && gt
+    };
+    for a in &rows {
+        assert!(rows.iter().all(|b| !dominates(a, b)), "{a:?} dominates");
+    }
+    // Sorted by the first objective, best first.
+    assert!(rows.windows(2).all(|w| w[0][2] >= w[1][2]));
+
+    let models = fs::read_dir(one.join("front")).unwrap().count();
+    assert_eq!(models, front);
+    let glb = fs::read(one.join("front/model_000.glb")).unwrap();
+    assert_eq!(&glb[..4], b"glTF");
+    let history = read(&one, "history.csv");
+    assert_eq!(
+        history.lines().next(),
+        Some("generation,elapsed_s,evaluations,front,best_top,best_facets,best_height")
+    );
+    assert_eq!(history.lines().count(), 1 + 6);
+    for file in [
+        "contact_sheet.png",
+        "scatter_top_facets.png",
+        "scatter_top_height.png",
+        "scatter_facets_height.png",
+        "overlay_top.png",
+    ] {
+        image::open(one.join(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
+    }
+    assert_eq!(
+        image::open(one.join("overlay_top.png")).unwrap().width(),
+        16
+    );
+
+    // Threads change nothing.
+    assert_eq!(summary, self::summary(&two));
+    assert_eq!(read(&one, "front.csv"), read(&two, "front.csv"));
+    assert_eq!(
+        read(&one, "front.genomes.json"),
+        read(&two, "front.genomes.json")
+    );
+}
+
+#[test]
+fn a_resumed_front_run_ends_as_an_uninterrupted_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene(dir.path());
+    let whole = dir.path().join("whole");
+    let parts = dir.path().join("parts");
+    ok(&["run", s(&scene), "--out", s(&whole)]);
+    ok(&["run", s(&scene), "--generations", "2", "--out", s(&parts)]);
+    assert_eq!(summary(&parts)["generations"], 2);
+    ok(&["run", "--resume", s(&parts), "--generations", "5"]);
+    assert_eq!(summary(&parts), summary(&whole));
+    assert_eq!(read(&parts, "front.csv"), read(&whole, "front.csv"));
+    assert_eq!(
+        read(&parts, "front.genomes.json"),
+        read(&whole, "front.genomes.json")
+    );
+}
+
+#[test]
+fn target_and_render_work_on_objective_scenes() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene(dir.path());
+    let run = dir.path().join("run");
+    ok(&["run", s(&scene), "--generations", "1", "--out", s(&run)]);
+    let genomes = run.join("front.genomes.json");
+    let out = ok(&[
+        "target",
+        s(&scene),
+        "--genome",
+        s(&genomes),
+        "--out",
+        s(&dir.path().join("made")),
+    ]);
+    assert!(out.contains("for `top`"), "{out}");
+    assert_eq!(
+        image::open(dir.path().join("made.png")).unwrap().width(),
+        16
+    );
+    let pictures = dir.path().join("pictures");
+    ok(&[
+        "render",
+        s(&scene),
+        "--genomes",
+        s(&genomes),
+        "--out",
+        s(&pictures),
+        "--width",
+        "64",
+        "--height",
+        "48",
+    ]);
+    let preview = image::open(pictures.join("model_0.png")).unwrap();
+    assert_eq!((preview.width(), preview.height()), (64, 48));
+    assert!(pictures.join("overlay_0.png").is_file());
+
+    let err = fails(&[
+        "compare",
+        s(&scene),
+        "--runs",
+        "1",
+        "--seconds",
+        "1",
+        "--out",
+        s(&dir.path().join("c")),
+    ]);
+    assert!(err.contains("multi-objective"), "{err}");
+}
