@@ -49,6 +49,37 @@
 //! population = 100                   # and any other field of the GA's settings
 //! ```
 //!
+//! A scene may instead aim at several objectives at once, measured on the derived
+//! triangles ([`shapegen_runtime::score::objective`]); it is then searched by the
+//! multi-objective GA ([`shapegen_runtime::optimize::multi`]) and has no `[volume]` or
+//! `[silhouette]`:
+//!
+//! ```toml
+//! [[objective]]
+//! name = "top"                       # optional, default the kind
+//! kind = "top_match"                 # or front_match: image matched by an orthographic view
+//! image = "top.png"                  # black = covered
+//! min = [-8, -8]                     # the view plane's area the image covers:
+//! max = [8, 8]                       #   (x, z) from above, (x, y) from the front
+//! [[objective]]
+//! kind = "unique_normals"            # or normal_spread; tolerance_deg = 1 (default)
+//! [[objective]]
+//! kind = "height"                    # |top - target|, minimized
+//! target = 30
+//! [[objective]]
+//! kind = "footprint_excess"          # how far the x/z extent leaves [min, max], minimized
+//! min = [-5, -5]
+//! max = [5, 5]
+//!
+//! [selection]
+//! ranking = "pareto"                 # or summed_rank, normalized_summed_rank, weighted_sum
+//! diversity_penalty = 20.0           # subtracted from clones of an earlier objective vector
+//! # weights = [1, 0.5, ...]          # weighted_sum only: one per objective
+//!
+//! [optimizer]                        # the GA's settings (the thesis's by default) and
+//! archive = 300                      # the most non-dominated models kept
+//! ```
+//!
 //! Unknown keys, missing files, values out of range and images whose size differs from
 //! their camera's are all refused with the file, the key and the reason.
 //! [`Scene::load_with`] applies `key=value` overrides (`--set`) before checking.
