@@ -213,3 +213,54 @@ fn target_and_render_work_on_objective_scenes() {
     ]);
     assert!(err.contains("multi-objective"), "{err}");
 }
+
+#[test]
+fn an_interrupted_front_run_keeps_its_front() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene(dir.path());
+    let out = dir.path().join("out");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_shapegen"))
+        .args([
+            "run",
+            s(&scene),
+            "--generations",
+            "1000000",
+            "--out",
+            s(&out),
+        ])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while !out.join("checkpoint.json").exists() {
+        assert!(start.elapsed().as_secs() < 60, "no checkpoint written");
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    // What is kept while the run goes on: the front as a table and as genomes.
+    assert!(out.join("front.csv").is_file() && out.join("front.genomes.json").is_file());
+    let kill = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    assert!(
+        child.wait().unwrap().success(),
+        "an interrupted run ends cleanly"
+    );
+    let summary = summary(&out);
+    assert_eq!(summary["stopped"], "interrupted");
+    let front = summary["front"].as_u64().unwrap() as usize;
+    assert_eq!(read(&out, "front.csv").lines().count(), 1 + front);
+    assert_eq!(fs::read_dir(out.join("front")).unwrap().count(), front);
+    // The run can go on from where it stopped.
+    let generations = summary["generations"].as_u64().unwrap() + 2;
+    ok(&[
+        "run",
+        "--resume",
+        s(&out),
+        "--generations",
+        &generations.to_string(),
+    ]);
+    assert_eq!(self::summary(&out)["generations"], generations);
+}

@@ -3,13 +3,13 @@
 //! scatter plots, kept consistent on disk at every moment.
 
 use std::io::IsTerminal;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
 use anyhow::Context;
 use image::{Rgb, RgbImage};
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 use shapegen::export::{Palette, Preview, glb_bytes};
 use shapegen::genome::GenomeSet;
 use shapegen::optimize::multi::{
@@ -20,10 +20,11 @@ use shapegen::scene::{ObjectiveEvaluator, Scene};
 use shapegen::score::objective::{ObjectiveSet, Surface};
 use shapegen::{BoundMeshes, Grammar, Instance};
 
-use super::files::{atomic_write, read, save_png};
+use super::files::{atomic_write, save_png};
 use super::interrupt;
 use super::plot;
 use super::render::{projection_overlay, projections};
+use super::run::{Checkpoint, finished};
 
 /// Most models drawn on the contact sheet; a larger front is shown evenly thinned.
 const SHEET_MODELS: usize = 100;
@@ -31,18 +32,6 @@ const SHEET_MODELS: usize = 100;
 const SHEET_COLUMNS: usize = 10;
 /// Side of one contact-sheet picture, in pixels.
 const SHEET_CELL: u32 = 200;
-
-/// What `checkpoint.json` holds for a multi-objective run.
-#[derive(Serialize, Deserialize)]
-#[serde(bound(serialize = "G: Grammar", deserialize = "G: Grammar"))]
-struct Checkpoint<G: Grammar> {
-    /// The scene, as given on the command line of the run that started.
-    scene: PathBuf,
-    /// Its overrides.
-    sets: Vec<String>,
-    /// The optimizer's state.
-    multi: MultiGaState<G>,
-}
 
 /// One objective in `summary.json`.
 #[derive(Serialize)]
@@ -93,15 +82,9 @@ impl FrontRun<'_> {
         let goal = &self.scene.optimizer;
         let mut ga = match self.resume {
             Some(dir) => {
-                let path = dir.join("checkpoint.json");
-                let checkpoint: Checkpoint<G> =
-                    serde_json::from_str(&read(&path)?).with_context(|| {
-                        format!(
-                            "`{}` is not a checkpoint of a multi-objective run of this scene",
-                            path.display()
-                        )
-                    })?;
-                MultiGa::resume(checkpoint.multi)?
+                let checkpoint: Checkpoint<MultiGaState<G>> =
+                    Checkpoint::load(dir, "a multi-objective run of this scene")?;
+                MultiGa::resume(checkpoint.search)?
             }
             None => MultiGa::<G>::new(settings, self.scene.limits, goal.seed)?,
         };
@@ -144,21 +127,15 @@ impl FrontRun<'_> {
             };
             let result = ga.run(&mut evaluator, &step, &mut observe)?;
             done = result.generations;
-            let finished = match result.stopped {
-                StopReason::Generations => result.generations >= total,
-                _ => true,
-            };
+            let finished = finished(result.stopped, result.generations, total);
             if finished || last_save.elapsed() >= Duration::from_secs(1) {
                 outputs.table(self.dir, &result)?;
-                let checkpoint = Checkpoint {
+                Checkpoint {
                     scene: self.scene_path.to_owned(),
                     sets: self.sets.to_vec(),
-                    multi: ga.checkpoint(),
-                };
-                atomic_write(
-                    &self.dir.join("checkpoint.json"),
-                    serde_json::to_string(&checkpoint)?.as_bytes(),
-                )?;
+                    search: ga.checkpoint(),
+                }
+                .save(self.dir)?;
                 last_save = Instant::now();
             }
             if finished {

@@ -58,16 +58,44 @@ pub struct RunArgs {
     resume: Option<PathBuf>,
 }
 
-/// What `checkpoint.json` holds.
+/// What `checkpoint.json` holds: the scene and overrides a run started with, and the
+/// state `S` of its optimizer.
 #[derive(Serialize, Deserialize)]
-#[serde(bound(serialize = "G: Grammar", deserialize = "G: Grammar"))]
-struct Checkpoint<G: Grammar> {
+pub struct Checkpoint<S> {
     /// The scene, as given on the command line of the run that started.
-    scene: PathBuf,
+    pub scene: PathBuf,
     /// Its overrides.
-    sets: Vec<String>,
+    pub sets: Vec<String>,
     /// The optimizer's state.
-    search: SearchState<G>,
+    pub search: S,
+}
+
+impl<S: Serialize> Checkpoint<S> {
+    /// Writes `checkpoint.json` into `dir`, atomically.
+    pub fn save(&self, dir: &Path) -> anyhow::Result<()> {
+        atomic_write(
+            &dir.join("checkpoint.json"),
+            serde_json::to_string(self)?.as_bytes(),
+        )
+    }
+}
+
+impl<S: serde::de::DeserializeOwned> Checkpoint<S> {
+    /// Reads `checkpoint.json` from `dir`; `what` says what kind of run it must be from.
+    pub fn load(dir: &Path, what: &str) -> anyhow::Result<Checkpoint<S>> {
+        let path = dir.join("checkpoint.json");
+        serde_json::from_str(&read(&path)?)
+            .with_context(|| format!("`{}` is not a checkpoint of {what}", path.display()))
+    }
+}
+
+/// Whether a stretch of a run that stopped for `stopped` after `generations` of at most
+/// `total` generations ends the run.
+pub fn finished(stopped: StopReason, generations: u64, total: u64) -> bool {
+    match stopped {
+        StopReason::Generations => generations >= total,
+        _ => true,
+    }
 }
 
 /// `summary.json`.
@@ -161,13 +189,8 @@ impl GeneratorVisitor for Run<'_> {
         let mut done = 0;
         let mut search = match &self.args.resume {
             Some(dir) => {
-                let text = read(&dir.join("checkpoint.json"))?;
-                let checkpoint: Checkpoint<G> = serde_json::from_str(&text).with_context(|| {
-                    format!(
-                        "`{}` is not a checkpoint of this scene",
-                        dir.join("checkpoint.json").display()
-                    )
-                })?;
+                let checkpoint: Checkpoint<SearchState<G>> =
+                    Checkpoint::load(dir, "a run of this scene")?;
                 done = checkpoint.search.generation();
                 Search::resume(checkpoint.search)?
             }
@@ -207,25 +230,19 @@ impl GeneratorVisitor for Run<'_> {
             };
             let result = search.run(&mut evaluator, &step, &mut observe)?;
             done = result.generations;
-            let finished = match result.stopped {
-                StopReason::Generations => result.generations >= total,
-                _ => true,
-            };
+            let finished = finished(result.stopped, result.generations, total);
             if finished || last_save.elapsed() >= Duration::from_secs(1) {
                 if best_written.to_bits() != result.best_fitness.to_bits() {
                     outputs.best(self.dir, &result.best)?;
                     best_written = result.best_fitness;
                 }
                 outputs.curves(self.dir, &result)?;
-                let checkpoint = Checkpoint {
+                Checkpoint {
                     scene: self.scene_path.to_owned(),
                     sets: self.sets.to_vec(),
                     search: search.checkpoint(),
-                };
-                atomic_write(
-                    &self.dir.join("checkpoint.json"),
-                    serde_json::to_string(&checkpoint)?.as_bytes(),
-                )?;
+                }
+                .save(self.dir)?;
                 last_save = Instant::now();
             }
             if finished {
