@@ -1,6 +1,6 @@
 //! `shapegen run` on a scene with objectives, end to end on a tiny building scene: the
-//! front's files, determinism at any thread count, resume, and the other commands on
-//! such a scene.
+//! front's files, determinism at any thread count, resume and interruption, and the
+//! other commands (target, render, score, compare) on such a scene.
 
 mod support;
 
@@ -200,6 +200,24 @@ fn target_and_render_work_on_objective_scenes() {
     let preview = image::open(pictures.join("model_0.png")).unwrap();
     assert_eq!((preview.width(), preview.height()), (64, 48));
     assert!(pictures.join("overlay_0.png").is_file());
+
+    let scores = ok(&["score", s(&scene), "--genomes", s(&genomes)]);
+    let rows: Vec<serde_json::Value> = scores
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let front: Vec<Vec<f64>> = read(&run, "front.csv")
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), front.len());
+    // Equal up to serde_json's reading precision.
+    let same = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1.0);
+    for (row, values) in rows.iter().zip(&front) {
+        assert!(same(row["objectives"]["top"].as_f64().unwrap(), values[2]));
+        assert!(same(row["objectives"]["height"].as_f64().unwrap(), values[4]));
+    }
 
     let err = fails(&[
         "compare",

@@ -1,4 +1,5 @@
-//! `shapegen score`: the counts and fitness of saved genomes in a scene.
+//! `shapegen score`: the counts and fitness of saved genomes in a scene, or their
+//! objective values in a scene with objectives.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -7,10 +8,11 @@ use anyhow::Context;
 use clap::Args;
 use generators::GeneratorVisitor;
 use serde::Serialize;
-use shapegen::Grammar;
 use shapegen::genome::Limits;
-use shapegen::scene::{Scene, SceneCounts, SceneScorer};
+use shapegen::optimize::multi::MultiEvaluator;
+use shapegen::scene::{ObjectiveEvaluator, Scene, SceneCounts, SceneScorer};
 use shapegen::score::InstanceBatch;
+use shapegen::{Genome, Grammar};
 
 use super::backend::BackendArgs;
 use super::genomes::load_genomes;
@@ -57,6 +59,9 @@ impl GeneratorVisitor for Score<'_> {
 
     fn visit<G: Grammar>(self, _: Limits) -> anyhow::Result<()> {
         let genomes = load_genomes::<G>(&self.args.genomes)?;
+        if self.scene.objectives.is_some() {
+            return objectives(self.scene, &genomes);
+        }
         let gpu = self.args.backend.open();
         let scorer = SceneScorer::new::<G>(self.scene)?;
         let backend = scorer.on(self.args.backend.choice(), gpu.as_ref())?;
@@ -89,4 +94,43 @@ impl GeneratorVisitor for Score<'_> {
         }
         Ok(())
     }
+}
+
+/// One line of the output for a scene with objectives.
+#[derive(Serialize)]
+struct ObjectiveLine {
+    genome: usize,
+    genes: usize,
+    objectives: serde_json::Map<String, serde_json::Value>,
+}
+
+/// Prints every genome's objective values, one JSON object per genome.
+fn objectives<G: Grammar>(scene: &Scene, genomes: &[Genome<G>]) -> anyhow::Result<()> {
+    let mut evaluator = ObjectiveEvaluator::new::<G>(scene)?;
+    let names: Vec<&str> = evaluator.set().names().collect();
+    eprintln!(
+        "measuring {} genomes on {} objectives on the CPU",
+        genomes.len(),
+        names.len()
+    );
+    let mut values = vec![0.0; genomes.len() * names.len()];
+    evaluator
+        .evaluate(genomes, &mut values)
+        .context("measuring failed")?;
+    let mut out = std::io::stdout().lock();
+    for (i, (genome, row)) in genomes.iter().zip(values.chunks(names.len())).enumerate() {
+        let objectives = names
+            .iter()
+            .zip(row)
+            .map(|(n, &v)| (n.to_string(), serde_json::json!(v)))
+            .collect();
+        let line = ObjectiveLine {
+            genome: i,
+            genes: genome.len(),
+            objectives,
+        };
+        serde_json::to_writer(&mut out, &line)?;
+        writeln!(out)?;
+    }
+    Ok(())
 }
