@@ -216,7 +216,10 @@ fn target_and_render_work_on_objective_scenes() {
     let same = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1.0);
     for (row, values) in rows.iter().zip(&front) {
         assert!(same(row["objectives"]["top"].as_f64().unwrap(), values[2]));
-        assert!(same(row["objectives"]["height"].as_f64().unwrap(), values[4]));
+        assert!(same(
+            row["objectives"]["height"].as_f64().unwrap(),
+            values[4]
+        ));
     }
 
     let err = fails(&[
