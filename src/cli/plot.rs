@@ -1,5 +1,6 @@
-//! Fitness curves as pictures: best and mean fitness against generations for one run,
-//! and several methods' mean curves with their spread against time for a comparison.
+//! Plots as pictures: best and mean fitness against generations for one run, several
+//! methods' mean curves with their spread against time for a comparison, and the values
+//! of two objectives across a multi-objective front.
 
 mod font;
 

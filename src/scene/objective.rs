@@ -27,15 +27,49 @@ pub(super) struct ObjectiveFile {
     pub image: Option<String>,
 }
 
-/// The objective kinds and the keys each takes besides `kind` and `name`.
-const KINDS: [(&str, &[&str]); 6] = [
-    ("height", &["target"]),
-    ("unique_normals", &["tolerance_deg"]),
-    ("normal_spread", &["tolerance_deg"]),
-    ("footprint_excess", &["min", "max"]),
-    ("top_match", &["image", "min", "max"]),
-    ("front_match", &["image", "min", "max"]),
-];
+/// The kinds of objective a table may name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Kind {
+    Height,
+    UniqueNormals,
+    NormalSpread,
+    FootprintExcess,
+    TopMatch,
+    FrontMatch,
+}
+
+impl Kind {
+    const ALL: [Kind; 6] = [
+        Kind::Height,
+        Kind::UniqueNormals,
+        Kind::NormalSpread,
+        Kind::FootprintExcess,
+        Kind::TopMatch,
+        Kind::FrontMatch,
+    ];
+
+    /// Its name in scene files.
+    fn name(self) -> &'static str {
+        match self {
+            Kind::Height => "height",
+            Kind::UniqueNormals => "unique_normals",
+            Kind::NormalSpread => "normal_spread",
+            Kind::FootprintExcess => "footprint_excess",
+            Kind::TopMatch => "top_match",
+            Kind::FrontMatch => "front_match",
+        }
+    }
+
+    /// The keys it takes besides `kind` and `name`.
+    fn keys(self) -> &'static [&'static str] {
+        match self {
+            Kind::Height => &["target"],
+            Kind::UniqueNormals | Kind::NormalSpread => &["tolerance_deg"],
+            Kind::FootprintExcess => &["min", "max"],
+            Kind::TopMatch | Kind::FrontMatch => &["image", "min", "max"],
+        }
+    }
+}
 
 /// Default tolerance between normals counted as one, in degrees.
 const TOLERANCE_DEG: f32 = 1.0;
@@ -46,8 +80,8 @@ impl Resolver<'_> {
         let mut entries = Vec::with_capacity(files.len());
         for (i, file) in files.iter().enumerate() {
             let key = |k: &str| format!("objective[{i}].{k}");
-            let Some(&(kind, keys)) = KINDS.iter().find(|(name, _)| *name == file.kind) else {
-                let valid: Vec<&str> = KINDS.iter().map(|(name, _)| *name).collect();
+            let Some(kind) = Kind::ALL.into_iter().find(|k| k.name() == file.kind) else {
+                let valid: Vec<&str> = Kind::ALL.iter().map(|k| k.name()).collect();
                 return Err(self.invalid(
                     key("kind"),
                     format!(
@@ -64,16 +98,19 @@ impl Resolver<'_> {
                 ("max", file.max.is_some()),
                 ("image", file.image.is_some()),
             ];
+            let keys = kind.keys();
             if let Some((extra, _)) = given.iter().find(|(k, set)| *set && !keys.contains(k)) {
                 return Err(self.invalid(
                     key(extra),
                     format!(
-                        "is not used by kind \"{kind}\", which takes {}",
+                        "is not used by kind \"{}\", which takes {}",
+                        kind.name(),
                         keys.join(", ")
                     ),
                 ));
             }
-            let needed = |k: &str| self.invalid(key(k), format!("is needed by kind \"{kind}\""));
+            let needed =
+                |k: &str| self.invalid(key(k), format!("is needed by kind \"{}\"", kind.name()));
             let rect = || -> Result<(Vec2, Vec2), SceneError> {
                 let min = file.min.ok_or_else(|| needed("min"))?;
                 let max = file.max.ok_or_else(|| needed("max"))?;
@@ -81,17 +118,17 @@ impl Resolver<'_> {
             };
             let tolerance_deg = file.tolerance_deg.unwrap_or(TOLERANCE_DEG);
             let objective = match kind {
-                "height" => Objective::Height {
+                Kind::Height => Objective::Height {
                     target: file.target.ok_or_else(|| needed("target"))?,
                 },
-                "unique_normals" => Objective::UniqueNormals { tolerance_deg },
-                "normal_spread" => Objective::NormalSpread { tolerance_deg },
-                "footprint_excess" => {
+                Kind::UniqueNormals => Objective::UniqueNormals { tolerance_deg },
+                Kind::NormalSpread => Objective::NormalSpread { tolerance_deg },
+                Kind::FootprintExcess => {
                     let (min, max) = rect()?;
                     Objective::FootprintExcess { min, max }
                 }
-                _ => {
-                    let view = if kind == "top_match" {
+                Kind::TopMatch | Kind::FrontMatch => {
+                    let view = if kind == Kind::TopMatch {
                         View::Top
                     } else {
                         View::Front
@@ -111,7 +148,7 @@ impl Resolver<'_> {
                 }
             };
             entries.push((
-                file.name.clone().unwrap_or_else(|| kind.to_owned()),
+                file.name.clone().unwrap_or_else(|| kind.name().to_owned()),
                 objective,
             ));
         }
