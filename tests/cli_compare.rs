@@ -6,9 +6,8 @@ mod support;
 use std::collections::BTreeMap;
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
-use support::{fails, ok, s};
+use support::{fails, interrupt_when, ok, s};
 
 /// A city scene at 160 x 90 whose target is the silhouette of a sampled city, with the
 /// paper's settings for every method.
@@ -233,35 +232,20 @@ fn ctrl_c_keeps_the_complete_runs_and_fails() {
     let dir = tempfile::tempdir().unwrap();
     let scene = scene(dir.path());
     let out = dir.path().join("out");
-    let child = Command::new(env!("CARGO_BIN_EXE_shapegen"))
-        .args([
-            "compare",
-            s(&scene),
-            "--methods",
-            "ga,smc",
-            "--runs",
-            "20",
-            "--seconds",
-            "0.3",
-            "--cpu",
-            "--out",
-            s(&out),
-        ])
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    let start = std::time::Instant::now();
-    while !out.join("summary.json").exists() {
-        assert!(start.elapsed().as_secs() < 60, "no run finished");
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    }
-    let kill = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(kill.success());
-    let output = child.wait_with_output().unwrap();
+    let args = [
+        "compare",
+        s(&scene),
+        "--methods",
+        "ga,smc",
+        "--runs",
+        "20",
+        "--seconds",
+        "0.3",
+        "--cpu",
+        "--out",
+        s(&out),
+    ];
+    let output = interrupt_when(&args, &out.join("summary.json"), || {});
     assert!(!output.status.success(), "an interrupted comparison fails");
     let stderr = String::from_utf8(output.stderr).unwrap();
     assert!(stderr.contains("interrupted"), "{stderr}");

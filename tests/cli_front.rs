@@ -7,7 +7,7 @@ mod support;
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use support::{fails, ok, s};
+use support::{fails, interrupt_when, ok, s, timeless_summary};
 
 /// A tiny multi-objective building scene: a 16 x 16 footprint target (the lot's left
 /// half), distinct normals and a height of 20; population 16 for 5 generations.
@@ -59,12 +59,6 @@ fn read(dir: &Path, file: &str) -> String {
     fs::read_to_string(dir.join(file)).unwrap()
 }
 
-fn summary(dir: &Path) -> serde_json::Value {
-    let mut v: serde_json::Value = serde_json::from_str(&read(dir, "summary.json")).unwrap();
-    v.as_object_mut().unwrap().remove("elapsed_s");
-    v
-}
-
 #[test]
 fn a_front_run_writes_the_whole_front_at_any_thread_count() {
     let dir = tempfile::tempdir().unwrap();
@@ -75,7 +69,7 @@ fn a_front_run_writes_the_whole_front_at_any_thread_count() {
     assert!(out.contains("non-dominated models"), "{out}");
     ok(&["--threads", "2", "run", s(&scene), "--out", s(&two)]);
 
-    let summary = summary(&one);
+    let summary = timeless_summary(&one);
     assert_eq!(summary["generations"], 5);
     assert_eq!(summary["evaluations"], 16 + 5 * 14);
     assert_eq!(summary["ranking"], "pareto");
@@ -138,7 +132,7 @@ fn a_front_run_writes_the_whole_front_at_any_thread_count() {
     );
 
     // Threads change nothing.
-    assert_eq!(summary, self::summary(&two));
+    assert_eq!(summary, timeless_summary(&two));
     assert_eq!(read(&one, "front.csv"), read(&two, "front.csv"));
     assert_eq!(
         read(&one, "front.genomes.json"),
@@ -154,9 +148,9 @@ fn a_resumed_front_run_ends_as_an_uninterrupted_one() {
     let parts = dir.path().join("parts");
     ok(&["run", s(&scene), "--out", s(&whole)]);
     ok(&["run", s(&scene), "--generations", "2", "--out", s(&parts)]);
-    assert_eq!(summary(&parts)["generations"], 2);
+    assert_eq!(timeless_summary(&parts)["generations"], 2);
     ok(&["run", "--resume", s(&parts), "--generations", "5"]);
-    assert_eq!(summary(&parts), summary(&whole));
+    assert_eq!(timeless_summary(&parts), timeless_summary(&whole));
     assert_eq!(read(&parts, "front.csv"), read(&whole, "front.csv"));
     assert_eq!(
         read(&parts, "front.genomes.json"),
@@ -240,36 +234,20 @@ fn an_interrupted_front_run_keeps_its_front() {
     let dir = tempfile::tempdir().unwrap();
     let scene = scene(dir.path());
     let out = dir.path().join("out");
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_shapegen"))
-        .args([
-            "run",
-            s(&scene),
-            "--generations",
-            "1000000",
-            "--out",
-            s(&out),
-        ])
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::null())
-        .spawn()
-        .unwrap();
-    let start = std::time::Instant::now();
-    while !out.join("checkpoint.json").exists() {
-        assert!(start.elapsed().as_secs() < 60, "no checkpoint written");
-        std::thread::sleep(std::time::Duration::from_millis(50));
-    }
-    // What is kept while the run goes on: the front as a table and as genomes.
-    assert!(out.join("front.csv").is_file() && out.join("front.genomes.json").is_file());
-    let kill = std::process::Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(kill.success());
-    assert!(
-        child.wait().unwrap().success(),
-        "an interrupted run ends cleanly"
-    );
-    let summary = summary(&out);
+    let args = [
+        "run",
+        s(&scene),
+        "--generations",
+        "1000000",
+        "--out",
+        s(&out),
+    ];
+    let ended = interrupt_when(&args, &out.join("checkpoint.json"), || {
+        // What is kept while the run goes on: the front as a table and as genomes.
+        assert!(out.join("front.csv").is_file() && out.join("front.genomes.json").is_file());
+    });
+    assert!(ended.status.success(), "an interrupted run ends cleanly");
+    let summary = timeless_summary(&out);
     assert_eq!(summary["stopped"], "interrupted");
     let front = summary["front"].as_u64().unwrap() as usize;
     assert_eq!(read(&out, "front.csv").lines().count(), 1 + front);
@@ -283,5 +261,5 @@ fn an_interrupted_front_run_keeps_its_front() {
         "--generations",
         &generations.to_string(),
     ]);
-    assert_eq!(self::summary(&out)["generations"], generations);
+    assert_eq!(timeless_summary(&out)["generations"], generations);
 }

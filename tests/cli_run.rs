@@ -5,9 +5,8 @@ mod support;
 
 use std::fs;
 use std::path::Path;
-use std::process::Command;
 
-use support::{ok, s, shapegen};
+use support::{interrupt_when, ok, s, shapegen, timeless_summary};
 
 /// A city scene at 160 x 120 whose target is the silhouette of a sampled city.
 fn scene(dir: &Path) -> std::path::PathBuf {
@@ -58,13 +57,6 @@ generations = 8
     path
 }
 
-fn summary(dir: &Path) -> serde_json::Value {
-    let mut v: serde_json::Value =
-        serde_json::from_str(&fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
-    v.as_object_mut().unwrap().remove("elapsed_s");
-    v
-}
-
 #[test]
 fn a_run_writes_everything_and_does_not_depend_on_threads() {
     let dir = tempfile::tempdir().unwrap();
@@ -108,10 +100,10 @@ fn a_run_writes_everything_and_does_not_depend_on_threads() {
     ] {
         assert!(one.join(file).is_file(), "{file} written");
     }
-    let a = summary(&one);
+    let a = timeless_summary(&one);
     assert_eq!(
         a,
-        summary(&two),
+        timeless_summary(&two),
         "same seed, same summary at 1 and 2 threads"
     );
     assert_eq!(a["generations"], 8);
@@ -152,9 +144,9 @@ fn a_resumed_run_ends_as_an_uninterrupted_one() {
         "--out",
         s(&parts),
     ]);
-    assert_eq!(summary(&parts)["generations"], 3);
+    assert_eq!(timeless_summary(&parts)["generations"], 3);
     ok(&["run", "--resume", s(&parts), "--cpu", "--generations", "8"]);
-    assert_eq!(summary(&parts), summary(&whole));
+    assert_eq!(timeless_summary(&parts), timeless_summary(&whole));
     assert_eq!(
         fs::read_to_string(parts.join("best.genome.json")).unwrap(),
         fs::read_to_string(whole.join("best.genome.json")).unwrap()
@@ -200,36 +192,18 @@ fn an_interrupted_run_keeps_what_it_found() {
     let dir = tempfile::tempdir().unwrap();
     let scene = scene(dir.path());
     let out = dir.path().join("out");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_shapegen"))
-        .args([
-            "run",
-            s(&scene),
-            "--cpu",
-            "--generations",
-            "1000000",
-            "--out",
-            s(&out),
-        ])
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::null())
-        .spawn()
-        .unwrap();
-    let checkpoint = out.join("checkpoint.json");
-    let start = std::time::Instant::now();
-    while !checkpoint.exists() {
-        assert!(start.elapsed().as_secs() < 60, "no checkpoint written");
-        std::thread::sleep(std::time::Duration::from_millis(50));
-    }
-    let kill = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(kill.success());
-    assert!(
-        child.wait().unwrap().success(),
-        "an interrupted run ends cleanly"
-    );
-    let summary = summary(&out);
+    let args = [
+        "run",
+        s(&scene),
+        "--cpu",
+        "--generations",
+        "1000000",
+        "--out",
+        s(&out),
+    ];
+    let ended = interrupt_when(&args, &out.join("checkpoint.json"), || {});
+    assert!(ended.status.success(), "an interrupted run ends cleanly");
+    let summary = timeless_summary(&out);
     assert_eq!(summary["stopped"], "interrupted");
     let genome = fs::read_to_string(out.join("best.genome.json")).unwrap();
     assert!(genome.contains("\"generator\": \"City\""));
@@ -263,12 +237,12 @@ fn every_method_runs_and_resumes_exactly() {
         ok(&[&base[..], &["--generations", "6", "--out", s(&whole)]].concat());
         ok(&[&base[..], &["--generations", "2", "--out", s(&parts)]].concat());
         ok(&["run", "--resume", s(&parts), "--cpu", "--generations", "6"]);
-        let summary = summary(&whole);
+        let summary = timeless_summary(&whole);
         assert_eq!(summary["method"], method);
         assert_eq!(summary["generations"], 6);
         assert_eq!(
             summary,
-            self::summary(&parts),
+            timeless_summary(&parts),
             "{method}: resumed equals uninterrupted"
         );
     }

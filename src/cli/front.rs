@@ -166,7 +166,7 @@ impl FrontRun<'_> {
                 name,
                 kind: objective.name(),
                 sense,
-                best: best_value(&front, i, sense),
+                best: best_by(&front, i, sense).map_or(f64::NAN, |m| m.values[i]),
             })
             .collect();
         let summary = Summary {
@@ -222,13 +222,15 @@ fn sorted<'a, G>(front: &'a [Member<G>], senses: &[Sense]) -> Vec<&'a Member<G>>
     order
 }
 
-/// The best value of objective `i` in `front` (NaN for an empty front).
-fn best_value<G>(front: &[&Member<G>], i: usize, sense: Sense) -> f64 {
-    front
-        .iter()
-        .map(|m| m.values[i])
-        .reduce(|a, b| if sense.better(b, a) { b } else { a })
-        .unwrap_or(f64::NAN)
+/// The member of `front` best by objective `i` (the first of equals), if any.
+fn best_by<'a, G>(front: &[&'a Member<G>], i: usize, sense: Sense) -> Option<&'a Member<G>> {
+    front.iter().copied().reduce(|a, b| {
+        if sense.better(b.values[i], a.values[i]) {
+            b
+        } else {
+            a
+        }
+    })
 }
 
 /// One line of progress per generation: rewritten in place on a terminal, every tenth
@@ -395,14 +397,7 @@ impl Outputs<'_> {
                 .names()
                 .position(|n| n == name)
                 .context("a projection of the set")?;
-            let sense = self.set.senses()[i];
-            let Some(best) = front.iter().copied().reduce(|a, b| {
-                if sense.better(b.values[i], a.values[i]) {
-                    b
-                } else {
-                    a
-                }
-            }) else {
+            let Some(best) = best_by(front, i, self.set.senses()[i]) else {
                 continue;
             };
             best.genome.derive_into(&mut instances);

@@ -36,3 +36,42 @@ pub fn fails(args: &[&str]) -> String {
 pub fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
+
+/// Starts `shapegen` with `args`, waits until `file` exists (at most a minute), runs
+/// `meanwhile` while the process still runs, sends it SIGINT (as Ctrl-C does) and returns
+/// what the process left: its status and its error output.
+pub fn interrupt_when(args: &[&str], file: &Path, meanwhile: impl FnOnce()) -> Output {
+    let child = Command::new(env!("CARGO_BIN_EXE_shapegen"))
+        .args(args)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the shapegen binary runs");
+    let start = std::time::Instant::now();
+    while !file.exists() {
+        assert!(
+            start.elapsed().as_secs() < 60,
+            "`{}` was not written",
+            file.display()
+        );
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    meanwhile();
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(kill.success());
+    child.wait_with_output().expect("the process ends")
+}
+
+/// A run's `summary.json` without its wall time, which differs between runs.
+pub fn timeless_summary(dir: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(dir.join("summary.json")).expect("summary.json");
+    let mut summary: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    summary
+        .as_object_mut()
+        .expect("an object")
+        .remove("elapsed_s");
+    summary
+}
