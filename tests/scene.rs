@@ -95,7 +95,7 @@ fn well_formed_scenes_load() {
     let fixture = Fixture::new();
     let volume = fixture.load(VOLUME).unwrap();
     assert_eq!(volume.generator, generators::Published::Spaceship);
-    assert_eq!((volume.limits.min_len, volume.optimal_len), (4, 10));
+    assert_eq!((volume.limits.min_len, volume.optimal_len), (4, Some(10)));
     assert!(volume.volume.is_some() && volume.silhouette.is_none());
     let silhouette = fixture.load(SILHOUETTE).unwrap();
     assert!(silhouette.volume.is_none());
@@ -466,4 +466,105 @@ fn the_building_scene_is_reachable() {
     MultiEvaluator::<Building>::evaluate(&mut evaluator, &[genome], &mut values).unwrap();
     assert_eq!(values[..2], [1.0, 1.0]);
     assert!(values[2] >= 6.0, "{values:?}");
+}
+
+#[test]
+fn the_length_penalty_starts_at_min_len_unless_asked_otherwise() {
+    let fixture = Fixture::new();
+    // The original's rule: weight * S(min_len, max_len, genes).
+    let scene = fixture.load(VOLUME).unwrap();
+    assert_eq!((scene.length.from, scene.length.to), (4.0, 100.0));
+    let text = VOLUME.replace(
+        "[volume]",
+        "[fitness]\nlength = 0.1\nlength_from = \"optimal_len\"\n[volume]",
+    );
+    let scene = fixture.load(&text).unwrap();
+    assert_eq!((scene.length.from, scene.length.weight), (10.0, 0.1));
+    // Without an optimal length there is nothing to start from.
+    fixture.refuses(
+        &text.replace("optimal_len = 10\n", ""),
+        "fitness.length_from",
+        "add it to [limits]",
+    );
+    fixture.refuses(
+        &VOLUME.replace("[volume]", "[fitness]\nlength_from = \"max_len\"\n[volume]"),
+        "length_from",
+        "min_len",
+    );
+    // optimal_len may be left out altogether.
+    let scene = fixture
+        .load(&VOLUME.replace("optimal_len = 10\n", ""))
+        .unwrap();
+    assert_eq!(scene.optimal_len, None);
+}
+
+#[test]
+fn masks_take_the_original_rule_or_a_threshold() {
+    let fixture = Fixture::new();
+    // Columns 0-3 black, 4 dark grey (red 100), 5-7 white.
+    image::GrayImage::from_fn(8, 6, |x, _| {
+        image::Luma([match x {
+            0..4 => 0,
+            4 => 100,
+            _ => 255,
+        }])
+    })
+    .save(fixture.dir.path().join("target.png"))
+    .unwrap();
+    let targets = |text: &str| {
+        let scene = fixture.load(text).unwrap();
+        scene.silhouette.unwrap().targets[0].target_pixels()
+    };
+    // The original's rule: red channel 0, so the grey column is not target.
+    assert_eq!(targets(SILHOUETTE), 4 * 6);
+    let with = |t: &str| {
+        SILHOUETTE.replace(
+            "image = \"target.png\"",
+            &format!("image = \"target.png\"\n{t}"),
+        )
+    };
+    assert_eq!(targets(&with("threshold = 128")), 5 * 6);
+    assert_eq!(targets(&with("threshold = 100")), 4 * 6);
+    fixture.refuses(&with("threshold = 0"), "threshold", "from 1 to 255");
+    fixture.refuses(&with("threshold = 300"), "threshold", "from 1 to 255");
+    fixture.refuses(
+        &with("kind = \"weights\"\nthreshold = 128"),
+        "threshold",
+        "only a mask",
+    );
+}
+
+#[test]
+fn generator_meshes_are_normalized_unless_asked_otherwise() {
+    let fixture = Fixture::new();
+    // A 2 x 2 x 2 cube: normalized to unit extent, or kept as written.
+    let big: String = shapegen_cube_obj()
+        .lines()
+        .map(|l| match l.strip_prefix("v ") {
+            Some(v) => {
+                let doubled: Vec<String> = v
+                    .split_whitespace()
+                    .map(|c| (2.0 * c.parse::<f32>().unwrap()).to_string())
+                    .collect();
+                format!("v {}\n", doubled.join(" "))
+            }
+            None => format!("{l}\n"),
+        })
+        .collect();
+    fs::write(fixture.dir.path().join("big.obj"), big).unwrap();
+    let extent = |entry: &str| {
+        let scene = fixture
+            .load(&format!("{VOLUME}\n[meshes]\ncube = {entry}\n"))
+            .unwrap();
+        let (lo, hi) = scene.meshes.get("cube").unwrap().bounds().unwrap();
+        (hi - lo).x
+    };
+    assert_eq!(extent("\"big.obj\""), 1.0);
+    assert_eq!(extent("{ path = \"big.obj\" }"), 1.0);
+    assert_eq!(extent("{ path = \"big.obj\", normalize = false }"), 2.0);
+    fixture.refuses(
+        &format!("{VOLUME}\n[meshes]\ncube = {{ path = \"nowhere.obj\", normalize = false }}\n"),
+        "meshes.cube",
+        "not a file",
+    );
 }

@@ -1,11 +1,18 @@
-//! The paper's city generator (ShapeGenetics Fig. 9): a 10 x 10 grid of lots, each of
-//! which may hold one box building.
+//! The paper's city generator (ShapeGenetics Fig. 9): 100 lots on a grid, each of which
+//! may hold one box building, placed as the original's `CityGrammar.cpp` places them.
+//!
+//! The original makes each lot a symbol of its own, `Lot_i_j`, created in the order
+//! `k = i + 10 j` with symbol id `k + 4` (ids 0 to 3 are taken by other symbols), and
+//! places a lot by its *symbol id*: at grid cell `(id % 10, id / 10)`. So the grid is
+//! shifted by four cells against a centred 10 x 10 grid, and the last four lots lie on an
+//! eleventh row. [`lot_position`] reproduces this bit for bit; lot `k` of the `lots` array
+//! is the original's `Lot_i_j` with `k = i + 10 j`.
 
 use shapegen_runtime::generator;
 use shapegen_runtime::genome::Limits;
 use shapegen_runtime::prelude::*;
 
-/// Lots per side of the grid.
+/// Lots per row of the grid (the original's `GridX`).
 pub const GRID: usize = 10;
 /// Distance between the centres of neighbouring lots.
 pub const LOT_SPACING: f32 = 2.2;
@@ -15,7 +22,7 @@ generator! {
     pub City {
         axiom Start;
 
-        /// The grid: lot `k` lies at row `k / 10`, column `k % 10`.
+        /// The city: lot `k` lies at [`lot_position`]`(k)`.
         node Start {
             children { lots: [Lot; 100] = 0.33 }
             derive(s) {
@@ -53,15 +60,32 @@ generator! {
     }
 }
 
-/// Centre of lot `k` on the ground plane, relative to the grid's centre.
+/// Symbol id of the original's first lot, `Lot_0_0`; lot `k` has id `k + FIRST_LOT_ID`.
+pub const FIRST_LOT_ID: usize = 4;
+
+/// Centre of lot `k` on the ground plane, as the original computes it: the lot's grid
+/// cell is `(cx, cz) = ((k + 4) % 10, (k + 4) / 10)`, and each coordinate is
+/// `0.1 * -99 + 0.1 * (22 * c)` in `f32` (the original's base size of 22 and output scale
+/// of 0.1), so x and z run from -9.9 in steps of 2.2.
+///
+/// ```
+/// use generators::city::lot_position;
+/// use glam::vec3;
+///
+/// assert_eq!(lot_position(0), vec3(0.1 * -99.0 + 0.1 * 88.0, 0.0, 0.1 * -99.0)); // Lot_0_0
+/// assert!(lot_position(6).abs_diff_eq(vec3(-9.9, 0.0, -7.7), 1e-6)); // Lot_6_0
+/// assert!(lot_position(99).abs_diff_eq(vec3(-3.3, 0.0, 12.1), 1e-6)); // Lot_9_9
+/// ```
 pub fn lot_position(k: usize) -> Vec3 {
-    let offset = -(GRID as f32 - 1.0) * LOT_SPACING / 2.0;
-    vec3(
-        offset + LOT_SPACING * (k / GRID) as f32,
-        0.0,
-        offset + LOT_SPACING * (k % GRID) as f32,
-    )
+    let id = k + FIRST_LOT_ID;
+    let start = 0.1_f32 * ((1.0 - GRID as f32) * 0.5 * BASE_SIZE);
+    let coordinate = |cell: usize| start + 0.1_f32 * (cell as f32 * BASE_SIZE);
+    vec3(coordinate(id % GRID), 0.0, coordinate(id / GRID))
 }
+
+/// The original's lot size before its output scale of 0.1: lots are
+/// [`LOT_SPACING`] apart.
+const BASE_SIZE: f32 = 22.0;
 
 /// The genome limits of the paper's city scene: length 4 to 300, depth 8.
 pub const PAPER_LIMITS: Limits = Limits {

@@ -9,7 +9,8 @@ use shapegen_runtime::{Mesh, MeshLibrary};
 pub const TRUNK_OBJ: &str = include_str!("../meshes/trunk.obj");
 
 /// The tree's leaf mesh: a closed lens-shaped leaf about 0.48 x 0.98 x 0.15, centred,
-/// its tip towards +y. The tree emits it unscaled.
+/// its tip towards +y, as written. [`default_meshes`] normalizes it to unit extent, as
+/// the original does with its leaf; the tree emits it unscaled.
 pub const LEAF_OBJ: &str = include_str!("../meshes/leaf.obj");
 
 /// Segments of [`low_poly_sphere`] around its vertical axis.
@@ -18,7 +19,8 @@ const SPHERE_SEGMENTS: u32 = 8;
 const SPHERE_BANDS: u32 = 4;
 
 /// A mesh library holding every mesh the published generators use: the built-in `cube`,
-/// `trunk`, `leaf` and `sphere`.
+/// `trunk`, `leaf` and `sphere`. `trunk` and `leaf` are normalized as every generator
+/// mesh loaded from OBJ is ([`Mesh::from_obj_str_normalized`]).
 ///
 /// ```
 /// use shapegen_runtime::Grammar;
@@ -36,7 +38,7 @@ pub fn default_meshes() -> MeshLibrary {
         ("trunk", "trunk.obj", TRUNK_OBJ),
         ("leaf", "leaf.obj", LEAF_OBJ),
     ] {
-        let mesh = Mesh::from_obj_str(file, text)
+        let mesh = Mesh::from_obj_str_normalized(file, text)
             .unwrap_or_else(|e| panic!("the built-in mesh {file} is broken: {e}"));
         library
             .register(name, mesh)

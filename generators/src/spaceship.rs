@@ -1,5 +1,10 @@
 //! The paper's spaceship generator (ShapeGenetics, Fig. 3): a chain of hull boxes with
-//! optional mirrored wing chains and stacked tops.
+//! optional mirrored wing chains and stacked towers, as the original's
+//! `SpaceShipGrammar.cpp` derives it.
+//!
+//! Every `Body`, `Top` and `TopNext` gene emits one box in its own parameters, every
+//! `Wing` and `WingNext` gene a mirrored pair of boxes, so every parameter of every gene
+//! shapes the model.
 
 use shapegen_runtime::generator;
 use shapegen_runtime::genome::Limits;
@@ -47,76 +52,78 @@ generator! {
             }
         }
 
-        /// The base of a tower on a hull box.
+        /// The first box of a tower on a hull box.
         node Top {
             params {
                 /// Size of the tower's first box relative to the hull box it stands on.
                 size: Vec3 ~ uniform([0.3, 0.1, 0.3], [0.8, 0.2, 0.8]),
             }
             children { next: TopNext = 1.0 }
-            derive(s) {
-                if let Some(next) = next {
-                    s.resize(size).derive(next);
-                }
-            }
+            derive(s) { tower_box(s.resize(size), next) }
         }
 
-        /// A box of a tower, stacked along +y.
+        /// A further box of a tower, stacked along +y.
         node TopNext {
             params {
-                /// Size relative to the box below; unused on a tower's first box, which
-                /// `Top` sizes.
+                /// Size relative to the box below.
                 size: Vec3 ~ uniform([0.6, 0.8, 0.6], [1.1, 1.1, 1.1]),
             }
             children { next: TopNext = 1.0 }
-            derive(s) {
-                let s = s.translate(vec3(0.0, s.size().y / 2.0, 0.0));
-                s.emit(CUBE);
-                if let Some(next) = next {
-                    s.translate(vec3(0.0, s.size().y / 2.0, 0.0)).resize(next.size).derive(next);
-                }
-            }
+            derive(s) { tower_box(s, next) }
         }
 
-        /// The root of a wing, shifted along the hull by `shift` of its length.
+        /// The first box of a wing, shifted along the hull by `shift` of its length.
         node Wing {
             params {
                 /// Size of the wing's first box relative to the hull box.
                 size: Vec3 ~ uniform([0.3, 0.2, 0.2], [1.2, 0.5, 1.0]),
-                /// Shift of the wing along the hull (+z), as a fraction of its first
-                /// box's length.
+                /// Shift of the box along the hull (+z), as a fraction of its length.
                 shift: f32 ~ uniform(-0.5, 0.5),
             }
             children { next: WingNext = 1.0 }
-            derive(s) {
-                let s = s.resize(size);
-                let s = s.translate(vec3(0.0, 0.0, s.size().z * shift));
-                if let Some(next) = next {
-                    s.derive(next);
-                }
-            }
+            derive(s) { wing_box(s.resize(size), shift, next) }
         }
 
-        /// A box of a wing, continuing outwards along +x.
+        /// A further box of a wing, continuing outwards along +x.
         node WingNext {
             params {
-                /// Size relative to the previous box of the wing; unused on a wing's first
-                /// box, which `Wing` sizes.
+                /// Size relative to the previous box of the wing.
                 size: Vec3 ~ uniform([0.6, 0.9, 0.7], [1.2, 1.0, 1.2]),
                 /// Shift along the hull (+z) from the previous box, as a fraction of this
-                /// box's length; unused on a wing's first box.
+                /// box's length.
                 shift: f32 ~ uniform(-0.5, 0.5),
             }
             children { next: WingNext = 0.9 }
-            derive(s) {
-                let s = s.translate(vec3(s.size().x / 2.0, 0.0, 0.0));
-                s.emit(CUBE);
-                if let Some(next) = next {
-                    let c = s.translate(vec3(s.size().x / 2.0, 0.0, 0.0)).resize(next.size);
-                    c.translate(vec3(0.0, 0.0, c.size().z * next.shift)).derive(next);
-                }
-            }
+            derive(s) { wing_box(s, shift, next) }
         }
+    }
+}
+
+/// One box of a tower (the original's `TopRuleRecursion`), its scope already sized: it
+/// stands on the scope's centre, and the next box, sized by its own parameter, stands on
+/// it.
+fn tower_box<'a>(s: Shape<'a, Spaceship>, next: Option<Child<'a, TopNext>>) {
+    let s = s.translate(vec3(0.0, s.size().y / 2.0, 0.0));
+    s.emit(CUBE);
+    if let Some(next) = next {
+        s.translate(vec3(0.0, s.size().y / 2.0, 0.0))
+            .resize(next.size)
+            .derive(next);
+    }
+}
+
+/// One box of a wing (the original's `WingRule` shift followed by
+/// `WingRuleRecursion`), its scope already sized: shifted along the hull by `shift` of its
+/// length, it continues outwards from the scope's centre, and the next box, sized by its
+/// own parameter, continues outwards from it.
+fn wing_box<'a>(s: Shape<'a, Spaceship>, shift: f32, next: Option<Child<'a, WingNext>>) {
+    let s = s.translate(vec3(0.0, 0.0, s.size().z * shift));
+    let s = s.translate(vec3(s.size().x / 2.0, 0.0, 0.0));
+    s.emit(CUBE);
+    if let Some(next) = next {
+        s.translate(vec3(s.size().x / 2.0, 0.0, 0.0))
+            .resize(next.size)
+            .derive(next);
     }
 }
 

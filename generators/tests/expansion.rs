@@ -115,13 +115,13 @@ fn assert_same_derivation(
     assert_eq!(out_a, out_b, "{what}: instances");
 }
 
-/// The number of boxes a spaceship derives to: one per Body and TopNext, two per
-/// WingNext (each wing is derived twice, mirrored); Start, Top and Wing emit nothing.
+/// The number of boxes a spaceship derives to: one per Body, Top and TopNext, two per
+/// Wing and WingNext (each wing is derived twice, mirrored); Start emits nothing.
 fn expected_boxes(g: &Genome<Spaceship>) -> usize {
     g.genes()
         .map(|gene| match g.node(gene).name {
-            "Body" | "TopNext" => 1,
-            "WingNext" => 2,
+            "Body" | "Top" | "TopNext" => 1,
+            "Wing" | "WingNext" => 2,
             _ => 0,
         })
         .sum()

@@ -124,7 +124,6 @@ fn spaceship_hull_wings_and_tower() {
             },
         )
         .unwrap();
-    // The first WingNext's own size and shift are not used: Wing has sized its scope.
     let wn1 = g
         .attach(
             wing,
@@ -153,7 +152,6 @@ fn spaceship_hull_wings_and_tower() {
             },
         )
         .unwrap();
-    // Likewise the first TopNext's size is not used.
     let tn1 = g
         .attach(
             top,
@@ -181,36 +179,66 @@ fn spaceship_hull_wings_and_tower() {
     let hull1 = boxed(CUBE, WORLD, vec3(0.8, 0.8, 1.8), vec3(0.0, 0.0, 2.1));
     // Right wing, from b0's scope: translate(1 / 2, 0, 0) -> (0.5, 0, 0.6).
     // Wing: resize((0.5, 0.4, 0.5)) -> size (0.5, 0.32, 0.6); translate(0, 0, 0.6 * 0.2)
-    // -> (0.5, 0, 0.72). WingNext 1: translate(0.25, 0, 0) -> (0.75, 0, 0.72); emit.
+    // -> (0.5, 0, 0.72); translate(0.25, 0, 0) -> (0.75, 0, 0.72); emit.
     let right1 = boxed(CUBE, WORLD, vec3(0.5, 0.32, 0.6), vec3(0.75, 0.0, 0.72));
-    // Its child: translate(0.25, 0, 0) -> (1, 0, 0.72); resize((0.8, 0.9, 1.2)) -> size
-    // (0.4, 0.288, 0.72); translate(0, 0, 0.72 * -0.25) -> (1, 0, 0.54). WingNext 2:
-    // translate(0.2, 0, 0) -> (1.2, 0, 0.54); emit.
-    let right2 = boxed(CUBE, WORLD, vec3(0.4, 0.288, 0.72), vec3(1.2, 0.0, 0.54));
+    // WingNext 1: translate(0.25, 0, 0) -> (1, 0, 0.72); resize((1.1, 1, 0.9)) -> size
+    // (0.55, 0.32, 0.54); translate(0, 0, 0.54 * 0.4) -> (1, 0, 0.936);
+    // translate(0.275, 0, 0) -> (1.275, 0, 0.936); emit.
+    let right2 = boxed(CUBE, WORLD, vec3(0.55, 0.32, 0.54), vec3(1.275, 0.0, 0.936));
+    // WingNext 2: translate(0.275, 0, 0) -> (1.55, 0, 0.936); resize((0.8, 0.9, 1.2)) ->
+    // size (0.44, 0.288, 0.648); translate(0, 0, 0.648 * -0.25) -> (1.55, 0, 0.774);
+    // translate(0.22, 0, 0) -> (1.77, 0, 0.774); emit.
+    let right3 = boxed(
+        CUBE,
+        WORLD,
+        vec3(0.44, 0.288, 0.648),
+        vec3(1.77, 0.0, 0.774),
+    );
     // Left wing: rotate(z, pi) turns the local x and y axes to -x and -y, so every local
     // x step above goes the other way and the boxes' x and y columns flip sign.
     let turned = [-Vec3::X, -Vec3::Y, Vec3::Z];
     let left1 = boxed(CUBE, turned, vec3(0.5, 0.32, 0.6), vec3(-0.75, 0.0, 0.72));
-    let left2 = boxed(CUBE, turned, vec3(0.4, 0.288, 0.72), vec3(-1.2, 0.0, 0.54));
+    let left2 = boxed(
+        CUBE,
+        turned,
+        vec3(0.55, 0.32, 0.54),
+        vec3(-1.275, 0.0, 0.936),
+    );
+    let left3 = boxed(
+        CUBE,
+        turned,
+        vec3(0.44, 0.288, 0.648),
+        vec3(-1.77, 0.0, 0.774),
+    );
     // Top, from b0's scope: translate(0, 0.8 / 2, 0) -> (0, 0.4, 0.6). Top:
-    // resize((0.5, 0.2, 0.5)) -> size (0.5, 0.16, 0.6). TopNext 1: translate(0, 0.08, 0)
-    // -> (0, 0.48, 0.6); emit.
+    // resize((0.5, 0.2, 0.5)) -> size (0.5, 0.16, 0.6); translate(0, 0.08, 0) ->
+    // (0, 0.48, 0.6); emit.
     let tower1 = boxed(CUBE, WORLD, vec3(0.5, 0.16, 0.6), vec3(0.0, 0.48, 0.6));
-    // Its child: translate(0, 0.08, 0) -> (0, 0.56, 0.6); resize((0.6, 1, 0.8)) -> size
-    // (0.3, 0.16, 0.48). TopNext 2: translate(0, 0.08, 0) -> (0, 0.64, 0.6); emit.
-    let tower2 = boxed(CUBE, WORLD, vec3(0.3, 0.16, 0.48), vec3(0.0, 0.64, 0.6));
+    // TopNext 1: translate(0, 0.08, 0) -> (0, 0.56, 0.6); resize((0.7, 0.9, 0.7)) ->
+    // size (0.35, 0.144, 0.42); translate(0, 0.072, 0) -> (0, 0.632, 0.6); emit.
+    let tower2 = boxed(CUBE, WORLD, vec3(0.35, 0.144, 0.42), vec3(0.0, 0.632, 0.6));
+    // TopNext 2: translate(0, 0.072, 0) -> (0, 0.704, 0.6); resize((0.6, 1, 0.8)) ->
+    // size (0.21, 0.144, 0.336); translate(0, 0.072, 0) -> (0, 0.776, 0.6); emit.
+    let tower3 = boxed(CUBE, WORLD, vec3(0.21, 0.144, 0.336), vec3(0.0, 0.776, 0.6));
 
     let out = derive(&g);
+    // Every gene emits a box (wing genes a mirrored pair), in its own parameters.
     assert_instances(
         &out,
-        &[hull0, hull1, right1, right2, left1, left2, tower1, tower2],
+        &[
+            hull0, hull1, right1, right2, right3, left1, left2, left3, tower1, tower2, tower3,
+        ],
     );
-    // The rules emit depth first in the order of the paper's description: next, top,
-    // wing (right, then left).
+    // The rules emit depth first: next, top, wing (right, then left).
     assert!(matches(&out[0], &hull0) && matches(&out[1], &hull1));
-    assert!(matches(&out[2], &tower1) && matches(&out[3], &tower2));
-    assert!(matches(&out[4], &right1) && matches(&out[5], &right2));
-    assert!(matches(&out[6], &left1) && matches(&out[7], &left2));
+    assert!(
+        [
+            tower1, tower2, tower3, right1, right2, right3, left1, left2, left3
+        ]
+        .iter()
+        .zip(&out[2..])
+        .all(|(e, i)| matches(i, e))
+    );
 }
 
 #[test]
@@ -444,25 +472,26 @@ fn city_lots_in_their_grid_places() {
     }
     assert_eq!(g.len(), 7);
 
-    // Lot k = 10 i + j lies at x = -9.9 + 2.2 i, z = -9.9 + 2.2 j, y = 0.
-    // Lot 0 (i 0, j 0): (-9.9, 0, -9.9). rotate(y, 30): x -> (cos 30, 0, -sin 30),
+    // Lot k (the original's symbol id k + 4) lies in grid cell (cx, cz) =
+    // ((k + 4) % 10, (k + 4) / 10), at x = -9.9 + 2.2 cx, z = -9.9 + 2.2 cz, y = 0.
+    // Lot 0 (cell (4, 0)): (-1.1, 0, -9.9). rotate(y, 30): x -> (cos 30, 0, -sin 30),
     // z -> (sin 30, 0, cos 30); size (1, 4, 1.5); up 4 / 2.
     let lot0 = boxed(
         CUBE,
         [vec3(S3_2, 0.0, -0.5), Vec3::Y, vec3(0.5, 0.0, S3_2)],
         vec3(1.0, 4.0, 1.5),
-        vec3(-9.9, 2.0, -9.9),
+        vec3(-1.1, 2.0, -9.9),
     );
-    // Lot 37 (i 3, j 7): (-9.9 + 6.6, 0, -9.9 + 15.4) = (-3.3, 0, 5.5); no rotation;
+    // Lot 37 (cell (1, 4)): (-9.9 + 2.2, 0, -9.9 + 8.8) = (-7.7, 0, -1.1); no rotation;
     // size (0.5, 10, 1.98); up 5.
-    let lot37 = boxed(CUBE, WORLD, vec3(0.5, 10.0, 1.98), vec3(-3.3, 5.0, 5.5));
-    // Lot 99 (i 9, j 9): (9.9, 0, 9.9). rotate(y, 90): x -> (0, 0, -1), z -> (1, 0, 0);
-    // size (1.2, 0.36, 0.8); up 0.18.
+    let lot37 = boxed(CUBE, WORLD, vec3(0.5, 10.0, 1.98), vec3(-7.7, 5.0, -1.1));
+    // Lot 99 (cell (3, 10), on the eleventh row): (-3.3, 0, 12.1). rotate(y, 90):
+    // x -> (0, 0, -1), z -> (1, 0, 0); size (1.2, 0.36, 0.8); up 0.18.
     let lot99 = boxed(
         CUBE,
         [vec3(0.0, 0.0, -1.0), Vec3::Y, Vec3::X],
         vec3(1.2, 0.36, 0.8),
-        vec3(9.9, 0.18, 9.9),
+        vec3(-3.3, 0.18, 12.1),
     );
     let out = derive(&g);
     assert_instances(&out, &[lot0, lot37, lot99]);
@@ -482,20 +511,22 @@ fn city_every_lot_position() {
     assert_eq!(g.len(), 201); // the README's maximum genome
     let expected: Vec<Expected> = (0..100)
         .map(|k| {
-            let (i, j) = ((k / 10) as f32, (k % 10) as f32);
-            let centre = vec3(-9.9 + 2.2 * i, 1.0, -9.9 + 2.2 * j);
+            let (cx, cz) = (((k + 4) % 10) as f32, ((k + 4) / 10) as f32);
+            let centre = vec3(-9.9 + 2.2 * cx, 1.0, -9.9 + 2.2 * cz);
             boxed(CUBE, WORLD, vec3(1.0, 2.0, 1.0), centre)
         })
         .collect();
     let out = derive(&g);
     assert_instances(&out, &expected);
-    // The grid is centred on the origin.
+    // The grid is shifted by four cells against a centred one: every x cell holds ten
+    // lots, but the z cells hold 6, 10 x 9 and 4 (the eleventh row), so the mean cell is
+    // (4.5, 4.9): x = 0, z = -9.9 + 2.2 * 4.9 = 0.88.
     let mean = out
         .iter()
         .map(|i| Vec3::from(i.transform.translation))
         .sum::<Vec3>()
         / 100.0;
-    assert!(mean.abs_diff_eq(vec3(0.0, 1.0, 0.0), EPS));
+    assert!(mean.abs_diff_eq(vec3(0.0, 1.0, 0.88), EPS));
 }
 
 // --- the published tables ---------------------------------------------------------------

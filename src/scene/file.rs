@@ -9,7 +9,7 @@ use serde::Deserialize;
 pub(super) struct SceneFile {
     pub generator: String,
     #[serde(default)]
-    pub meshes: std::collections::BTreeMap<String, String>,
+    pub meshes: std::collections::BTreeMap<String, MeshFile>,
     pub limits: LimitsFile,
     #[serde(default)]
     pub fitness: FitnessFile,
@@ -25,12 +25,30 @@ pub(super) struct SceneFile {
     pub optimizer: toml::Table,
 }
 
+/// An entry of `[meshes]`: a path, or a path with whether to normalize the part.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub(super) enum MeshFile {
+    /// `name = "path.obj"`: normalized as the original does.
+    Path(String),
+    /// `name = { path = "path.obj", normalize = false }`.
+    Table {
+        path: String,
+        #[serde(default = "yes")]
+        normalize: bool,
+    },
+}
+
+fn yes() -> bool {
+    true
+}
+
 /// `[limits]`
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct LimitsFile {
     pub min_len: u32,
-    pub optimal_len: u32,
+    pub optimal_len: Option<u32>,
     pub max_len: u32,
     pub max_depth: u32,
 }
@@ -43,6 +61,19 @@ pub(super) struct FitnessFile {
     pub form: FormName,
     #[serde(default)]
     pub length: f64,
+    #[serde(default)]
+    pub length_from: LengthFrom,
+}
+
+/// `fitness.length_from`: the genome length where the length penalty starts.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub(super) enum LengthFrom {
+    /// `limits.min_len`, as the original implementation's fitness does.
+    #[default]
+    MinLen,
+    /// `limits.optimal_len`, which the scene must then give.
+    OptimalLen,
 }
 
 /// `fitness.form`
@@ -118,6 +149,9 @@ pub(super) struct ImageTargetFile {
     pub image: String,
     #[serde(default)]
     pub kind: ImageKind,
+    /// Mask images: pixels darker than this grey level are the target, instead of the
+    /// original's rule (red channel 0).
+    pub threshold: Option<u16>,
     /// Mask images: weight of dark pixels. Weight maps: weight of black.
     pub on: Option<f32>,
     /// Mask images: weight of light pixels. Weight maps: weight of white.
@@ -129,7 +163,8 @@ pub(super) struct ImageTargetFile {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub(super) enum ImageKind {
-    /// Black and white: dark pixels are the target.
+    /// Black and white: black pixels (red channel 0) are the target, or those darker
+    /// than a threshold.
     #[default]
     Mask,
     /// Grey levels mapped linearly from `on` (black) to `off` (white).

@@ -8,17 +8,19 @@
 //! generator = "spaceship"            # spaceship, tree, city or building
 //!
 //! [meshes]                           # optional: replace or add meshes by name
-//! cube = "meshes/cube.obj"
+//! cube = "meshes/cube.obj"           # normalized to unit extent, as the original does
+//! leaf = { path = "leaf.obj", normalize = false }   # or kept as written
 //!
 //! [limits]
 //! min_len = 4                        # genes
-//! optimal_len = 10                   # where the length penalty starts
 //! max_len = 100
 //! max_depth = 15
+//! optimal_len = 10                   # optional: see fitness.length_from
 //!
 //! [fitness]
 //! form = "smooth"                    # "smooth" (original implementation) or "weighted" (paper)
-//! length = 0.1                       # smooth form: weight * S(optimal_len, max_len, genes)
+//! length = 0.1                       # weight * S(min_len, max_len, genes), as the original
+//! length_from = "min_len"            # or "optimal_len": weight * S(optimal_len, max_len, genes)
 //!
 //! [volume]
 //! grid = { min = [-5, -5, -2], max = [5, 5, 18], resolution = [100, 200, 100] }
@@ -35,8 +37,10 @@
 //! bad = 1.0
 //! [[silhouette.target]]
 //! image = "skyline.png"              # its size must be the camera's
-//! kind = "mask"                      # dark pixels weigh `on` (1), light ones `off` (-1);
-//!                                    # "weights": grey levels from `on` (black) to `off` (white)
+//! kind = "mask"                      # black pixels (red channel 0, the original's rule)
+//!                                    # weigh `on` (1), the others `off` (-1); "weights": grey
+//!                                    # levels from `on` (black) to `off` (white)
+//! threshold = 128                    # optional, masks: pixels darker than this are the target
 //! camera = { phi = -3.05, theta = 0.05, radius = 12.4, lookat = [1.8, 4.7, -0.6],
 //!            fov = 60, near = 0.1, far = 100, width = 800, height = 600 }
 //! # or: camera = { view = [[..], [..], [..], [..]], projection = [..], width = .., height = .. }
@@ -118,8 +122,9 @@ pub struct Scene {
     pub meshes: MeshLibrary,
     /// Genome limits of the search.
     pub limits: Limits,
-    /// The genome length where the length penalty starts.
-    pub optimal_len: u32,
+    /// The optimal genome length, when the scene gives one (`limits.optimal_len`); the
+    /// length penalty starts there if `fitness.length_from = "optimal_len"`.
+    pub optimal_len: Option<u32>,
     /// The genome-length term of the fitness.
     pub length: LengthPenalty,
     /// The volume scorer's settings, when the scene has one.

@@ -6,13 +6,13 @@ use std::path::{Path, PathBuf};
 use glam::{Mat4, Vec3};
 use shapegen_runtime::genome::Limits;
 use shapegen_runtime::geometry::Mesh;
-use shapegen_runtime::score::silhouette::{Camera, ImageTarget, OrbitCamera};
+use shapegen_runtime::score::silhouette::{Camera, ImageTarget, MaskRule, OrbitCamera};
 use shapegen_runtime::score::volume::{Grid, VolumeTarget};
 use shapegen_runtime::score::{Form, LengthPenalty};
 
 use super::file::{
-    CameraFile, FormName, ImageKind, ImageTargetFile, LimitsFile, SceneFile, SilhouetteFile,
-    VolumeFile,
+    CameraFile, FormName, ImageKind, ImageTargetFile, LengthFrom, LimitsFile, MeshFile, SceneFile,
+    SilhouetteFile, VolumeFile,
 };
 use super::{Method, ObjectiveGoal, Scene, SceneError, SilhouetteGoal, VolumeGoal};
 
@@ -77,18 +77,36 @@ impl<'a> Resolver<'a> {
             .map_err(|err| self.invalid("generator", format!("{err}")))?;
 
         let mut meshes = generators::default_meshes();
-        for (name, written) in &file.meshes {
+        for (name, entry) in &file.meshes {
             let key = format!("meshes.{name}");
+            let (written, normalize) = match entry {
+                MeshFile::Path(path) => (path, true),
+                MeshFile::Table { path, normalize } => (path, *normalize),
+            };
             let path = self.file(&key, written)?;
-            meshes
-                .register_obj(name.clone(), &path)
-                .map_err(|err| self.invalid(&key, err.to_string()))?;
+            let registered = if normalize {
+                meshes.register_obj(name.clone(), &path)
+            } else {
+                meshes.register_obj_as_written(name.clone(), &path)
+            };
+            registered.map_err(|err| self.invalid(&key, err.to_string()))?;
         }
 
         let (limits, optimal_len) = self.limits(&file.limits)?;
+        let from = match (file.fitness.length_from, optimal_len) {
+            (LengthFrom::MinLen, _) => limits.min_len,
+            (LengthFrom::OptimalLen, Some(optimal)) => optimal,
+            (LengthFrom::OptimalLen, None) => {
+                return Err(self.invalid(
+                    "fitness.length_from",
+                    "\"optimal_len\" starts the length penalty at limits.optimal_len, \
+                     which the scene does not give; add it to [limits]",
+                ));
+            }
+        };
         let length = LengthPenalty {
             weight: self.non_negative("fitness.length", file.fitness.length)?,
-            from: f64::from(optimal_len),
+            from: f64::from(from),
             to: f64::from(limits.max_len),
         };
         let form = file.fitness.form;
@@ -169,7 +187,7 @@ impl<'a> Resolver<'a> {
         })
     }
 
-    fn limits(&self, l: &LimitsFile) -> Result<(Limits, u32), SceneError> {
+    fn limits(&self, l: &LimitsFile) -> Result<(Limits, Option<u32>), SceneError> {
         if l.min_len == 0 {
             return Err(self.invalid("limits.min_len", "must be at least 1 (the root gene)"));
         }
@@ -179,12 +197,15 @@ impl<'a> Resolver<'a> {
                 format!("{} is below limits.min_len = {}", l.max_len, l.min_len),
             ));
         }
-        if !(l.min_len..=l.max_len).contains(&l.optimal_len) {
+        if let Some(optimal) = l
+            .optimal_len
+            .filter(|o| !(l.min_len..=l.max_len).contains(o))
+        {
             return Err(self.invalid(
                 "limits.optimal_len",
                 format!(
-                    "{} must lie between limits.min_len = {} and limits.max_len = {}",
-                    l.optimal_len, l.min_len, l.max_len
+                    "{optimal} must lie between limits.min_len = {} and limits.max_len = {}",
+                    l.min_len, l.max_len
                 ),
             ));
         }
@@ -295,8 +316,24 @@ impl<'a> Resolver<'a> {
         let on = self.finite(&format!("{key}.on"), on)? as f32;
         let off = self.finite(&format!("{key}.off"), off)? as f32;
         let name = t.image.clone();
+        let rule = match t.threshold {
+            None => MaskRule::RedZero,
+            Some(level @ 1..=255) if t.kind == ImageKind::Mask => MaskRule::DarkerThan(level as u8),
+            Some(level) if t.kind == ImageKind::Mask => {
+                return Err(self.invalid(
+                    &format!("{key}.threshold"),
+                    format!("{level} is not a grey level from 1 to 255"),
+                ));
+            }
+            Some(_) => {
+                return Err(self.invalid(
+                    &format!("{key}.threshold"),
+                    "only a mask has a threshold; a weight map weighs every grey level".to_owned(),
+                ));
+            }
+        };
         let target = match t.kind {
-            ImageKind::Mask => ImageTarget::from_mask(name, &image, camera, on, off),
+            ImageKind::Mask => ImageTarget::from_mask_by(name, &image, camera, on, off, rule),
             ImageKind::Weights => ImageTarget::from_weight_map(name, &image, camera, on, off),
         };
         target.map_err(|err| self.invalid(&image_key, err.to_string()))

@@ -60,8 +60,22 @@ impl MeshLibrary {
         Ok(self)
     }
 
-    /// Loads an OBJ file with [`Mesh::from_obj`] and registers it as `name`.
+    /// Loads a generator part from an OBJ file with [`Mesh::from_obj_normalized`] (fitted
+    /// to unit extent as the original implementation does with every generator mesh)
+    /// and registers it as `name`.
     pub fn register_obj(
+        &mut self,
+        name: impl Into<String>,
+        path: impl AsRef<Path>,
+    ) -> Result<&mut Self, MeshError> {
+        let mesh = Mesh::from_obj_normalized(path)?;
+        self.register(name, mesh)
+    }
+
+    /// Loads an OBJ file with [`Mesh::from_obj`], keeping its coordinates as written,
+    /// and registers it as `name`: for parts modelled at the size they are meant to
+    /// have.
+    pub fn register_obj_as_written(
         &mut self,
         name: impl Into<String>,
         path: impl AsRef<Path>,

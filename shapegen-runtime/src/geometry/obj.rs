@@ -95,6 +95,93 @@ impl Mesh {
     }
 }
 
+impl Mesh {
+    /// Loads a generator part from an OBJ file and normalizes it as the original
+    /// implementation does every generator mesh it loads; see
+    /// [`from_obj_str_normalized`](Self::from_obj_str_normalized). Errors name the file.
+    pub fn from_obj_normalized(path: impl AsRef<Path>) -> Result<Mesh, MeshError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|source| MeshError::Io {
+            path: path.to_owned(),
+            source,
+        })?;
+        Mesh::from_obj_str_normalized(&path.display().to_string(), &text)
+    }
+
+    /// Loads a generator part from OBJ text as [`from_obj_str`](Self::from_obj_str) does,
+    /// then normalizes it exactly as the original implementation's `normalizeShape` does
+    /// when it loads a generator mesh, so that instances of it have the original's size:
+    ///
+    /// - over the file's `v` lines, in file order and in `f32`: `mean = sum / count` and
+    ///   `size = max - min` per axis;
+    /// - every position becomes `p * (1 / size) - mean` per axis: the extent becomes 1
+    ///   on every axis, but the mean is subtracted after scaling and is not itself
+    ///   scaled, so the mesh is centred only when its mean is 0.
+    ///
+    /// An axis of zero extent (a flat part) keeps its scale, where the original would
+    /// divide by zero. Normals follow the scaling (they are transformed by its inverse
+    /// transpose and renormalized), where the original leaves them as they were; they
+    /// only shade pictures and never change a score.
+    ///
+    /// ```
+    /// use glam::{Vec3, vec3};
+    /// use shapegen_runtime::geometry::Mesh;
+    ///
+    /// // A 2 x 4 x 1 box from 0 to (2, 4, 1): mean (1, 2, 0.5).
+    /// let mut text = String::new();
+    /// for corner in 0..8 {
+    ///     let (x, y, z) = (2 * (corner & 1), 4 * (corner >> 1 & 1), corner >> 2 & 1);
+    ///     text += &format!("v {x} {y} {z}\n");
+    /// }
+    /// text += "f 1 2 4 3\nf 5 7 8 6\nf 1 5 6 2\nf 3 4 8 7\nf 1 3 7 5\nf 2 6 8 4\n";
+    /// let box_ = Mesh::from_obj_str_normalized("box", &text)?;
+    /// let (lo, hi) = box_.bounds().unwrap();
+    /// // Scaled to unit extent, then moved by minus the unscaled mean.
+    /// assert_eq!(lo, vec3(-1.0, -2.0, -0.5));
+    /// assert_eq!(hi - lo, Vec3::ONE);
+    /// # Ok::<(), shapegen_runtime::geometry::MeshError>(())
+    /// ```
+    pub fn from_obj_str_normalized(name: &str, text: &str) -> Result<Mesh, MeshError> {
+        let mut mesh = Mesh::from_obj_str(name, text)?;
+        let Some((mean, size)) = vertex_stats(text) else {
+            return Ok(mesh);
+        };
+        let scale = Vec3::select(size.cmpgt(Vec3::ZERO), size.recip(), Vec3::ONE);
+        for p in &mut mesh.positions {
+            *p = *p * scale - mean;
+        }
+        for n in &mut mesh.normals {
+            *n = (*n / scale).normalize_or(*n);
+        }
+        mesh.validate(name)?;
+        Ok(mesh)
+    }
+}
+
+/// The mean and the bounding-box size of the `v` lines of OBJ text that has already
+/// parsed, accumulated in `f32` in file order as the original does; `None` without
+/// vertices.
+fn vertex_stats(text: &str) -> Option<(Vec3, Vec3)> {
+    let (mut sum, mut count) = (Vec3::ZERO, 0u32);
+    let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        if words.next() != Some("v") {
+            continue;
+        }
+        let mut coordinate = || words.next().and_then(|w| w.parse::<f32>().ok());
+        let (Some(x), Some(y), Some(z)) = (coordinate(), coordinate(), coordinate()) else {
+            continue;
+        };
+        let v = Vec3::new(x, y, z);
+        sum += v;
+        count += 1;
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    (count > 0).then(|| (sum / count as f32, hi - lo))
+}
+
 /// Whether tobj raises `e` while reading the line at fault (rather than when it
 /// assembles a finished object).
 fn per_line(e: &tobj::LoadError) -> bool {

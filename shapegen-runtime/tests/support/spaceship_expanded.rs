@@ -17,15 +17,18 @@
 //!             derive(s) { ... }
 //!         }
 //!         node Top { params { size: Vec3 ~ uniform([0.3, 0.1, 0.3], [0.8, 0.2, 0.8]) }
-//!                    children { next: TopNext = 1.0 } derive(s) { ... } }
+//!                    children { next: TopNext = 1.0 }
+//!                    derive(s) { tower_box(s.resize(size), next) } }
 //!         node TopNext { params { size: Vec3 ~ uniform([0.6, 0.8, 0.6], [1.1, 1.1, 1.1]) }
-//!                        children { next: TopNext = 1.0 } derive(s) { ... } }
+//!                        children { next: TopNext = 1.0 } derive(s) { tower_box(s, next) } }
 //!         node Wing { params { size: Vec3 ~ uniform([0.3, 0.2, 0.2], [1.2, 0.5, 1.0]),
 //!                              shift: f32 ~ uniform(-0.5, 0.5) }
-//!                     children { next: WingNext = 1.0 } derive(s) { ... } }
+//!                     children { next: WingNext = 1.0 }
+//!                     derive(s) { wing_box(s.resize(size), shift, next) } }
 //!         node WingNext { params { size: Vec3 ~ uniform([0.6, 0.9, 0.7], [1.2, 1.0, 1.2]),
 //!                                  shift: f32 ~ uniform(-0.5, 0.5) }
-//!                         children { next: WingNext = 0.9 } derive(s) { ... } }
+//!                         children { next: WingNext = 0.9 }
+//!                         derive(s) { wing_box(s, shift, next) } }
 //!     }
 //! }
 //! ```
@@ -458,11 +461,7 @@ impl Spaceship {
     ) {
         let Top { size } = <Top as __rt::__private::NodeParams>::read(gene.params(1));
         let next: ::core::option::Option<__rt::__private::Child<'__a, TopNext>> = gene.child(0);
-        {
-            if let Some(next) = next {
-                s.resize(size).derive(next);
-            }
-        }
+        { tower_box(s.resize(size), next) }
     }
 
     #[allow(unused_variables)]
@@ -473,16 +472,7 @@ impl Spaceship {
     ) {
         let TopNext { size } = <TopNext as __rt::__private::NodeParams>::read(gene.params(1));
         let next: ::core::option::Option<__rt::__private::Child<'__a, TopNext>> = gene.child(0);
-        {
-            use glam::vec3;
-            let s = s.translate(vec3(0.0, s.size().y / 2.0, 0.0));
-            s.emit(__rt::CUBE);
-            if let Some(next) = next {
-                s.translate(vec3(0.0, s.size().y / 2.0, 0.0))
-                    .resize(next.size)
-                    .derive(next);
-            }
-        }
+        { tower_box(s, next) }
     }
 
     #[allow(unused_variables)]
@@ -493,14 +483,7 @@ impl Spaceship {
     ) {
         let Wing { size, shift } = <Wing as __rt::__private::NodeParams>::read(gene.params(1));
         let next: ::core::option::Option<__rt::__private::Child<'__a, WingNext>> = gene.child(0);
-        {
-            use glam::vec3;
-            let s = s.resize(size);
-            let s = s.translate(vec3(0.0, 0.0, s.size().z * shift));
-            if let Some(next) = next {
-                s.derive(next);
-            }
-        }
+        { wing_box(s.resize(size), shift, next) }
     }
 
     #[allow(unused_variables)]
@@ -512,17 +495,38 @@ impl Spaceship {
         let WingNext { size, shift } =
             <WingNext as __rt::__private::NodeParams>::read(gene.params(1));
         let next: ::core::option::Option<__rt::__private::Child<'__a, WingNext>> = gene.child(0);
-        {
-            use glam::vec3;
-            let s = s.translate(vec3(s.size().x / 2.0, 0.0, 0.0));
-            s.emit(__rt::CUBE);
-            if let Some(next) = next {
-                let c = s
-                    .translate(vec3(s.size().x / 2.0, 0.0, 0.0))
-                    .resize(next.size);
-                c.translate(vec3(0.0, 0.0, c.size().z * next.shift))
-                    .derive(next);
-            }
-        }
+        { wing_box(s, shift, next) }
+    }
+}
+
+// The helper functions the grammar's rules call, as `generators::spaceship` defines them.
+
+fn tower_box<'a>(
+    s: __rt::__private::Shape<'a, Spaceship>,
+    next: Option<__rt::__private::Child<'a, TopNext>>,
+) {
+    use glam::vec3;
+    let s = s.translate(vec3(0.0, s.size().y / 2.0, 0.0));
+    s.emit(__rt::CUBE);
+    if let Some(next) = next {
+        s.translate(vec3(0.0, s.size().y / 2.0, 0.0))
+            .resize(next.size)
+            .derive(next);
+    }
+}
+
+fn wing_box<'a>(
+    s: __rt::__private::Shape<'a, Spaceship>,
+    shift: f32,
+    next: Option<__rt::__private::Child<'a, WingNext>>,
+) {
+    use glam::vec3;
+    let s = s.translate(vec3(0.0, 0.0, s.size().z * shift));
+    let s = s.translate(vec3(s.size().x / 2.0, 0.0, 0.0));
+    s.emit(__rt::CUBE);
+    if let Some(next) = next {
+        s.translate(vec3(s.size().x / 2.0, 0.0, 0.0))
+            .resize(next.size)
+            .derive(next);
     }
 }

@@ -59,4 +59,4 @@ pub use camera::{Camera, CameraError, OrbitCamera};
 pub use counts::{MAX_TARGETS, SilhouetteCounts, TargetCounts};
 pub use gpu::GpuSilhouetteScorer;
 pub use scorer::{SilhouetteError, SilhouetteScorer, SilhouetteScratch};
-pub use target::{ImageTarget, MAX_TARGET_PIXELS, TargetError, TargetKind};
+pub use target::{ImageTarget, MAX_TARGET_PIXELS, MaskRule, TargetError, TargetKind};

@@ -62,25 +62,52 @@ pub enum TargetError {
 /// How grey levels become weights.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum TargetKind {
-    /// Black and white: a grey level below 128 has weight `on`, any other `off`.
+    /// Black and white: a target pixel (by its [`MaskRule`]) has weight `on`, any other
+    /// `off`.
     Mask,
     /// Grey levels: weight `on + (off - on) * g / 255`.
     WeightMap,
 }
 
+/// Which pixels of a [mask](ImageTarget::from_mask) are its target pixels.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum MaskRule {
+    /// Pixels whose red channel is 0: the original implementation's rule (its
+    /// `compare_pixels` shader reads only the red channel). On a black-and-white image
+    /// these are the black pixels; a grey, anti-aliased edge pixel is not a target
+    /// pixel.
+    #[default]
+    RedZero,
+    /// Pixels whose luminance is below this level: `DarkerThan(128)` takes a sketch's
+    /// anti-aliased dark grey edges into the target.
+    DarkerThan(u8),
+}
+
+impl MaskRule {
+    /// Whether a pixel of this colour is a target pixel.
+    fn is_target(self, pixel: image::Rgba<u8>) -> bool {
+        use image::Pixel;
+        match self {
+            MaskRule::RedZero => pixel[0] == 0,
+            MaskRule::DarkerThan(level) => pixel.to_luma()[0] < level,
+        }
+    }
+}
+
 /// One silhouette target: an image of per-pixel weights seen through a camera.
 ///
-/// Every pixel has a grey level `g` in `0..=255` (the luminance of the image) and a
-/// weight: for a [mask](Self::from_mask) `on` where `g < 128`, else `off`; for a
-/// [weight map](Self::from_weight_map) `on + (off - on) * g / 255` (black is `on`, white
-/// `off`). Positive weights attract, negative ones repel, 0 is indifferent; the *target
-/// pixels* are those of positive weight. A mask keeps its levels as 0 or 255, so both
-/// kinds score with the same formula.
+/// Every pixel has a grey level `g` in `0..=255` and a weight: a
+/// [mask](Self::from_mask)'s target pixels (by its [`MaskRule`]) have level 0 and weight
+/// `on`, its other pixels level 255 and weight `off`; a [weight map](Self::from_weight_map)
+/// keeps the image's luminance `g` as the level and weighs `on + (off - on) * g / 255`
+/// (black is `on`, white `off`). Positive weights attract, negative ones repel, 0 is
+/// indifferent; the *target pixels* are those of positive weight. A mask keeps its
+/// levels as 0 or 255, so both kinds score with the same formula.
 ///
 /// ```
 /// use glam::Vec3;
 /// use image::{DynamicImage, GrayImage, Luma};
-/// use shapegen_runtime::score::silhouette::{Camera, ImageTarget, OrbitCamera};
+/// use shapegen_runtime::score::silhouette::{Camera, ImageTarget, MaskRule, OrbitCamera};
 ///
 /// let camera = Camera::Orbit(OrbitCamera {
 ///     phi: 0.0, theta: 0.0, radius: 5.0, lookat: Vec3::ZERO,
@@ -91,10 +118,17 @@ pub enum TargetKind {
 /// image.put_pixel(2, 1, Luma([100]));
 /// let image = DynamicImage::ImageLuma8(image);
 ///
+/// // The original's rule: only the black pixel is a target pixel.
 /// let mask = ImageTarget::from_mask("m".into(), &image, camera, 1.0, -0.5)?;
-/// assert_eq!(mask.target_pixels(), 2);
-/// assert_eq!(mask.weight(2, 1), 1.0);
-/// assert_eq!(mask.weight(0, 0), -0.5);
+/// assert_eq!(mask.target_pixels(), 1);
+/// assert_eq!(mask.weight(1, 0), 1.0);
+/// assert_eq!(mask.weight(2, 1), -0.5);
+///
+/// // A threshold takes the dark grey pixel too.
+/// let dark = MaskRule::DarkerThan(128);
+/// let sketch = ImageTarget::from_mask_by("s".into(), &image, camera, 1.0, -0.5, dark)?;
+/// assert_eq!(sketch.target_pixels(), 2);
+/// assert_eq!(sketch.weight(2, 1), 1.0);
 ///
 /// let map = ImageTarget::from_weight_map("w".into(), &image, camera, 1.0, 0.0)?;
 /// assert_eq!(map.weight(1, 0), 1.0);
@@ -119,8 +153,17 @@ pub struct ImageTarget {
     words: Vec<u64>,
 }
 
+/// How [`ImageTarget::build`] reads an image's pixels into grey levels.
+enum Levels {
+    /// 0 for the rule's target pixels, 255 for the others.
+    Mask(MaskRule),
+    /// The luminance.
+    Luminance,
+}
+
 impl ImageTarget {
-    /// A black-and-white target: pixels darker than 128 weigh `on`, the others `off`.
+    /// A black-and-white target by the original's rule ([`MaskRule::RedZero`]): pixels
+    /// whose red channel is 0 weigh `on`, the others `off`.
     pub fn from_mask(
         name: String,
         image: &image::DynamicImage,
@@ -128,7 +171,20 @@ impl ImageTarget {
         on: f32,
         off: f32,
     ) -> Result<ImageTarget, TargetError> {
-        Self::build(name, image, camera, on, off, TargetKind::Mask)
+        Self::from_mask_by(name, image, camera, on, off, MaskRule::RedZero)
+    }
+
+    /// A black-and-white target whose target pixels, chosen by `rule`, weigh `on` and
+    /// whose other pixels weigh `off`.
+    pub fn from_mask_by(
+        name: String,
+        image: &image::DynamicImage,
+        camera: Camera,
+        on: f32,
+        off: f32,
+        rule: MaskRule,
+    ) -> Result<ImageTarget, TargetError> {
+        Self::build(name, image, camera, on, off, Levels::Mask(rule))
     }
 
     /// A grey-level target: a pixel of grey level `g` weighs `on + (off - on) * g / 255`.
@@ -139,7 +195,7 @@ impl ImageTarget {
         on: f32,
         off: f32,
     ) -> Result<ImageTarget, TargetError> {
-        Self::build(name, image, camera, on, off, TargetKind::WeightMap)
+        Self::build(name, image, camera, on, off, Levels::Luminance)
     }
 
     fn build(
@@ -148,7 +204,7 @@ impl ImageTarget {
         camera: Camera,
         on: f32,
         off: f32,
-        kind: TargetKind,
+        levels: Levels,
     ) -> Result<ImageTarget, TargetError> {
         let (width, height) = (image.width(), image.height());
         if width == 0 || height == 0 {
@@ -174,14 +230,16 @@ impl ImageTarget {
         if let Err(source) = camera.validate() {
             return Err(TargetError::Camera { name, source });
         }
-        let luma = image.to_luma8();
-        let levels: Vec<u8> = match kind {
-            TargetKind::Mask => luma
-                .as_raw()
-                .iter()
-                .map(|&g| if g < 128 { 0 } else { 255 })
-                .collect(),
-            TargetKind::WeightMap => luma.into_raw(),
+        let (kind, levels): (_, Vec<u8>) = match levels {
+            Levels::Mask(rule) => (
+                TargetKind::Mask,
+                image
+                    .to_rgba8()
+                    .pixels()
+                    .map(|&p| if rule.is_target(p) { 0 } else { 255 })
+                    .collect(),
+            ),
+            Levels::Luminance => (TargetKind::WeightMap, image.to_luma8().into_raw()),
         };
         let mut target = ImageTarget {
             name,

@@ -258,8 +258,24 @@ fn mask_and_weight_map_fitness_from_hand_counts() {
     let image = DynamicImage::ImageLuma8(image);
     let model = [cube(vec3(1.0, 2.0, 1.0), vec3(-0.5, 0.0, 0.0))];
 
-    // Mask: covered levels 0, 100, 50 (target) and 128 (not).
-    let mask = ImageTarget::from_mask("m".into(), &image, IDENTITY, 2.0, -1.0).unwrap();
+    // The original's mask: only level 0 (red 0) is a target pixel; of the covered
+    // levels 0, 100, 50 and 128, one is on target and three off.
+    let original = ImageTarget::from_mask("o".into(), &image, IDENTITY, 2.0, -1.0).unwrap();
+    assert_eq!(original.target_pixels(), 3);
+    let weighted = cube_scorer(original, WEIGHTED);
+    let t = weighted.count(&model, &mut weighted.scratch()).targets()[0];
+    assert_eq!((t.covered, t.on_target, t.off_target), (4, 1, 3));
+
+    // A threshold mask: covered levels 0, 100, 50 (target) and 128 (not).
+    let mask = ImageTarget::from_mask_by(
+        "m".into(),
+        &image,
+        IDENTITY,
+        2.0,
+        -1.0,
+        MaskRule::DarkerThan(128),
+    )
+    .unwrap();
     assert_eq!(mask.target_pixels(), 5);
     let weighted = cube_scorer(mask.clone(), WEIGHTED);
     let counts = weighted.count(&model, &mut weighted.scratch());
