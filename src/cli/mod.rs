@@ -2,8 +2,10 @@
 
 mod backend;
 mod compare;
+mod export;
 mod files;
 mod front;
+mod genome;
 mod genomes;
 mod interrupt;
 mod plot;
@@ -47,6 +49,11 @@ enum Command {
     Compare(compare::CompareArgs),
     /// Write shaded previews of saved genomes and, for image targets, overlays.
     Render(render::RenderArgs),
+    /// Write the model a saved genome derives as OBJ (with its MTL) or binary glTF.
+    Export(export::ExportArgs),
+    /// Work on genome files: `convert` rewrites one in the other JSON form (packed or
+    /// nested).
+    Genome(genome::GenomeArgs),
 }
 
 /// Runs the command `args` asks for.
@@ -64,5 +71,7 @@ pub fn run(args: Cli) -> anyhow::Result<()> {
         Command::Render(render) => render::run(&render),
         Command::Run(args) => run::run(&args),
         Command::Compare(args) => compare::run(&args),
+        Command::Export(args) => export::run(&args),
+        Command::Genome(args) => genome::run(&args),
     })
 }

@@ -1,132 +1,32 @@
-//! Genomes as JSON; the format is described on [`Genome::to_json`]. Writing lives in
-//! `write`, reading and checking in `read`.
+//! Genomes as JSON, in two forms: the packed form ([`Genome::to_json`]), the genes as
+//! stored, and the nested form ([`Genome::to_nested_json`]), the tree as nested objects,
+//! for people to read and write. Reading takes either and tells them apart by their keys
+//! (`shape`). The packed form is written in `write` and read in `read`, the nested form
+//! both in `nested`; `params` reads parameters for both, and `error` says what can go
+//! wrong.
 
+mod error;
+mod nested;
+mod params;
 mod read;
+mod shape;
 mod write;
 
 use std::fmt;
-use std::io;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
+pub use error::JsonError;
+use nested::{genome_from_nested, genome_to_nested, set_from_nested, set_to_nested};
 use read::{GenomeFields, SetFields, genome_from_genes};
 use write::to_json_string;
 
 use super::Genome;
-use super::error::GenomeError;
 use crate::derive::Grammar;
 
-/// Why genome JSON could not be read or written.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum JsonError {
-    /// The text is not JSON of the genome form (serde's message gives line and column).
-    #[error("not a genome in JSON: {0}")]
-    Syntax(#[from] serde_json::Error),
-    /// The genome belongs to another grammar.
-    #[error("the genome is of generator `{found}`, but is being read as `{expected}`")]
-    WrongGenerator {
-        /// Generator named in the file.
-        found: String,
-        /// Generator it was read as.
-        expected: &'static str,
-    },
-    /// A gene names no node of the grammar.
-    #[error("gene {gene}: `{node}` is not a node of `{generator}`; its nodes are: {valid}")]
-    UnknownNode {
-        /// Index of the gene.
-        gene: u32,
-        /// Node name found.
-        node: String,
-        /// Name of the grammar.
-        generator: &'static str,
-        /// The grammar's nodes.
-        valid: String,
-    },
-    /// A gene has the wrong number of links for its node.
-    #[error("gene {gene} (`{node}`): {found} links given, but `{node}` has {expected}: {slots}")]
-    LinkCount {
-        /// Index of the gene.
-        gene: u32,
-        /// Its node.
-        node: &'static str,
-        /// Links found.
-        found: usize,
-        /// Links of the node.
-        expected: u32,
-        /// The node's slots in link order.
-        slots: String,
-    },
-    /// A parameter of the node is not given.
-    #[error("gene {gene} (`{node}`): parameter `{param}` ({ty}) is missing")]
-    MissingParam {
-        /// Index of the gene.
-        gene: u32,
-        /// Its node.
-        node: &'static str,
-        /// The parameter.
-        param: &'static str,
-        /// The parameter's type.
-        ty: &'static str,
-    },
-    /// A parameter is given that the node does not have.
-    #[error(
-        "gene {gene} (`{node}`): `{param}` is not a parameter of `{node}`; its parameters are: {valid}"
-    )]
-    ExtraParam {
-        /// Index of the gene.
-        gene: u32,
-        /// Its node.
-        node: &'static str,
-        /// The name found.
-        param: String,
-        /// The node's parameters.
-        valid: String,
-    },
-    /// A parameter's value is not of its type.
-    #[error("gene {gene} (`{node}`): parameter `{param}` must be {expected}, not `{found}`")]
-    MistypedParam {
-        /// Index of the gene.
-        gene: u32,
-        /// Its node.
-        node: &'static str,
-        /// The parameter.
-        param: &'static str,
-        /// What it must be.
-        expected: &'static str,
-        /// The value found.
-        found: String,
-    },
-    /// The genes do not form a valid genome (offsets, links, parameter ranges...).
-    #[error("invalid genome: {0}")]
-    Invalid(#[from] GenomeError),
-    /// A genome of a [`GenomeSet`] is wrong.
-    #[error("genome {index} of the set: {source}")]
-    InSet {
-        /// Index of the genome in the set.
-        index: usize,
-        /// What is wrong with it.
-        source: Box<JsonError>,
-    },
-    /// The content of a file is wrong.
-    #[error("{}: {source}", path.display())]
-    File {
-        /// The file.
-        path: PathBuf,
-        /// What is wrong with its content.
-        source: Box<JsonError>,
-    },
-    /// A file could not be read or written.
-    #[error("{}: {source}", path.display())]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The system's error.
-        source: io::Error,
-    },
-}
-
 impl<G: Grammar> Genome<G> {
-    /// The genome as readable JSON: nodes and parameters by name, one gene a line.
+    /// The genome in the packed form: its genes as stored, nodes and parameters by name,
+    /// one gene a line. [`to_nested_json`](Self::to_nested_json) writes the other form,
+    /// made for people to read and write; [`from_json`](Self::from_json) reads both.
     ///
     /// ```json
     /// {
@@ -153,6 +53,7 @@ impl<G: Grammar> Genome<G> {
     /// Loading checks the generator's name, node names, the number of links, that each
     /// parameter is present, known and of its type, and then every layout invariant with
     /// [`Genome::validate`], parameter ranges included; errors name the gene by its index.
+    /// Through serde ([`Deserialize`](serde::Deserialize)) only this form is read.
     ///
     /// ```
     /// use shapegen_runtime::genome::Genome;
@@ -200,9 +101,136 @@ impl<G: Grammar> Genome<G> {
         to_json_string(self, 2)
     }
 
-    /// Reads a genome from JSON written by [`to_json`](Self::to_json) (or by hand),
-    /// checking it fully.
+    /// The genome in the nested form: the derivation tree as nested objects, each node's
+    /// children under their slot names, for people to read and to write by hand.
+    ///
+    /// ```json
+    /// {
+    ///   "generator": "Spaceship",
+    ///   "tree": {
+    ///     "node": "Start",
+    ///     "children": {
+    ///       "body": {
+    ///         "node": "Body",
+    ///         "params": {"size": [0.83, 1.2, 0.7]},
+    ///         "children": {
+    ///           "wing": {"node": "Wing", "params": {"size": [0.5, 0.3, 0.7], "shift": 0.1}}
+    ///         }
+    ///       }
+    ///     }
+    ///   }
+    /// }
+    /// ```
+    ///
+    /// A node is `{"node": TYPE, "params": {NAME: VALUE, ...}, "children": {SLOT: CHILD,
+    /// ...}}`; `params` may be left out when the node type has no parameters, `children`
+    /// when the node has no children (the writer leaves them out then). A single slot holds
+    /// a node, or `null` (or is left out) when it is empty. An array slot `[Node; N]` holds
+    /// a list of at most N entries, each a node or `null`, for indices 0, 1, ...; a shorter
+    /// list leaves the indices past its end empty, so a list may stop at its last child
+    /// (`[null, null, {...}]` fills index 2 alone), and the writer stops it there; an array
+    /// slot with no child may be `[]`, `null` or left out. A list longer than the array is
+    /// refused. Parameter values are written as in the packed form
+    /// ([`to_json`](Self::to_json)), numbers as the shortest decimals that read back to the
+    /// same `f32`.
+    ///
+    /// Reading packs the tree in pre-order, each node's children in link order (slots in
+    /// declaration order, an array's entries by index). A genome laid out that way, as
+    /// every genome read from the nested form is, comes back word for word; a genome laid
+    /// out otherwise (the genetic operators append genes wherever the tree grows) comes
+    /// back as the same tree, which derives the same model, in that order.
+    ///
+    /// Reading checks the generator's name; each node's type name, that it is the type
+    /// its slot holds (the axiom at the root), its slot names and list lengths, and each
+    /// of its parameters' presence, type and range; and then every layout invariant with
+    /// [`Genome::validate`]. Errors name the node by its path from the root: the root's
+    /// type, then a step for each slot with its index in an array slot and the type of
+    /// the node in it, as `Start > lots[3]: Lot > building: Building`. A node whose type is
+    /// not known yet ends its path with its slot (`Start > body`); the root is then `tree`.
+    ///
+    /// JSON is read at most 128 levels deep, and each level of the tree takes two levels
+    /// of JSON (three through an array slot), so a tree deeper than about 60 levels (about
+    /// 40 through array slots) cannot be read back from this form and is kept in the packed
+    /// one; reading it fails with [`JsonError::NestedTooDeep`].
+    ///
+    /// Many genomes go in one file as a [`GenomeSet`]:
+    /// `{"generator": "Spaceship", "genomes": [{"tree": {...}}, ...]}`.
+    ///
+    /// ```
+    /// use shapegen_runtime::genome::Genome;
+    /// # shapegen_runtime::generator! {
+    /// #     pub Chain {
+    /// #         axiom Start;
+    /// #         node Start { children { first: Seg = 0.9 } }
+    /// #         node Seg {
+    /// #             params { len: f32 ~ uniform(0.5, 1.5) }
+    /// #             children { next: Seg = 0.5, side: Seg = 0.25 }
+    /// #             derive(s) {
+    /// #                 use shapegen_runtime::prelude::{CUBE, vec3};
+    /// #                 let s = s.resize(vec3(1.0, len, 1.0));
+    /// #                 s.emit(CUBE);
+    /// #                 if let Some(next) = next {
+    /// #                     s.translate(vec3(0.0, s.size().y, 0.0)).derive(next);
+    /// #                 }
+    /// #                 if let Some(side) = side {
+    /// #                     s.rotate_z(0.5).translate(vec3(0.0, s.size().y, 0.0)).derive(side);
+    /// #                 }
+    /// #             }
+    /// #         }
+    /// #     }
+    /// # }
+    /// // `Chain`: Start -> first: Seg; Seg -> next: Seg, side: Seg; Seg has `len`.
+    /// let mut g = Genome::<Chain>::with_root(Start {})?;
+    /// let first = g.attach(0, "first", Seg { len: 0.75 })?;
+    /// g.attach(first, "side", Seg { len: 0.5 })?;
+    /// let json = g.to_nested_json();
+    /// assert_eq!(json, r#"{
+    ///   "generator": "Chain",
+    ///   "tree": {
+    ///     "node": "Start",
+    ///     "children": {
+    ///       "first": {
+    ///         "node": "Seg",
+    ///         "params": {"len": 0.75},
+    ///         "children": {
+    ///           "side": {"node": "Seg", "params": {"len": 0.5}}
+    ///         }
+    ///       }
+    ///     }
+    ///   }
+    /// }
+    /// "#);
+    /// assert_eq!(Genome::<Chain>::from_json(&json)?, g);
+    ///
+    /// // Written by hand, on one line or many.
+    /// let hand = r#"{"generator": "Chain", "tree": {"node": "Start", "children": {
+    ///     "first": {"node": "Seg", "params": {"len": 1.2}, "children": {
+    ///         "next": {"node": "Seg", "params": {"len": 0.9}}}}}}}"#;
+    /// assert_eq!(Genome::<Chain>::from_json(hand)?.len(), 3);
+    /// let err = Genome::<Chain>::from_json(&hand.replace("next", "up")).unwrap_err();
+    /// assert_eq!(
+    ///     err.to_string(),
+    ///     "at `Start > first: Seg`: `up` is not a slot of `Seg`; its slots are: `next`, `side`"
+    /// );
+    /// let err = Genome::<Chain>::from_json(&hand.replace("0.9", "2.5")).unwrap_err();
+    /// assert_eq!(
+    ///     err.to_string(),
+    ///     "at `Start > first: Seg > next: Seg`: parameter `len`: 2.5 is outside [0.5, 1.5]"
+    /// );
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn to_nested_json(&self) -> String {
+        genome_to_nested(self)
+    }
+
+    /// Reads a genome from JSON of either form, written by [`to_json`](Self::to_json),
+    /// by [`to_nested_json`](Self::to_nested_json) or by hand, checking it fully. The
+    /// form is told by its keys: `genes` for the packed form, `tree` for the nested one;
+    /// errors are those of the form found.
     pub fn from_json(json: &str) -> Result<Self, JsonError> {
+        if shape::is_nested(json) {
+            return genome_from_nested(json);
+        }
         let fields: GenomeFields = serde_json::from_str(json)?;
         check_generator::<G>(&fields.generator)?;
         genome_from_genes(fields.genes)
@@ -213,7 +241,7 @@ impl<G: Grammar> Genome<G> {
         write_file(path.as_ref(), &self.to_json())
     }
 
-    /// Reads a genome from the file `path`; errors name the file.
+    /// Reads a genome of either form from the file `path`; errors name the file.
     pub fn load_json(path: impl AsRef<Path>) -> Result<Self, JsonError> {
         let path = path.as_ref();
         Self::from_json(&read_file(path)?).map_err(|e| in_file(path, e))
@@ -221,7 +249,9 @@ impl<G: Grammar> Genome<G> {
 }
 
 /// Many genomes of one grammar, as saved in one file (`genomes.json`):
-/// `{"generator": "Spaceship", "genomes": [{"genes": [...]}, ...]}`.
+/// `{"generator": "Spaceship", "genomes": [{"genes": [...]}, ...]}` in the packed form
+/// ([`Genome::to_json`]), `{"generator": "Spaceship", "genomes": [{"tree": {...}}, ...]}`
+/// in the nested form ([`Genome::to_nested_json`]).
 pub struct GenomeSet<G> {
     /// The genomes, in file order.
     pub genomes: Vec<Genome<G>>,
@@ -256,13 +286,23 @@ impl<G: Grammar> GenomeSet<G> {
         GenomeSet { genomes }
     }
 
-    /// The set as readable JSON, one gene a line.
+    /// The set in the packed form, one gene a line.
     pub fn to_json(&self) -> String {
         to_json_string(self, 4)
     }
 
-    /// Reads a set from JSON, checking every genome fully.
+    /// The set in the nested form, each genome's tree as
+    /// [`Genome::to_nested_json`] writes it.
+    pub fn to_nested_json(&self) -> String {
+        set_to_nested(self)
+    }
+
+    /// Reads a set from JSON of either form, checking every genome fully. A set is in
+    /// the nested form when any of its genomes has a `tree`, and then all must.
     pub fn from_json(json: &str) -> Result<Self, JsonError> {
+        if shape::is_nested(json) {
+            return set_from_nested(json);
+        }
         let fields: SetFields = serde_json::from_str(json)?;
         check_generator::<G>(&fields.generator)?;
         let genomes = fields
@@ -284,7 +324,7 @@ impl<G: Grammar> GenomeSet<G> {
         write_file(path.as_ref(), &self.to_json())
     }
 
-    /// Reads a set from the file `path`; errors name the file.
+    /// Reads a set of either form from the file `path`; errors name the file.
     pub fn load(path: impl AsRef<Path>) -> Result<Self, JsonError> {
         let path = path.as_ref();
         Self::from_json(&read_file(path)?).map_err(|e| in_file(path, e))

@@ -1,13 +1,14 @@
-//! Reading genomes from JSON: the serialized form, then packing and checking it.
+//! Reading the packed form: the genes as written, then packing and checking them.
 
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer};
 use serde_json::{Map, Value};
 
+use super::params::{ParamError, names, read_params, slot_names};
 use super::{GenomeSet, JsonError, check_generator};
 use crate::derive::Grammar;
 use crate::genome::{Genome, node_of};
-use crate::graph::{Distribution, HEADER_WORDS};
+use crate::graph::HEADER_WORDS;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -94,26 +95,7 @@ pub(super) fn genome_from_genes<G: Grammar>(
                 slots: if node.slots.is_empty() {
                     "no slots".to_owned()
                 } else {
-                    names(node.slots.iter().map(|s| match s.count {
-                        1 => s.name.to_owned(),
-                        n => format!("{}[{n}]", s.name),
-                    }))
-                },
-            });
-        }
-        if let Some(extra) = g
-            .params
-            .keys()
-            .find(|k| node.params.iter().all(|p| p.name != *k))
-        {
-            return Err(JsonError::ExtraParam {
-                gene,
-                node: node.name,
-                param: extra.clone(),
-                valid: if node.params.is_empty() {
-                    "none".to_owned()
-                } else {
-                    names(node.params.iter().map(|p| p.name))
+                    names(slot_names(node))
                 },
             });
         }
@@ -123,66 +105,33 @@ pub(super) fn genome_from_genes<G: Grammar>(
         words.extend(g.links.iter().map(|&l| l as u32));
         words.resize(pos + node.gene_words() as usize, 0);
         let params = pos + (HEADER_WORDS + node.links) as usize;
-        for p in node.params {
-            let value = g.params.get(p.name).ok_or(JsonError::MissingParam {
+        read_params(node, &g.params, &mut words[params..]).map_err(|e| match e {
+            ParamError::Extra { param, valid } => JsonError::ExtraParam {
                 gene,
                 node: node.name,
-                param: p.name,
-                ty: p.dist.type_name(),
-            })?;
-            read_value(&p.dist, value, &mut words[params + p.offset as usize..]).map_err(
-                |expected| JsonError::MistypedParam {
-                    gene,
-                    node: node.name,
-                    param: p.name,
-                    expected,
-                    found: value.to_string(),
-                },
-            )?;
-        }
+                param,
+                valid,
+            },
+            ParamError::Missing { param, ty } => JsonError::MissingParam {
+                gene,
+                node: node.name,
+                param,
+                ty,
+            },
+            ParamError::Mistyped {
+                param,
+                expected,
+                found,
+            } => JsonError::MistypedParam {
+                gene,
+                node: node.name,
+                param,
+                expected,
+                found,
+            },
+        })?;
     }
     let genome = Genome::from_parts(words, genes.len() as u32);
     genome.validate()?;
     Ok(genome)
-}
-
-/// Writes a JSON value into parameter words; on a type mismatch, says what it must be.
-fn read_value(dist: &Distribution, value: &Value, out: &mut [u32]) -> Result<(), &'static str> {
-    let float = |v: &Value| v.as_f64().map(|x| (x as f32).to_bits());
-    match dist {
-        Distribution::Uniform { .. } | Distribution::Angle { .. } => {
-            out[0] = float(value).ok_or("a number (f32)")?;
-        }
-        Distribution::UniformVec2 { .. } | Distribution::UniformVec3 { .. } => {
-            let n = dist.words() as usize;
-            let expected = if n == 2 {
-                "an array of 2 numbers (Vec2)"
-            } else {
-                "an array of 3 numbers (Vec3)"
-            };
-            let items = value.as_array().filter(|a| a.len() == n).ok_or(expected)?;
-            for (o, v) in out.iter_mut().zip(items) {
-                *o = float(v).ok_or(expected)?;
-            }
-        }
-        Distribution::Int { .. } => {
-            let v = value.as_i64().and_then(|v| i32::try_from(v).ok());
-            out[0] = v.ok_or("an integer (i32)")? as u32;
-        }
-        Distribution::Index { .. } | Distribution::Weighted { .. } => {
-            let v = value.as_u64().and_then(|v| u32::try_from(v).ok());
-            out[0] = v.ok_or("a non-negative integer (u32)")?;
-        }
-        Distribution::Bernoulli { .. } => {
-            out[0] = u32::from(value.as_bool().ok_or("true or false (bool)")?);
-        }
-    }
-    Ok(())
-}
-
-fn names<S: AsRef<str>>(items: impl Iterator<Item = S>) -> String {
-    items
-        .map(|s| format!("`{}`", s.as_ref()))
-        .collect::<Vec<_>>()
-        .join(", ")
 }

@@ -1,4 +1,4 @@
-//! Writing genomes as JSON: `Serialize` straight from the packed words, and a layout
+//! Writing the packed form: `Serialize` straight from the packed words, and a layout
 //! that puts one gene on a line.
 
 use std::io;
@@ -106,9 +106,10 @@ impl Serialize for LinksOut<'_> {
     }
 }
 
-struct ParamsOut<'a> {
-    node: &'static NodeDesc,
-    params: &'a [u32],
+/// A gene's parameters by name: `node`'s parameters read from its parameter words.
+pub(super) struct ParamsOut<'a> {
+    pub(super) node: &'static NodeDesc,
+    pub(super) params: &'a [u32],
 }
 
 impl Serialize for ParamsOut<'_> {
@@ -149,8 +150,19 @@ impl Serialize for ValueOut<'_> {
 /// below it.
 pub(super) fn to_json_string<T: Serialize>(value: &T, pretty_depth: u32) -> String {
     let mut out = Vec::new();
+    write_layout(value, pretty_depth, &mut out);
+    out.push(b'\n');
+    String::from_utf8(out).expect("serde_json writes UTF-8")
+}
+
+/// Appends `value` to `out` as JSON on one line, with a space after `,` and `:`.
+pub(super) fn write_inline<T: Serialize>(value: &T, out: &mut Vec<u8>) {
+    write_layout(value, 0, out);
+}
+
+fn write_layout<T: Serialize>(value: &T, pretty_depth: u32, out: &mut Vec<u8>) {
     let mut ser = serde_json::Serializer::with_formatter(
-        &mut out,
+        out,
         Layout {
             depth: 0,
             pretty_depth,
@@ -160,8 +172,6 @@ pub(super) fn to_json_string<T: Serialize>(value: &T, pretty_depth: u32) -> Stri
     value
         .serialize(&mut ser)
         .expect("genome serialization to memory cannot fail");
-    out.push(b'\n');
-    String::from_utf8(out).expect("serde_json writes UTF-8")
 }
 
 /// A JSON layout: containers at nesting levels up to `pretty_depth` put each element on

@@ -1,0 +1,124 @@
+//! `shapegen genome`: work on genome files; `convert` rewrites one in the other JSON form.
+
+use std::path::PathBuf;
+
+use clap::{Args, Subcommand, ValueEnum};
+use generators::GeneratorVisitor;
+use shapegen::genome::{GenomeSet, Limits};
+use shapegen::{Genome, Grammar};
+
+use super::files::atomic_write;
+use super::genomes::GenomeFile;
+
+/// Arguments of `shapegen genome`.
+#[derive(Debug, Args)]
+pub struct GenomeArgs {
+    #[command(subcommand)]
+    command: GenomeCommand,
+}
+
+#[derive(Debug, Subcommand)]
+enum GenomeCommand {
+    /// Rewrite a genome file (a single genome or a set) in the other JSON form: the packed
+    /// form (genes with relative offsets, as the commands write) or the nested form (the
+    /// tree as nested objects, for reading and writing by hand).
+    Convert(ConvertArgs),
+}
+
+/// Arguments of `shapegen genome convert`.
+#[derive(Debug, Args)]
+pub struct ConvertArgs {
+    /// The genome file: a single genome or a set, in either form, of the generator it
+    /// names.
+    input: PathBuf,
+    /// Where to write.
+    #[arg(long)]
+    out: PathBuf,
+    /// The form to write (default: the one the file is not in).
+    #[arg(long, value_enum)]
+    to: Option<Form>,
+}
+
+/// A JSON form of genomes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Form {
+    /// Genes in buffer order with relative word offsets.
+    Packed,
+    /// The tree as nested objects, children under their slot names.
+    Nested,
+}
+
+impl Form {
+    fn name(self) -> &'static str {
+        match self {
+            Form::Packed => "packed",
+            Form::Nested => "nested",
+        }
+    }
+}
+
+/// Runs `shapegen genome`.
+pub fn run(args: &GenomeArgs) -> anyhow::Result<()> {
+    match &args.command {
+        GenomeCommand::Convert(args) => convert(args),
+    }
+}
+
+fn convert(args: &ConvertArgs) -> anyhow::Result<()> {
+    let file = GenomeFile::read(&args.input)?;
+    let to = args.to.unwrap_or(if file.nested {
+        Form::Packed
+    } else {
+        Form::Nested
+    });
+    file.generator()?.visit(Convert {
+        args,
+        file: &file,
+        to,
+    })
+}
+
+struct Convert<'a> {
+    args: &'a ConvertArgs,
+    file: &'a GenomeFile,
+    to: Form,
+}
+
+impl GeneratorVisitor for Convert<'_> {
+    type Output = anyhow::Result<()>;
+
+    fn visit<G: Grammar>(self, _: Limits) -> anyhow::Result<()> {
+        let (text, what) = if self.file.set {
+            let set = GenomeSet::<G>::new(self.file.genomes()?);
+            let text = match self.to {
+                Form::Packed => set.to_json(),
+                Form::Nested => set.to_nested_json(),
+            };
+            let what = format!("a set of {} {} genomes", set.genomes.len(), G::GRAPH.name);
+            (GenomeSet::<G>::from_json(&text).map(|_| text), what)
+        } else {
+            let genome = self.file.genome::<G>(0)?;
+            let text = match self.to {
+                Form::Packed => genome.to_json(),
+                Form::Nested => genome.to_nested_json(),
+            };
+            let what = format!("a {} genome", G::GRAPH.name);
+            (Genome::<G>::from_json(&text).map(|_| text), what)
+        };
+        // What is written must read back: a tree too deep for the nested form stays packed.
+        let text = text.map_err(|e| {
+            anyhow::anyhow!(
+                "cannot write `{}` in the {} form, which would not read back: {e}",
+                self.args.out.display(),
+                self.to.name()
+            )
+        })?;
+        atomic_write(&self.args.out, text.as_bytes())?;
+        println!(
+            "wrote {what} in the {} form to {}",
+            self.to.name(),
+            self.args.out.display()
+        );
+        Ok(())
+    }
+}
