@@ -32,7 +32,8 @@ fn attach_appends_genes_with_relative_offsets() {
     assert_eq!(g.depth(), 5);
     let mut out = Vec::new();
     g.derive_into(&mut out);
-    assert_eq!(out.len(), 2 + 2 + 1); // two bodies, a mirrored wing part, one top part
+    // Two bodies, two mirrored pairs of wing boxes (Wing and WingNext), two tower boxes.
+    assert_eq!(out.len(), 2 + 2 * 2 + 2);
 }
 
 #[test]
