@@ -66,7 +66,7 @@ pub fn run(args: &GenomeArgs) -> anyhow::Result<()> {
 
 fn convert(args: &ConvertArgs) -> anyhow::Result<()> {
     let file = GenomeFile::read(&args.input)?;
-    let to = args.to.unwrap_or(if file.nested {
+    let to = args.to.unwrap_or(if file.layout.nested {
         Form::Packed
     } else {
         Form::Nested
@@ -88,7 +88,7 @@ impl GeneratorVisitor for Convert<'_> {
     type Output = anyhow::Result<()>;
 
     fn visit<G: Grammar>(self, _: Limits) -> anyhow::Result<()> {
-        let (text, what) = if self.file.set {
+        let (text, what) = if self.file.layout.set {
             let set = GenomeSet::<G>::new(self.file.genomes()?);
             let text = match self.to {
                 Form::Packed => set.to_json(),

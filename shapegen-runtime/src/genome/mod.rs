@@ -31,7 +31,7 @@ mod limits;
 mod validate;
 
 pub use error::{GeneAt, GenomeError, SlotAt};
-pub use json::{GenomeSet, JsonError};
+pub use json::{GenomeSet, JsonError, JsonLayout};
 pub use limits::{Limits, LimitsError};
 pub(crate) use validate::slot_at;
 

@@ -18,6 +18,7 @@ use std::path::Path;
 pub use error::JsonError;
 use nested::{genome_from_nested, genome_to_nested, set_from_nested, set_to_nested};
 use read::{GenomeFields, SetFields, genome_from_genes};
+pub use shape::JsonLayout;
 use write::to_json_string;
 
 use super::Genome;
@@ -228,7 +229,7 @@ impl<G: Grammar> Genome<G> {
     /// form is told by its keys: `genes` for the packed form, `tree` for the nested one;
     /// errors are those of the form found.
     pub fn from_json(json: &str) -> Result<Self, JsonError> {
-        if shape::is_nested(json) {
+        if JsonLayout::of(json).nested {
             return genome_from_nested(json);
         }
         let fields: GenomeFields = serde_json::from_str(json)?;
@@ -300,7 +301,7 @@ impl<G: Grammar> GenomeSet<G> {
     /// Reads a set from JSON of either form, checking every genome fully. A set is in
     /// the nested form when any of its genomes has a `tree`, and then all must.
     pub fn from_json(json: &str) -> Result<Self, JsonError> {
-        if shape::is_nested(json) {
+        if JsonLayout::of(json).nested {
             return set_from_nested(json);
         }
         let fields: SetFields = serde_json::from_str(json)?;
