@@ -11,7 +11,7 @@ use rand::{Rng, RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use shapegen_runtime::Grammar;
 use shapegen_runtime::genome::{Genome, GenomeError, Limits};
-use shapegen_runtime::ops::Operators;
+use shapegen_runtime::ops::{OperatorVariant, Operators};
 use support::city_expanded::{self as city, City};
 use support::known::*;
 use support::spaceship_expanded::{Body, Spaceship, Start};
@@ -399,12 +399,23 @@ fn crossover_at_checks_edges_and_limits() {
 }
 
 #[test]
-fn crossover_matches_array_slots_across_indices() {
+fn crossover_matches_array_slots_on_their_own_index_unless_told() {
     let mut other = Genome::<City>::with_root(city::Start {}).unwrap();
     let lot = other.attach_at(0, "lots", 50, city::Lot {}).unwrap();
     other.attach(lot, "building", building(9.0)).unwrap();
+    // By default lots[3] and lots[50] are different edges.
     let mut ops = new_ops::<City>(1, 300, 20);
-    // town()'s lots[3] subtree (4 genes) for other's lots[50] subtree (2 genes).
+    assert!(!ops.cross_array_index());
+    let err = ops.crossover_at(&town(), 102, &other, 102).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "gene 1 (`Lot` @102) hangs from slot `lots[3]` of `Start` but gene 1 (`Lot` @102) \
+         from slot `lots[50]` of `Start`; only subtrees on the same edge of the generator \
+         graph can be swapped"
+    );
+    // Across indices when told: town()'s lots[3] subtree (4 genes) for other's lots[50]
+    // subtree (2 genes).
+    let mut ops = new_ops::<City>(1, 300, 20).with_cross_array_index(true);
     let (c, d) = ops.crossover_at(&town(), 102, &other, 102).unwrap();
     let mut expected_c = Genome::<City>::with_root(city::Start {}).unwrap();
     let lot = expected_c.attach_at(0, "lots", 10, city::Lot {}).unwrap();
@@ -436,6 +447,103 @@ fn crossover_matches_array_slots_across_indices() {
         }
     }
     assert!(hits > 400, "{hits}");
+}
+
+/// Start -> lots[`index`]: Lot, holding a Building of `height` if given.
+fn one_lot(index: u32, height: Option<f32>) -> Genome<City> {
+    let mut g = Genome::<City>::with_root(city::Start {}).unwrap();
+    let lot = g.attach_at(0, "lots", index, city::Lot {}).unwrap();
+    if let Some(h) = height {
+        g.attach(lot, "building", building(h)).unwrap();
+    }
+    g
+}
+
+/// The children of one crossover, `None` when it found none.
+type Children<G> = Option<(Genome<G>, Genome<G>)>;
+
+/// Counts the distinct outcomes of `draws` crossovers of `a` and `b`, checking every
+/// child.
+fn crossover_outcomes<G: Grammar>(
+    ops: &mut Operators<G>,
+    a: &Genome<G>,
+    b: &Genome<G>,
+    draws: u32,
+    seed: u64,
+) -> Vec<(Children<G>, u64)> {
+    let mut r = rng(seed);
+    let mut seen: Vec<(Children<G>, u64)> = Vec::new();
+    for _ in 0..draws {
+        let out = ops.crossover(a, b, &mut r);
+        if let Some((c, d)) = &out {
+            c.validate().unwrap();
+            d.validate().unwrap();
+            assert_eq!(c.len() + d.len(), a.len() + b.len());
+        }
+        match seen.iter_mut().find(|(o, _)| *o == out) {
+            Some((_, n)) => *n += 1,
+            None => seen.push((out, 1)),
+        }
+    }
+    seen
+}
+
+#[test]
+fn a_lot_subtree_meets_only_its_own_index_in_both_variants() {
+    // a: lots[3] alone; b: lots[50] with a building. a's only non-root gene is its Lot.
+    let a = one_lot(3, None);
+    let b = one_lot(50, Some(9.0));
+    let moved = || (one_lot(3, Some(9.0)), one_lot(50, None));
+    let original = || new_ops::<City>(1, 300, 20).with_variant(OperatorVariant::Original);
+
+    // Weighted: no lots[3] in b, so every attempt fails.
+    let out = crossover_outcomes(&mut new_ops::<City>(1, 300, 20), &a, &b, 200, 20);
+    assert_eq!(out, vec![(None, 200)]);
+    // Original: `Lot_3` is only taken by b's Start, which has no such child: a's lot is
+    // grafted onto b's lots[3].
+    let mut grafted = b.clone();
+    grafted.attach_at(0, "lots", 3, city::Lot {}).unwrap();
+    let root = Genome::<City>::with_root(city::Start {}).unwrap();
+    let out = crossover_outcomes(&mut original(), &a, &b, 200, 21);
+    assert_eq!(out, vec![(Some((root, grafted)), 200)]);
+    // Across indices, both variants exchange the lots, moving the building to lots[3].
+    for mut ops in [
+        new_ops::<City>(1, 300, 20).with_cross_array_index(true),
+        original().with_cross_array_index(true),
+    ] {
+        let out = crossover_outcomes(&mut ops, &a, &b, 200, 22);
+        assert_eq!(out, vec![(Some(moved()), 200)], "{:?}", ops.variant());
+    }
+}
+
+#[test]
+fn buildings_move_between_lots_through_their_own_edge() {
+    // A Building hangs from `Lot.building` whatever the lot's index: in the original all
+    // lots take the one symbol `Builing`, and the weighted rules see one edge.
+    let a = one_lot(3, Some(4.0));
+    let b = one_lot(10, Some(7.0));
+    let swapped = (one_lot(3, Some(7.0)), one_lot(10, Some(4.0)));
+    let out = crossover_outcomes(&mut new_ops::<City>(1, 300, 20), &a, &b, 400, 23);
+    // Lots never meet (3 against 10): only the buildings swap, unless all 4 attempts
+    // draw the lot (1/16).
+    assert_eq!(out.len(), 2, "{out:?}");
+    for (o, _) in &out {
+        assert!(o.is_none() || *o == Some(swapped.clone()), "{o:?}");
+    }
+    // Original: the building swaps (its symbol meets b's lot), or the lot, whose symbol
+    // `Lot_3` only b's Start takes, is grafted there.
+    let mut ops = new_ops::<City>(1, 300, 20).with_variant(OperatorVariant::Original);
+    let mut grafted = b.clone();
+    let lot = grafted.attach_at(0, "lots", 3, city::Lot {}).unwrap();
+    grafted.attach(lot, "building", building(4.0)).unwrap();
+    let root = Genome::<City>::with_root(city::Start {}).unwrap();
+    let out = crossover_outcomes(&mut ops, &a, &b, 4000, 24);
+    assert_eq!(out.len(), 2, "{out:?}");
+    let count = |o: &Children<City>| out.iter().find(|(x, _)| x == o).map_or(0, |(_, n)| *n);
+    assert_fits(
+        &[count(&Some(swapped)), count(&Some((root, grafted)))],
+        &[0.5, 0.5],
+    );
 }
 
 #[test]
@@ -638,4 +746,434 @@ fn operators_refuse_impossible_limits() {
     let _ = Body {
         size: v3(1.0, 1.0, 1.0),
     };
+}
+
+// --- the original's rules ----------------------------------------------------------------
+
+fn original_ops<G: Grammar>() -> Operators<G> {
+    // Limits the original's operators ignore: any genome here breaks them.
+    new_ops::<G>(6, 6, 2).with_variant(OperatorVariant::Original)
+}
+
+/// Counts how often each (parent, link) gets the gene `grow` appends to `base`.
+fn grow_counts<G: Grammar>(
+    ops: &mut Operators<G>,
+    base: &Genome<G>,
+    cats: &[(u32, u32)],
+    draws: u32,
+    seed: u64,
+) -> Vec<u64> {
+    let mut r = rng(seed);
+    let mut g = base.clone();
+    let mut counts = vec![0u64; cats.len()];
+    for _ in 0..draws {
+        g.clone_from(base);
+        assert!(ops.grow(&mut g, &mut r));
+        g.validate().unwrap();
+        let at = hang(&g, base.words().len() as u32);
+        let i = cats.iter().position(|&c| c == at);
+        counts[i.unwrap_or_else(|| panic!("grew at {at:?}"))] += 1;
+    }
+    counts
+}
+
+#[test]
+fn original_grow_ignores_probabilities_and_never_draws_the_last_candidate() {
+    let mut ops = original_ops::<Spaceship>();
+    // ship()'s genes with an empty link, in gene order: Body @3 (top), Body @11 (next,
+    // wing), WingNext @26 (next, p = 0.9), TopNext @39 (next, p = 1). The original draws
+    // uniformly among all but the last gene, then among all but the last empty link:
+    // Body @11 always grows `next`, never `wing`; TopNext @39 never grows.
+    let cats = [(3, 2), (11, 0), (26, 0), (11, 1), (39, 0)];
+    let counts = grow_counts(&mut ops, &ship(), &cats, 30_000, 40);
+    assert_eq!(&counts[3..], &[0, 0], "{counts:?}");
+    assert_fits(&counts[..3], &[1.0 / 3.0; 3]);
+
+    // A body with all three links empty, the only gene that can grow: `next` or `wing`,
+    // equally; the top only once the other two are taken.
+    let mut g = Genome::<Spaceship>::with_root(Start {}).unwrap();
+    g.attach(0, "body", BODY_A).unwrap();
+    let counts = grow_counts(&mut ops, &g, &[(3, 0), (3, 1), (3, 2)], 20_000, 41);
+    assert_eq!(counts[2], 0, "{counts:?}");
+    assert_fits(&counts[..2], &[0.5, 0.5]);
+    // With its next body @11 and wing @19 in place, Body @3 may grow its top: the genes
+    // that can grow are Body @3 (top), Body @11 (next, wing, top) and Wing @19 (next).
+    let mut full = g.clone();
+    full.attach(3, "next", BODY_B).unwrap();
+    full.attach(3, "wing", WING_A).unwrap();
+    let cats = [(3, 2), (11, 0), (11, 1), (19, 0), (11, 2)];
+    let counts = grow_counts(&mut ops, &full, &cats, 20_000, 42);
+    assert_eq!(&counts[3..], &[0, 0], "{counts:?}");
+    assert_fits(&counts[..3], &[0.5, 0.25, 0.25]);
+
+    // Beyond the limits (max_len 6, max_depth 2) and up to nothing left to grow.
+    let mut g = ship();
+    let mut r = rng(43);
+    for _ in 0..50 {
+        assert!(ops.grow(&mut g, &mut r));
+    }
+    assert_eq!(g.len(), 57);
+    g.validate().unwrap();
+    let mut c = Genome::<City>::with_root(city::Start {}).unwrap();
+    for i in 0..100 {
+        let lot = c.attach_at(0, "lots", i, city::Lot {}).unwrap();
+        let b = c.attach(lot, "building", building(3.0)).unwrap();
+        let roof = c.attach(b, "roof", city::Roof { pitch: 0.3 }).unwrap();
+        c.attach(roof, "spire", city::Roof { pitch: 0.3 }).unwrap();
+    }
+    let mut ops = original_ops::<City>();
+    assert!(ops.grow(&mut c, &mut r), "the last spire can still grow");
+}
+
+#[test]
+fn original_cut_draws_any_non_root_gene_and_regrows_a_bare_root() {
+    // ship()'s six non-root genes, each with probability 1/6: Body @3 and TopNext @39
+    // hang from links of probability 1, which the weighted cut never takes.
+    let mut helper = new_ops::<Spaceship>(1, 100, 20);
+    let outcomes: Vec<Genome<Spaceship>> = [11, 19, 26, 33, 39]
+        .iter()
+        .map(|&pos| {
+            let mut g = ship();
+            helper.cut_at(&mut g, pos).unwrap();
+            g
+        })
+        .collect();
+    let mut ops = original_ops::<Spaceship>();
+    let mut r = rng(44);
+    let mut counts = [0u64; 6];
+    let mut g = ship();
+    for _ in 0..24_000 {
+        g.clone_from(&ship());
+        assert!(ops.cut(&mut g, &mut r));
+        g.validate().unwrap();
+        match outcomes.iter().position(|o| *o == g) {
+            Some(i) => counts[i + 1] += 1,
+            None => {
+                // Cutting Body @3 leaves the root alone, which grows once more: a new body.
+                assert_eq!(g.len(), 2, "{g:?}");
+                assert_ne!(g, small());
+                assert!(g.root().link(0).is_some());
+                counts[0] += 1;
+            }
+        }
+    }
+    assert_fits(&counts, &[1.0 / 6.0; 6]);
+    // min_len does not hold it back, and the root alone cannot be cut.
+    let mut g = ship();
+    while g.len() > 2 {
+        assert!(ops.cut(&mut g, &mut r));
+    }
+    let mut root = Genome::<Spaceship>::with_root(Start {}).unwrap();
+    assert!(!ops.cut(&mut root, &mut r));
+    assert_eq!(root.len(), 1);
+}
+
+shapegen_runtime::generator! {
+    /// An axiom with a parameter, a child without parameters and leaves.
+    pub Knob {
+        axiom Root;
+        node Root {
+            params { turn: f32 ~ uniform(0.0, 1.0) }
+            children { left: Leaf = 0.2, mid: Bare = 1.0 }
+        }
+        node Bare { children { leaf: Leaf = 0.5 } }
+        node Leaf { params { size: f32 ~ uniform(1.0, 2.0) } }
+    }
+}
+
+#[test]
+fn original_alter_draws_any_non_root_gene_parameters_or_not() {
+    // Root (with a parameter) -> left Leaf @?, mid Bare -> leaf Leaf. The original draws
+    // among the three non-root genes: a leaf each 1/3, the bare gene (a no-op) 1/3; the
+    // root never.
+    let mut g = Genome::<Knob>::with_root(Root { turn: 0.5 }).unwrap();
+    let left = g.attach(0, "left", Leaf { size: 1.5 }).unwrap();
+    let mid = g.attach(0, "mid", Bare {}).unwrap();
+    let leaf = g.attach(mid, "leaf", Leaf { size: 1.5 }).unwrap();
+    let base = g.clone();
+    let mut ops = original_ops::<Knob>();
+    let mut r = rng(45);
+    let mut counts = [0u64; 3]; // left, leaf, no-op
+    for _ in 0..12_000 {
+        g.clone_from(&base);
+        let changed = ops.alter(&mut g, &mut r);
+        assert_eq!(
+            gene_words(&g, 0),
+            gene_words(&base, 0),
+            "the root is never altered"
+        );
+        assert_eq!(g.len(), base.len());
+        let which = [left, leaf].map(|p| gene_words(&g, p) != gene_words(&base, p));
+        match which {
+            [true, false] => counts[0] += 1,
+            [false, true] => counts[1] += 1,
+            [false, false] => counts[2] += 1,
+            _ => panic!("two genes altered"),
+        }
+        assert_eq!(changed, counts[2] == 0 || which != [false, false]);
+        g.validate().unwrap();
+    }
+    assert_fits(&counts, &[1.0 / 3.0; 3]);
+    // The weighted alter draws among the genes with parameters, the root included.
+    let mut weighted = new_ops::<Knob>(1, 10, 10);
+    let root_altered = (0..300).any(|_| {
+        g.clone_from(&base);
+        weighted.alter(&mut g, &mut r);
+        gene_words(&g, 0) != gene_words(&base, 0)
+    });
+    assert!(root_altered);
+}
+
+/// Start -> lots[3]: Lot -> Building(4) -> roof: Roof(0.3) -> spire: Roof(0.9) ... with
+/// `spires` Roofs in all.
+fn roofed(spires: u32) -> Genome<City> {
+    let mut g = one_lot(3, Some(4.0));
+    let mut at = g.attach(105, "roof", city::Roof { pitch: 0.3 }).unwrap();
+    for _ in 1..spires {
+        at = g.attach(at, "spire", city::Roof { pitch: 0.9 }).unwrap();
+    }
+    g
+}
+
+#[test]
+fn original_crossover_matches_symbols_across_parent_types_and_grafts() {
+    // a: lots[3] @102 -> Building(4) @105 -> roof: Roof @116 -> spire: Roof @120.
+    // b: lots[3] @102 -> Building(9) @105, lots[5] @116 -> Building(8) @119; no roofs.
+    let a = roofed(2);
+    let mut b = one_lot(3, Some(9.0));
+    let lot5 = b.attach_at(0, "lots", 5, city::Lot {}).unwrap();
+    b.attach(lot5, "building", building(8.0)).unwrap();
+    // a's Lot (symbol `Lot_3`, only taken by b's Start) exchanges with b's lots[3].
+    let lot_c = one_lot(3, Some(9.0));
+    let mut lot_d = one_lot(5, Some(8.0));
+    let bd = lot_d.attach_at(0, "lots", 3, city::Lot {}).unwrap();
+    let bd = lot_d.attach(bd, "building", building(4.0)).unwrap();
+    let r1 = lot_d.attach(bd, "roof", city::Roof { pitch: 0.3 }).unwrap();
+    lot_d
+        .attach(r1, "spire", city::Roof { pitch: 0.9 })
+        .unwrap();
+    // a's Building: both of b's lots take it, but the original never draws the last
+    // candidate: always lots[3]'s building is exchanged.
+    let mut bld_d = Genome::<City>::with_root(city::Start {}).unwrap();
+    let l3 = bld_d.attach_at(0, "lots", 3, city::Lot {}).unwrap();
+    let l5 = bld_d.attach_at(0, "lots", 5, city::Lot {}).unwrap();
+    bld_d.attach(l5, "building", building(8.0)).unwrap();
+    let bd = bld_d.attach(l3, "building", building(4.0)).unwrap();
+    let r1 = bld_d.attach(bd, "roof", city::Roof { pitch: 0.3 }).unwrap();
+    bld_d
+        .attach(r1, "spire", city::Roof { pitch: 0.9 })
+        .unwrap();
+    // a Roof, from `Building.roof` or from `Roof.spire` alike: b's Buildings take Roofs;
+    // the first has none, so the subtree is grafted onto its roof link and a only loses
+    // it.
+    let mut helper = new_ops::<City>(1, 300, 20);
+    let mut graft = |cut: u32, pitches: &[f32]| {
+        let mut c = a.clone();
+        helper.cut_at(&mut c, cut).unwrap();
+        let mut d = b.clone();
+        let mut at = 105;
+        for (i, &pitch) in pitches.iter().enumerate() {
+            let link = if i == 0 { "roof" } else { "spire" };
+            at = d.attach(at, link, city::Roof { pitch }).unwrap();
+        }
+        (c, d)
+    };
+    let roof = graft(116, &[0.3, 0.9]);
+    let spire = graft(120, &[0.9]);
+    assert_eq!((roof.0.len(), roof.1.len()), (3, 7)); // len(a) - 2, len(b) + 2
+    assert_eq!((spire.0.len(), spire.1.len()), (4, 6)); // len(a) - 1, len(b) + 1
+    let expected = [(lot_c.clone(), lot_d), (lot_c, bld_d), roof, spire];
+    let mut ops = original_ops::<City>();
+    let out = crossover_outcomes(&mut ops, &a, &b, 8000, 46);
+    let counts: Vec<u64> = expected
+        .iter()
+        .map(|want| {
+            out.iter()
+                .find(|(o, _)| o.as_ref() == Some(want))
+                .map_or(0, |(_, n)| *n)
+        })
+        .collect();
+    assert_eq!(counts.iter().sum::<u64>(), 8000, "{out:?}");
+    assert_fits(&counts, &[0.25; 4]);
+
+    // The weighted crossover never moves a spire under a building.
+    let mut weighted = new_ops::<City>(1, 300, 20);
+    let out = crossover_outcomes(&mut weighted, &a, &b, 500, 47);
+    assert!(out.iter().all(|(o, _)| o.as_ref() != Some(&expected[3])));
+}
+
+#[test]
+fn original_crossover_makes_three_attempts_then_gives_up() {
+    // a: a lot, its building and 8 roofs; b: the root alone. Only a's Lot (1 of its 10
+    // non-root genes) has a symbol b takes (its Start, on lots[3]): each attempt fails
+    // with probability 9/10, all three with 0.729 (four would be 0.656).
+    let a = roofed(8);
+    let b = Genome::<City>::with_root(city::Start {}).unwrap();
+    let mut ops = original_ops::<City>();
+    let out = crossover_outcomes(&mut ops, &a, &b, 6000, 48);
+    let failed = out.iter().find(|(o, _)| o.is_none()).map_or(0, |(_, n)| *n);
+    // The graft: a keeps its root alone, b gets a's whole lot.
+    let root = Genome::<City>::with_root(city::Start {}).unwrap();
+    assert_eq!(out.len(), 2, "{out:?}");
+    assert!(
+        out.iter()
+            .any(|(o, _)| *o == Some((root.clone(), a.clone())))
+    );
+    assert_fits(&[failed, 6000 - failed], &[0.729, 0.271]);
+    // Nothing to draw in a root alone.
+    assert!(ops.crossover(&root, &a, &mut rng(49)).is_none());
+}
+
+#[test]
+fn original_random_genomes_have_exactly_the_initial_length() {
+    fn check<G: Grammar>(lengths: &[u32]) {
+        let mut ops = original_ops::<G>();
+        let mut r = rng(50);
+        for &len in lengths {
+            for _ in 0..5 {
+                let g = ops.random(len, &mut r);
+                assert_eq!(g.len(), len as usize);
+                g.validate().unwrap();
+            }
+        }
+        // The axiom, then grows: the same draws as growing one gene at a time.
+        for seed in 0..10 {
+            let (mut r1, mut r2) = (rng(seed), rng(seed));
+            let fast = ops.random(40, &mut r1);
+            let mut slow = Genome::<G>::axiom(&mut r2);
+            for _ in 1..40 {
+                assert!(ops.grow(&mut slow, &mut r2));
+            }
+            assert_eq!(fast, slow);
+            assert_eq!(r1.next_u64(), r2.next_u64());
+            let mut more = fast.clone();
+            assert_eq!(ops.grow_to(&mut more, 60, &mut r1), 20);
+            for _ in 40..60 {
+                assert!(ops.grow(&mut slow, &mut r2));
+            }
+            assert_eq!(more, slow);
+        }
+    }
+    // Beyond max_len 6 and max_depth 2, which the original's operators ignore.
+    check::<Spaceship>(&[1, 2, 7, 50, 400]);
+    check::<City>(&[1, 50, 150, 301]);
+    check::<generators::Tree>(&[250, 1000]);
+}
+
+/// A derivation tree in the order its genes were made: per gene its parent (an earlier
+/// gene), its link and its node's number of links.
+struct Made {
+    genes: Vec<(Option<usize>, u32, u32)>,
+}
+
+impl Made {
+    fn of<G: Grammar>(g: &Genome<G>) -> Made {
+        let pos: Vec<u32> = g.genes().map(|v| v.pos()).collect();
+        let genes = g
+            .genes()
+            .map(|v| {
+                let links = g.node(v).links;
+                match v.parent() {
+                    None => (None, 0, links),
+                    Some(p) => {
+                        let (_, link) = hang(g, v.pos());
+                        (Some(pos.binary_search(&p).unwrap()), link, links)
+                    }
+                }
+            })
+            .collect();
+        Made { genes }
+    }
+
+    /// Replays the growth and counts the steps that broke the original's grow rules:
+    /// the parent was the last gene with an empty link while there were several, or the
+    /// link was the parent's last empty one while it had several. Also returns the steps.
+    fn broken_rules(&self) -> (usize, usize) {
+        let mut taken: Vec<Vec<bool>> = Vec::new();
+        let mut broken = 0;
+        for (i, &(parent, link, links)) in self.genes.iter().enumerate() {
+            if let Some(p) = parent {
+                let open: Vec<usize> = (0..i).filter(|&j| taken[j].contains(&false)).collect();
+                let empty: Vec<u32> = (0..self.genes[p].2)
+                    .filter(|&l| !taken[p][l as usize])
+                    .collect();
+                assert!(open.contains(&p) && empty.contains(&link), "gene {i}");
+                let last_gene = open.len() > 1 && open.last() == Some(&p);
+                let last_link = empty.len() > 1 && empty.last() == Some(&link);
+                broken += usize::from(last_gene || last_link);
+                taken[p][link as usize] = true;
+            }
+            taken.push(vec![false; links as usize]);
+        }
+        (broken, self.genes.len() - 1)
+    }
+}
+
+#[test]
+fn original_random_genomes_grow_as_the_original_grows_them() {
+    // The original's genomes (shared/golden, made by its createRandomGenome) list genes
+    // by `ref`, their creation order; a packed random genome keeps its creation order too.
+    let golden = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/golden");
+    let mut checked = 0;
+    for name in ["spaceship", "tree", "city"] {
+        let Ok(text) = std::fs::read_to_string(golden.join(format!("{name}.json"))) else {
+            eprintln!("skipping {name}: the original's genomes (shared/golden) are absent");
+            continue;
+        };
+        let file: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let links = |symbol: &str| {
+            let s = file["symbols"].as_array().unwrap().iter();
+            let s = s.clone().find(|s| s["name"] == symbol).unwrap();
+            s["possible_children"].as_array().unwrap().len() as u32
+        };
+        for genome in file["genomes"].as_array().unwrap() {
+            if genome["origin"]["kind"] != "random" {
+                continue;
+            }
+            // (ref, parent ref, slot, links)
+            let mut nodes = Vec::new();
+            let mut stack = vec![(&genome["tree"], None)];
+            while let Some((node, parent)) = stack.pop() {
+                let r = node["ref"].as_u64().unwrap();
+                let slot = node["slot"].as_u64().unwrap_or(0) as u32;
+                nodes.push((r, parent, slot, links(node["symbol"].as_str().unwrap())));
+                for child in node["children"].as_array().unwrap() {
+                    stack.push((child, Some(r)));
+                }
+            }
+            nodes.sort();
+            let index = |r: u64| nodes.iter().position(|n| n.0 == r).unwrap();
+            let made = Made {
+                genes: nodes
+                    .iter()
+                    .map(|&(_, p, slot, links)| (p.map(index), slot, links))
+                    .collect(),
+            };
+            let (broken, steps) = made.broken_rules();
+            assert_eq!(broken, 0, "{}: {steps} grows", genome["id"]);
+            checked += steps;
+        }
+    }
+    eprintln!("{checked} grows of the original follow its rules");
+
+    // This crate's original random genomes keep the same rules; the weighted ones break
+    // them.
+    fn ours<G: Grammar>(variant: OperatorVariant, len: u32) -> (usize, usize) {
+        let mut ops = new_ops::<G>(1, 1000, 1000).with_variant(variant);
+        let mut r = rng(51);
+        let mut total = (0, 0);
+        for _ in 0..20 {
+            let (broken, steps) = Made::of(&ops.random(len, &mut r)).broken_rules();
+            total = (total.0 + broken, total.1 + steps);
+        }
+        total
+    }
+    assert_eq!(ours::<Spaceship>(OperatorVariant::Original, 100).0, 0);
+    assert_eq!(
+        ours::<generators::Tree>(OperatorVariant::Original, 300).0,
+        0
+    );
+    assert_eq!(ours::<City>(OperatorVariant::Original, 150).0, 0);
+    let (broken, steps) = ours::<generators::Tree>(OperatorVariant::Weighted, 300);
+    assert!(broken > steps / 10, "{broken} of {steps}");
 }

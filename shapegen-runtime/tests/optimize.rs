@@ -3,6 +3,8 @@
 
 use generators::{City, Spaceship, city, spaceship};
 use glam::Vec3;
+use shapegen_runtime::ops::OperatorVariant;
+use shapegen_runtime::optimize::multi::{MultiEvaluator, MultiGa, MultiGaSettings};
 use shapegen_runtime::optimize::*;
 use shapegen_runtime::prelude::*;
 
@@ -93,6 +95,7 @@ impl Evaluator<Spaceship> for BoxTarget {
     }
 }
 
+/// The paper's city settings (the original's operators and breeding), smaller.
 fn small_ga() -> GaSettings {
     GaSettings {
         population: 40,
@@ -101,6 +104,14 @@ fn small_ga() -> GaSettings {
         generations: 15,
         ..GaSettings::paper_city()
     }
+}
+
+/// [`small_ga`] with each operator variant.
+fn both_variants() -> [GaSettings; 2] {
+    OperatorVariant::ALL.map(|operators| GaSettings {
+        operators,
+        ..small_ga()
+    })
 }
 
 fn initial_best<G: Grammar>(result: &RunResult<G>) -> f64 {
@@ -140,18 +151,18 @@ fn threads<T: Send>(n: usize, f: impl FnOnce() -> T + Send) -> T {
 
 #[test]
 fn ga_improves_on_its_initial_population() {
-    for seed in [1, 2, 3] {
-        let mut ga = Ga::<City>::new(small_ga(), city::PAPER_LIMITS, seed).unwrap();
+    for (seed, s) in [1, 2, 3].into_iter().zip(both_variants().iter().cycle()) {
+        let mut ga = Ga::<City>::new(*s, city::PAPER_LIMITS, seed).unwrap();
         let r = ga
-            .run(&mut Skyline::new(), &small_ga().budget(), &mut Silent)
+            .run(&mut Skyline::new(), &s.budget(), &mut Silent)
             .unwrap();
         assert!(
             r.best_fitness > initial_best(&r) + 2.0,
             "seed {seed}: {r:?}"
         );
-        let mut ga = Ga::<Spaceship>::new(small_ga(), spaceship::PAPER_LIMITS, seed).unwrap();
+        let mut ga = Ga::<Spaceship>::new(*s, spaceship::PAPER_LIMITS, seed).unwrap();
         let r = ga
-            .run(&mut BoxTarget::new(), &small_ga().budget(), &mut Silent)
+            .run(&mut BoxTarget::new(), &s.budget(), &mut Silent)
             .unwrap();
         assert!(
             r.best_fitness > initial_best(&r),
@@ -201,31 +212,228 @@ fn ga_elites_are_not_reevaluated() {
 
 #[test]
 fn ga_same_seed_same_result_at_any_thread_count() {
-    let run = || {
-        let mut ga = Ga::<City>::new(small_ga(), city::PAPER_LIMITS, 5).unwrap();
-        ga.run(&mut Skyline::new(), &Budget::generations(8), &mut Silent)
-            .unwrap()
-    };
-    same_result(&threads(1, run), &threads(2, run));
+    for s in both_variants() {
+        let run = || {
+            let mut ga = Ga::<City>::new(s, city::PAPER_LIMITS, 5).unwrap();
+            ga.run(&mut Skyline::new(), &Budget::generations(8), &mut Silent)
+                .unwrap()
+        };
+        same_result(&threads(1, run), &threads(2, run));
+    }
 }
 
 #[test]
 fn ga_resume_equals_uninterrupted() {
-    let full = Ga::<City>::new(small_ga(), city::PAPER_LIMITS, 4)
+    for s in both_variants() {
+        let full = Ga::<City>::new(s, city::PAPER_LIMITS, 4)
+            .unwrap()
+            .run(&mut Skyline::new(), &Budget::generations(10), &mut Silent)
+            .unwrap();
+        let mut first = Ga::<City>::new(s, city::PAPER_LIMITS, 4).unwrap();
+        first
+            .run(&mut Skyline::new(), &Budget::generations(4), &mut Silent)
+            .unwrap();
+        let json = serde_json::to_string(&first.checkpoint()).unwrap();
+        let state: GaState<City> = serde_json::from_str(&json).unwrap();
+        assert_eq!(state.settings.operators, s.operators);
+        let resumed = Ga::resume(state)
+            .unwrap()
+            .run(&mut Skyline::new(), &Budget::generations(10), &mut Silent)
+            .unwrap();
+        same_result(&full, &resumed);
+    }
+}
+
+/// Scores a genome by its length, and records every length it scores.
+#[derive(Default)]
+struct Lengths(Vec<usize>);
+
+impl Evaluator<Spaceship> for Lengths {
+    fn evaluate(
+        &mut self,
+        genomes: &[Genome<Spaceship>],
+        out: &mut [f64],
+    ) -> Result<(), EvaluateError> {
+        for (g, o) in genomes.iter().zip(out) {
+            self.0.push(g.len());
+            *o = g.len() as f64;
+        }
+        Ok(())
+    }
+}
+
+#[test]
+fn ga_original_keeps_children_shorter_than_max_len() {
+    // Longer is better: children press against max_len 12.
+    let limits = Limits::new(4, 12, 30).unwrap();
+    let s = GaSettings {
+        population: 30,
+        elitism: 4,
+        initial_length: 8,
+        ..GaSettings::paper_spaceship()
+    };
+    let mut eval = Lengths::default();
+    Ga::<Spaceship>::new(s, limits, 6)
         .unwrap()
-        .run(&mut Skyline::new(), &Budget::generations(10), &mut Silent)
+        .run(&mut eval, &Budget::generations(20), &mut Silent)
         .unwrap();
-    let mut first = Ga::<City>::new(small_ga(), city::PAPER_LIMITS, 4).unwrap();
-    first
-        .run(&mut Skyline::new(), &Budget::generations(4), &mut Silent)
-        .unwrap();
-    let json = serde_json::to_string(&first.checkpoint()).unwrap();
-    let state: GaState<City> = serde_json::from_str(&json).unwrap();
-    let resumed = Ga::resume(state)
+    let (initial, children) = eval.0.split_at(30);
+    assert!(initial.iter().all(|&len| len == 8), "{initial:?}");
+    assert!(children.iter().all(|&len| (4..12).contains(&len)));
+    assert!(children.contains(&11));
+    // The weighted operators keep genomes within the limits, max_len included.
+    let mut eval = Lengths::default();
+    let weighted = GaSettings {
+        operators: OperatorVariant::Weighted,
+        ..s
+    };
+    Ga::<Spaceship>::new(weighted, limits, 6)
         .unwrap()
-        .run(&mut Skyline::new(), &Budget::generations(10), &mut Silent)
+        .run(&mut eval, &Budget::generations(20), &mut Silent)
         .unwrap();
-    same_result(&full, &resumed);
+    assert!(eval.0.contains(&12));
+    assert!(eval.0.iter().all(|&len| (4..=12).contains(&len)));
+}
+
+#[test]
+fn ga_original_drops_failed_crossovers() {
+    // Genomes of the root alone, and only crossover: it never finds a gene to exchange.
+    // The weighted GA copies the parents; the original's gives no children and breeds
+    // again, until it gives up.
+    let s = GaSettings {
+        population: 6,
+        elitism: 2,
+        initial_length: 1,
+        mutation_probability: 0.0,
+        ..small_ga()
+    };
+    let limits = Limits::new(1, 10, 10).unwrap();
+    let mut eval = FnEvaluator(|g: &Genome<Spaceship>| g.len() as f64);
+    let weighted = GaSettings {
+        operators: OperatorVariant::Weighted,
+        ..s
+    };
+    let r = Ga::<Spaceship>::new(weighted, limits, 1).unwrap().run(
+        &mut eval,
+        &Budget::generations(3),
+        &mut Silent,
+    );
+    assert!(r.is_ok());
+    let err = Ga::<Spaceship>::new(s, limits, 1)
+        .unwrap()
+        .run(&mut eval, &Budget::generations(3), &mut Silent)
+        .unwrap_err();
+    let OptimizeError::Settings(err) = err else {
+        panic!("{err}");
+    };
+    assert_eq!(err.field, "limits", "{err}");
+    assert!(
+        err.to_string().contains("10 000 breedings did not fill"),
+        "{err}"
+    );
+}
+
+#[test]
+fn ga_original_tournament_never_draws_the_worst() {
+    // Two individuals, no elite, tournaments of one, only alter: every child is a copy of
+    // a parent with new parameters, the same tree. The roulette gives the worst weight 0,
+    // and the original's tournament never draws it: both children are the best's tree.
+    let shape = |g: &Genome<Spaceship>| -> Vec<(u32, Option<u32>)> {
+        g.genes().map(|v| (v.kind(), v.parent())).collect()
+    };
+    let s = GaSettings {
+        population: 2,
+        elitism: 0,
+        initial_length: 12,
+        tournament: 1,
+        mutation_probability: 1.0,
+        grow_weight: 0.0,
+        cut_weight: 0.0,
+        alter_weight: 1.0,
+        ..small_ga()
+    };
+    let limits = Limits::new(1, 100, 30).unwrap();
+    let mut worst_bred = [0, 0];
+    for (v, operators) in OperatorVariant::ALL.into_iter().enumerate() {
+        let s = GaSettings { operators, ..s };
+        for seed in 0..20 {
+            let mut eval = FnEvaluator(|g: &Genome<Spaceship>| {
+                g.words().iter().map(|&w| f64::from(w)).sum::<f64>()
+            });
+            let mut ga = Ga::<Spaceship>::new(s, limits, seed).unwrap();
+            ga.run(&mut eval, &Budget::generations(0), &mut Silent)
+                .unwrap();
+            let first = ga.checkpoint();
+            if first.fitness[0] == first.fitness[1] {
+                continue;
+            }
+            let (best, worst) = if first.fitness[0] > first.fitness[1] {
+                (0, 1)
+            } else {
+                (1, 0)
+            };
+            let (best, worst) = (
+                shape(&first.population[best]),
+                shape(&first.population[worst]),
+            );
+            if best == worst {
+                continue;
+            }
+            ga.run(&mut eval, &Budget::generations(1), &mut Silent)
+                .unwrap();
+            for child in &ga.checkpoint().population {
+                worst_bred[v] += usize::from(shape(child) == worst);
+            }
+        }
+    }
+    assert_eq!(worst_bred[1], 0);
+    assert!(worst_bred[0] > 3, "{worst_bred:?}");
+}
+
+/// Two objectives of a spaceship: its length (maximized) and its number of wings
+/// (minimized).
+struct LongFewWings;
+
+impl MultiEvaluator<Spaceship> for LongFewWings {
+    fn senses(&self) -> &[Sense] {
+        &[Sense::Maximize, Sense::Minimize]
+    }
+
+    fn evaluate(
+        &mut self,
+        genomes: &[Genome<Spaceship>],
+        out: &mut [f64],
+    ) -> Result<(), EvaluateError> {
+        for (g, o) in genomes.iter().zip(out.chunks_exact_mut(2)) {
+            let wings = g.genes().filter(|v| g.node(*v).name == "Wing").count();
+            o.copy_from_slice(&[g.len() as f64, wings as f64]);
+        }
+        Ok(())
+    }
+}
+
+#[test]
+fn multi_ga_breeds_with_the_original_rules() {
+    let settings = MultiGaSettings {
+        ga: GaSettings {
+            population: 24,
+            elitism: 4,
+            initial_length: 10,
+            ..GaSettings::paper_spaceship()
+        },
+        ..MultiGaSettings::thesis()
+    };
+    let limits = Limits::new(4, 14, 30).unwrap();
+    let run = || {
+        let mut ga = MultiGa::<Spaceship>::new(settings.clone(), limits, 3).unwrap();
+        ga.run(&mut LongFewWings, &Budget::generations(6), &mut Silent)
+            .unwrap();
+        ga.checkpoint()
+    };
+    let (a, b) = (threads(1, run), threads(2, run));
+    assert!(a.population == b.population && a.archive.len() == b.archive.len());
+    assert!(a.population.iter().all(|g| (4..14).contains(&g.len())));
+    assert!(a.population.iter().any(|g| g.len() == 13));
 }
 
 /// Scores like [`Skyline`] but gives NaN to every third genome and -inf/+inf to some.
@@ -354,6 +562,93 @@ fn ga_settings_are_validated() {
         }
     );
     assert!(serde_json::from_str::<GaSettings>(r#"{"populaton": 50}"#).is_err());
+    // The operators by name; the window [min_len, max_len) must hold a length.
+    let parsed: GaSettings =
+        serde_json::from_str(r#"{"operators": "original", "cross_array_index": true}"#).unwrap();
+    assert_eq!(
+        (parsed.operators, parsed.cross_array_index),
+        (OperatorVariant::Original, true)
+    );
+    let err = serde_json::from_str::<GaSettings>(r#"{"operators": "paper"}"#).unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("expected `weighted` or `original`"),
+        "{err}"
+    );
+    let no_window = Ga::<City>::new(parsed, Limits::new(5, 5, 8).unwrap(), 0).unwrap_err();
+    assert!(
+        no_window.to_string().starts_with("limits.max_len = 5"),
+        "{no_window}"
+    );
+    let weighted = GaSettings {
+        operators: OperatorVariant::Weighted,
+        ..parsed
+    };
+    assert!(Ga::<City>::new(weighted, Limits::new(5, 5, 8).unwrap(), 0).is_ok());
+}
+
+#[test]
+fn ga_paper_settings_are_the_original_configurations() {
+    // run/experiments/<scene>/ga.cfg: population_size, elitism, initial_genome_length,
+    // max_generations, basic_prob, grow_prob / cut_prob / permutate_prob,
+    // tournament_size.
+    let row = |s: GaSettings| {
+        (
+            s.population,
+            s.elitism,
+            s.initial_length,
+            s.generations,
+            s.mutation_probability,
+            [s.grow_weight, s.cut_weight, s.alter_weight],
+            s.tournament,
+            s.operators,
+            s.cross_array_index,
+        )
+    };
+    let original = OperatorVariant::Original;
+    assert_eq!(
+        row(GaSettings::paper_spaceship()),
+        (
+            150,
+            30,
+            50,
+            130,
+            0.3,
+            [45.0, 45.0, 10.0],
+            10,
+            original,
+            false
+        )
+    );
+    assert_eq!(
+        row(GaSettings::paper_tree()),
+        (
+            200,
+            30,
+            250,
+            1500,
+            0.3,
+            [35.0, 35.0, 30.0],
+            10,
+            original,
+            false
+        )
+    );
+    assert_eq!(
+        row(GaSettings::paper_city()),
+        (
+            100,
+            30,
+            50,
+            100,
+            0.3,
+            [45.0, 45.0, 10.0],
+            10,
+            original,
+            false
+        )
+    );
+    assert_eq!(GaSettings::default().operators, OperatorVariant::Weighted);
 }
 
 #[test]

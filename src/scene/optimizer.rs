@@ -5,6 +5,7 @@ use std::time::Duration;
 use generators::Published;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
+use shapegen_runtime::ops::OperatorVariant;
 use shapegen_runtime::optimize::multi::MultiGaSettings;
 use shapegen_runtime::optimize::{
     Budget, GaSettings, McmcSettings, Order, SettingsError, SmcSettings,
@@ -60,10 +61,16 @@ pub enum MethodSettings {
 /// generations = 100      # GA generations, SMC steps, RJMCMC iterations
 ///                        # then the method's own settings: for the GA population,
 /// population = 100       # elitism, initial_length, generations, mutation_probability,
-///                        # grow_weight, cut_weight, alter_weight, tournament; for SMC
-///                        # and SOSMC particles, steps, max_grows_per_step; for RJMCMC
-///                        # chains, iterations, initial_length, jump_probability, ...
+///                        # grow_weight, cut_weight, alter_weight, tournament,
+///                        # operators ("original" or "weighted"), cross_array_index
+///                        # (true or false); for SMC and SOSMC particles, steps,
+///                        # max_grows_per_step; for RJMCMC chains, iterations,
+///                        # initial_length, jump_probability, ...
 /// ```
+///
+/// The paper's GA settings use the original's operators and breeding
+/// (`operators = "original"`); `operators = "weighted"` gives the paper's weighted
+/// operators (see `shapegen_runtime::ops::OperatorVariant`).
 ///
 /// Settings the table leaves out are the paper's for the method and the scene's
 /// generator.
@@ -206,7 +213,10 @@ pub(super) fn resolve(
         }
     };
     let settings = match paper(method, generator) {
-        MethodSettings::Ga(base) => MethodSettings::Ga(merged(base, table, GaSettings::validate)?),
+        MethodSettings::Ga(base) => {
+            check_ga_keys(&table)?;
+            MethodSettings::Ga(merged(base, table, GaSettings::validate)?)
+        }
         MethodSettings::Smc(base) => {
             if table.contains_key("order") {
                 return Err((
@@ -229,6 +239,32 @@ pub(super) fn resolve(
         evaluations,
         settings,
     })
+}
+
+/// Checks the GA's keys whose serde errors would not name them: `operators` must name an
+/// operator variant and `cross_array_index` be a boolean; errors are `(key, reason)`.
+fn check_ga_keys(table: &toml::Table) -> Result<(), (String, String)> {
+    let names = OperatorVariant::ALL.map(OperatorVariant::name);
+    match table.get("operators") {
+        None => {}
+        Some(toml::Value::String(v)) if names.contains(&v.as_str()) => {}
+        Some(other) => {
+            return Err((
+                "optimizer.operators".into(),
+                format!(
+                    "{other} is not an operator variant; the variants are \"{}\"",
+                    names.join("\" and \"")
+                ),
+            ));
+        }
+    }
+    match table.get("cross_array_index") {
+        None | Some(toml::Value::Boolean(_)) => Ok(()),
+        Some(other) => Err((
+            "optimizer.cross_array_index".into(),
+            format!("{other} must be true or false"),
+        )),
+    }
 }
 
 /// Takes `archive` (the multi-objective GA's archive size) out of an `[optimizer]`

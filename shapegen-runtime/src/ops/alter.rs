@@ -2,17 +2,20 @@
 
 use rand::Rng;
 
-use super::Operators;
+use super::original::redraw;
 use super::weight::below;
+use super::{OperatorVariant, Operators};
 use crate::derive::Grammar;
-use crate::genome::{Genome, node_of};
-use crate::graph::HEADER_WORDS;
-use crate::param;
+use crate::genome::Genome;
 
 impl<G: Grammar> Operators<G> {
     /// Picks uniformly one gene whose node type has parameters and redraws all its
     /// parameters from their distributions. Returns `false` when no gene has parameters.
     /// The tree's shape is unchanged, so the limits stay met. O(G).
+    ///
+    /// With the [`Original`](super::OperatorVariant::Original) rules it alters as the
+    /// original does instead: it draws uniformly one of the non-root genes, parameters or
+    /// not, and returns `false`, changing nothing, when that gene has none.
     ///
     /// ```
     /// # use rand::SeedableRng;
@@ -51,6 +54,9 @@ impl<G: Grammar> Operators<G> {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn alter(&mut self, genome: &mut Genome<G>, rng: &mut impl Rng) -> bool {
+        if self.variant == OperatorVariant::Original {
+            return self.alter_original(genome, rng);
+        }
         let words = &genome.words;
         let cand = &mut self.s.cand;
         cand.clear();
@@ -66,11 +72,7 @@ impl<G: Grammar> Operators<G> {
             return false;
         }
         let pos = cand[below(rng, cand.len() as u64) as usize];
-        let node = node_of::<G>(words[pos as usize]);
-        let at = (pos + HEADER_WORDS + node.links) as usize;
-        for p in node.params {
-            param::sample(&p.dist, rng, &mut genome.words[at + p.offset as usize..]);
-        }
+        redraw(genome, pos, rng);
         true
     }
 }

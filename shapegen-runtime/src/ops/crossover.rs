@@ -1,10 +1,11 @@
-//! crossover: swap two subtrees hanging from the same edge of the generator graph.
+//! crossover: swap two subtrees hanging from the same edge of the generator graph (the
+//! weighted rules; the original's are in `original.rs`).
 
 use rand::Rng;
 
-use super::edit::{Split, splice, split};
+use super::edit::{Donor, Split, splice, split};
 use super::weight::below;
-use super::{CROSSOVER_RETRIES, Operators, gene_starts};
+use super::{CROSSOVER_RETRIES, OperatorVariant, Operators, gene_starts};
 use crate::derive::Grammar;
 use crate::genome::{GeneAt, Genome, GenomeError, node_of, parent_pos, slot_at};
 use crate::graph::HEADER_WORDS;
@@ -12,12 +13,19 @@ use crate::graph::HEADER_WORDS;
 impl<G: Grammar> Operators<G> {
     /// Single-point crossover adapted to trees: picks uniformly an expressed link of `a`,
     /// collects the expressed links of `b` on the same edge of the generator graph (same
-    /// parent node type and slot; the index within an array slot may differ), picks one
-    /// uniformly and swaps the two subtrees, giving two children. When `b` has no such
-    /// link, or a child would break the limits, it draws again, up to
-    /// [`CROSSOVER_RETRIES`] times, then gives up with `None`.
+    /// parent node type and slot, and the same index within an array slot unless
+    /// [`cross_array_index`](Self::cross_array_index)), picks one uniformly and swaps the
+    /// two subtrees, giving two children. When `b` has no such link, or a child would
+    /// break the limits, it draws again, up to [`CROSSOVER_RETRIES`] times, then gives up
+    /// with `None`.
     ///
     /// The children are valid genomes within the limits. O(W_a + W_b) per attempt.
+    ///
+    /// With the [`Original`](super::OperatorVariant::Original) rules it follows the
+    /// original's crossover instead (see [`OperatorVariant`]):
+    /// the children's lengths are `len(a) - s_a + s_b` and `len(b) - s_b + s_a` for an
+    /// exchange of subtrees of `s_a` and `s_b` genes, or `len(a) - s_a` and
+    /// `len(b) + s_a` for a graft, whatever the limits.
     ///
     /// ```
     /// # use rand::SeedableRng;
@@ -74,6 +82,9 @@ impl<G: Grammar> Operators<G> {
         out_b: &mut Genome<G>,
         rng: &mut impl Rng,
     ) -> bool {
+        if self.variant == OperatorVariant::Original {
+            return self.crossover_original(a, b, out_a, out_b, rng);
+        }
         if a.len < 2 || b.len < 2 {
             return false; // no expressed link on one side
         }
@@ -88,15 +99,22 @@ impl<G: Grammar> Operators<G> {
             let link = (0..k.links)
                 .find(|&l| pa + a.words[(pa + HEADER_WORDS + l) as usize] == ra)
                 .expect("a valid genome's parent links to its child");
-            let slot =
-                &node_of::<G>(kind).slots[self.links[(k.first_link + link) as usize].slot as usize];
+            // The links of `b`'s genes of that kind on the same edge: the whole slot, or
+            // the drawn link alone.
+            let (first, count) = if self.cross_array_index {
+                let info = self.links[(k.first_link + link) as usize];
+                let slot = &node_of::<G>(kind).slots[info.slot as usize];
+                (slot.first_link, slot.count)
+            } else {
+                (link, 1)
+            };
             s.cand.clear();
             for &pos in &s.starts_b {
                 if b.words[pos as usize] != kind {
                     continue;
                 }
-                let at = (pos + HEADER_WORDS + slot.first_link) as usize;
-                for &off in &b.words[at..at + slot.count as usize] {
+                let at = (pos + HEADER_WORDS + first) as usize;
+                for &off in &b.words[at..at + count as usize] {
                     if off != 0 {
                         s.cand.push(pos + off);
                     }
@@ -115,8 +133,11 @@ impl<G: Grammar> Operators<G> {
 
     /// Swaps the subtree of `a` at word `a_pos` with the subtree of `b` at word `b_pos`,
     /// which must hang from the same edge of the generator graph (same parent node type
-    /// and slot). Fails if a position is the root or no gene start, the edges differ, or
-    /// a child would break the limits (the error says which limit). O(W_a + W_b).
+    /// and slot, and the same index within an array slot unless
+    /// [`cross_array_index`](Self::cross_array_index)). Fails if a position is the root
+    /// or no gene start, the edges differ, or a child would break the limits (the error
+    /// says which limit). The swap is the same with either [`OperatorVariant`]. O(W_a +
+    /// W_b).
     pub fn crossover_at(
         &mut self,
         a: &Genome<G>,
@@ -136,7 +157,8 @@ impl<G: Grammar> Operators<G> {
             (pnode, slot_at(pnode, link))
         };
         let ((an, aslot), (bn, bslot)) = (edge(a, a_pos), edge(b, b_pos));
-        if !std::ptr::eq(an, bn) || aslot.slot != bslot.slot {
+        let index_differs = !self.cross_array_index && aslot.index != bslot.index;
+        if !std::ptr::eq(an, bn) || aslot.slot != bslot.slot || index_differs {
             return Err(GenomeError::EdgeMismatch {
                 a: a_at,
                 a_edge: format!("{aslot} of `{}`", an.name),
@@ -170,7 +192,7 @@ impl<G: Grammar> Operators<G> {
     }
 
     /// Splits `a` at `ra` and `b` at `rb` (gene starts already in the scratch buffers).
-    fn split_both(
+    pub(super) fn split_both(
         &mut self,
         a: &Genome<G>,
         ra: u32,
@@ -201,7 +223,7 @@ impl<G: Grammar> Operators<G> {
     }
 
     /// Writes both children of a swap whose splits are done.
-    fn build_children(
+    pub(super) fn build_children(
         &mut self,
         a: &Genome<G>,
         sa: &Split,
@@ -211,6 +233,20 @@ impl<G: Grammar> Operators<G> {
         out_b: &mut Genome<G>,
     ) {
         let s = &self.s;
+        let (da, db) = (
+            Donor {
+                words: &a.words,
+                starts: &s.starts,
+                map: &s.map,
+                split: sa,
+            },
+            Donor {
+                words: &b.words,
+                starts: &s.starts_b,
+                map: &s.map_b,
+                split: sb,
+            },
+        );
         splice(
             &self.kinds,
             &mut out_a.words,
@@ -218,10 +254,7 @@ impl<G: Grammar> Operators<G> {
             &s.starts,
             &s.map,
             sa,
-            &b.words,
-            &s.starts_b,
-            &s.map_b,
-            sb,
+            Some(db),
         );
         out_a.len = a.len - sa.sub_genes + sb.sub_genes;
         splice(
@@ -231,10 +264,7 @@ impl<G: Grammar> Operators<G> {
             &s.starts_b,
             &s.map_b,
             sb,
-            &a.words,
-            &s.starts,
-            &s.map,
-            sa,
+            Some(da),
         );
         out_b.len = b.len - sb.sub_genes + sa.sub_genes;
     }

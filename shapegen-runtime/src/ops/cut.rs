@@ -1,10 +1,11 @@
-//! cut: remove a subtree, chosen by the grammar's probabilities.
+//! cut: remove a subtree, chosen by the grammar's probabilities (the weighted rules; the
+//! original's are in `original.rs`).
 
 use rand::Rng;
 
 use super::edit::{cover, record_links, remove_subtree};
 use super::weight::{ONE, below};
-use super::{KindInfo, Operators, gene_starts};
+use super::{KindInfo, OperatorVariant, Operators, gene_starts};
 use crate::derive::Grammar;
 use crate::genome::{Genome, GenomeError};
 use crate::graph::HEADER_WORDS;
@@ -19,6 +20,11 @@ impl<G: Grammar> Operators<G> {
     /// One pass finds the candidates; the removal is one forward sweep from the cut
     /// gene that compacts the survivors and fixes their offsets. O(W); no allocation once
     /// the scratch buffers have grown.
+    ///
+    /// With the [`Original`](super::OperatorVariant::Original) rules it cuts as the
+    /// original does instead: the subtree of a uniformly drawn non-root gene, `p = 1`
+    /// links included and `min_len` ignored, then one grow if only the root is left;
+    /// `false` only for a genome of the root alone.
     ///
     /// ```
     /// # use rand::SeedableRng;
@@ -53,6 +59,9 @@ impl<G: Grammar> Operators<G> {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn cut(&mut self, genome: &mut Genome<G>, rng: &mut impl Rng) -> bool {
+        if self.variant == OperatorVariant::Original {
+            return self.cut_original(genome, rng);
+        }
         let len = genome.len;
         let min_len = self.limits.min_len.max(1);
         if len <= min_len {
@@ -154,7 +163,7 @@ impl<G: Grammar> Operators<G> {
     /// Removes the gene at word `pos` and its subtree, whatever its link's probability;
     /// returns the number of genes removed. Fails, leaving the genome as it was, if `pos`
     /// is the root or not the start of a gene, or if the genome would become shorter than
-    /// `min_len`. O(W).
+    /// `min_len`. The same with either [`OperatorVariant`]. O(W).
     pub fn cut_at(&mut self, genome: &mut Genome<G>, pos: u32) -> Result<u32, GenomeError> {
         let s = &mut self.s;
         record_links(

@@ -1,7 +1,8 @@
-//! Subtree surgery on packed genomes: removing a subtree in one compacting pass, and
-//! splicing one genome's subtree into another's place.
+//! Subtree surgery on packed genomes: removing a subtree in one compacting pass,
+//! splicing one genome's subtree into another's place (or nowhere), and grafting one onto
+//! an empty link of another genome.
 //!
-//! Both rely on the layout's order: a gene lies after its parent, so one forward sweep
+//! All rely on the layout's order: a gene lies after its parent, so one forward sweep
 //! from a subtree's root meets every gene of the subtree after its parent, and can tell
 //! subtree members by their parent's mark. Word positions are remapped through a
 //! word-indexed table and every offset is rewritten once: O(W).
@@ -199,10 +200,20 @@ pub(super) fn split(
     s
 }
 
-/// Writes into `out` the genome `keep` with the subtree `ks` split off and the subtree
-/// `ds` of `donor` hung in its place, given both genomes' gene starts and the maps
-/// [`split`] filled. The donor's subtree goes after all kept genes, in its own order.
-#[allow(clippy::too_many_arguments)]
+/// A subtree to hang into another genome: the donor genome's words and gene starts, the
+/// map [`split`] filled for it, and the split.
+#[derive(Clone, Copy)]
+pub(super) struct Donor<'a> {
+    pub words: &'a [u32],
+    pub starts: &'a [u32],
+    pub map: &'a [u32],
+    pub split: &'a Split,
+}
+
+/// Writes into `out` the genome `keep` with the subtree `ks` split off and, when given,
+/// the `donor`'s subtree hung in its place (else the link that held it becomes empty),
+/// given `keep`'s gene starts and the map [`split`] filled. The donor's subtree goes after
+/// all kept genes, in its own order.
 pub(super) fn splice(
     kinds: &[KindInfo],
     out: &mut Vec<u32>,
@@ -210,14 +221,11 @@ pub(super) fn splice(
     keep_starts: &[u32],
     keep_map: &[u32],
     ks: &Split,
-    donor: &[u32],
-    donor_starts: &[u32],
-    donor_map: &[u32],
-    ds: &Split,
+    donor: Option<Donor<'_>>,
 ) {
     out.clear();
     let base = keep.len() as u32 - ks.sub_words;
-    out.reserve((base + ds.sub_words) as usize);
+    out.reserve((base + donor.map_or(0, |d| d.split.sub_words)) as usize);
     for &pos in keep_starts {
         let np = keep_map[pos as usize];
         if np & SUB != 0 {
@@ -234,36 +242,68 @@ pub(super) fn splice(
         for w in &mut out[n + HEADER_WORDS as usize..][..k.links as usize] {
             if *w != 0 {
                 let child = pos + *w;
-                let to = if child == ks.root {
-                    base
+                *w = if child != ks.root {
+                    keep_map[child as usize] - np
+                } else if donor.is_some() {
+                    base - np
                 } else {
-                    keep_map[child as usize]
+                    0
                 };
-                *w = to - np;
             }
         }
     }
-    let first = donor_starts.partition_point(|&p| p < ds.root);
-    for &pos in &donor_starts[first..] {
-        let m = donor_map[pos as usize];
+    if let Some(donor) = donor {
+        append_subtree(kinds, out, keep_map[ks.parent as usize], donor);
+    }
+}
+
+/// Writes into `out` the genome `keep` unchanged but for the `donor`'s subtree hung on
+/// the empty link `link` of its gene at `at`: nothing of `keep` moves, the subtree is
+/// appended after it. O(W_keep + W_donor).
+pub(super) fn graft(
+    kinds: &[KindInfo],
+    out: &mut Vec<u32>,
+    keep: &[u32],
+    at: u32,
+    link: u32,
+    donor: Donor<'_>,
+) {
+    out.clear();
+    out.reserve(keep.len() + donor.split.sub_words as usize);
+    out.extend_from_slice(keep);
+    let slot = (at + HEADER_WORDS + link) as usize;
+    debug_assert_eq!(out[slot], 0, "grafting onto an empty link");
+    out[slot] = keep.len() as u32 - at;
+    append_subtree(kinds, out, at, donor);
+}
+
+/// Appends the donor's split-off subtree to `out` in its own order, its root hanging from
+/// the gene at `parent` of `out` (whose link the caller sets), recomputing the offsets:
+/// the subtree's genes were not contiguous in the donor. O(W_donor from the subtree's
+/// root).
+fn append_subtree(kinds: &[KindInfo], out: &mut Vec<u32>, parent: u32, donor: Donor<'_>) {
+    let base = out.len() as u32;
+    let ds = donor.split;
+    let first = donor.starts.partition_point(|&p| p < ds.root);
+    for &pos in &donor.starts[first..] {
+        let m = donor.map[pos as usize];
         if m & SUB == 0 {
             continue;
         }
         let np = base + (m & !SUB);
-        let k = kinds[donor[pos as usize] as usize];
+        let k = kinds[donor.words[pos as usize] as usize];
         debug_assert_eq!(np as usize, out.len());
-        out.extend_from_slice(&donor[pos as usize..(pos + k.gene_words) as usize]);
+        out.extend_from_slice(&donor.words[pos as usize..(pos + k.gene_words) as usize]);
         let n = np as usize;
         let parent_np = if pos == ds.root {
-            keep_map[ks.parent as usize]
+            parent
         } else {
-            base + (donor_map[parent_pos(donor, pos) as usize] & !SUB)
+            base + (donor.map[parent_pos(donor.words, pos) as usize] & !SUB)
         };
         out[n + 1] = parent_np.wrapping_sub(np);
-        // The subtree's genes were not contiguous in the donor: recompute its offsets.
         for w in &mut out[n + HEADER_WORDS as usize..][..k.links as usize] {
             if *w != 0 {
-                *w = base + (donor_map[(pos + *w) as usize] & !SUB) - np;
+                *w = base + (donor.map[(pos + *w) as usize] & !SUB) - np;
             }
         }
     }

@@ -1,10 +1,11 @@
-//! grow: append one child at an empty link, chosen by the grammar's probabilities.
+//! grow: append one child at an empty link, chosen by the grammar's probabilities (the
+//! weighted rules; the original's are in `original.rs`).
 
 use rand::Rng;
 
-use super::Operators;
 use super::edit::cover;
 use super::weight::below;
+use super::{OperatorVariant, Operators};
 use crate::derive::Grammar;
 use crate::genome::{Genome, parent_pos};
 use crate::graph::HEADER_WORDS;
@@ -18,6 +19,12 @@ impl<G: Grammar> Operators<G> {
     ///
     /// Probabilities are compared as exact 32-bit fixed-point weights. O(W), plus O(1)
     /// for the append; no allocation once the scratch buffers have grown.
+    ///
+    /// With the [`Original`](super::OperatorVariant::Original) rules it grows as the
+    /// original does instead, ignoring the probabilities and the limits: one of the genes
+    /// with an empty link, then one of its empty links (see
+    /// [`OperatorVariant`]); `false` only when no gene has an
+    /// empty link.
     ///
     /// ```
     /// # use rand::SeedableRng;
@@ -54,6 +61,9 @@ impl<G: Grammar> Operators<G> {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn grow(&mut self, genome: &mut Genome<G>, rng: &mut impl Rng) -> bool {
+        if self.variant == OperatorVariant::Original {
+            return self.grow_original(genome, 1, rng) == 1;
+        }
         if genome.len >= self.limits.max_len {
             return false;
         }

@@ -3,8 +3,8 @@
 
 use rand::Rng;
 
-use super::Operators;
 use super::weight::{below, chance};
+use super::{OperatorVariant, Operators};
 use crate::derive::Grammar;
 use crate::genome::{Genome, depths};
 use crate::graph::HEADER_WORDS;
@@ -18,6 +18,11 @@ impl<G: Grammar> Operators<G> {
     /// O(G log G) instead of O(G²): open links sit in a Fenwick tree of their weights.
     /// The genome is shorter than `min_len` only if no genome within the depth limit can
     /// be that long.
+    ///
+    /// With the [`Original`](super::OperatorVariant::Original) rules it is the original's
+    /// `createRandomGenome` instead: the axiom, then exactly `initial_len - 1` of the
+    /// original's grows, whatever the limits (fewer only if nothing can grow), so the
+    /// genome has exactly `initial_len` genes. O(W + G²) with a small constant.
     ///
     /// ```
     /// # use rand::SeedableRng;
@@ -58,12 +63,17 @@ impl<G: Grammar> Operators<G> {
 
     /// As [`random`](Self::random), writing into `out` and reusing its allocation.
     pub fn random_into(&mut self, initial_len: u32, out: &mut Genome<G>, rng: &mut impl Rng) {
+        if self.variant == OperatorVariant::Original {
+            out.reset_to_axiom(rng);
+            self.grow_original(out, initial_len.saturating_sub(1), rng);
+            return;
+        }
         let target = self.random_len(initial_len, rng);
         out.reset_to_axiom(rng);
         self.grow_to(out, target, rng);
     }
 
-    /// The target length of a random genome: uniform over `[L/2, 3L/2]` for
+    /// The target length of a weighted random genome: uniform over `[L/2, 3L/2]` for
     /// `L = initial_len` (integer halves), clamped into `[min_len, max_len]`.
     pub fn random_len(&self, initial_len: u32, rng: &mut impl Rng) -> u32 {
         let lo = initial_len / 2;
@@ -72,11 +82,16 @@ impl<G: Grammar> Operators<G> {
         t.clamp(self.limits.min_len.max(1), self.limits.max_len)
     }
 
-    /// Grows `genome` until it holds `target_len` genes (at most `max_len`) or nothing
-    /// can grow; returns the number of genes added. Each step has exactly the
-    /// distribution of [`grow`](Self::grow), and the same RNG gives the same genome as
-    /// calling `grow` that many times. O(G log G).
+    /// Grows `genome` until it holds `target_len` genes (at most `max_len` with the
+    /// weighted rules) or nothing can grow; returns the number of genes added. Each step
+    /// has exactly the distribution of [`grow`](Self::grow), and the same RNG gives the
+    /// same genome as calling `grow` that many times. O(G log G) weighted, O(W + G²)
+    /// original.
     pub fn grow_to(&mut self, genome: &mut Genome<G>, target_len: u32, rng: &mut impl Rng) -> u32 {
+        if self.variant == OperatorVariant::Original {
+            let steps = target_len.saturating_sub(genome.len);
+            return self.grow_original(genome, steps, rng);
+        }
         let target = target_len.min(self.limits.max_len);
         if genome.len >= target {
             return 0;

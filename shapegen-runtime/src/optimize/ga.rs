@@ -10,15 +10,32 @@ use super::run::{Method, Progress, drive, grammar_struct_traits, stream};
 use super::{Budget, Evaluator, Observer, OptimizeError, RunResult, SettingsError};
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
-use crate::ops::Operators;
+use crate::ops::{OperatorVariant, Operators};
+
+/// With the original's breeding, how many breeding events a pair of slots may take to
+/// fill with children within the length window before the GA gives up with an error
+/// (the original would loop forever).
+const ORIGINAL_BREEDS_PER_PAIR: u32 = 10_000;
 
 /// Settings of the [`Ga`]. Loads from scene files with serde; missing fields take the
 /// [`Default`] values, unknown fields are errors.
 ///
 /// The default is the good setting of the CESCG study (ALGORITHMS.md, section 4):
 /// population 200, elitism 30, initial length 20, 50 generations, mutation 30% with
-/// uniform grow / cut / alter, tournament of 10. Crossover retries
-/// [`CROSSOVER_RETRIES`](crate::ops::CROSSOVER_RETRIES) times, as the original did.
+/// uniform grow / cut / alter, tournament of 10, with the weighted operators. The
+/// `paper_*` settings are the original's configuration files, with the original's
+/// operators and breeding.
+///
+/// ```
+/// use shapegen_runtime::ops::OperatorVariant;
+/// use shapegen_runtime::optimize::GaSettings;
+///
+/// let s: GaSettings = serde_json::from_str(r#"{"operators": "original", "population": 50}"#)?;
+/// assert_eq!(s.operators, OperatorVariant::Original);
+/// assert!(!s.cross_array_index);
+/// assert_eq!(GaSettings::paper_city().operators, OperatorVariant::Original);
+/// # Ok::<(), serde_json::Error>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct GaSettings {
@@ -27,8 +44,9 @@ pub struct GaSettings {
     /// Best individuals copied unchanged into the next generation (their fitness is
     /// kept, not recomputed); less than `population`.
     pub elitism: u32,
-    /// Initial genomes are grown from the axiom to a length drawn uniformly from
-    /// `[L/2, 3L/2]` around this `L` (within the limits); at least 1.
+    /// Initial genomes are grown from the axiom: with the weighted operators to a length
+    /// drawn uniformly from `[L/2, 3L/2]` around this `L` (within the limits), with the
+    /// original's to exactly `L` genes, as the original does; at least 1.
     pub initial_length: u32,
     /// Generations after the initial one, the default generation budget.
     pub generations: u64,
@@ -43,6 +61,15 @@ pub struct GaSettings {
     pub alter_weight: f64,
     /// Size of the tournament choosing the first parent; at least 1.
     pub tournament: u32,
+    /// The rules of the operators and of the breeding around them (scene key
+    /// `operators`: `"weighted"`, the default, or `"original"`); see
+    /// [`OperatorVariant`] and [`Ga`].
+    pub operators: OperatorVariant,
+    /// Whether crossover may exchange subtrees hanging from different indices of an array
+    /// slot, which moves, say, a city lot's building to another lot (scene key
+    /// `cross_array_index`). `false`, the default: `lots[i]` meets only `lots[i]`, as
+    /// the original's one symbol per lot does.
+    pub cross_array_index: bool,
 }
 
 impl Default for GaSettings {
@@ -57,13 +84,17 @@ impl Default for GaSettings {
             cut_weight: 1.0,
             alter_weight: 1.0,
             tournament: 10,
+            operators: OperatorVariant::Weighted,
+            cross_array_index: false,
         }
     }
 }
 
 impl GaSettings {
-    /// The paper's spaceship-volume scene: population 150, elitism 30, initial length 50,
-    /// 130 generations, mutation 30% split grow / cut / alter 45 / 45 / 10.
+    /// The paper's spaceship-volume scene as the original's
+    /// `run/experiments/spaceship_volume/ga.cfg` sets it: population 150, elitism 30,
+    /// initial length 50, 130 generations, mutation (`basic_prob`) 30% split grow / cut /
+    /// alter (`permutate`) 45 / 45 / 10, tournament of 10, the original's operators.
     pub fn paper_spaceship() -> Self {
         GaSettings {
             population: 150,
@@ -75,11 +106,15 @@ impl GaSettings {
             cut_weight: 45.0,
             alter_weight: 10.0,
             tournament: 10,
+            operators: OperatorVariant::Original,
+            cross_array_index: false,
         }
     }
 
-    /// The paper's tree-sketch scene: population 200, elitism 30, initial length 250,
-    /// 1500 generations, mutation 30% split 35 / 35 / 30.
+    /// The paper's tree-sketch scene as the original's
+    /// `run/experiments/tree_sketch1/ga.cfg` sets it: population 200, elitism 30, initial
+    /// length 250, 1500 generations, mutation 30% split 35 / 35 / 30, tournament of 10,
+    /// the original's operators.
     pub fn paper_tree() -> Self {
         GaSettings {
             population: 200,
@@ -91,11 +126,15 @@ impl GaSettings {
             cut_weight: 35.0,
             alter_weight: 30.0,
             tournament: 10,
+            operators: OperatorVariant::Original,
+            cross_array_index: false,
         }
     }
 
-    /// The paper's city-skyline (whale) scene: population 100, elitism 30, initial
-    /// length 50, 100 generations, mutation 30% split 45 / 45 / 10.
+    /// The paper's city-skyline (whale) scene as the original's
+    /// `run/experiments/city_whale/ga.cfg` sets it: population 100, elitism 30, initial
+    /// length 50, 100 generations, mutation 30% split 45 / 45 / 10, tournament of 10, the
+    /// original's operators.
     pub fn paper_city() -> Self {
         GaSettings {
             population: 100,
@@ -160,6 +199,31 @@ impl GaSettings {
     pub fn budget(&self) -> Budget {
         Budget::generations(self.generations)
     }
+
+    /// Checks the settings against the genome limits: the original's breeding keeps only
+    /// children within `[min_len, max_len)`, which must not be empty.
+    pub(crate) fn check_limits(&self, limits: &Limits) -> Result<(), SettingsError> {
+        if self.operators == OperatorVariant::Original && limits.min_len.max(1) >= limits.max_len {
+            return Err(SettingsError::new(
+                "limits.max_len",
+                limits.max_len,
+                "above limits.min_len with operators = \"original\", whose GA keeps only \
+                 children shorter than max_len",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The operators these settings breed with, keeping to `limits`.
+    pub(crate) fn build_operators<G: Grammar>(
+        &self,
+        limits: Limits,
+    ) -> Result<Operators<G>, OptimizeError> {
+        self.check_limits(&limits)?;
+        Ok(Operators::new(limits)?
+            .with_variant(self.operators)
+            .with_cross_array_index(self.cross_array_index))
+    }
 }
 
 /// A checkpoint of a [`Ga`]: serialize it (e.g. with `serde_json`) and give it to
@@ -198,15 +262,40 @@ grammar_struct_traits!(GaState {
 /// `elitism` best unchanged, with their cached fitness, and fills the rest in pairs:
 /// parent 1 by k-tournament, parent 2 by roulette on shifted fitness (see below); with
 /// the mutation probability both are copied and mutated once each (grow, cut or alter
-/// by their weights; a mutation the limits forbid leaves the copy as it is), otherwise
-/// they are crossed over (if no crossover is found the children are copies of the
-/// parents). Only the new children are evaluated.
+/// by their weights), otherwise they are crossed over. Only the new children are
+/// evaluated.
+///
+/// How a pair is bred depends on [`GaSettings::operators`]:
+/// - `weighted`: the operators keep genomes within the limits (a mutation the limits
+///   forbid leaves the copy as it is), a failed crossover gives copies of the parents,
+///   and every pair of slots takes the first two children it breeds.
+/// - `original`, as the original's `createNewGeneration`: the original's operators,
+///   which ignore the limits; a child is kept only if `min_len <= len < max_len` (max
+///   excluded) and a failed crossover gives no children; breeding goes on until the
+///   generation is full. The tournament never draws the worst-ranked individual (the
+///   original draws its entrants among all but the last of the population sorted best
+///   first). Initial genomes have exactly `initial_length` genes, unfiltered.
 ///
 /// Fitness: NaN loses every tournament and has roulette weight 0; roulette weights are
-/// `f - f_min` over finite values, or uniform over the `+inf` individuals if any.
+/// `f - f_min` over finite values, or uniform over the `+inf` individuals if any. When
+/// all weights are 0 (equal fitness) the wheel is uniform; the original's then always
+/// gives the best individual.
 ///
-/// Breeding runs in parallel with rayon; every pair draws from its own stream
-/// (seed, generation, pair), so results never depend on the thread count.
+/// Breeding runs in parallel with rayon; every pair of slots draws from its own stream
+/// (seed, generation, pair), so results never depend on the thread count. With the
+/// original's breeding a pair breeds again from its stream until both its slots hold
+/// accepted children. Every child is then, as in the original, an accepted child of a
+/// breeding event drawn as the original draws one, independently of all other events;
+/// only the grouping of siblings differs: where a pair needs one more child and an event
+/// gives two acceptable ones, the second is dropped, while the original's sequential
+/// fill keeps both children of every event, and so may end a generation one individual
+/// over the population size, which never happens here. A pair that 10 000 events do not
+/// fill stops the run with a settings error (the original would loop forever).
+///
+/// Evaluations: elites keep their cached fitness and are not evaluated again, so every
+/// generation after the first costs `population - elitism` evaluations, with either
+/// operators; the original evaluates the whole population every generation, elites
+/// included, so its evaluation counts are higher by `elitism` per generation.
 ///
 /// ```
 /// use shapegen_runtime::optimize::{Budget, FnEvaluator, Ga, GaSettings, Silent};
@@ -256,14 +345,15 @@ impl<G: Grammar> std::fmt::Debug for Ga<G> {
 }
 
 impl<G: Grammar> Ga<G> {
-    /// A GA with these settings, keeping genomes within `limits`, seeded with `seed`.
+    /// A GA with these settings, keeping genomes within `limits` (the weighted operators)
+    /// or its children within `[min_len, max_len)` (the original's), seeded with `seed`.
     pub fn new(settings: GaSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {
         settings.validate()?;
         let n = settings.population as usize;
         let empty = || Genome::from_parts(Vec::new(), 0);
         Ok(Ga {
             settings,
-            ops: Operators::new(limits)?,
+            ops: settings.build_operators(limits)?,
             progress: Progress::new(seed),
             population: (0..n).map(|_| empty()).collect(),
             fitness: vec![f64::NAN; n],
@@ -347,6 +437,7 @@ impl<G: Grammar> Method<G> for Ga<G> {
             population: &self.population,
             fitness: &self.fitness,
             roulette: &self.roulette,
+            worst: *self.order.last().expect("a population of at least 2"),
         };
         let generation = self.progress.generation + 1;
         breed.children(
@@ -354,7 +445,7 @@ impl<G: Grammar> Method<G> for Ga<G> {
             self.progress.seed,
             generation,
             &mut self.next[elite..],
-        );
+        )?;
         evaluator.evaluate(&self.next[elite..], &mut self.next_fitness[elite..])?;
         self.progress.evaluations += self.step_cost();
         std::mem::swap(&mut self.population, &mut self.next);
@@ -368,7 +459,8 @@ impl<G: Grammar> Method<G> for Ga<G> {
 }
 
 /// Grows the initial population in parallel: genome `i` from stream (seed, 0, `i`), to a
-/// length around the settings' initial length.
+/// length around the settings' initial length (exactly that length with the original's
+/// operators).
 pub(crate) fn random_population<G: Grammar>(
     ops: &Operators<G>,
     settings: &GaSettings,
@@ -386,7 +478,7 @@ pub(crate) fn random_population<G: Grammar>(
 /// selected on (the GA's own fitness, or a multi-objective selection fitness) and the
 /// roulette wheel built on that fitness.
 pub(crate) struct Breed<'a, G> {
-    /// Mutation probability and weights, tournament size.
+    /// Mutation probability and weights, tournament size, operator rules.
     pub(crate) settings: &'a GaSettings,
     /// The parents to choose from.
     pub(crate) population: &'a [Genome<G>],
@@ -394,31 +486,41 @@ pub(crate) struct Breed<'a, G> {
     pub(crate) fitness: &'a [f64],
     /// The roulette wheel built on `fitness`.
     pub(crate) roulette: &'a Roulette,
+    /// The index of the worst-ranked individual, which the original's tournament never
+    /// draws.
+    pub(crate) worst: u32,
 }
 
 impl<G: Grammar> Breed<'_, G> {
     /// Breeds `children` in parallel, in pairs: pair `p` (children `2p` and `2p + 1`; the
     /// last pair may hold one) draws from stream (seed, `generation`, `p`), so the
-    /// children never depend on the thread count.
+    /// children never depend on the thread count. Fails only with the original's
+    /// breeding, when [`ORIGINAL_BREEDS_PER_PAIR`] breeding events do not fill a pair
+    /// with children within the length window.
     pub(crate) fn children(
         &self,
         ops: &Operators<G>,
         seed: u64,
         generation: u64,
         children: &mut [Genome<G>],
-    ) {
-        children.par_chunks_mut(2).enumerate().for_each_init(
-            || (ops.clone(), Genome::from_parts(Vec::new(), 0)),
+    ) -> Result<(), OptimizeError> {
+        let empty = || Genome::from_parts(Vec::new(), 0);
+        children.par_chunks_mut(2).enumerate().try_for_each_init(
+            || (ops.clone(), [empty(), empty()]),
             |(ops, spare), (pair, children)| {
                 let rng = &mut stream(seed, generation, pair as u64);
+                if self.settings.operators == OperatorVariant::Original {
+                    return self.original_pair(ops, children, spare, rng);
+                }
                 let (a, b) = match children {
                     [a, b] => (a, b),
-                    [a] => (a, &mut *spare),
+                    [a] => (a, &mut spare[0]),
                     _ => unreachable!("chunks hold one or two children"),
                 };
                 self.pair(ops, a, b, rng);
+                Ok(())
             },
-        );
+        )
     }
 
     /// Breeds two children into `a` and `b`.
@@ -442,18 +544,78 @@ impl<G: Grammar> Breed<'_, G> {
         }
     }
 
+    /// Fills `slots` (one or two) as the original's `createNewGeneration` fills the
+    /// generation: breeds a pair of children into `kids` (none when the crossover
+    /// fails), keeps each child with `min_len <= len < max_len` in the next empty slot
+    /// (swapping buffers, so nothing is allocated once warmed up), and breeds again until
+    /// the slots are full.
+    fn original_pair(
+        &self,
+        ops: &mut Operators<G>,
+        slots: &mut [Genome<G>],
+        kids: &mut [Genome<G>; 2],
+        rng: &mut impl Rng,
+    ) -> Result<(), OptimizeError> {
+        let limits = *ops.limits();
+        let fits = |g: &Genome<G>| (limits.min_len..limits.max_len).contains(&(g.len() as u32));
+        let mut filled = 0;
+        for _ in 0..ORIGINAL_BREEDS_PER_PAIR {
+            let p1 = &self.population[self.tournament(rng)];
+            let p2 = &self.population[self.roulette.spin(rng)];
+            let [c, d] = kids;
+            let bred = if rng.random::<f64>() < self.settings.mutation_probability {
+                c.clone_from(p1);
+                self.mutate(ops, c, rng);
+                d.clone_from(p2);
+                self.mutate(ops, d, rng);
+                true
+            } else {
+                ops.crossover_into(p1, p2, c, d, rng)
+            };
+            if !bred {
+                continue;
+            }
+            for kid in kids.iter_mut().filter(|kid| fits(kid)) {
+                std::mem::swap(kid, &mut slots[filled]);
+                filled += 1;
+                if filled == slots.len() {
+                    return Ok(());
+                }
+            }
+        }
+        Err(SettingsError::new(
+            "limits",
+            format!("min_len {} and max_len {}", limits.min_len, limits.max_len),
+            "a length window [min_len, max_len) that bred children fall in: 10 000 \
+             breedings did not fill one pair of slots",
+        )
+        .into())
+    }
+
     /// Best of `tournament` individuals drawn uniformly with replacement (the first drawn
-    /// wins ties).
+    /// wins ties); with the original's rules, drawn among all but the worst-ranked.
     fn tournament(&self, rng: &mut impl Rng) -> usize {
-        let n = self.population.len();
-        let mut best = rng.random_range(0..n);
+        let mut best = self.entrant(rng);
         for _ in 1..self.settings.tournament {
-            let i = rng.random_range(0..n);
+            let i = self.entrant(rng);
             if compare(self.fitness[i], self.fitness[best]).is_gt() {
                 best = i;
             }
         }
         best
+    }
+
+    /// One tournament entrant, drawn uniformly; with the original's rules, among all but
+    /// the worst-ranked individual.
+    fn entrant(&self, rng: &mut impl Rng) -> usize {
+        let n = self.population.len();
+        match self.settings.operators {
+            OperatorVariant::Weighted => rng.random_range(0..n),
+            OperatorVariant::Original => {
+                let i = rng.random_range(0..n - 1);
+                i + usize::from(i >= self.worst as usize)
+            }
+        }
     }
 
     /// One mutation, grow / cut / alter by their weights.

@@ -299,7 +299,7 @@ impl<G: Grammar> MultiGa<G> {
         let n = settings.ga.population as usize;
         let empty = || Genome::from_parts(Vec::new(), 0);
         Ok(MultiGa {
-            ops: Operators::new(limits)?,
+            ops: settings.ga.build_operators(limits)?,
             seed,
             generation: 0,
             evaluations: 0,
@@ -471,13 +471,14 @@ impl<G: Grammar> MultiGa<G> {
             population: &self.population,
             fitness: &self.fitness,
             roulette: &self.roulette,
+            worst: *self.order.last().expect("a population of at least 2"),
         };
         breed.children(
             &self.ops,
             self.seed,
             self.generation + 1,
             &mut self.next[elite..],
-        );
+        )?;
         evaluator.evaluate(&self.next[elite..], &mut self.next_values[elite * k..])?;
         self.evaluations += (self.population.len() - elite) as u64;
         std::mem::swap(&mut self.population, &mut self.next);

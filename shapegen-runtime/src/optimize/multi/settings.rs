@@ -219,6 +219,7 @@ impl MultiGaSettings {
                 cut_weight: 1.0,
                 alter_weight: 1.0,
                 tournament: 3,
+                ..GaSettings::default()
             },
             selection: Selection::default(),
             archive: 300,
