@@ -801,8 +801,9 @@ fn smc_survives_nan_fitness_and_honours_budgets() {
     assert!(serde_json::from_str::<SmcSettings>(r#"{"order": "random"}"#).is_err());
 }
 
-fn small_mcmc() -> McmcSettings {
+fn small_mcmc(variant: McmcVariant) -> McmcSettings {
     McmcSettings {
+        variant,
         chains: 16,
         iterations: 30,
         initial_length: 30,
@@ -810,27 +811,37 @@ fn small_mcmc() -> McmcSettings {
     }
 }
 
+const VARIANTS: [McmcVariant; 2] = [McmcVariant::Original, McmcVariant::Tempered];
+
 #[test]
 fn mcmc_improves_on_its_initial_chains() {
     // Chains move slowly: the test asks the chains' mean to rise well above where it
     // started.
-    for seed in [1, 2, 3] {
-        let s = McmcSettings {
-            iterations: 60,
-            ..small_mcmc()
-        };
-        let r = Mcmc::<City>::new(s, city::PAPER_LIMITS, seed)
-            .unwrap()
-            .run(&mut Skyline::new(), &s.budget(), &mut Silent)
-            .unwrap();
-        let (first, last) = (r.history[0], r.history[r.history.len() - 1]);
-        assert!(last.mean > first.mean + 1.0, "{seed}: {first:?} {last:?}");
-        let r = Mcmc::<Spaceship>::new(s, spaceship::PAPER_LIMITS, seed)
-            .unwrap()
-            .run(&mut BoxTarget::new(), &s.budget(), &mut Silent)
-            .unwrap();
-        let (first, last) = (r.history[0], r.history[r.history.len() - 1]);
-        assert!(last.mean > first.mean, "{seed}: {first:?} {last:?}");
+    for variant in VARIANTS {
+        for seed in [1, 2, 3] {
+            let s = McmcSettings {
+                iterations: 60,
+                ..small_mcmc(variant)
+            };
+            let r = Mcmc::<City>::new(s, city::PAPER_LIMITS, seed)
+                .unwrap()
+                .run(&mut Skyline::new(), &s.budget(), &mut Silent)
+                .unwrap();
+            let (first, last) = (r.history[0], r.history[r.history.len() - 1]);
+            assert!(
+                last.mean > first.mean + 1.0,
+                "{variant:?} {seed}: {first:?} {last:?}"
+            );
+            let r = Mcmc::<Spaceship>::new(s, spaceship::PAPER_LIMITS, seed)
+                .unwrap()
+                .run(&mut BoxTarget::new(), &s.budget(), &mut Silent)
+                .unwrap();
+            let (first, last) = (r.history[0], r.history[r.history.len() - 1]);
+            assert!(
+                last.mean > first.mean,
+                "{variant:?} {seed}: {first:?} {last:?}"
+            );
+        }
     }
 }
 
@@ -838,7 +849,7 @@ fn mcmc_improves_on_its_initial_chains() {
 fn mcmc_temperatures_follow_the_acceptance_targets_and_anneal() {
     let s = McmcSettings {
         anneal_interval: 2,
-        ..small_mcmc()
+        ..small_mcmc(McmcVariant::Tempered)
     };
     let mut mcmc = Mcmc::<City>::new(s, city::PAPER_LIMITS, 1).unwrap();
     mcmc.run(&mut Skyline::new(), &Budget::generations(0), &mut Silent)
@@ -855,66 +866,97 @@ fn mcmc_temperatures_follow_the_acceptance_targets_and_anneal() {
 
 #[test]
 fn mcmc_same_seed_same_result_at_any_thread_count() {
-    let run = || {
-        Mcmc::<City>::new(small_mcmc(), city::PAPER_LIMITS, 5)
-            .unwrap()
-            .run(&mut Skyline::new(), &Budget::generations(10), &mut Silent)
-            .unwrap()
-    };
-    same_result(&threads(1, run), &threads(2, run));
+    for variant in VARIANTS {
+        let run = || {
+            Mcmc::<City>::new(small_mcmc(variant), city::PAPER_LIMITS, 5)
+                .unwrap()
+                .run(&mut Skyline::new(), &Budget::generations(10), &mut Silent)
+                .unwrap()
+        };
+        same_result(&threads(1, run), &threads(2, run));
+        let run = || {
+            Mcmc::<Spaceship>::new(small_mcmc(variant), spaceship::PAPER_LIMITS, 5)
+                .unwrap()
+                .run(&mut BoxTarget::new(), &Budget::generations(10), &mut Silent)
+                .unwrap()
+        };
+        same_result(&threads(1, run), &threads(2, run));
+    }
 }
 
 #[test]
 fn mcmc_resume_equals_uninterrupted() {
-    let s = small_mcmc();
-    let full = Mcmc::<City>::new(s, city::PAPER_LIMITS, 4)
-        .unwrap()
-        .run(&mut Skyline::new(), &Budget::generations(12), &mut Silent)
-        .unwrap();
-    let mut first = Mcmc::<City>::new(s, city::PAPER_LIMITS, 4).unwrap();
-    first
-        .run(&mut Skyline::new(), &Budget::generations(5), &mut Silent)
-        .unwrap();
-    let json = serde_json::to_string(&first.checkpoint()).unwrap();
-    let state: McmcState<City> = serde_json::from_str(&json).unwrap();
-    let resumed = Mcmc::resume(state)
-        .unwrap()
-        .run(&mut Skyline::new(), &Budget::generations(12), &mut Silent)
-        .unwrap();
-    same_result(&full, &resumed);
+    for variant in VARIANTS {
+        let s = small_mcmc(variant);
+        let full = Mcmc::<Spaceship>::new(s, spaceship::PAPER_LIMITS, 4)
+            .unwrap()
+            .run(&mut BoxTarget::new(), &Budget::generations(12), &mut Silent)
+            .unwrap();
+        let mut first = Mcmc::<Spaceship>::new(s, spaceship::PAPER_LIMITS, 4).unwrap();
+        first
+            .run(&mut BoxTarget::new(), &Budget::generations(5), &mut Silent)
+            .unwrap();
+        let json = serde_json::to_string(&first.checkpoint()).unwrap();
+        let state: McmcState<Spaceship> = serde_json::from_str(&json).unwrap();
+        let mut resumed = Mcmc::resume(state).unwrap();
+        let resumed_result = resumed
+            .run(&mut BoxTarget::new(), &Budget::generations(12), &mut Silent)
+            .unwrap();
+        same_result(&full, &resumed_result);
+        let mut again = Mcmc::<Spaceship>::new(s, spaceship::PAPER_LIMITS, 4).unwrap();
+        again
+            .run(&mut BoxTarget::new(), &Budget::generations(12), &mut Silent)
+            .unwrap();
+        assert_eq!(again.checkpoint().chains, resumed.checkpoint().chains);
+        assert_eq!(again.temperatures(), resumed.temperatures(), "{variant:?}");
+    }
 }
 
 #[test]
 fn mcmc_survives_nan_fitness_and_honours_budgets() {
-    let s = small_mcmc();
-    let r = Mcmc::<City>::new(s, city::PAPER_LIMITS, 2)
-        .unwrap()
-        .run(&mut Poisoned(Skyline::new(), 0), &s.budget(), &mut Silent)
-        .unwrap();
-    assert!(r.best_fitness.is_finite() && r.best_fitness > initial_best(&r));
-    let r = Mcmc::<City>::new(s, city::PAPER_LIMITS, 2)
-        .unwrap()
-        .run(
-            &mut FnEvaluator(|_: &Genome<City>| f64::NAN),
-            &Budget::generations(3),
-            &mut Silent,
-        )
-        .unwrap();
-    assert!(r.best_fitness.is_nan());
-    // Each iteration may use 16 + 16 delayed-rejection evaluations.
-    let mut eval = Skyline::new();
-    let r = Mcmc::<City>::new(s, city::PAPER_LIMITS, 2)
-        .unwrap()
-        .run(&mut eval, &Budget::evaluations(200), &mut Silent)
-        .unwrap();
-    assert_eq!(r.stopped, StopReason::Evaluations);
-    assert!(
-        r.evaluations <= 200 && r.evaluations + 32 > 200,
-        "{}",
-        r.evaluations
-    );
-    assert_eq!(eval.genomes, r.evaluations);
-    let d = McmcSettings::default();
+    for variant in VARIANTS {
+        let s = small_mcmc(variant);
+        let r = Mcmc::<City>::new(s, city::PAPER_LIMITS, 2)
+            .unwrap()
+            .run(&mut Poisoned(Skyline::new(), 0), &s.budget(), &mut Silent)
+            .unwrap();
+        assert!(
+            r.best_fitness.is_finite() && r.best_fitness > initial_best(&r),
+            "{variant:?}"
+        );
+        assert!(r.history.iter().all(|h| h.mean.is_finite()), "{variant:?}");
+        let r = Mcmc::<City>::new(s, city::PAPER_LIMITS, 2)
+            .unwrap()
+            .run(
+                &mut FnEvaluator(|_: &Genome<City>| f64::NAN),
+                &Budget::generations(3),
+                &mut Silent,
+            )
+            .unwrap();
+        assert!(r.best_fitness.is_nan());
+        // Each iteration uses 16 evaluations, and the tempered variant up to 16 more for
+        // delayed rejection.
+        let step = match variant {
+            McmcVariant::Original => 16,
+            McmcVariant::Tempered => 32,
+        };
+        let mut eval = Skyline::new();
+        let r = Mcmc::<City>::new(s, city::PAPER_LIMITS, 2)
+            .unwrap()
+            .run(&mut eval, &Budget::evaluations(200), &mut Silent)
+            .unwrap();
+        assert_eq!(r.stopped, StopReason::Evaluations);
+        assert!(
+            r.evaluations <= 200 && r.evaluations + step > 200,
+            "{}",
+            r.evaluations
+        );
+        assert_eq!(eval.genomes, r.evaluations);
+    }
+    let d = McmcSettings {
+        variant: McmcVariant::Tempered,
+        ..McmcSettings::default()
+    };
     for (bad, field) in [
         (McmcSettings { chains: 0, ..d }, "chains"),
         (

@@ -8,7 +8,7 @@ use serde::de::DeserializeOwned;
 use shapegen_runtime::ops::OperatorVariant;
 use shapegen_runtime::optimize::multi::MultiGaSettings;
 use shapegen_runtime::optimize::{
-    Budget, GaSettings, McmcSettings, Order, SettingsError, SmcSettings,
+    Budget, GaSettings, McmcSettings, McmcVariant, Order, SettingsError, SmcSettings,
 };
 
 /// The search methods.
@@ -64,8 +64,9 @@ pub enum MethodSettings {
 ///                        # grow_weight, cut_weight, alter_weight, tournament,
 ///                        # operators ("original" or "weighted"), cross_array_index
 ///                        # (true or false); for SMC and SOSMC particles, steps,
-///                        # max_grows_per_step; for RJMCMC chains, iterations,
-///                        # initial_length, jump_probability, ...
+///                        # max_grows_per_step; for RJMCMC variant ("original" or
+///                        # "tempered"), chains, iterations, initial_length,
+///                        # jump_probability, ...
 /// ```
 ///
 /// The paper's GA settings use the original's operators and breeding
@@ -228,6 +229,7 @@ pub(super) fn resolve(
             MethodSettings::Smc(merged(base, table, SmcSettings::validate)?)
         }
         MethodSettings::Mcmc(base) => {
+            check_mcmc_variant(&table)?;
             rename(&mut table, "iterations");
             MethodSettings::Mcmc(merged(base, table, McmcSettings::validate)?)
         }
@@ -263,6 +265,23 @@ fn check_ga_keys(table: &toml::Table) -> Result<(), (String, String)> {
         Some(other) => Err((
             "optimizer.cross_array_index".into(),
             format!("{other} must be true or false"),
+        )),
+    }
+}
+
+/// Checks RJMCMC's `variant`, whose serde error would not name it: it must name a
+/// [`McmcVariant`]; errors are `(key, reason)`.
+fn check_mcmc_variant(table: &toml::Table) -> Result<(), (String, String)> {
+    let names = McmcVariant::ALL.map(McmcVariant::name);
+    match table.get("variant") {
+        None => Ok(()),
+        Some(toml::Value::String(v)) if names.contains(&v.as_str()) => Ok(()),
+        Some(other) => Err((
+            "optimizer.variant".into(),
+            format!(
+                "{other} is not an RJMCMC variant; the variants are \"{}\"",
+                names.join("\" and \"")
+            ),
         )),
     }
 }
@@ -310,4 +329,63 @@ pub(super) fn apply_overrides(root: &mut toml::Table, sets: &[String]) -> Result
         table.insert(keys[keys.len() - 1].to_owned(), value);
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod mcmc_tests {
+    use super::*;
+
+    fn mcmc(generator: Published, text: &str) -> Result<McmcSettings, (String, String)> {
+        let table: toml::Table = toml::from_str(text).unwrap();
+        match resolve(generator, table)?.settings {
+            MethodSettings::Mcmc(s) => Ok(s),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn rjmcmc_takes_its_variant_over_the_originals_settings() {
+        let m = "method = \"rjmcmc\"\n";
+        for (generator, paper) in [
+            (Published::Spaceship, McmcSettings::paper_spaceship()),
+            (Published::Tree, McmcSettings::paper_tree()),
+            (Published::City, McmcSettings::paper_city()),
+        ] {
+            assert_eq!(mcmc(generator, m).unwrap(), paper);
+            assert_eq!(paper.variant, McmcVariant::Original);
+            let tempered = mcmc(generator, &format!("{m}variant = \"tempered\"\n")).unwrap();
+            let want = McmcSettings {
+                variant: McmcVariant::Tempered,
+                ..paper
+            };
+            assert_eq!(tempered, want);
+            let original = mcmc(generator, &format!("{m}variant = \"original\"\n")).unwrap();
+            assert_eq!(original, paper);
+        }
+        for bad in ["\"talton\"", "1"] {
+            let text = format!("{m}variant = {bad}\n");
+            let (key, reason) = mcmc(Published::Tree, &text).unwrap_err();
+            assert_eq!(key, "optimizer.variant");
+            assert!(reason.contains("\"original\" and \"tempered\""), "{reason}");
+        }
+        // The tempered variant's own fields are checked when it runs.
+        let odd = format!("{m}hot_acceptance = 1.0\n");
+        assert!(mcmc(Published::Spaceship, &odd).is_ok());
+        let text = format!("{odd}variant = \"tempered\"\n");
+        let (key, _) = mcmc(Published::Spaceship, &text).unwrap_err();
+        assert_eq!(key, "optimizer.hot_acceptance");
+    }
+
+    #[test]
+    fn set_overrides_reach_the_variant() {
+        let text = "[optimizer]\nmethod = \"rjmcmc\"\n";
+        let mut root: toml::Table = toml::from_str(text).unwrap();
+        apply_overrides(&mut root, &["optimizer.variant=tempered".to_owned()]).unwrap();
+        let table = root["optimizer"].as_table().unwrap().clone();
+        let settings = resolve(Published::Spaceship, table).unwrap().settings;
+        let MethodSettings::Mcmc(s) = settings else {
+            panic!("{settings:?}");
+        };
+        assert_eq!(s.variant, McmcVariant::Tempered);
+    }
 }

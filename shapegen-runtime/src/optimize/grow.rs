@@ -112,27 +112,78 @@ pub(crate) fn sample_subtree<G: Grammar>(
 
 /// Fills `links` with every link (gene position, link), empty or not, that a jump may
 /// redraw: links of genes above the maximum depth that are expressed or have a non-zero
-/// generator probability.
+/// generator probability, except those whose redraw must give the genome back unchanged
+/// (see [`regrows_identically`]): such a jump would only cost an evaluation. `stack` is
+/// scratch.
 pub(crate) fn jump_links<G: Grammar>(
     genome: &Genome<G>,
     limits: &Limits,
     depth: &mut Vec<u32>,
     links: &mut Vec<(u32, u32)>,
+    stack: &mut Vec<(u32, u32)>,
 ) {
     links.clear();
     let words = genome.words();
     depths::<G>(words, depth);
     for gene in genome.genes() {
         let pos = gene.pos();
-        if depth[pos as usize] >= limits.max_depth {
+        let d = depth[pos as usize];
+        if d >= limits.max_depth {
             continue;
         }
         for link in 0..node_of::<G>(gene.kind()).links {
-            if words[(pos + HEADER_WORDS + link) as usize] != 0
-                || link_facts::<G>(gene.kind(), link).0 > 0.0
+            let child = words[(pos + HEADER_WORDS + link) as usize];
+            let p = link_facts::<G>(gene.kind(), link).0;
+            if child == 0 {
+                if p > 0.0 {
+                    links.push((pos, link));
+                }
+            } else if p < 1.0 || !regrows_identically::<G>(words, pos + child, d + 1, limits, stack)
             {
                 links.push((pos, link));
             }
         }
     }
+}
+
+/// Whether a jump's redraw of the subtree at `root` (depth `root_depth`), the child of a
+/// probability-1 link, must give it back unchanged: the link is expressed again, the
+/// root keeps its parameter values, and [`sample_subtree`] redraws the rest. That is so
+/// when every gene below the root has no parameters and every link of the subtree's
+/// genes above the maximum depth is expressed exactly when its probability is 1, the
+/// others having probability 0 (genes at the maximum depth have no children). The
+/// redraw adds as many genes as the cut removed, so the maximum length never truncates
+/// it. `stack` is scratch. O(size of the subtree), stopping at the first difference.
+fn regrows_identically<G: Grammar>(
+    words: &[u32],
+    root: u32,
+    root_depth: u32,
+    limits: &Limits,
+    stack: &mut Vec<(u32, u32)>,
+) -> bool {
+    stack.clear();
+    stack.push((root, root_depth));
+    while let Some((pos, d)) = stack.pop() {
+        let kind = words[pos as usize];
+        let node = node_of::<G>(kind);
+        if pos != root && node.param_words > 0 {
+            return false;
+        }
+        for link in 0..node.links {
+            let child = words[(pos + HEADER_WORDS + link) as usize];
+            if d >= limits.max_depth {
+                if child != 0 {
+                    return false;
+                }
+                continue;
+            }
+            let p = link_facts::<G>(kind, link).0;
+            if p == 1.0 && child != 0 {
+                stack.push((pos + child, d + 1));
+            } else if p != 0.0 || child != 0 {
+                return false;
+            }
+        }
+    }
+    true
 }

@@ -35,7 +35,7 @@ mod smc;
 pub use error::{OptimizeError, SettingsError};
 pub use evaluate::{EvaluateError, Evaluator, FnEvaluator};
 pub use ga::{Ga, GaSettings, GaState};
-pub use mcmc::{Mcmc, McmcSettings, McmcState};
+pub use mcmc::{Mcmc, McmcSettings, McmcState, McmcVariant};
 pub use run::{
     Budget, Control, HistoryEntry, Observer, Progress, RunResult, Silent, Snapshot, StopReason,
 };

@@ -1,0 +1,544 @@
+//! Reversible-jump MCMC over derivation trees (ALGORITHMS.md, section 5), in two
+//! variants: the original implementation's Metropolis-Hastings ([`McmcVariant::Original`],
+//! in `original.rs`) and this project's tempered RJMCMC after Talton et al. 2011
+//! ([`McmcVariant::Tempered`], in `tempered.rs`). Both share the chains, the
+//! checkpoints and the run loop here.
+
+mod original;
+mod tempered;
+
+use rand_chacha::ChaCha8Rng;
+use serde::{Deserialize, Serialize};
+
+use super::error::check_range;
+use super::fitness::bits_vec;
+use super::run::{Method, Progress, drive, grammar_struct_traits, stream};
+use super::{Budget, Evaluator, Observer, OptimizeError, RunResult, SettingsError};
+use crate::derive::Grammar;
+use crate::genome::{Genome, Limits};
+use crate::ops::Operators;
+
+/// Which RJMCMC an [`Mcmc`] runs.
+///
+/// In scene files and JSON: `"original"` or `"tempered"`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum McmcVariant {
+    /// The original implementation's Metropolis-Hastings (`MetropolisHastings.h` with
+    /// the jump and diffusion moves of `MHOperators.cpp`), reproduced with its oddities.
+    ///
+    /// - Chain `i` (from 0) starts from a random genome of exactly
+    ///   [`initial_length`](McmcSettings::initial_length) genes (the axiom, then
+    ///   `initial_length - 1` uniform grows, as the original's `createRandomGenome`), with
+    ///   the exponent `T_i = 1 / (i + 1)^1.03`, which the original calls the chain's
+    ///   temperature: it multiplies log densities, so chain 0 is the coldest. Its log
+    ///   prior starts at 1.
+    /// - Each iteration every chain proposes a *jump* (with
+    ///   [`jump_probability`](McmcSettings::jump_probability)) or a *diffusion* on one gene
+    ///   picked by the original's `selectSemiRandomGene`: a level drawn by its
+    ///   `getRandomValue(1, max_level)`, then a gene of that level uniformly.
+    ///   - jump: delete the gene's children, then add random genes below it
+    ///     (`addRandomSymbols`); the log prior change `dp` is the difference of
+    ///     `getSelectionLogProb(level)` after and before;
+    ///   - diffusion: redraw all parameters of the gene; `dp = 0`.
+    /// - The proposal is accepted when `exp(T * (dp + ln f' - ln f)) >= U[0, 1)`, after
+    ///   shifting both fitness values by `0.01 - min(f, f')` when either is `<= 0`.
+    /// - After every move, accepted or not, the chain's exponent is multiplied by 1.1.
+    /// - Then one tempering swap is tried between two chains drawn at random; the chains
+    ///   exchange genomes (with their fitness and log priors), each position keeping its
+    ///   exponent, with the probability as the original codes it (see below).
+    ///
+    /// As the original, this works in `f32` (fitness values are converted), and it
+    /// ignores the genome [`Limits`]: genomes may grow past `max_len` and `max_depth`
+    /// and shrink below `min_len` (jumps stop adding genes once the tree reaches level
+    /// 25, the original's only bound; [`DEPTH_CAP`](crate::genome::DEPTH_CAP) is kept).
+    ///
+    /// Oddities of the original, reproduced:
+    /// - its integer draw `getRandomValue(min, max)` truncates `min + (max - min) * U`,
+    ///   `U` in `[0, 1)`, so it never returns `max` (unless `min == max`). Hence moves
+    ///   pick genes of levels 1 to `max_level - 1` only: never the root (level 0) nor the
+    ///   deepest level, unless that is level 1 (or the tree is the root alone); and
+    ///   wherever the original draws
+    ///   `getRandomValue(0, n - 1)` among `n >= 2` candidates (the gene to grow from, the
+    ///   child to add, in grows and jumps alike) the last candidate is never taken: the
+    ///   newest gene that can still grow, the last free child link in the node's order;
+    /// - child types are drawn uniformly among the free links, ignoring the generator's
+    ///   probabilities (the original's own "TODO: pay attention to percentage values");
+    /// - a jump's `deleteChildGenes` deletes the gene's children while iterating over the
+    ///   list it shrinks, so only every other child goes (the first, third, ... in the
+    ///   order they were added); then `addRandomSymbols` adds genes below the gene, each
+    ///   below a gene of its subtree that can still grow, drawn from the subtree in
+    ///   breadth-first order, until a draw `U < 0.02` (at least one gene, 50 on average)
+    ///   or until the whole tree reaches level 25;
+    /// - `getSelectionLogProb(level)` is `ln(level / max_level) - ln(n_level)`, with
+    ///   `max_level` never lowered by a jump's deletions; the log prior stored with a
+    ///   diffusion's proposal is its selection log probability minus the chain's stored
+    ///   log prior (the original's diffusion leaves the prior out of its acceptance);
+    /// - the swap ("TODO: i don't think this works properly at all" in the original)
+    ///   draws two chain indices with `getRandomValue(0, chains)`, which lies in
+    ///   `[0, chains)`, redraws the first once if they are equal and gives up if they
+    ///   still are; it swaps when `(p12 p21) / (p11 p22) >= U`, with
+    ///   `pab = exp(T_a (ln f_b + prior_b))` on the shifted fitness and the stored log
+    ///   priors, in `f32`, where infinities make it NaN (no swap) once the exponents
+    ///   have grown;
+    /// - the exponents overflow to infinity after about 930 iterations (the hotter
+    ///   chains up to 50 later); from then on a move that keeps the fitness is rejected
+    ///   (`inf * 0` is NaN), as in the original.
+    ///
+    /// Beyond the original: NaN fitness is never accepted, and a chain at NaN (or `-inf`,
+    /// where the original's shift gives NaN as well) accepts any better proposal
+    /// instead of being stuck forever. The original's `getRandomValue(1, max_level)` on a
+    /// tree of the root alone lands on level 1 when `U` is exactly 0, a level with no
+    /// gene (its code then reads past an empty list); here the root is taken.
+    Original,
+    /// This project's RJMCMC after Talton et al. 2011 (Metropolis procedural modeling)
+    /// with parallel tempering on a calibrated temperature ladder, annealing and delayed
+    /// rejection; it keeps genomes within their [`Limits`].
+    ///
+    /// Each chain samples the density `prior(x) * exp(f(x) / T)`, the prior being the
+    /// grammar's own distribution, so that moves drawing from the prior need only the
+    /// fitness in their acceptance:
+    /// - *diffusion*: alter one gene (resample its parameters from their distributions);
+    ///   accepted with `min(1, exp((f' - f) / T))`;
+    /// - *jump*: pick a link uniformly among the links a jump may redraw (non-terminal
+    ///   selection: only genes above the maximum depth; links that are expressed or have
+    ///   a non-zero probability, except those whose redraw must give the same subtree
+    ///   back), cut the subtree below it and redraw it from the grammar, keeping the old
+    ///   subtree root's parameter values if the link is expressed again (the random
+    ///   values reused); accepted with `min(1, exp((f' - f) / T) * n / n')`, `n` and `n'`
+    ///   the numbers of selectable links before and after (the proposal ratio of uniform
+    ///   link selection). Limits truncate redrawn subtrees, which the ratio ignores. A
+    ///   jump whose cut would go below the minimum length becomes a diffusion;
+    /// - *delayed rejection*: a rejected jump gets
+    ///   [`delayed_rejection`](McmcSettings::delayed_rejection) more chances, each
+    ///   altering the proposal once more and testing it again with the same acceptance
+    ///   (a simplified scheme, without the second-stage correction of Tierney and Mira);
+    /// - *parallel tempering*: after every iteration, neighbouring temperatures (coldest
+    ///   first) swap states with probability `min(1, exp((f_j - f_i) (1/T_i - 1/T_j)))`.
+    ///   Temperatures form a geometric ladder from `T_cold` to `T_hot`, set from the
+    ///   initial chains' fitness standard deviation `s` (1 when it is 0 or not finite) so
+    ///   that a move losing `s` is accepted with
+    ///   [`cold_acceptance`](McmcSettings::cold_acceptance) by the coldest chain and
+    ///   [`hot_acceptance`](McmcSettings::hot_acceptance) by the hottest:
+    ///   `T = -s / ln(acceptance)`;
+    /// - *annealing*: every [`anneal_interval`](McmcSettings::anneal_interval) iterations
+    ///   all temperatures are divided by [`anneal_factor`](McmcSettings::anneal_factor).
+    ///
+    /// Chains start from random genomes as the GA's initial population. NaN fitness is
+    /// never accepted (a chain at NaN accepts any non-NaN proposal) and never swapped;
+    /// `+inf` to `+inf` counts as no change.
+    Tempered,
+}
+
+impl McmcVariant {
+    /// Every variant.
+    pub const ALL: [McmcVariant; 2] = [McmcVariant::Original, McmcVariant::Tempered];
+
+    /// Its name in scene files and settings.
+    pub const fn name(self) -> &'static str {
+        match self {
+            McmcVariant::Original => "original",
+            McmcVariant::Tempered => "tempered",
+        }
+    }
+}
+
+/// Settings of [`Mcmc`]. Loads from scene files with serde; missing fields take the
+/// [`Default`] values (the paper's spaceship scene, [`McmcVariant::Original`]), unknown
+/// fields are errors.
+///
+/// The last five fields are read by the [tempered](McmcVariant::Tempered) variant only;
+/// the [original](McmcVariant::Original) one has its constants built in (exponents
+/// `1/(i+1)^1.03`, annealing 1.1 after every move, no delayed rejection).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct McmcSettings {
+    /// Which RJMCMC runs.
+    pub variant: McmcVariant,
+    /// Number of chains; at least 1.
+    pub chains: u32,
+    /// Iterations (one move per chain each), the default generation budget.
+    pub iterations: u64,
+    /// Length of the chains' random initial genomes; at least 1. The original variant
+    /// grows exactly this many genes (fewer only if the grammar's trees cannot be that
+    /// large); the tempered one draws a target length around it, as the GA's initial
+    /// population.
+    pub initial_length: u32,
+    /// Chance that a move is a jump rather than a diffusion; in `[0, 1]`.
+    pub jump_probability: f64,
+    /// Tempered variant only: extra alter steps tried on a rejected jump before giving it
+    /// up; at most 16.
+    pub delayed_rejection: u32,
+    /// Tempered variant only: every `anneal_interval` iterations all temperatures are
+    /// divided by this; at least 1 (1: no annealing), finite.
+    pub anneal_factor: f64,
+    /// Tempered variant only: iterations between annealing steps; at least 1.
+    pub anneal_interval: u64,
+    /// Tempered variant only: acceptance chance, in the hottest chain, of a move losing
+    /// one initial standard deviation of fitness; in `(0, 1)`.
+    pub hot_acceptance: f64,
+    /// Tempered variant only: acceptance chance of the same move in the coldest chain;
+    /// in `(0, hot_acceptance)`.
+    pub cold_acceptance: f64,
+}
+
+impl Default for McmcSettings {
+    fn default() -> Self {
+        McmcSettings::paper_spaceship()
+    }
+}
+
+impl McmcSettings {
+    /// The original's settings for the paper's spaceship scene
+    /// (`spaceship_volume/mh.cfg`): the original variant, 70 chains, 250 iterations,
+    /// initial length 50, jump and diffusion 50 / 50. The tempered variant's fields hold
+    /// its own defaults: delayed rejection 1, annealing by 1.1 every 10 iterations,
+    /// acceptance 70% hot and 1% cold.
+    pub fn paper_spaceship() -> Self {
+        McmcSettings {
+            variant: McmcVariant::Original,
+            chains: 70,
+            iterations: 250,
+            initial_length: 50,
+            jump_probability: 0.5,
+            delayed_rejection: 1,
+            anneal_factor: 1.1,
+            anneal_interval: 10,
+            hot_acceptance: 0.7,
+            cold_acceptance: 0.01,
+        }
+    }
+
+    /// The original's settings for the paper's tree-sketch scene
+    /// (`tree_sketch1/mh.cfg`): 100 chains, 3000 iterations, initial length 150; the
+    /// rest as [`paper_spaceship`](Self::paper_spaceship).
+    pub fn paper_tree() -> Self {
+        McmcSettings {
+            chains: 100,
+            iterations: 3000,
+            initial_length: 150,
+            ..McmcSettings::paper_spaceship()
+        }
+    }
+
+    /// The original's settings for the paper's city-whale scene (`city_whale/mh.cfg`):
+    /// 50 chains, 200 iterations, initial length 50; the rest as
+    /// [`paper_spaceship`](Self::paper_spaceship).
+    pub fn paper_city() -> Self {
+        McmcSettings {
+            chains: 50,
+            iterations: 200,
+            ..McmcSettings::paper_spaceship()
+        }
+    }
+
+    /// Checks every field the variant reads; the error names the first one out of
+    /// range.
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        if self.chains == 0 {
+            return Err(SettingsError::new("chains", 0, "at least 1"));
+        }
+        if self.initial_length == 0 {
+            return Err(SettingsError::new("initial_length", 0, "at least 1"));
+        }
+        check_range(
+            "jump_probability",
+            self.jump_probability,
+            0.0,
+            1.0,
+            "between 0 and 1",
+        )?;
+        if self.variant == McmcVariant::Tempered {
+            self.validate_tempered()?;
+        }
+        Ok(())
+    }
+
+    /// Checks the fields only the tempered variant reads.
+    fn validate_tempered(&self) -> Result<(), SettingsError> {
+        if self.delayed_rejection > 16 {
+            return Err(SettingsError::new(
+                "delayed_rejection",
+                self.delayed_rejection,
+                "at most 16",
+            ));
+        }
+        check_range(
+            "anneal_factor",
+            self.anneal_factor,
+            1.0,
+            f64::MAX,
+            "at least 1 and finite",
+        )?;
+        if self.anneal_interval == 0 {
+            return Err(SettingsError::new("anneal_interval", 0, "at least 1"));
+        }
+        let open = "strictly between 0 and 1";
+        if !(self.hot_acceptance > 0.0 && self.hot_acceptance < 1.0) {
+            return Err(SettingsError::new(
+                "hot_acceptance",
+                self.hot_acceptance,
+                open,
+            ));
+        }
+        if !(self.cold_acceptance > 0.0 && self.cold_acceptance < self.hot_acceptance) {
+            return Err(SettingsError::new(
+                "cold_acceptance",
+                self.cold_acceptance,
+                "above 0 and below hot_acceptance",
+            ));
+        }
+        Ok(())
+    }
+
+    /// A budget of [`iterations`](Self::iterations) generations.
+    pub fn budget(&self) -> Budget {
+        Budget::generations(self.iterations)
+    }
+}
+
+/// A checkpoint of an [`Mcmc`], resumed by [`Mcmc::resume`].
+#[derive(Serialize, Deserialize)]
+#[serde(
+    deny_unknown_fields,
+    bound(serialize = "G: Grammar", deserialize = "G: Grammar")
+)]
+pub struct McmcState<G> {
+    /// The settings.
+    pub settings: McmcSettings,
+    /// The genome limits.
+    pub limits: Limits,
+    /// Generation, evaluations, best so far, history.
+    pub progress: Progress<G>,
+    /// The chains' current states, by position.
+    pub chains: Vec<Genome<G>>,
+    /// Their fitness.
+    #[serde(with = "bits_vec")]
+    pub fitness: Vec<f64>,
+    /// Each position's temperature: see [`Mcmc::temperatures`].
+    #[serde(with = "bits_vec")]
+    pub temperatures: Vec<f64>,
+    /// Original variant: each chain's stored log prior, read by its tempering swaps
+    /// (`f32` values); empty for the tempered variant.
+    #[serde(default, with = "bits_vec")]
+    pub log_priors: Vec<f64>,
+}
+
+grammar_struct_traits!(McmcState {
+    settings,
+    limits,
+    progress,
+    chains,
+    fitness,
+    temperatures,
+    log_priors
+});
+
+/// Reversible-jump MCMC over derivation trees, in the [`McmcVariant`] its settings
+/// name.
+///
+/// Every chain draws from the stream (seed, iteration, chain), tempering swaps from
+/// (seed, iteration, 2^31), initial genomes from (seed, 0, chain): results never depend
+/// on the thread count. An iteration costs one evaluation per chain, plus, in the
+/// tempered variant, one per delayed-rejection try.
+///
+/// ```
+/// use shapegen_runtime::optimize::{
+///     Budget, FnEvaluator, Mcmc, McmcSettings, McmcVariant, Silent,
+/// };
+/// use shapegen_runtime::prelude::*;
+///
+/// generator! {
+///     /// A chain of blocks.
+///     pub Chain {
+///         axiom Seg;
+///         node Seg {
+///             children { next: Seg = 0.5 }
+///             derive(s) {
+///                 s.emit(CUBE);
+///                 if let Some(next) = next { s.translate(vec3(0.0, 1.0, 0.0)).derive(next); }
+///             }
+///         }
+///     }
+/// }
+///
+/// let mut eval = FnEvaluator(|g: &Genome<Chain>| -(g.len() as f64 - 8.0).abs());
+/// for variant in [McmcVariant::Original, McmcVariant::Tempered] {
+///     let settings =
+///         McmcSettings { variant, chains: 8, initial_length: 2, ..McmcSettings::paper_city() };
+///     let mut mcmc = Mcmc::<Chain>::new(settings, Limits::new(1, 30, 30)?, 3)?;
+///     let result = mcmc.run(&mut eval, &Budget::generations(60), &mut Silent)?;
+///     assert_eq!(result.best.len(), 8);
+/// }
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub struct Mcmc<G> {
+    settings: McmcSettings,
+    limits: Limits,
+    ops: Operators<G>,
+    progress: Progress<G>,
+    chains: Vec<Genome<G>>,
+    fitness: Vec<f64>,
+    temperatures: Vec<f64>,
+    /// Original variant: the chains' stored log priors.
+    log_priors: Vec<f64>,
+    proposals: Vec<Genome<G>>,
+    proposal_fitness: Vec<f64>,
+    rngs: Vec<ChaCha8Rng>,
+    /// Tempered variant: what each chain proposed this iteration.
+    moves: Vec<tempered::Move>,
+    /// Original variant: what each chain proposed this iteration.
+    original_moves: Vec<original::Move>,
+    /// Tempered variant: chains whose jump awaits another delayed-rejection try.
+    retry: Vec<u32>,
+    /// Tempered variant: copies of their proposals, evaluated together.
+    retry_genomes: Vec<Genome<G>>,
+    /// Tempered variant: their fitness.
+    retry_fitness: Vec<f64>,
+}
+
+impl<G: Grammar> std::fmt::Debug for Mcmc<G> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Mcmc")
+            .field("settings", &self.settings)
+            .field("progress", &self.progress)
+            .field("temperatures", &self.temperatures)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<G: Grammar> Mcmc<G> {
+    /// An MCMC run with these settings and limits, seeded with `seed`.
+    pub fn new(settings: McmcSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {
+        settings.validate()?;
+        let n = settings.chains as usize;
+        let empty = || Genome::from_parts(Vec::new(), 0);
+        let original = settings.variant == McmcVariant::Original;
+        // The original's jumps delete children whatever the length left.
+        let op_limits = if original {
+            Limits {
+                min_len: 0,
+                ..limits
+            }
+        } else {
+            limits
+        };
+        Ok(Mcmc {
+            settings,
+            limits,
+            ops: Operators::new(op_limits)?,
+            progress: Progress::new(seed),
+            chains: (0..n).map(|_| empty()).collect(),
+            fitness: vec![f64::NAN; n],
+            temperatures: vec![1.0; n],
+            log_priors: if original { vec![1.0; n] } else { Vec::new() },
+            proposals: (0..n).map(|_| empty()).collect(),
+            proposal_fitness: vec![f64::NAN; n],
+            rngs: (0..n).map(|i| stream(seed, 0, i as u64)).collect(),
+            moves: if original {
+                Vec::new()
+            } else {
+                vec![tempered::Move::default(); n]
+            },
+            original_moves: if original {
+                vec![original::Move::default(); n]
+            } else {
+                Vec::new()
+            },
+            retry: Vec::new(),
+            retry_genomes: Vec::new(),
+            retry_fitness: Vec::new(),
+        })
+    }
+
+    /// Resumes from a checkpoint; fails if it does not fit its own settings.
+    pub fn resume(state: McmcState<G>) -> Result<Self, OptimizeError> {
+        let mut mcmc = Mcmc::new(state.settings, state.limits, state.progress.seed)?;
+        let n = state.settings.chains as usize;
+        if !state.progress.history.is_empty() {
+            let priors = match state.settings.variant {
+                McmcVariant::Original => n,
+                McmcVariant::Tempered => 0,
+            };
+            let lens = [
+                state.chains.len(),
+                state.fitness.len(),
+                state.temperatures.len(),
+                state.log_priors.len(),
+            ];
+            if lens != [n, n, n, priors] {
+                return Err(OptimizeError::Checkpoint(format!(
+                    "{} chains, {} fitness values, {} temperatures and {} log priors for \
+                     {n} chains of the {:?} variant",
+                    lens[0], lens[1], lens[2], lens[3], state.settings.variant
+                )));
+            }
+            mcmc.chains = state.chains;
+            mcmc.fitness = state.fitness;
+            mcmc.temperatures = state.temperatures;
+            mcmc.log_priors = state.log_priors;
+        }
+        mcmc.progress = state.progress;
+        Ok(mcmc)
+    }
+
+    /// The state to resume from.
+    pub fn checkpoint(&self) -> McmcState<G> {
+        McmcState {
+            settings: self.settings,
+            limits: self.limits,
+            progress: self.progress.clone(),
+            chains: self.chains.clone(),
+            fitness: self.fitness.clone(),
+            temperatures: self.temperatures.clone(),
+            log_priors: self.log_priors.clone(),
+        }
+    }
+
+    /// Each chain position's current temperature. Tempered variant: the temperatures,
+    /// ascending (coldest first). Original variant: the original's "temperature", an
+    /// exponent on the fitness ratio (an inverse temperature, `f32` values): it starts at
+    /// `1 / (i + 1)^1.03` for position `i`, descending (coldest first), and is multiplied
+    /// by 1.1 after every move.
+    pub fn temperatures(&self) -> &[f64] {
+        &self.temperatures
+    }
+
+    /// Runs until `budget` or `observer` stops it; a later call goes on from there.
+    pub fn run(
+        &mut self,
+        evaluator: &mut impl Evaluator<G>,
+        budget: &Budget,
+        observer: &mut impl Observer<G>,
+    ) -> Result<RunResult<G>, OptimizeError> {
+        drive(self, evaluator, budget, observer)
+    }
+}
+
+impl<G: Grammar> Method<G> for Mcmc<G> {
+    fn step_cost(&self) -> u64 {
+        let tries = match self.settings.variant {
+            McmcVariant::Original => 1,
+            McmcVariant::Tempered => 1 + u64::from(self.settings.delayed_rejection),
+        };
+        u64::from(self.settings.chains) * tries
+    }
+
+    fn start<E: Evaluator<G>>(&mut self, evaluator: &mut E) -> Result<(), OptimizeError> {
+        match self.settings.variant {
+            McmcVariant::Original => self.start_original(evaluator),
+            McmcVariant::Tempered => self.start_tempered(evaluator),
+        }
+    }
+
+    fn step<E: Evaluator<G>>(&mut self, evaluator: &mut E) -> Result<(), OptimizeError> {
+        match self.settings.variant {
+            McmcVariant::Original => self.step_original(evaluator),
+            McmcVariant::Tempered => self.step_tempered(evaluator),
+        }
+    }
+
+    fn parts(&mut self) -> (&mut Progress<G>, &[Genome<G>], &[f64]) {
+        (&mut self.progress, &self.chains, &self.fitness)
+    }
+}
