@@ -699,42 +699,45 @@ fn ga_budgets_are_honoured() {
     assert_eq!(seen, [(0, 40), (1, 72), (2, 104)]);
 }
 
-fn small_smc(order: Order) -> SmcSettings {
-    SmcSettings {
-        particles: 40,
-        steps: 12,
-        ..SmcSettings::paper_city(order)
-    }
+/// Small SMC settings of every variant and order.
+fn small_smcs() -> impl Iterator<Item = SmcSettings> {
+    SmcVariant::ALL.into_iter().flat_map(|variant| {
+        [Order::Chromosome, Order::Stochastic].map(|order| SmcSettings {
+            particles: 40,
+            steps: 12,
+            variant,
+            ..SmcSettings::paper_city(order)
+        })
+    })
 }
 
 #[test]
 fn smc_and_sosmc_improve_on_the_axiom() {
-    for order in [Order::Chromosome, Order::Stochastic] {
+    for s in small_smcs() {
         for seed in [1, 2, 3] {
-            let s = small_smc(order);
             let r = Smc::<City>::new(s, city::PAPER_LIMITS, seed)
                 .unwrap()
                 .run(&mut Skyline::new(), &s.budget(), &mut Silent)
                 .unwrap();
             assert!(
                 r.best_fitness >= initial_best(&r) + 2.0,
-                "{order:?} {seed}: {r:?}"
+                "{s:?} {seed}: {r:?}"
             );
             assert!(r.history.last().unwrap().mean > r.history[0].mean);
             let r = Smc::<Spaceship>::new(s, spaceship::PAPER_LIMITS, seed)
                 .unwrap()
                 .run(&mut BoxTarget::new(), &s.budget(), &mut Silent)
                 .unwrap();
-            assert!(r.best_fitness > initial_best(&r), "{order:?} {seed}: {r:?}");
+            assert!(r.best_fitness > initial_best(&r), "{s:?} {seed}: {r:?}");
         }
     }
 }
 
 #[test]
 fn smc_same_seed_same_result_at_any_thread_count() {
-    for order in [Order::Chromosome, Order::Stochastic] {
+    for s in small_smcs() {
         let run = || {
-            Smc::<City>::new(small_smc(order), city::PAPER_LIMITS, 5)
+            Smc::<City>::new(s, city::PAPER_LIMITS, 5)
                 .unwrap()
                 .run(&mut Skyline::new(), &Budget::generations(8), &mut Silent)
                 .unwrap()
@@ -745,8 +748,7 @@ fn smc_same_seed_same_result_at_any_thread_count() {
 
 #[test]
 fn smc_resume_equals_uninterrupted() {
-    for order in [Order::Chromosome, Order::Stochastic] {
-        let s = small_smc(order);
+    for s in small_smcs() {
         let full = Smc::<City>::new(s, city::PAPER_LIMITS, 4)
             .unwrap()
             .run(&mut Skyline::new(), &Budget::generations(10), &mut Silent)
@@ -767,13 +769,15 @@ fn smc_resume_equals_uninterrupted() {
 
 #[test]
 fn smc_survives_nan_fitness_and_honours_budgets() {
-    for order in [Order::Chromosome, Order::Stochastic] {
-        let s = small_smc(order);
+    for s in small_smcs() {
         let r = Smc::<City>::new(s, city::PAPER_LIMITS, 2)
             .unwrap()
             .run(&mut Poisoned(Skyline::new(), 0), &s.budget(), &mut Silent)
             .unwrap();
-        assert!(r.best_fitness.is_finite() && r.best_fitness > initial_best(&r));
+        assert!(
+            r.best_fitness.is_finite() && r.best_fitness > initial_best(&r),
+            "{s:?}: {r:?}"
+        );
         let r = Smc::<City>::new(s, city::PAPER_LIMITS, 2)
             .unwrap()
             .run(&mut Skyline::new(), &Budget::evaluations(130), &mut Silent)
@@ -796,9 +800,25 @@ fn smc_survives_nan_fitness_and_honours_budgets() {
         Smc::<City>::new(bad, city::PAPER_LIMITS, 0),
         Err(OptimizeError::Settings(e)) if e.field == "max_grows_per_step"
     ));
+    let bad = SmcSettings {
+        step_back_probability: 1.5,
+        ..SmcSettings::paper_city(Order::Chromosome)
+    };
+    assert_eq!(bad.validate().unwrap_err().field, "step_back_probability");
     let parsed: SmcSettings = serde_json::from_str(r#"{"order": "stochastic"}"#).unwrap();
-    assert_eq!(parsed, SmcSettings::paper_spaceship(Order::Stochastic));
+    assert_eq!(
+        parsed,
+        SmcSettings {
+            order: Order::Stochastic,
+            ..SmcSettings::default()
+        }
+    );
     assert!(serde_json::from_str::<SmcSettings>(r#"{"order": "random"}"#).is_err());
+    let err = serde_json::from_str::<SmcSettings>(r#"{"variant": "paper"}"#).unwrap_err();
+    assert!(
+        err.to_string().contains("`original` or `generative`"),
+        "{err}"
+    );
 }
 
 fn small_mcmc(variant: McmcVariant) -> McmcSettings {

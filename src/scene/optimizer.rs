@@ -8,7 +8,7 @@ use serde::de::DeserializeOwned;
 use shapegen_runtime::ops::OperatorVariant;
 use shapegen_runtime::optimize::multi::MultiGaSettings;
 use shapegen_runtime::optimize::{
-    Budget, GaSettings, McmcSettings, McmcVariant, Order, SettingsError, SmcSettings,
+    Budget, GaSettings, McmcSettings, McmcVariant, Order, SettingsError, SmcSettings, SmcVariant,
 };
 
 /// The search methods.
@@ -64,9 +64,10 @@ pub enum MethodSettings {
 ///                        # grow_weight, cut_weight, alter_weight, tournament,
 ///                        # operators ("original" or "weighted"), cross_array_index
 ///                        # (true or false); for SMC and SOSMC particles, steps,
-///                        # max_grows_per_step; for RJMCMC variant ("original" or
-///                        # "tempered"), chains, iterations, initial_length,
-///                        # jump_probability, ...
+///                        # variant ("original" or "generative"),
+///                        # step_back_probability, max_grows_per_step; for RJMCMC
+///                        # variant ("original" or "tempered"), chains, iterations,
+///                        # initial_length, jump_probability, ...
 /// ```
 ///
 /// The paper's GA settings use the original's operators and breeding
@@ -225,6 +226,7 @@ pub(super) fn resolve(
                     "is set by the method: \"smc\" or \"sosmc\"".into(),
                 ));
             }
+            check_smc_variant(&table)?;
             rename(&mut table, "steps");
             MethodSettings::Smc(merged(base, table, SmcSettings::validate)?)
         }
@@ -265,6 +267,23 @@ fn check_ga_keys(table: &toml::Table) -> Result<(), (String, String)> {
         Some(other) => Err((
             "optimizer.cross_array_index".into(),
             format!("{other} must be true or false"),
+        )),
+    }
+}
+
+/// Checks that SMC's `variant`, whose serde error would not name it, names an SMC
+/// variant; errors are `(key, reason)`.
+fn check_smc_variant(table: &toml::Table) -> Result<(), (String, String)> {
+    let names = SmcVariant::ALL.map(SmcVariant::name);
+    match table.get("variant") {
+        None => Ok(()),
+        Some(toml::Value::String(v)) if names.contains(&v.as_str()) => Ok(()),
+        Some(other) => Err((
+            "optimizer.variant".into(),
+            format!(
+                "{other} is not an SMC variant; the variants are \"{}\"",
+                names.join("\" and \"")
+            ),
         )),
     }
 }

@@ -40,4 +40,4 @@ pub use run::{
     Budget, Control, HistoryEntry, Observer, Progress, RunResult, Silent, Snapshot, StopReason,
 };
 pub use sense::Sense;
-pub use smc::{Cursor, Order, Smc, SmcSettings, SmcState};
+pub use smc::{Cursor, Order, Smc, SmcSettings, SmcState, SmcVariant};

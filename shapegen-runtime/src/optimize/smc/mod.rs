@@ -1,34 +1,154 @@
-//! Sequential Monte Carlo: particles grown step by step from the axiom, scored as partial
-//! models and resampled by fitness, in chromosome order (SMC) or with stochastic futures
-//! (SOSMC).
+//! Sequential Monte Carlo: particles grown step by step, scored as partial models and
+//! resampled by fitness, in chromosome order (SMC) or with stochastic futures (SOSMC),
+//! in two variants: the original implementation's ([`SmcVariant::Original`], in
+//! `original.rs`) and this project's, which grows as the generator would
+//! ([`SmcVariant::Generative`], in `generative.rs`). Both share the settings, the
+//! checkpoints and the run loop here.
 
-use rand::{Rng, RngExt};
+mod generative;
+mod original;
+
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+use super::error::check_range;
 use super::fitness::{Roulette, bits_vec};
-use super::grow::{depth_of, expand, link_facts, open_links};
 use super::run::{Method, Progress, drive, grammar_struct_traits, stream};
 use super::{Budget, Evaluator, Observer, OptimizeError, RunResult, SettingsError};
 use crate::derive::Grammar;
-use crate::genome::{Genome, Limits, node_of};
-use crate::geometry::Instance;
-use crate::graph::HEADER_WORDS;
+use crate::genome::{Genome, Limits};
 
 /// Which unexpressed child a step grows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Order {
-    /// SMC: links are decided in chromosome order (genes in buffer order, links in
-    /// order); each is expressed with its generator probability or left empty for good.
+    /// SMC. Generative variant: links are decided in chromosome order (genes in buffer
+    /// order, links in order); each is expressed with its generator probability or left
+    /// empty for good. Original variant: the newest gene that can still take a child,
+    /// or with [`step_back_probability`](SmcSettings::step_back_probability) one before
+    /// it, and so on.
     Chromosome,
-    /// SOSMC: a link drawn uniformly among all the unexpressed ones that may grow (the
-    /// "stochastic futures") is expressed.
+    /// SOSMC: a link among the unexpressed ones (the "stochastic futures") is expressed.
+    /// Generative variant: drawn uniformly among those that may grow. Original variant:
+    /// a gene drawn among those that can still take a child, then one of its free links.
     Stochastic,
 }
 
+/// Which SMC an [`Smc`] runs.
+///
+/// In scene files and JSON: `"original"` or `"generative"`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SmcVariant {
+    /// The original implementation's SMC and SOSMC (`SMC.h`, `SOSMC.h`, with the grows of
+    /// `SMCOperators.cpp` and `SOSMCOperators.cpp` and their `SMCSelection` and
+    /// `SoSmcSelection`, which are the same), reproduced with their oddities.
+    ///
+    /// A node's *possible children* are its links in link order, each taking at most one
+    /// child, as every possible child of the published grammars has `max_num` 1. A gene
+    /// *can take a child* when it has an empty link. The original's gene order is
+    /// pre-order, each gene's children in the order they were added: it renumbers a
+    /// genome so whenever it copies one, and it copies every particle before growing it.
+    ///
+    /// - Particles start as the axiom and one grow (the original's
+    ///   `createRandomGenome(grammar, 2)`), and are evaluated.
+    /// - Each step, every particle grows by exactly one gene and is evaluated: one
+    ///   evaluation per particle per step. Nothing else happens to a particle that cannot
+    ///   grow; it is evaluated all the same.
+    /// - A grow in chromosome order ([`Order::Chromosome`], `SMCGrowMutation`) lists the
+    ///   genes that can take a child and lie above level `max_depth` (the root is level
+    ///   0, so the original's trees reach level `max_depth`, one deeper than
+    ///   [`Limits::max_depth`] allows elsewhere, the root counting as depth 1), in gene
+    ///   order, starts from the last one and steps back one gene at a time with
+    ///   probability [`step_back_probability`](SmcSettings::step_back_probability) (the
+    ///   original's `basic_prob`, 0 in all published configurations: always the last),
+    ///   never past the first.
+    /// - A grow with stochastic futures ([`Order::Stochastic`], `SoSmcGrowMutation`)
+    ///   draws among all genes that can take a child, with no depth bound.
+    /// - Either then draws one of the gene's empty links uniformly, ignoring the
+    ///   generator's probabilities (the original's "TODO: pay attention to percentage
+    ///   values"), and appends a child there with parameters drawn from their
+    ///   distributions.
+    /// - From the second step on, before growing, the particles are resampled from the
+    ///   previous step's grown particles: ranked best first, each of the `n` new
+    ///   particles is drawn by its own `U` in `[0, 1)` as the first particle in rank
+    ///   order whose cumulative relative fitness `sum_{j <= k} (f_j + offset) / S`
+    ///   reaches `U`, or the last one if none does, where `offset = -f_worst` when the
+    ///   worst fitness is not negative and 0 otherwise, and `S = sum_j (f_j + offset)`;
+    ///   the new particles are ordered best first. The first step grows the initial
+    ///   particles themselves.
+    ///
+    /// Oddities of the original, reproduced:
+    /// - its integer draw `getRandomValue(0, n - 1)` truncates `(n - 1) U`, so the last of
+    ///   `n >= 2` candidates is never taken: the stochastic grow never grows from the last
+    ///   gene in gene order, and neither order takes a gene's last empty link unless it is
+    ///   the only one;
+    /// - the offset is the opposite of what its comment says: a non-negative worst is
+    ///   lifted to 0 (the worst then weighs nothing), a negative one is left as it is, so
+    ///   negative fitness weighs negatively. The cumulative values then rise above 1 and
+    ///   come back, and the weaker particles whose range lies past 1 are never drawn;
+    ///   when `S` is negative the wheel turns around and only the worst particles are
+    ///   drawn; when all particles have the same non-negative fitness every relative
+    ///   value is `0 / 0`, no draw reaches one, and all new particles are copies of the
+    ///   last one in rank order;
+    /// - nothing bounds a genome's length: particles grow past [`Limits::max_len`] (one
+    ///   gene per step), and [`Limits::min_len`] is not enforced.
+    ///
+    /// As the original, the resampling works in `f32` (fitness values are converted);
+    /// ties in rank keep their index order (the original's sort leaves it unspecified).
+    /// Beyond the original: only finite fitness values enter the wheel: NaN and `-inf`
+    /// particles are drawn only when every particle is NaN or `-inf` (then the last in
+    /// rank order is), and if some particles are at `+inf` the draws are uniform among
+    /// them. Genomes stay within [`DEPTH_CAP`](crate::genome::DEPTH_CAP): no gene at that
+    /// depth takes a child.
+    Original,
+    /// This project's SMC: particles grow as the generator would, from the axiom, each
+    /// step until the model shows new geometry.
+    ///
+    /// Particles start as the axiom alone. A step first resamples the particles
+    /// multinomially by fitness (roulette weights as the GA's: `f - f_min`, NaN weighs
+    /// 0), then grows every particle until its model emits more instances than before
+    /// (the whole model is derived after each added gene to see it), at most
+    /// [`max_grows_per_step`](SmcSettings::max_grows_per_step) genes, or until nothing
+    /// can grow (a finished particle stays as it is), and scores all of them as partial
+    /// models. A grow in chromosome order decides the links in chromosome order, each
+    /// expressed with its generator probability; one with stochastic futures expresses a
+    /// link drawn uniformly among the empty ones of genes above the maximum depth with a
+    /// non-zero probability. Genomes stay within [`Limits::max_len`] and
+    /// [`Limits::max_depth`]; particles may be shorter than [`Limits::min_len`] while
+    /// they grow.
+    Generative,
+}
+
+impl SmcVariant {
+    /// Every variant.
+    pub const ALL: [SmcVariant; 2] = [SmcVariant::Original, SmcVariant::Generative];
+
+    /// Its name in scene files and settings.
+    pub const fn name(self) -> &'static str {
+        match self {
+            SmcVariant::Original => "original",
+            SmcVariant::Generative => "generative",
+        }
+    }
+}
+
 /// Settings of [`Smc`]. Loads from scene files with serde; missing fields take the
-/// [`Default`] values (the paper's spaceship SMC), unknown fields are errors.
+/// [`Default`] values, unknown fields are errors.
+///
+/// The default is the [generative](SmcVariant::Generative) variant with the spaceship
+/// scene's sizes; the `paper_*` settings are the original's configuration files with the
+/// [original](SmcVariant::Original) variant.
+///
+/// ```
+/// use shapegen_runtime::optimize::{Order, SmcSettings, SmcVariant};
+///
+/// let s: SmcSettings = serde_json::from_str(r#"{"variant": "original", "particles": 50}"#)?;
+/// assert_eq!((s.variant, s.particles), (SmcVariant::Original, 50));
+/// assert_eq!(SmcSettings::default().variant, SmcVariant::Generative);
+/// assert_eq!(SmcSettings::paper_tree(Order::Stochastic).variant, SmcVariant::Original);
+/// # Ok::<(), serde_json::Error>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct SmcSettings {
@@ -38,28 +158,44 @@ pub struct SmcSettings {
     pub steps: u64,
     /// SMC or SOSMC.
     pub order: Order,
-    /// Most genes a step adds while waiting for new geometry; at least 1.
+    /// Which SMC runs.
+    pub variant: SmcVariant,
+    /// Original variant only, chromosome order: the chance that a grow steps back from a
+    /// gene to the one before it; in `[0, 1]`.
+    pub step_back_probability: f64,
+    /// Generative variant only: most genes a step adds while waiting for new geometry;
+    /// at least 1.
     pub max_grows_per_step: u32,
 }
 
 impl Default for SmcSettings {
     fn default() -> Self {
-        SmcSettings::paper_spaceship(Order::Chromosome)
+        SmcSettings {
+            variant: SmcVariant::Generative,
+            ..SmcSettings::paper_spaceship(Order::Chromosome)
+        }
     }
 }
 
 impl SmcSettings {
-    /// The paper's spaceship scene: 500 particles, 40 steps.
+    /// The original's settings for the paper's spaceship scene
+    /// (`spaceship_volume/smc.cfg`, `sosmc.cfg`): the original variant, 500 particles,
+    /// 40 steps, no step back (the files give no `basic_prob`). The generative variant's
+    /// field holds its default: 64 grows per step.
     pub fn paper_spaceship(order: Order) -> Self {
         SmcSettings {
             particles: 500,
             steps: 40,
             order,
+            variant: SmcVariant::Original,
+            step_back_probability: 0.0,
             max_grows_per_step: 64,
         }
     }
 
-    /// The paper's tree-sketch scene: 1000 particles, 500 steps.
+    /// The original's settings for the paper's tree-sketch scene (`tree_sketch1/smc.cfg`,
+    /// `sosmc.cfg`): 1000 particles, 500 steps; the rest as
+    /// [`paper_spaceship`](Self::paper_spaceship).
     pub fn paper_tree(order: Order) -> Self {
         SmcSettings {
             particles: 1000,
@@ -68,7 +204,9 @@ impl SmcSettings {
         }
     }
 
-    /// The paper's city-whale scene: 100 particles, 100 steps.
+    /// The original's settings for the paper's city-whale scene (`city_whale/smc.cfg`,
+    /// `sosmc.cfg`): 100 particles, 100 steps; the rest as
+    /// [`paper_spaceship`](Self::paper_spaceship).
     pub fn paper_city(order: Order) -> Self {
         SmcSettings {
             particles: 100,
@@ -77,13 +215,24 @@ impl SmcSettings {
         }
     }
 
-    /// Checks every field; the error names the first one out of range.
+    /// Checks every field the variant reads; the error names the first one out of range.
     pub fn validate(&self) -> Result<(), SettingsError> {
         if self.particles == 0 {
             return Err(SettingsError::new("particles", 0, "at least 1"));
         }
-        if self.max_grows_per_step == 0 {
-            return Err(SettingsError::new("max_grows_per_step", 0, "at least 1"));
+        match self.variant {
+            SmcVariant::Original => check_range(
+                "step_back_probability",
+                self.step_back_probability,
+                0.0,
+                1.0,
+                "between 0 and 1",
+            )?,
+            SmcVariant::Generative => {
+                if self.max_grows_per_step == 0 {
+                    return Err(SettingsError::new("max_grows_per_step", 0, "at least 1"));
+                }
+            }
         }
         Ok(())
     }
@@ -94,7 +243,7 @@ impl SmcSettings {
     }
 }
 
-/// One particle's growth bookkeeping.
+/// One particle's growth bookkeeping in the [generative](SmcVariant::Generative) variant.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Cursor {
     /// Chromosome order: word position of the gene whose links are being decided.
@@ -118,9 +267,10 @@ pub struct SmcState<G> {
     pub limits: Limits,
     /// Generation, evaluations, best so far, history.
     pub progress: Progress<G>,
-    /// The particles.
+    /// The particles as last grown and evaluated.
     pub particles: Vec<Genome<G>>,
-    /// Their growth bookkeeping.
+    /// Their growth bookkeeping: one per particle in the generative variant, none in the
+    /// original one.
     pub cursors: Vec<Cursor>,
     /// Their fitness.
     #[serde(with = "bits_vec")]
@@ -136,18 +286,12 @@ grammar_struct_traits!(SmcState {
     fitness
 });
 
-/// Sequential Monte Carlo (ALGORITHMS.md, section 5), SMC or SOSMC by [`Order`].
-///
-/// Particles start as the axiom alone. A step first resamples the particles
-/// multinomially by fitness (roulette weights as the GA's: `f - f_min`, NaN weighs 0),
-/// then grows every particle until its model emits more instances than before (the
-/// whole model is derived after each added gene to see it), at most
-/// `max_grows_per_step` genes, or until nothing can grow (a finished particle stays as
-/// it is), and scores all of them as partial models. Particles may be shorter than the
-/// limits' minimum length while they grow.
+/// Sequential Monte Carlo (ALGORITHMS.md, section 5), SMC or SOSMC by [`Order`], in the
+/// [`SmcVariant`] its settings name (see there for the rules).
 ///
 /// Each particle's growth draws from the stream (seed, step, particle) and resampling
-/// from (seed, step, 2^31 + particle): results never depend on the thread count.
+/// from (seed, step, 2^31 + particle): results never depend on the thread count. Each
+/// step costs one evaluation per particle, as does the initial population.
 ///
 /// ```
 /// use shapegen_runtime::optimize::{Budget, FnEvaluator, Order, Silent, Smc, SmcSettings};
@@ -184,6 +328,8 @@ pub struct Smc<G> {
     next: Vec<Genome<G>>,
     next_cursors: Vec<Cursor>,
     roulette: Roulette,
+    wheel: original::Wheel,
+    picks: Vec<usize>,
 }
 
 impl<G: Grammar> std::fmt::Debug for Smc<G> {
@@ -202,17 +348,28 @@ impl<G: Grammar> Smc<G> {
         limits.check()?;
         let n = settings.particles as usize;
         let empty = || Genome::from_parts(Vec::new(), 0);
+        let cursors = Smc::<G>::cursors(&settings);
         Ok(Smc {
             settings,
             limits,
             progress: Progress::new(seed),
             particles: (0..n).map(|_| empty()).collect(),
-            cursors: vec![Cursor::default(); n],
+            cursors: vec![Cursor::default(); cursors],
             fitness: vec![f64::NAN; n],
             next: (0..n).map(|_| empty()).collect(),
-            next_cursors: vec![Cursor::default(); n],
+            next_cursors: vec![Cursor::default(); cursors],
             roulette: Roulette::default(),
+            wheel: original::Wheel::default(),
+            picks: Vec::new(),
         })
+    }
+
+    /// How many cursors the variant keeps.
+    fn cursors(settings: &SmcSettings) -> usize {
+        match settings.variant {
+            SmcVariant::Original => 0,
+            SmcVariant::Generative => settings.particles as usize,
+        }
     }
 
     /// Resumes from a checkpoint; fails if it does not fit its own settings.
@@ -220,17 +377,20 @@ impl<G: Grammar> Smc<G> {
         let mut smc = Smc::new(state.settings, state.limits, state.progress.seed)?;
         let n = state.settings.particles as usize;
         if !state.progress.history.is_empty() {
-            if [
+            let lens = [
                 state.particles.len(),
                 state.cursors.len(),
                 state.fitness.len(),
-            ] != [n; 3]
-            {
+            ];
+            if lens != [n, smc.cursors.len(), n] {
                 return Err(OptimizeError::Checkpoint(format!(
-                    "{} particles, {} cursors and {} fitness values for {n} particles",
-                    state.particles.len(),
-                    state.cursors.len(),
-                    state.fitness.len()
+                    "{} particles, {} cursors and {} fitness values for {n} particles of the \
+                     {} variant, which keeps {} cursors",
+                    lens[0],
+                    lens[1],
+                    lens[2],
+                    state.settings.variant.name(),
+                    smc.cursors.len()
                 )));
             }
             smc.particles = state.particles;
@@ -262,14 +422,43 @@ impl<G: Grammar> Smc<G> {
     ) -> Result<RunResult<G>, OptimizeError> {
         drive(self, evaluator, budget, observer)
     }
-}
 
-/// Per-thread scratch of a step.
-#[derive(Default)]
-struct Scratch {
-    instances: Vec<Instance>,
-    depth: Vec<u32>,
-    open: Vec<(u32, u32)>,
+    /// Grows every particle once as the original does, particle `i` from the stream
+    /// (seed, `generation`, `i`), first replacing it by the axiom if `from_axiom`.
+    fn grow_original(&mut self, generation: u64, from_axiom: bool) {
+        let seed = self.progress.seed;
+        let s = &self.settings;
+        let (order, max_depth) = (s.order, self.limits.max_depth);
+        let step_back = (100.0 * s.step_back_probability) as f32;
+        self.particles.par_iter_mut().enumerate().for_each_init(
+            original::Scratch::default,
+            |scratch, (i, g)| {
+                let rng = &mut stream(seed, generation, i as u64);
+                if from_axiom {
+                    g.reset_to_axiom(rng);
+                }
+                original::grow(order, step_back, max_depth, g, scratch, rng);
+            },
+        );
+    }
+
+    /// Resamples the particles as the original does, draw `j` from the stream (seed,
+    /// `generation`, 2^31 + `j`), best first.
+    fn resample_original(&mut self, generation: u64) {
+        let seed = self.progress.seed;
+        self.wheel.build(&self.fitness);
+        let wheel = &self.wheel;
+        self.picks.clear();
+        self.picks.extend(
+            (0..self.particles.len())
+                .map(|j| wheel.spin(&mut stream(seed, generation, (1 << 31) + j as u64))),
+        );
+        self.picks.sort_unstable();
+        for (g, &k) in self.next.iter_mut().zip(&self.picks) {
+            g.clone_from(&self.particles[wheel.particle(k)]);
+        }
+        std::mem::swap(&mut self.particles, &mut self.next);
+    }
 }
 
 impl<G: Grammar> Method<G> for Smc<G> {
@@ -278,15 +467,20 @@ impl<G: Grammar> Method<G> for Smc<G> {
     }
 
     fn start<E: Evaluator<G>>(&mut self, evaluator: &mut E) -> Result<(), OptimizeError> {
-        let seed = self.progress.seed;
-        let mut instances = Vec::new();
-        for (i, (g, c)) in self.particles.iter_mut().zip(&mut self.cursors).enumerate() {
-            g.reset_to_axiom(&mut stream(seed, 0, i as u64));
-            g.derive_into(&mut instances);
-            *c = Cursor {
-                emitted: instances.len() as u32,
-                ..Cursor::default()
-            };
+        match self.settings.variant {
+            SmcVariant::Original => self.grow_original(0, true),
+            SmcVariant::Generative => {
+                let seed = self.progress.seed;
+                let mut instances = Vec::new();
+                for (i, (g, c)) in self.particles.iter_mut().zip(&mut self.cursors).enumerate() {
+                    g.reset_to_axiom(&mut stream(seed, 0, i as u64));
+                    g.derive_into(&mut instances);
+                    *c = Cursor {
+                        emitted: instances.len() as u32,
+                        ..Cursor::default()
+                    };
+                }
+            }
         }
         evaluator.evaluate(&self.particles, &mut self.fitness)?;
         self.progress.evaluations += self.step_cost();
@@ -295,25 +489,35 @@ impl<G: Grammar> Method<G> for Smc<G> {
 
     fn step<E: Evaluator<G>>(&mut self, evaluator: &mut E) -> Result<(), OptimizeError> {
         let (seed, generation) = (self.progress.seed, self.progress.generation + 1);
-        self.roulette.build(&self.fitness);
-        for (i, (g, c)) in self.next.iter_mut().zip(&mut self.next_cursors).enumerate() {
-            let from = self
-                .roulette
-                .spin(&mut stream(seed, generation, (1 << 31) + i as u64));
-            g.clone_from(&self.particles[from]);
-            *c = self.cursors[from];
+        match self.settings.variant {
+            SmcVariant::Original => {
+                if generation > 1 {
+                    self.resample_original(generation);
+                }
+                self.grow_original(generation, false);
+            }
+            SmcVariant::Generative => {
+                self.roulette.build(&self.fitness);
+                for (i, (g, c)) in self.next.iter_mut().zip(&mut self.next_cursors).enumerate() {
+                    let from =
+                        self.roulette
+                            .spin(&mut stream(seed, generation, (1 << 31) + i as u64));
+                    g.clone_from(&self.particles[from]);
+                    *c = self.cursors[from];
+                }
+                std::mem::swap(&mut self.particles, &mut self.next);
+                std::mem::swap(&mut self.cursors, &mut self.next_cursors);
+                let (settings, limits) = (&self.settings, &self.limits);
+                self.particles
+                    .par_iter_mut()
+                    .zip(self.cursors.par_iter_mut())
+                    .enumerate()
+                    .for_each_init(generative::Scratch::default, |s, (i, (g, c))| {
+                        let rng = &mut stream(seed, generation, i as u64);
+                        generative::advance(settings, limits, g, c, s, rng);
+                    });
+            }
         }
-        std::mem::swap(&mut self.particles, &mut self.next);
-        std::mem::swap(&mut self.cursors, &mut self.next_cursors);
-        let (settings, limits) = (&self.settings, &self.limits);
-        self.particles
-            .par_iter_mut()
-            .zip(self.cursors.par_iter_mut())
-            .enumerate()
-            .for_each_init(Scratch::default, |s, (i, (g, c))| {
-                let rng = &mut stream(seed, generation, i as u64);
-                advance(settings, limits, g, c, s, rng);
-            });
         evaluator.evaluate(&self.particles, &mut self.fitness)?;
         self.progress.evaluations += self.step_cost();
         Ok(())
@@ -322,68 +526,4 @@ impl<G: Grammar> Method<G> for Smc<G> {
     fn parts(&mut self) -> (&mut Progress<G>, &[Genome<G>], &[f64]) {
         (&mut self.progress, &self.particles, &self.fitness)
     }
-}
-
-/// Grows one particle until it emits new geometry, `max_grows_per_step` genes were
-/// added, or nothing can grow.
-fn advance<G: Grammar>(
-    settings: &SmcSettings,
-    limits: &Limits,
-    g: &mut Genome<G>,
-    c: &mut Cursor,
-    s: &mut Scratch,
-    rng: &mut impl Rng,
-) {
-    for _ in 0..settings.max_grows_per_step {
-        let grown = match settings.order {
-            Order::Chromosome => next_in_order(limits, g, c, rng),
-            Order::Stochastic => {
-                open_links(g, limits, &mut s.depth, &mut s.open);
-                if s.open.is_empty() {
-                    false
-                } else {
-                    let (pos, link) = s.open[rng.random_range(0..s.open.len())];
-                    expand(g, limits, pos, link, rng).is_some()
-                }
-            }
-        };
-        if !grown {
-            return;
-        }
-        g.derive_into(&mut s.instances);
-        let emitted = s.instances.len() as u32;
-        if emitted > c.emitted {
-            c.emitted = emitted;
-            return;
-        }
-        c.emitted = emitted;
-    }
-}
-
-/// Decides links in chromosome order from the cursor until one is expressed; returns
-/// `false` when every link has been decided or the genome is at its maximum length.
-fn next_in_order<G: Grammar>(
-    limits: &Limits,
-    g: &mut Genome<G>,
-    c: &mut Cursor,
-    rng: &mut impl Rng,
-) -> bool {
-    while (c.pos as usize) < g.words().len() {
-        let kind = g.words()[c.pos as usize];
-        let node = node_of::<G>(kind);
-        if c.link >= node.links || depth_of(g.words(), c.pos) >= limits.max_depth {
-            c.pos += node.gene_words();
-            c.link = 0;
-            continue;
-        }
-        let link = c.link;
-        c.link += 1;
-        if g.words()[(c.pos + HEADER_WORDS + link) as usize] != 0 {
-            continue;
-        }
-        if rng.random::<f32>() < link_facts::<G>(kind, link).0 {
-            return expand(g, limits, c.pos, link, rng).is_some();
-        }
-    }
-    false
 }
