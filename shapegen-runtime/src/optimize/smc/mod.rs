@@ -76,7 +76,9 @@ pub enum SmcVariant {
     ///   reaches `U`, or the last one if none does, where `offset = -f_worst` when the
     ///   worst fitness is not negative and 0 otherwise, and `S = sum_j (f_j + offset)`;
     ///   the new particles are ordered best first. The first step grows the initial
-    ///   particles themselves.
+    ///   particles themselves. (The original resamples at the end of each step instead,
+    ///   the last one included; the particles evaluated are the same, and checkpoints
+    ///   hold them as grown and scored.)
     ///
     /// Oddities of the original, reproduced:
     /// - its integer draw `getRandomValue(0, n - 1)` truncates `(n - 1) U`, so the last of
@@ -100,7 +102,8 @@ pub enum SmcVariant {
     /// particles are drawn only when every particle is NaN or `-inf` (then the last in
     /// rank order is), and if some particles are at `+inf` the draws are uniform among
     /// them. Genomes stay within [`DEPTH_CAP`](crate::genome::DEPTH_CAP): no gene at that
-    /// depth takes a child.
+    /// depth takes a child. Not reproduced: the original redraws the axiom's parameters
+    /// whenever it copies a genome (none of the published grammars' axioms has any).
     Original,
     /// This project's SMC: particles grow as the generator would, from the axiom, each
     /// step until the model shows new geometry.
