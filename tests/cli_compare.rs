@@ -302,3 +302,31 @@ fn mistakes_are_named() {
         "nothing written for a command that cannot start"
     );
 }
+
+#[test]
+fn set_keys_are_read_as_each_methods_own() {
+    // `variant` is a key of RJMCMC's settings and of SMC's, with values of their own;
+    // the scene names no method, so the key must be read as each compared method's.
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene(dir.path());
+    for (methods, variant) in [("rjmcmc", "tempered"), ("smc,sosmc", "generative")] {
+        let out = dir.path().join(variant);
+        ok(&[
+            "compare",
+            s(&scene),
+            "--methods",
+            methods,
+            "--runs",
+            "1",
+            "--seconds",
+            "0.3",
+            "--set",
+            &format!("optimizer.variant={variant}"),
+            "--cpu",
+            "--out",
+            s(&out),
+        ]);
+        let methods = summary(&out)["methods"].as_array().unwrap().len();
+        assert_eq!(methods, if variant == "tempered" { 1 } else { 2 });
+    }
+}

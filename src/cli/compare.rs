@@ -86,21 +86,21 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
         "--seconds {}: give a wall-time budget of more than 0 seconds",
         args.seconds
     );
-    let scene = Scene::load_with(&args.scene, &args.sets)?;
-    anyhow::ensure!(
-        scene.objectives.is_none(),
-        "`{}` has [[objective]] tables: compare measures single-objective methods by one \
-         fitness, and a multi-objective scene is searched by the multi-objective GA \
-         (`shapegen run`)",
-        args.scene.display()
-    );
-    // Each method's goal, as `shapegen run --method M` resolves it.
+    // Each method's goal, as `shapegen run --method M` resolves it: `--set` keys are read
+    // as the method's own (a `variant`, say, is each method's variant).
     let mut scenes = Vec::with_capacity(methods.len());
     for &method in &methods {
         let mut sets = args.sets.clone();
         sets.push(format!("optimizer.method={:?}", method.name()));
         scenes.push(Scene::load_with(&args.scene, &sets)?);
     }
+    anyhow::ensure!(
+        scenes[0].objectives.is_none(),
+        "`{}` has [[objective]] tables: compare measures single-objective methods by one \
+         fitness, and a multi-objective scene is searched by the multi-objective GA \
+         (`shapegen run`)",
+        args.scene.display()
+    );
     let base = args.seed.unwrap_or(scenes[0].optimizer.seed);
     let seeds = (0..args.runs)
         .map(|r| base.checked_add(r))
