@@ -321,14 +321,14 @@ impl<'a> Resolver<'a> {
             Some(level @ 1..=255) if t.kind == ImageKind::Mask => MaskRule::DarkerThan(level as u8),
             Some(level) if t.kind == ImageKind::Mask => {
                 return Err(self.invalid(
-                    &format!("{key}.threshold"),
+                    format!("{key}.threshold"),
                     format!("{level} is not a grey level from 1 to 255"),
                 ));
             }
             Some(_) => {
                 return Err(self.invalid(
-                    &format!("{key}.threshold"),
-                    "only a mask has a threshold; a weight map weighs every grey level".to_owned(),
+                    format!("{key}.threshold"),
+                    "only a mask has a threshold; a weight map weighs every grey level",
                 ));
             }
         };

@@ -37,7 +37,9 @@
 //! the runtime is reached through `__rt` instead of `$crate`; the gene variables (`gene`,
 //! `shape`, `params`) have mixed-site hygiene there, so user code cannot name them; and
 //! the macro writes probabilities as the `f32` literals it evaluated (`0.33333334`).
-#![allow(dead_code)]
+// The rule bodies keep the braces the macro wraps them in, which the compiler does not
+// lint in macro output.
+#![allow(dead_code, unused_braces)]
 
 use shapegen_runtime as __rt;
 
