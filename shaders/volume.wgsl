@@ -6,7 +6,9 @@
 // `boxes[b].extent.w ..` (a prefix sum computed on the CPU), `nj * nk` of them.
 //
 // Per model of the pass, `covered` holds a bitset over the grid (32 voxels per word):
-// atomicOr marks a row's voxels, and bits that were already set are overlap. Newly
+// atomicOr marks a row's voxels, and bits that were already set are overlap hits; those
+// are marked in a second bitset, `again`, and the bits newly set there are voxels
+// covered more than once, each counted once, by the one invocation that set it. Newly
 // covered voxels are counted by class (4 bits per voxel in `classes`) in the
 // invocation, then added to the model's counters: for each quantity two words, the low
 // and high halves of a 64-bit count.
@@ -44,10 +46,12 @@ struct Params {
     pad2: u32,
 }
 
-// Counters per model: 16 classes, overlap, out-of-grid; two words each.
-const COUNTERS: u32 = 36u;
-const OVERLAP: u32 = 32u;
-const OUT_OF_GRID: u32 = 34u;
+// Counters per model: 16 classes, overlap hits, out-of-grid hits, overlap voxels; two
+// words each.
+const COUNTERS: u32 = 38u;
+const OVERLAP_HITS: u32 = 32u;
+const OUT_OF_GRID_HITS: u32 = 34u;
+const OVERLAP_VOXELS: u32 = 36u;
 const WORKGROUP: u32 = 64u;
 
 @group(0) @binding(0) var<uniform> params: Params;
@@ -55,6 +59,7 @@ const WORKGROUP: u32 = 64u;
 @group(0) @binding(2) var<storage, read> classes: array<u32>;
 @group(0) @binding(3) var<storage, read_write> covered: array<atomic<u32>>;
 @group(0) @binding(4) var<storage, read_write> counts: array<atomic<u32>>;
+@group(0) @binding(5) var<storage, read_write> again: array<atomic<u32>>;
 
 // floor(n / d) for d > 0, as `floor_div` in quant.rs.
 fn floor_div(n: i32, d: i32) -> i32 {
@@ -151,19 +156,20 @@ fn count_rows(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation
     let kk = q.corner.z + k;
     let res = params.res;
     if (jj < 0 || jj >= res.y || kk < 0 || kk >= res.z) {
-        add64(base + OUT_OF_GRID, len);
+        add64(base + OUT_OF_GRID_HITS, len);
         return;
     }
     let a = max(first, 0);
     let b = min(last, res.x - 1);
     if (a > b) {
-        add64(base + OUT_OF_GRID, len);
+        add64(base + OUT_OF_GRID_HITS, len);
         return;
     }
-    add64(base + OUT_OF_GRID, len - u32(b - a + 1));
+    add64(base + OUT_OF_GRID_HITS, len - u32(b - a + 1));
 
     var per_class: array<u32, 16>;
-    var overlap = 0u;
+    var overlap_hits = 0u;
+    var overlap_voxels = 0u;
     let row_base = u32((jj + res.y * kk) * res.x);
     let bits = (model - params.first_model) * params.words_per_model;
     let v0 = row_base + u32(a);
@@ -177,7 +183,12 @@ fn count_rows(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation
             mask &= 0xffffffffu >> (31u - v1 % 32u);
         }
         let old = atomicOr(&covered[bits + w], mask);
-        overlap += countOneBits(old & mask);
+        let repeated = old & mask;
+        if (repeated != 0u) {
+            overlap_hits += countOneBits(repeated);
+            let before = atomicOr(&again[bits + w], repeated);
+            overlap_voxels += countOneBits(repeated & ~before);
+        }
         var fresh = mask & ~old;
         while (fresh != 0u) {
             let bit = firstTrailingBit(fresh);
@@ -187,7 +198,8 @@ fn count_rows(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation
             fresh &= fresh - 1u;
         }
     }
-    add64(base + OVERLAP, overlap);
+    add64(base + OVERLAP_HITS, overlap_hits);
+    add64(base + OVERLAP_VOXELS, overlap_voxels);
     for (var c = 0u; c < 16u; c++) {
         add64(base + 2u * c, per_class[c]);
     }

@@ -90,7 +90,7 @@ fn a_reachable_volume_target_is_filled_exactly() {
         "--genome",
         s(&genomes),
         "--index",
-        "1",
+        "5",
         "--out",
         s(&dir.path().join("ship")),
     ]);
@@ -98,7 +98,7 @@ fn a_reachable_volume_target_is_filled_exactly() {
 
     let lines = score(&scene, &genomes, "--cpu");
     assert_eq!(lines.len(), 6);
-    let chosen = &lines[1]["volume"];
+    let chosen = &lines[5]["volume"];
     let voxels: u64 = out
         .split('(')
         .nth(1)
@@ -113,10 +113,36 @@ fn a_reachable_volume_target_is_filled_exactly() {
         "the model covers all of its own target"
     );
     assert_eq!(chosen["outside"], 0);
+    // Every line gives both notions of overlap and of reaching beyond the grid: hits
+    // beyond each voxel's first and distinct voxels hit again; covered points outside
+    // the grid and, as the original counts them, the instances' spans outside it.
+    for line in &lines {
+        let volume = line["volume"].as_object().unwrap();
+        let mut keys: Vec<&str> = volume.keys().map(String::as_str).collect();
+        keys.sort_unstable();
+        assert_eq!(
+            keys,
+            [
+                "inside",
+                "out_of_grid_hits",
+                "outside",
+                "overlap_hits",
+                "overlap_voxels",
+                "span_out_of_grid"
+            ]
+        );
+        let n = |k: &str| volume[k].as_u64().unwrap();
+        assert!(n("overlap_voxels") <= n("overlap_hits"), "{volume:?}");
+    }
+    // Genome 1's wings reach x = ±5.95, beyond the grid, in boxes too thin to cover a
+    // voxel centre there: no covered point outside the grid, but voxels of their spans.
+    let wide = &lines[1]["volume"];
+    assert_eq!(wide["out_of_grid_hits"], 0);
+    assert!(wide["span_out_of_grid"].as_u64().unwrap() > 0, "{wide}");
     // The smooth form's optimum, less overlap and length terms.
-    let f = lines[1]["fitness"].as_f64().unwrap();
+    let f = lines[5]["fitness"].as_f64().unwrap();
     assert!(f > 1.5 && f <= 2.0, "fitness {f}");
-    for (i, line) in lines.iter().enumerate().filter(|(i, _)| *i != 1) {
+    for (i, line) in lines.iter().enumerate().filter(|(i, _)| *i != 5) {
         assert!(
             line["fitness"].as_f64().unwrap() < f,
             "genome {i} scores below the one the target was made of"

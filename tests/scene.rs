@@ -286,7 +286,11 @@ fn project_scenes_are_reachable() {
         let genome = scenes.join(format!("targets/{name}.genome.json"));
         let (fitness, counts) = scene.generator.visit(Check(&scene, &genome));
         if let Some(v) = counts.volume {
-            assert_eq!(v.outside + v.out_of_grid, 0, "{name}: {v:?}");
+            assert_eq!(
+                v.outside + v.out_of_grid_hits + v.span_out_of_grid,
+                0,
+                "{name}: {v:?}"
+            );
         }
         if let Some(s) = counts.silhouette {
             assert_eq!(s.targets()[0].off_target, 0, "{name}: {s:?}");

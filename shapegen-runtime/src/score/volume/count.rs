@@ -1,28 +1,32 @@
-//! Counting one model on the CPU: a covered-voxel bitset whose reset costs what the
-//! model covered.
+//! Counting one model on the CPU: bitsets of the voxels covered and covered again, whose
+//! reset costs what the model covered.
 
 use glam::Vec3;
 
-use super::classes::MAX_CLASSES;
 use super::parity::{Bounds, Voxelizer};
 use super::parts::PartKind;
 use super::quant::{Placement, QuantBox, quantize, usable_linear, voxels_of_volume};
+use super::span::span_out_of_grid;
 use super::{VolumeCounts, VolumeScorer};
 use crate::geometry::Instance;
 
 /// Working memory of one worker counting models with a [`VolumeScorer`]: a bitset over
-/// the grid and the list of its words that are not zero.
+/// the grid of the voxels covered, one of those covered more than once, and the list
+/// of the words of the first that are not zero (the second's are a subset).
 #[derive(Clone, Debug)]
 pub struct VolumeScratch {
     covered: Vec<u64>,
+    twice: Vec<u64>,
     touched: Vec<u32>,
     voxelizer: Voxelizer,
 }
 
 impl VolumeScratch {
     pub(crate) fn new(voxels: u64) -> VolumeScratch {
+        let words = voxels.div_ceil(64) as usize;
         VolumeScratch {
-            covered: vec![0; voxels.div_ceil(64) as usize],
+            covered: vec![0; words],
+            twice: vec![0; words],
             touched: Vec::new(),
             voxelizer: Voxelizer::default(),
         }
@@ -33,10 +37,9 @@ impl VolumeScratch {
 struct Tally<'a> {
     scorer: &'a VolumeScorer,
     covered: &'a mut [u64],
+    twice: &'a mut [u64],
     touched: &'a mut Vec<u32>,
-    classes: [u64; MAX_CLASSES],
-    overlap: u64,
-    out_of_grid: u64,
+    counts: VolumeCounts,
 }
 
 impl Tally<'_> {
@@ -46,15 +49,15 @@ impl Tally<'_> {
         let len = (last - first + 1) as u64;
         let [nx, ny, nz] = self.scorer.grid.resolution().map(i64::from);
         if !(0..ny).contains(&j) || !(0..nz).contains(&k) {
-            self.out_of_grid += len;
+            self.counts.out_of_grid_hits += len;
             return;
         }
         let (a, b) = (first.max(0), last.min(nx - 1));
         if a > b {
-            self.out_of_grid += len;
+            self.counts.out_of_grid_hits += len;
             return;
         }
-        self.out_of_grid += len - (b - a + 1) as u64;
+        self.counts.out_of_grid_hits += len - (b - a + 1) as u64;
         let base = (j + ny * k) * nx;
         self.bits((base + a) as usize, (base + b) as usize);
     }
@@ -77,16 +80,22 @@ impl Tally<'_> {
                 self.touched.push(w as u32);
             }
             self.covered[w] = old | mask;
-            self.overlap += u64::from((old & mask).count_ones());
+            let again = old & mask;
+            if again != 0 {
+                self.counts.overlap_hits += u64::from(again.count_ones());
+                let twice = self.twice[w];
+                self.twice[w] = twice | again;
+                self.counts.overlap_voxels += u64::from((again & !twice).count_ones());
+            }
             let new = mask & !old;
             let mut rest = u64::from(new.count_ones());
             let masks = &self.scorer.class_bits[w * per..(w + 1) * per];
-            for (count, &m) in self.classes.iter_mut().zip(masks) {
+            for (count, &m) in self.counts.classes.iter_mut().zip(masks) {
                 let n = u64::from((new & m).count_ones());
                 *count += n;
                 rest -= n;
             }
-            self.classes[per] += rest;
+            self.counts.classes[per] += rest;
         }
     }
 
@@ -115,27 +124,33 @@ impl VolumeScorer {
     ) -> VolumeCounts {
         let VolumeScratch {
             covered,
+            twice,
             touched,
             voxelizer,
         } = scratch;
         let mut tally = Tally {
             scorer: self,
             covered,
+            twice,
             touched,
-            classes: [0; MAX_CLASSES],
-            overlap: 0,
-            out_of_grid: 0,
+            counts: VolumeCounts::default(),
         };
         for instance in instances {
-            match self.parts.get(instance.mesh.0 as usize) {
-                Some(PartKind::Box) => match quantize(&self.grid, &instance.transform) {
+            let Some(part) = self.parts.get(instance.mesh.0 as usize) else {
+                continue; // ids the grammar lacks cover nothing
+            };
+            let span = span_out_of_grid(&self.grid, part, &instance.transform);
+            let c = &mut tally.counts;
+            c.span_out_of_grid = c.span_out_of_grid.saturating_add(span);
+            match part {
+                PartKind::Box => match quantize(&self.grid, &instance.transform) {
                     Placement::Nothing => {}
                     Placement::Oversize(n) => {
-                        tally.out_of_grid = tally.out_of_grid.saturating_add(n)
+                        c.out_of_grid_hits = c.out_of_grid_hits.saturating_add(n)
                     }
                     Placement::Box(q) => tally.quant_box(&q),
                 },
-                Some(&PartKind::Solid { volume }) => {
+                &PartKind::Solid { volume, .. } => {
                     let t = &instance.transform;
                     let Some((m, shift)) = usable_linear(t.matrix3, Vec3::from(t.translation))
                     else {
@@ -149,13 +164,13 @@ impl VolumeScorer {
                     });
                     if run.is_err() {
                         let n = voxels_of_volume(grid, volume * m.determinant().abs());
-                        tally.out_of_grid = tally.out_of_grid.saturating_add(n);
+                        let c = &mut tally.counts;
+                        c.out_of_grid_hits = c.out_of_grid_hits.saturating_add(n);
                     }
                 }
-                None => {}
             }
         }
-        let (classes, overlap, out_of_grid) = (tally.classes, tally.overlap, tally.out_of_grid);
+        let counts = tally.counts;
         if let Some(out) = keep {
             out.clear();
             out.resize(covered.len(), 0);
@@ -165,20 +180,17 @@ impl VolumeScorer {
         }
         for &w in touched.iter() {
             covered[w as usize] = 0;
+            twice[w as usize] = 0;
         }
         touched.clear();
-        self.counts_from(classes, overlap, out_of_grid)
+        self.with_totals(counts)
     }
 
-    /// The counts of a model covering `classes` distinct voxels of each class.
-    pub(crate) fn counts_from(
-        &self,
-        classes: [u64; MAX_CLASSES],
-        overlap: u64,
-        out_of_grid: u64,
-    ) -> VolumeCounts {
+    /// `counts` with `inside` and `outside` summed from its classes.
+    pub(crate) fn with_totals(&self, mut counts: VolumeCounts) -> VolumeCounts {
         let (mut inside, mut outside) = (0, 0);
-        for (c, &n) in classes
+        for (c, &n) in counts
+            .classes
             .iter()
             .enumerate()
             .take(self.classes.weights().len())
@@ -189,12 +201,8 @@ impl VolumeScorer {
                 outside += n;
             }
         }
-        VolumeCounts {
-            inside,
-            outside,
-            overlap,
-            out_of_grid,
-            classes,
-        }
+        counts.inside = inside;
+        counts.outside = outside;
+        counts
     }
 }

@@ -1,11 +1,13 @@
 //! Counting whole populations on the GPU, with counts identical to the CPU's.
 //!
 //! Every model's box instances are quantised on the CPU ([`QuantBox`]) into one buffer
-//! per pass; `shaders/volume.wgsl` runs one invocation per (instance, row) pair, found
-//! from a prefix sum of rows per instance, marks the row's voxels in the model's bitset
-//! with `atomicOr` and adds what it counted to the model's counters. A pass holds as
-//! many models as their bitsets fit in one storage binding; all passes go in one
-//! submission, followed by one small read-back of the counters.
+//! per pass, and their spans' out-of-grid voxels are counted there too (a closed form
+//! per instance); `shaders/volume.wgsl` runs one invocation per (instance, row) pair,
+//! found from a prefix sum of rows per instance, marks the row's voxels in the model's
+//! bitset with `atomicOr`, marks those that were already set in a second bitset (voxels
+//! covered more than once) and adds what it counted to the model's counters. A pass
+//! holds as many models as their bitsets fit in one storage binding; all passes go in
+//! one submission, followed by one small read-back of the counters.
 
 use std::sync::Mutex;
 
@@ -14,6 +16,7 @@ use wgpu::util::DeviceExt;
 
 use super::classes::MAX_CLASSES;
 use super::quant::{Placement, QuantBox, quantize};
+use super::span::span_out_of_grid;
 use super::{VolumeCounts, VolumeScorer};
 use crate::gpu::{GpuContext, GpuError};
 use crate::score::InstanceBatch;
@@ -25,11 +28,12 @@ pub const VOLUME_WGSL: &str = include_str!("../../../../shaders/volume.wgsl");
 const WORKGROUP: u64 = 64;
 /// Most workgroups along one dispatch dimension.
 const MAX_GROUPS: u64 = 65_535;
-/// Counter words per model: low and high halves of 16 class counts, overlap and
-/// out-of-grid hits.
-const COUNTERS: usize = 2 * (MAX_CLASSES + 2);
-const OVERLAP: usize = 2 * MAX_CLASSES;
-const OUT_OF_GRID: usize = OVERLAP + 2;
+/// Counter words per model: low and high halves of 16 class counts, overlap hits,
+/// out-of-grid hits and overlap voxels.
+const COUNTERS: usize = 2 * (MAX_CLASSES + 3);
+const OVERLAP_HITS: usize = 2 * MAX_CLASSES;
+const OUT_OF_GRID_HITS: usize = OVERLAP_HITS + 2;
+const OVERLAP_VOXELS: usize = OUT_OF_GRID_HITS + 2;
 
 /// One pass's uniforms. Mirrors `struct Params` in `shaders/volume.wgsl` (48 bytes).
 #[repr(C)]
@@ -45,6 +49,14 @@ struct PassParams {
 }
 
 const _: () = assert!(size_of::<PassParams>() == 48);
+
+/// What a model's instances count on the CPU: out-of-grid hits of instances too large
+/// to rasterise, and their spans' out-of-grid voxels.
+#[derive(Clone, Copy, Default)]
+struct Beyond {
+    oversize: u64,
+    span: u64,
+}
 
 /// The models of one pass and their quantised boxes.
 #[derive(Default)]
@@ -85,10 +97,11 @@ pub struct GpuVolumeScorer<'a> {
     classes: wgpu::Buffer,
     words_per_model: u64,
     models_per_pass: usize,
-    /// The bitsets of the largest pass so far, reused.
-    covered: Mutex<Option<wgpu::Buffer>>,
-    /// Every instance of the last batch, quantised; reused.
-    placements: Mutex<Vec<Placement>>,
+    /// The bitsets of the largest pass so far, covered and covered again, reused.
+    bitsets: Mutex<Option<[wgpu::Buffer; 2]>>,
+    /// Every instance of the last batch, quantised, with its span's out-of-grid
+    /// voxels; reused.
+    placements: Mutex<Vec<(Placement, u64)>>,
 }
 
 impl std::fmt::Debug for GpuVolumeScorer<'_> {
@@ -165,12 +178,13 @@ impl<'a> GpuVolumeScorer<'a> {
             classes,
             words_per_model,
             models_per_pass,
-            covered: Mutex::new(None),
+            bitsets: Mutex::new(None),
             placements: Mutex::new(Vec::new()),
         })
     }
 
-    /// How many models share one pass: as many bitsets as fit one storage binding.
+    /// How many models share one pass: as many bitsets as fit one storage binding (each
+    /// model has two, in two bindings).
     pub fn models_per_pass(&self) -> usize {
         self.models_per_pass
     }
@@ -199,7 +213,7 @@ impl<'a> GpuVolumeScorer<'a> {
         if batch.is_empty() {
             return Ok(());
         }
-        let (passes, oversize) = self.plan(batch)?;
+        let (passes, beyond) = self.plan(batch)?;
         let counter_bytes = (batch.len() * COUNTERS * 4) as u64;
         if counter_bytes > self.ctx.max_binding() {
             return Err(GpuError::Unsupported(format!(
@@ -210,20 +224,22 @@ impl<'a> GpuVolumeScorer<'a> {
         let bitset_bytes = self.words_per_model * 4;
         let widest = passes.iter().map(|p| p.models).max().unwrap_or(0) as u64;
         let device = &self.ctx.device;
-        let mut covered = self.covered.lock().unwrap_or_else(|e| e.into_inner());
+        let mut bitsets = self.bitsets.lock().unwrap_or_else(|e| e.into_inner());
         let counters = self.ctx.checked(|| {
-            if covered
+            if bitsets
                 .as_ref()
-                .is_none_or(|b| b.size() < widest * bitset_bytes)
+                .is_none_or(|[b, _]| b.size() < widest * bitset_bytes)
             {
-                *covered = Some(device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("volume covered"),
-                    size: widest.max(1) * bitset_bytes,
-                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
+                *bitsets = Some(["volume covered", "volume covered again"].map(|label| {
+                    device.create_buffer(&wgpu::BufferDescriptor {
+                        label: Some(label),
+                        size: widest.max(1) * bitset_bytes,
+                        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                        mapped_at_creation: false,
+                    })
                 }));
             }
-            let covered = covered.as_ref().expect("made above");
+            let bitsets = bitsets.as_ref().expect("made above");
             let counters = device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("volume counters"),
                 size: counter_bytes,
@@ -234,52 +250,62 @@ impl<'a> GpuVolumeScorer<'a> {
                 label: Some("volume"),
             });
             for pass in passes.iter().filter(|p| p.rows > 0) {
-                self.encode(&mut encoder, pass, covered, &counters);
+                self.encode(&mut encoder, pass, bitsets, &counters);
             }
             self.ctx.queue.submit([encoder.finish()]);
             counters
         })?;
-        drop(covered);
+        drop(bitsets);
         let bytes = self.ctx.read_back(&counters, counter_bytes)?;
         let words: &[u32] = bytemuck::cast_slice(&bytes);
         for (m, slot) in out.iter_mut().enumerate() {
             let w = &words[m * COUNTERS..(m + 1) * COUNTERS];
             let wide = |at: usize| u64::from(w[at]) | u64::from(w[at + 1]) << 32;
-            let classes = std::array::from_fn(|c| wide(2 * c));
-            let out_of_grid = wide(OUT_OF_GRID).saturating_add(oversize[m]);
-            *slot = self.scorer.counts_from(classes, wide(OVERLAP), out_of_grid);
+            *slot = self.scorer.with_totals(VolumeCounts {
+                overlap_hits: wide(OVERLAP_HITS),
+                overlap_voxels: wide(OVERLAP_VOXELS),
+                out_of_grid_hits: wide(OUT_OF_GRID_HITS).saturating_add(beyond[m].oversize),
+                span_out_of_grid: beyond[m].span,
+                classes: std::array::from_fn(|c| wide(2 * c)),
+                ..VolumeCounts::default()
+            });
         }
         Ok(())
     }
 
-    /// Quantises every model's boxes and splits the models into passes; also gives each
-    /// model's out-of-grid hits of instances too large to rasterise.
-    fn plan(&self, batch: &InstanceBatch) -> Result<(Vec<Pass>, Vec<u64>), GpuError> {
+    /// Quantises every model's boxes and splits the models into passes; also gives what
+    /// each model counts on the CPU.
+    fn plan(&self, batch: &InstanceBatch) -> Result<(Vec<Pass>, Vec<Beyond>), GpuError> {
         let max_boxes = (self.ctx.max_binding() / size_of::<QuantBox>() as u64) as usize;
         // Row numbers travel as i32 in QuantBox::extent[3].
         let max_rows = i32::MAX as u64 - WORKGROUP;
         let grid = self.scorer.grid();
-        // Quantise every instance on the CPU threads, in order.
+        // Quantise every instance on the CPU threads, in order. Meshes are all boxes
+        // (checked in `new`).
         let mut placements = self.placements.lock().unwrap_or_else(|e| e.into_inner());
         batch
             .instances()
             .par_iter()
-            .map(|instance| match self.scorer.is_box(instance.mesh) {
-                Some(true) => quantize(grid, &instance.transform),
-                _ => Placement::Nothing, // ids the grammar lacks cover nothing
+            .map(|instance| match self.scorer.part(instance.mesh) {
+                Some(part) => (
+                    quantize(grid, &instance.transform),
+                    span_out_of_grid(grid, part, &instance.transform),
+                ),
+                None => (Placement::Nothing, 0), // ids the grammar lacks cover nothing
             })
             .collect_into_vec(&mut placements);
         let starts = batch.starts();
-        let mut oversize = vec![0u64; batch.len()];
+        let mut beyond = vec![Beyond::default(); batch.len()];
         let mut passes = vec![Pass::default()];
         let mut model_boxes = Vec::new();
-        for (m, extra) in oversize.iter_mut().enumerate() {
+        for (m, extra) in beyond.iter_mut().enumerate() {
             model_boxes.clear();
             let mut rows = 0u64;
-            for placement in &placements[starts[m] as usize..starts[m + 1] as usize] {
+            for (placement, span) in &placements[starts[m] as usize..starts[m + 1] as usize] {
+                extra.span = extra.span.saturating_add(*span);
                 match *placement {
                     Placement::Nothing => {}
-                    Placement::Oversize(n) => *extra = extra.saturating_add(n),
+                    Placement::Oversize(n) => extra.oversize = extra.oversize.saturating_add(n),
                     Placement::Box(q) => {
                         rows += (q.extent[1] as u64) * (q.extent[2] as u64);
                         model_boxes.push(q);
@@ -312,7 +338,7 @@ impl<'a> GpuVolumeScorer<'a> {
             }
             pass.models += 1;
         }
-        Ok((passes, oversize))
+        Ok((passes, beyond))
     }
 
     /// Records one pass: clear its bitsets, dispatch its rows.
@@ -320,7 +346,7 @@ impl<'a> GpuVolumeScorer<'a> {
         &self,
         encoder: &mut wgpu::CommandEncoder,
         pass: &Pass,
-        covered: &wgpu::Buffer,
+        [covered, again]: &[wgpu::Buffer; 2],
         counters: &wgpu::Buffer,
     ) {
         let device = &self.ctx.device;
@@ -357,9 +383,11 @@ impl<'a> GpuVolumeScorer<'a> {
                 entry(2, &self.classes, None),
                 entry(3, covered, Some(bitsets)),
                 entry(4, counters, None),
+                entry(5, again, Some(bitsets)),
             ],
         });
         encoder.clear_buffer(covered, 0, Some(bitsets));
+        encoder.clear_buffer(again, 0, Some(bitsets));
         let mut compute = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("volume rows"),
             timestamp_writes: None,

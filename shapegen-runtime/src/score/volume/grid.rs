@@ -13,6 +13,13 @@ pub const MAX_VOXELS: u64 = 1 << 28;
 /// models poking out of the grid are counted. Voxels are numbered `i + nx * (j + ny * k)`
 /// (x fastest).
 ///
+/// The spans of instances ([`VolumeCounts::span_out_of_grid`](super::VolumeCounts))
+/// take each vertex to the voxel holding it as the original does, in `f32`: per axis
+/// `floor((s p + o) + 0.5)` with `size = (max - min) / resolution`, `s = 1 / size` and
+/// `o = s (-min - size / 2)`, every operation rounded to `f32`. A position on the
+/// boundary between two voxels belongs to the upper one: a box whose face lies on the
+/// grid's upper bound reaches one voxel beyond it.
+///
 /// ```
 /// use glam::Vec3;
 /// use shapegen_runtime::score::volume::Grid;
@@ -38,6 +45,10 @@ pub struct Grid {
     resolution: [u32; 3],
     origin: DVec3,
     cell: DVec3,
+    /// `1 / voxel size` in `f32`: the diagonal of the original's world-to-voxel matrix.
+    voxel_scale: Vec3,
+    /// `voxel_scale * (-min - voxel size / 2)` in `f32`: that matrix's translation.
+    voxel_offset: Vec3,
 }
 
 /// Why a [`Grid`] cannot be made.
@@ -121,12 +132,20 @@ impl Grid {
             f64::from(resolution[1]),
             f64::from(resolution[2]),
         );
+        // The original's `VoxelCoords::init`, in f32: the world-to-voxel matrix is
+        // `scale(1 / size) * translation(-min - size / 2)`.
+        let [rx, ry, rz] = resolution.map(|r| r as f32);
+        let size = (max - min) / Vec3::new(rx, ry, rz);
+        let translation = min * -1.0 - size / 2.0;
+        let voxel_scale = Vec3::ONE / size;
         Ok(Grid {
             min,
             max,
             resolution,
             origin,
             cell: (max.as_dvec3() - origin) / res,
+            voxel_scale,
+            voxel_offset: voxel_scale * translation,
         })
     }
 
@@ -173,6 +192,19 @@ impl Grid {
         (p - self.origin) / self.cell - 0.5
     }
 
+    /// The index of the voxel containing world position `p`, computed as the original's
+    /// `VoxelCoords::toVoxel` computes it, in `f32`: per axis `floor((s p + o) + 0.5)`
+    /// with `s = 1 / size` and `o = s (-min - size / 2)`, `size = (max - min) /
+    /// resolution`, each operation rounded to `f32` (the matrix's other terms are exact
+    /// zeros and its `w` is 1). Not bounded by the grid; indices saturate at the `i32`
+    /// range and a NaN gives 0, as CUDA's float-to-int conversion does. Exact for finite
+    /// `p`.
+    #[inline]
+    pub(crate) fn voxel_of(&self, p: Vec3) -> [i32; 3] {
+        let v = (self.voxel_scale * p + self.voxel_offset) + 0.5;
+        [floor_i32(v.x), floor_i32(v.y), floor_i32(v.z)]
+    }
+
     /// The voxel number of lattice point `idx`, or `None` outside the grid.
     #[inline]
     pub fn index(&self, idx: [i64; 3]) -> Option<usize> {
@@ -191,6 +223,18 @@ impl Grid {
             (index / nx % ny) as i64,
             (index / (nx * ny)) as i64,
         ]
+    }
+}
+
+/// `floor(x) as i32`, saturating and 0 for NaN, without the library call `floor` is on
+/// targets lacking a rounding instruction.
+#[inline]
+fn floor_i32(x: f32) -> i32 {
+    let t = x as i32; // towards zero, saturating
+    if (t as f32) > x {
+        t.saturating_sub(1)
+    } else {
+        t
     }
 }
 
@@ -226,6 +270,55 @@ mod tests {
             "grid resolution [1024, 1024, 257] makes 269484032 voxels (at most 2^28 = 268435456 in all)"
         );
         assert!(Grid::new(Vec3::ZERO, one, [1024, 1024, 256]).is_ok());
+    }
+
+    #[test]
+    fn floor_is_the_library_floor_saturated() {
+        let mut xs = vec![
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.0,
+            -1.0,
+            2147483520.0,
+            -2147483648.0,
+            3e9,
+            -3e9,
+            f32::MAX,
+            f32::MIN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            f32::MIN_POSITIVE,
+            -f32::MIN_POSITIVE,
+        ];
+        let mut x = 1e-3f32;
+        while x < 1e10 {
+            xs.extend([x, -x, x.next_up(), -x.next_up(), x.round(), -x.round()]);
+            x *= 1.37;
+        }
+        for x in xs {
+            assert_eq!(floor_i32(x), x.floor() as i32, "{x}");
+        }
+    }
+
+    #[test]
+    fn positions_round_to_the_voxel_holding_them() {
+        let grid = Grid::new(
+            Vec3::new(-5.0, -5.0, -2.0),
+            Vec3::new(5.0, 5.0, 18.0),
+            [100, 200, 100],
+        )
+        .unwrap();
+        assert_eq!(grid.voxel_of(Vec3::new(-5.0, -5.0, -2.0)), [0, 0, 0]);
+        assert_eq!(grid.voxel_of(Vec3::new(-5.01, 4.99, 17.9)), [-1, 199, 99]);
+        // The upper bound lies in the voxel beyond the grid.
+        assert_eq!(grid.voxel_of(Vec3::new(5.0, 5.0, 18.0)), [100, 200, 100]);
+        assert_eq!(
+            grid.voxel_of(Vec3::new(f32::NAN, f32::INFINITY, -1e30)),
+            [0, i32::MAX, i32::MIN]
+        );
     }
 
     #[test]

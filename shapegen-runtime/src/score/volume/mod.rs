@@ -9,12 +9,42 @@
 //! triangles. A lattice point counts as covered when its voxel centre is.
 //!
 //! [`VolumeCounts`] holds what a model covers: distinct covered voxels per class,
-//! `inside` (target voxels: class weight above 0) and `outside` (the rest), `overlap`
-//! (every hit of a voxel beyond its first) and `out_of_grid` (hits of lattice points
-//! outside the grid, repeats counted). The fitness is, with [`Form::Weighted`], `sum_c
-//! count_c weight_c + out_of_grid sum_i outside_i - w_self overlap` and, with
-//! [`Form::Smooth`], `good S(0, T, inside) - bad S(0, 2T, outside + overlap +
-//! out_of_grid)` where `T` is the number of target voxels.
+//! `inside` (target voxels: class weight above 0) and `outside` (the rest); repeated
+//! coverage twice over, as `overlap_hits` (every hit of a voxel beyond its first) and
+//! `overlap_voxels` (distinct voxels covered more than once); and what lies beyond the
+//! grid twice over, as `out_of_grid_hits` (covered lattice points outside the grid, one
+//! per instance and point) and `span_out_of_grid` (per instance, the voxels of its
+//! *span* outside the grid, covered or not: see below). The fitness is, with
+//! [`Form::Weighted`] (the paper's text), `sum_c count_c weight_c + out_of_grid_hits
+//! sum_i outside_i - w_self overlap_hits` and, with [`Form::Smooth`] (the original's
+//! code), `good S(0, T, inside) - bad S(0, 2T, outside + overlap_voxels +
+//! span_out_of_grid)` where `T` is the number of target voxels.
+//!
+//! # As the original counts
+//! The original voxelizes each instance on its own over its span, the box of voxel
+//! indices between the rounded positions of its transformed vertices (each rounded to
+//! the voxel containing it, in `f32`: [`Grid`] documents the expression); every span
+//! voxel outside the grid adds 1 to its out-of-grid count, and every span voxel inside
+//! the grid whose centre the instance covers adds 1 to that voxel's count. Its
+//! `overlap` is the number of voxels whose count exceeds 1, and its smooth fitness
+//! penalises `bad + overlap + out-of-grid`: `outside`, `overlap_voxels` and
+//! `span_out_of_grid` here. With `inside`, they equal the original's for every model
+//! whose voxel centres it decides as we do (the volume tests check them against a
+//! transcription of the original's kernels on random spaceships).
+//!
+//! Which centres an instance covers is decided differently, with the same result
+//! except on ties of measure zero. The original casts a ray from each centre along +y
+//! and counts crossings with the instance's transformed triangles (Möller–Trumbore in
+//! `f32`, a crossing at the centre itself included, triangles whose projection onto
+//! the x-z plane has less than `5e-8` of area ignored). For a box that makes the faces
+//! met by the ray half-open: an axis-aligned box covers the centres with `y` in
+//! `(y_min, y_max]`, `x` and `z` in the closed ranges, and a centre whose ray passes
+//! exactly through the diagonal shared by a face's two triangles meets that face twice,
+//! so is left out; where `f32` rounding puts a centre on a face is decided by that
+//! rounding. Here a box covers a centre whose local coordinates lie in the closed
+//! `[-0.5, 0.5]^3`, decided exactly on its quantised form (within about 1e-6 of a voxel
+//! of the exact box, see `quant.rs`); other meshes by parity along +x with ties broken
+//! by symbolic perturbation, so that shared edges and vertices count once.
 //!
 //! [`count_batch`](super::count_batch) counts a population on the CPU threads;
 //! [`GpuVolumeScorer`] counts it on the GPU in one submission, with the same counts,
@@ -50,8 +80,19 @@
 //! };
 //! let mut scratch = scorer.scratch();
 //! let counts = scorer.count(&[taller], &mut scratch);
-//! let summary = (counts.inside, counts.outside, counts.overlap, counts.out_of_grid);
+//! let summary = (counts.inside, counts.outside, counts.overlap_voxels, counts.out_of_grid_hits);
 //! assert_eq!(summary, (8, 4, 0, 0));
+//! // Its top face lies on the grid's top, z = 1, which is rounded to voxel index 4 (the
+//! // voxel that would hold it), beyond the grid: of its span of 3 x 3 x 4 voxels, 9 lie
+//! // outside the grid although it covers none of their centres.
+//! assert_eq!(counts.span_out_of_grid, 9);
+//!
+//! // Two of them: the 12 voxels are covered twice, once more each.
+//! let twice = scorer.count(&[taller, taller], &mut scratch);
+//! assert_eq!((twice.overlap_hits, twice.overlap_voxels), (12, 12));
+//! // Three: 24 hits beyond the first, still 12 voxels.
+//! let thrice = scorer.count(&[taller, taller, taller], &mut scratch);
+//! assert_eq!((thrice.overlap_hits, thrice.overlap_voxels), (24, 12));
 //!
 //! // The target exactly: the optimum, `good`.
 //! let exact = Instance { transform: Affine3A::IDENTITY, mesh: CUBE };
@@ -66,6 +107,7 @@ mod grid;
 mod parity;
 mod parts;
 mod quant;
+mod span;
 
 pub use classes::{MAX_CLASSES, VoxelClasses};
 pub use count::VolumeScratch;
@@ -128,17 +170,26 @@ pub enum VolumeError {
 }
 
 /// What one model covers on the grid. Equal counts give equal fitness, whichever
-/// backend counted them.
+/// backend counted them. The [module documentation](self) says which fitness form uses
+/// which count.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct VolumeCounts {
     /// Distinct covered target voxels (class weight above 0).
     pub inside: u64,
     /// Distinct covered voxels that are not target voxels.
     pub outside: u64,
-    /// Hits of in-grid voxels beyond each voxel's first.
-    pub overlap: u64,
-    /// Hits of lattice points outside the grid, one per instance and point.
-    pub out_of_grid: u64,
+    /// Hits of in-grid voxels beyond each voxel's first: a voxel covered by three
+    /// instances counts 2.
+    pub overlap_hits: u64,
+    /// Distinct in-grid voxels covered more than once: a voxel covered by three
+    /// instances counts 1.
+    pub overlap_voxels: u64,
+    /// Covered lattice points outside the grid, one per instance and point.
+    pub out_of_grid_hits: u64,
+    /// Per instance, the voxels of its span (the box of voxel indices of its rounded
+    /// vertices) outside the grid, whether it covers them or not; summed over
+    /// instances.
+    pub span_out_of_grid: u64,
     /// Distinct covered voxels of each class ([`VoxelClasses::weights`]); classes the
     /// scene lacks stay 0. Not serialized: `inside` and `outside` sum them up.
     #[serde(skip)]
@@ -261,7 +312,13 @@ impl VolumeScorer {
     /// unit cube); `None` for an id the grammar lacks, whose instances cover nothing.
     #[inline]
     pub fn is_box(&self, id: MeshId) -> Option<bool> {
-        self.parts.get(id.0 as usize).map(|p| *p == PartKind::Box)
+        self.part(id).map(|p| *p == PartKind::Box)
+    }
+
+    /// How instances of mesh `id` are counted; `None` for an id the grammar lacks.
+    #[inline]
+    pub(crate) fn part(&self, id: MeshId) -> Option<&PartKind> {
+        self.parts.get(id.0 as usize)
     }
 }
 
@@ -287,12 +344,15 @@ impl Scorer for VolumeScorer {
                     .zip(&counts.classes)
                     .map(|(&w, &n)| w * n as f64)
                     .sum();
-                covered + counts.out_of_grid as f64 * self.outside_sum
-                    - overlap * counts.overlap as f64
+                covered + counts.out_of_grid_hits as f64 * self.outside_sum
+                    - overlap * counts.overlap_hits as f64
             }
             Form::Smooth { good, bad } => {
                 let t = self.target_voxels() as f64;
-                let off = (counts.outside + counts.overlap + counts.out_of_grid) as f64;
+                let off = counts
+                    .outside
+                    .saturating_add(counts.overlap_voxels)
+                    .saturating_add(counts.span_out_of_grid) as f64;
                 good * smoothstep(0.0, t, counts.inside as f64)
                     - bad * smoothstep(0.0, 2.0 * t, off)
             }

@@ -1,10 +1,12 @@
 //! How each of a grammar's meshes is counted: boxes exactly in integers, anything else
 //! by parity.
 
+use glam::Vec3;
+
 use crate::geometry::Mesh;
 
 /// How instances of one mesh are counted.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub(crate) enum PartKind {
     /// The unit cube `[-0.5, 0.5]^3`: the exact integer path.
     Box,
@@ -13,6 +15,8 @@ pub(crate) enum PartKind {
     Solid {
         /// Volume in mesh units.
         volume: f64,
+        /// The distinct positions its triangles use, which bound its span.
+        vertices: Vec<Vec3>,
     },
 }
 
@@ -24,9 +28,20 @@ impl PartKind {
         } else {
             PartKind::Solid {
                 volume: signed_volume(mesh).abs(),
+                vertices: used_positions(mesh),
             }
         }
     }
+}
+
+/// The distinct positions of `mesh` that its triangles use, in first use.
+fn used_positions(mesh: &Mesh) -> Vec<Vec3> {
+    let mut seen = std::collections::HashSet::new();
+    mesh.indices
+        .iter()
+        .map(|&i| mesh.positions[i as usize])
+        .filter(|p| seen.insert(p.to_array().map(f32::to_bits)))
+        .collect()
 }
 
 /// The signed volume enclosed by the triangles (divergence theorem), in `f64`.
@@ -93,10 +108,22 @@ mod tests {
         assert_eq!(PartKind::of(&cube), PartKind::Box);
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../generators/meshes");
         let trunk = Mesh::from_obj(dir.join("trunk.obj")).unwrap();
-        let PartKind::Solid { volume } = PartKind::of(&trunk) else {
+        let PartKind::Solid { volume, vertices } = PartKind::of(&trunk) else {
             panic!("the trunk is a prism");
         };
         assert!(volume > 0.5 && volume < 1.0, "{volume}");
+        let mut distinct = trunk.positions.clone();
+        distinct.sort_by(|a, b| a.to_array().partial_cmp(&b.to_array()).unwrap());
+        distinct.dedup();
+        assert_eq!(vertices.len(), distinct.len(), "each used position once");
+        let mut unused = trunk.clone();
+        unused.positions.push(Vec3::splat(100.0));
+        unused.normals.push(Vec3::X);
+        assert_eq!(
+            PartKind::of(&unused),
+            PartKind::of(&trunk),
+            "unused vertices are left out"
+        );
 
         let mut doubled = cube.clone();
         doubled.indices.extend_from_slice(&cube.indices[..3]);

@@ -6,8 +6,9 @@
 //! point `(I0 + i, J0 + j, K0 + k)` is written as `u_a = alpha_a i + beta_a j +
 //! gamma_a k + delta_a`, relative to the corner `(I0, J0, K0)` of the instance's lattice
 //! bounding box. Each axis is scaled by its own power of two `2^s_a` and rounded to
-//! `i32` coefficients `A_a, B_a, C_a, D_a` and half-width `H_a` (`0.5 * 2^s_a`). From
-//! then on coverage is integer arithmetic only: a lattice point of the bounding box is
+//! `i32` coefficients `A_a, B_a, C_a, D_a` and half-width `H_a` (`0.5 * 2^s_a`); the
+//! coefficient of an index that takes one value only (the bounding box is one lattice
+//! point thick along its axis) is 0. From then on coverage is integer arithmetic only: a lattice point of the bounding box is
 //! covered iff `-H_a <= A_a i + B_a j + C_a k + D_a <= H_a` for all three axes, and in
 //! row `(j, k)` the covered `i` form one interval found by exact floor and ceiling
 //! divisions ([`QuantBox::row`], mirrored by `row_interval` in `shaders/volume.wgsl`).
@@ -195,7 +196,14 @@ pub(crate) fn quantize(grid: &Grid, transform: &glam::Affine3A) -> Placement {
         ..QuantBox::default()
     };
     for a in 0..3 {
-        let terms = [step[0][a], step[1][a], step[2][a], offset[a]];
+        // An index that takes only the value 0 (one lattice point along its axis) needs
+        // no coefficient, and its term, unbounded by the budget, could overflow i32.
+        let mut terms = [step[0][a], step[1][a], step[2][a], offset[a]];
+        for (term, &s) in terms.iter_mut().zip(&span) {
+            if s == 0.0 {
+                *term = 0.0;
+            }
+        }
         let bound = terms[0].abs() * span[0]
             + terms[1].abs() * span[1]
             + terms[2].abs() * span[2]
@@ -303,6 +311,45 @@ mod tests {
             }
         }
         assert!(checked > 10_000, "{checked}");
+    }
+
+    #[test]
+    fn boxes_one_lattice_point_thick_have_no_coefficient_there() {
+        // A wing box of the spaceship, 0.02 wide on a grid of 0.1 voxels: one lattice
+        // point along x, whose coefficient (about 5 per point) scaled to the budget of
+        // the other terms would not fit an i32.
+        let grid = Grid::new(
+            Vec3::new(-5.0, -5.0, -2.0),
+            Vec3::new(5.0, 5.0, 18.0),
+            [100, 200, 100],
+        )
+        .unwrap();
+        let t = Affine3A::from_cols_array(&[
+            -0.021694506,
+            -1.896594e-9,
+            0.0,
+            2.9626166e-8,
+            -0.33888385,
+            0.0,
+            0.0,
+            0.0,
+            0.4443658,
+            -1.0441633,
+            -9.1283674e-8,
+            1.3668362,
+        ]);
+        let Placement::Box(q) = quantize(&grid, &t) else {
+            panic!("the box holds lattice points");
+        };
+        assert_eq!(q.extent[0], 1);
+        assert_eq!([q.axes[0][0], q.axes[1][0], q.axes[2][0]], [0, 0, 0]);
+        // Every row covers the one point: its centre x = -1.05 lies in the box.
+        for k in 0..q.extent[2] {
+            for j in 0..q.extent[1] {
+                assert_eq!(q.row(j, k), Some((0, 0)), "row {j} {k}");
+            }
+        }
+        assert_eq!(q.corner[0], 39);
     }
 
     #[test]
