@@ -3,8 +3,9 @@
 //! A pixel `(x, y)` (row 0 at the top) is covered when its centre `(x + 0.5, y + 0.5)`
 //! lies inside a polygon, with the top-left rule deciding centres exactly on an edge: a
 //! centre on a left edge or on a horizontal top edge is inside, one on a right or bottom
-//! edge is not. Every edge's crossing of a scanline is computed from its endpoints in a
-//! fixed order, so two polygons sharing an edge split the centres on it exactly.
+//! edge is not. Projected vertices snap to 1/256 of a pixel, as GPUs snap them, and
+//! centres on an edge are found exactly, so the CPU and GPU paths decide the same
+//! centres, and two polygons sharing an edge split the centres on it exactly.
 
 use glam::{Vec2, Vec4};
 
@@ -21,6 +22,9 @@ pub(in crate::score) struct Coverage {
     stride: usize,
     width: u32,
     height: u32,
+    /// The left and right edges of the polygon being filled.
+    left: Vec<Edge>,
+    right: Vec<Edge>,
 }
 
 /// Words per row of an image `width` pixels wide.
@@ -104,11 +108,10 @@ impl Coverage {
         if row0 >= row1 {
             return;
         }
-        // Each non-horizontal edge bounds the polygon on the left or on the right:
-        // x_e(y) = px + (y - py) * slope, from the endpoint first in (y, x) order.
-        let mut left = [(0.0f32, 0.0f32, 0.0f32); MAX_POLYGON];
-        let mut right = [(0.0f32, 0.0f32, 0.0f32); MAX_POLYGON];
-        let (mut nl, mut nr) = (0, 0);
+        // Each non-horizontal edge bounds the polygon on the left or on the right, from
+        // its endpoint first in (y, x) order to the other.
+        self.left.clear();
+        self.right.clear();
         for i in 0..n {
             let (a, b) = (poly[i], poly[(i + 1) % n]);
             let dy = b.y - a.y;
@@ -120,28 +123,18 @@ impl Coverage {
             } else {
                 (b, a)
             };
-            let edge = (p.x, p.y, (q.x - p.x) / (q.y - p.y));
+            let edge = Edge::new(p, q);
             if (area2 > 0.0) == (dy > 0.0) {
-                right[nr] = edge;
-                nr += 1;
+                self.right.push(edge);
             } else {
-                left[nl] = edge;
-                nl += 1;
+                self.left.push(edge);
             }
         }
         let width = self.width as f32;
         for row in row0 as usize..row1 as usize {
             let yc = row as f32 + 0.5;
-            let mut xl = f32::NEG_INFINITY;
-            for &(px, py, slope) in &left[..nl] {
-                xl = xl.max(px + (yc - py) * slope);
-            }
-            let mut xr = f32::INFINITY;
-            for &(px, py, slope) in &right[..nr] {
-                xr = xr.min(px + (yc - py) * slope);
-            }
-            let col0 = (xl - 0.5).ceil().max(0.0);
-            let col1 = (xr - 0.5).ceil().min(width);
+            let col0 = first_column(&self.left, yc, Bound::Left).max(0.0);
+            let col1 = first_column(&self.right, yc, Bound::Right).min(width);
             if col0 < col1 {
                 self.fill_row(row, col0 as usize, col1 as usize);
             }
@@ -149,15 +142,117 @@ impl Coverage {
     }
 }
 
+/// Which side of a polygon a set of edges bounds.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Bound {
+    /// The polygon lies right of every left edge.
+    Left,
+    /// The polygon ends at the first right edge.
+    Right,
+}
+
+/// In the scanline at height `yc`, the first column whose centre lies on or right of
+/// every one of the left `edges` (the first covered column), or of any one of the right
+/// `edges` (the first column past the polygon).
+///
+/// The crossings' `f32` estimates decide, unless the bounding crossing falls within
+/// their rounding (well under [`TIE`]) of a centre; then cross products in `f64` settle
+/// it: a centre `xc` lies on or right of an edge's line when
+/// `(xc - px) dy >= (yc - py) dx`. On vertices snapped to [`SUBPIXEL`] steps within
+/// `2^18` pixels of the origin every factor has at most 26 significant bits, so these
+/// products are exact and centres exactly on an edge are decided exactly, as a GPU's
+/// fixed-point rasterizer decides them.
+#[inline]
+fn first_column(edges: &[Edge], yc: f32, bound: Bound) -> f32 {
+    // The bounding crossing, less half a pixel: the first column is its ceiling.
+    let mut x = match bound {
+        Bound::Left => f32::NEG_INFINITY,
+        Bound::Right => f32::INFINITY,
+    };
+    for e in edges {
+        let crossing = e.px + (yc - e.py) * e.slope - 0.5;
+        x = match bound {
+            Bound::Left => x.max(crossing),
+            Bound::Right => x.min(crossing),
+        };
+    }
+    let col = x.ceil();
+    let above = col - x;
+    if !x.is_finite() || (TIE..=1.0 - TIE).contains(&above) {
+        return col;
+    }
+    // Within rounding of the centre of column `nearest`.
+    let nearest = if above < 0.5 { col } else { col - 1.0 };
+    let (centre, yc) = (f64::from(nearest) + 0.5, f64::from(yc));
+    let on_or_right = |e: &Edge| {
+        let (px, py) = (f64::from(e.px), f64::from(e.py));
+        (centre - px) * f64::from(e.dy) >= (yc - py) * f64::from(e.dx)
+    };
+    let inside = match bound {
+        Bound::Left => edges.iter().all(on_or_right),
+        Bound::Right => edges.iter().any(on_or_right),
+    };
+    if inside { nearest } else { nearest + 1.0 }
+}
+
+/// How near, in pixels, an estimated crossing must come to a pixel centre for the exact
+/// test to decide: far more than the `f32` estimate's rounding in an image up to 8192
+/// pixels wide.
+const TIE: f32 = 2e-3;
+
+/// A non-horizontal polygon edge from `p` to `q`, `p` first in `(y, x)` order.
+#[derive(Clone, Copy, Debug, Default)]
+struct Edge {
+    px: f32,
+    py: f32,
+    dx: f32,
+    dy: f32,
+    slope: f32,
+}
+
+impl Edge {
+    fn new(p: Vec2, q: Vec2) -> Edge {
+        let (dx, dy) = (q.x - p.x, q.y - p.y);
+        Edge {
+            px: p.x,
+            py: p.y,
+            dx,
+            dy,
+            slope: dx / dy,
+        }
+    }
+}
+
+/// Steps per pixel to which vertex positions snap before rasterization: 8 sub-pixel bits,
+/// as GPUs snap them (Vulkan's `subPixelPrecisionBits`, 8 on common hardware and on
+/// llvmpipe), so that both paths decide the same centres.
+pub(super) const SUBPIXEL: f32 = 256.0;
+
 /// Clip space to pixel coordinates of a `width` x `height` image, row 0 at the top:
-/// `x = (ndc_x + 1) / 2 * width`, `y = (1 - ndc_y) / 2 * height`.
+/// `x = (ndc_x + 1) / 2 * width`, `y = (1 - ndc_y) / 2 * height`, snapped to the nearest
+/// [`SUBPIXEL`] step.
 #[inline]
 pub(super) fn to_pixels(clip: Vec4, width: f32, height: f32) -> Vec2 {
     let inv = 1.0 / clip.w;
-    Vec2::new(
+    let p = Vec2::new(
         (clip.x * inv + 1.0) * 0.5 * width,
         (1.0 - clip.y * inv) * 0.5 * height,
-    )
+    );
+    Vec2::new(snap(p.x * SUBPIXEL), snap(p.y * SUBPIXEL)) / SUBPIXEL
+}
+
+/// `t` rounded to the nearest integer, ties to even, as a float-to-fixed conversion
+/// rounds: adding and taking away `1.5 * 2^23` leaves no fraction bits below 1 for any
+/// `|t| < 2^22`; larger values (vertices thousands of pixels outside the image) keep
+/// what fraction `f32` has left.
+#[inline]
+fn snap(t: f32) -> f32 {
+    const MAGIC: f32 = 12_582_912.0;
+    if t.abs() < 4_194_304.0 {
+        (t + MAGIC) - MAGIC
+    } else {
+        t
+    }
 }
 
 /// Whether a clip-space point lies in front of the near plane (`z >= -w`, `w > 0`).

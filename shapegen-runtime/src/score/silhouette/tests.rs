@@ -193,6 +193,46 @@ fn shared_edge_is_neither_doubled_nor_missed() {
 }
 
 #[test]
+fn centres_exactly_on_a_sloped_edge_are_decided_exactly() {
+    // The diagonal from (0.5, 0.5) to (58.5, 22.5) has the slope 29/11, which no binary
+    // fraction holds, and passes exactly through the centre (29.5, 11.5) of pixel
+    // (29, 11); in f32, 0.5 + 11 * (58 / 22) is 29.500002.
+    let (a, b) = (vec2(0.5, 0.5), vec2(58.5, 22.5));
+    let fill = |poly: &[Vec2]| {
+        let mut cov = Coverage::default();
+        cov.shape(64, 24);
+        cov.fill_convex(poly);
+        let mut pixels = Vec::new();
+        for y in 0..24 {
+            pixels.extend((0..64).filter(|&x| cov.get(x, y)).map(|x| (x, y)));
+        }
+        pixels
+    };
+    // Below the diagonal it is the right edge (centre out), above it the left (centre in).
+    let below = fill(&[a, b, vec2(0.5, 22.5)]);
+    let above = fill(&[a, vec2(58.5, 0.5), b]);
+    assert!(!below.contains(&(29, 11)) && below.contains(&(28, 11)));
+    assert!(above.contains(&(29, 11)) && !above.contains(&(28, 11)));
+    assert!(below.iter().all(|p| !above.contains(p)));
+    // Together they cover the rectangle's centres once each: 58 columns by 22 rows.
+    assert_eq!(below.len() + above.len(), 58 * 22);
+}
+
+#[test]
+fn projected_vertices_snap_to_a_256th_of_a_pixel() {
+    use super::raster::to_pixels;
+    // x = (0.25 + 1) / 2 * 10 = 6.25 exactly; y lands between two steps and snaps to
+    // the nearer.
+    let p = to_pixels(
+        Vec4::new(0.25, 1.0 - 2.0 * 3.0013 / 6.0, 0.0, 1.0),
+        10.0,
+        6.0,
+    );
+    assert_eq!(p.x, 6.25);
+    assert_eq!(p.y * 256.0, (3.0013f32 * 256.0).round());
+}
+
+#[test]
 fn horizontal_edges_follow_the_top_left_rule() {
     let mut cov = Coverage::default();
     cov.shape(8, 8);
