@@ -6,8 +6,9 @@
 //! All of them live on [`Operators`], which holds the [`Limits`] they keep genomes within,
 //! the grammar's link probabilities as exact fixed-point weights, and scratch buffers, so
 //! that they allocate nothing once warmed up (crossover's children may be written into
-//! existing genomes with [`Operators::crossover_into`]). Every choice is made with exact
-//! integer arithmetic from the caller's RNG: the same seed gives the same genomes.
+//! existing genomes with [`Operators::crossover_into`]). Every choice is drawn from the
+//! caller's RNG, with exact integer arithmetic under the weighted rules and the
+//! original's own float draws under its rules: the same seed gives the same genomes.
 //!
 //! The operators follow one of two rule sets, an [`OperatorVariant`]:
 //! [`Weighted`](OperatorVariant::Weighted) (the default) chooses with the grammar's
@@ -69,9 +70,11 @@
 mod alter;
 mod crossover;
 mod cut;
+pub(crate) mod draw;
 mod edit;
 mod grow;
 mod original;
+pub(crate) use original::redraw;
 mod random;
 mod weight;
 
@@ -133,8 +136,8 @@ pub const ORIGINAL_CROSSOVER_ATTEMPTS: u32 = 3;
 ///   grow).
 ///
 /// The original's integer draw `getRandomValue(min, max)` is `int(min + (max - min) u)`
-/// for a float `u` in `[0, 1)`: `max` itself is never drawn (and `min == max` gives
-/// `min` without a draw). Its uniform non-root gene is `1 + int((len - 1) u)` genes past
+/// for a float `u` in `[0, 1)`, and `Original` draws exactly so: `max` itself is never
+/// drawn (and `min == max` gives `min` without a draw). Its uniform non-root gene is `1 + int((len - 1) u)` genes past
 /// the first, which is always the root. Its draws among `n` listed candidates use
 /// `max = n - 1`, so the last candidate is never taken when `n >= 2`, and `Original`
 /// keeps that:

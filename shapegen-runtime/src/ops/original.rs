@@ -4,26 +4,13 @@
 
 use rand::Rng;
 
+use super::draw::{int_value, pick};
 use super::edit::{Donor, cover, graft, record_links, remove_subtree, splice, split};
-use super::weight::below;
 use super::{KindInfo, ORIGINAL_CROSSOVER_ATTEMPTS, Operators, gene_starts};
 use crate::derive::Grammar;
 use crate::genome::{DEPTH_CAP, Genome, depths, node_of, parent_pos};
 use crate::graph::HEADER_WORDS;
 use crate::param;
-
-/// The original's draw of an index among `n > 0` candidates: `int((n - 1) * u)` for `u`
-/// in `[0, 1)`, uniform over the first `n - 1` when `n >= 2` (the last is never drawn),
-/// and 0 without a draw when `n == 1`.
-#[inline]
-fn pick(rng: &mut impl Rng, n: usize) -> usize {
-    debug_assert!(n > 0);
-    if n == 1 {
-        0
-    } else {
-        below(rng, n as u64 - 1) as usize
-    }
-}
 
 /// A gene's symbol in the original's sense: its node kind and its index within the
 /// array slot it hangs from (0 for a single slot).
@@ -80,24 +67,12 @@ impl<G: Grammar> Operators<G> {
         while added < steps && !self.s.cand.is_empty() {
             let i = pick(rng, self.s.cand.len());
             let pos = self.s.cand[i];
-            let k = self.kind_at(&genome.words, pos);
-            let at = (pos + HEADER_WORDS) as usize;
-            let empty = genome.words[at..at + k.links as usize]
-                .iter()
-                .filter(|&&w| w == 0)
-                .count();
-            let j = pick(rng, empty);
-            let link = (0..k.links)
-                .filter(|&l| genome.words[at + l as usize] == 0)
-                .nth(j)
-                .expect("the drawn index lies among the empty links");
-            let child_kind = self.link(&k, link).child;
-            let child = genome.push_gene(child_kind, Some((pos, link)), rng);
+            let (child, empty) = self.add_child_original(genome, pos, rng);
             added += 1;
             if empty == 1 {
                 self.s.cand.remove(i);
             }
-            let ck = self.kinds[child_kind as usize];
+            let ck = self.kind_at(&genome.words, child);
             let open = if track {
                 cover(&mut self.s.depth, genome.words.len());
                 let d = self.s.depth[pos as usize] + 1;
@@ -112,6 +87,31 @@ impl<G: Grammar> Operators<G> {
             }
         }
         added
+    }
+
+    /// The original's addition of one child to the gene at `pos`, which must have an
+    /// empty link: one of its empty links, in link order, drawn by [`pick`] whatever its
+    /// probability, and there a child with parameters drawn from their distributions.
+    /// Returns the child's position and how many empty links the gene had. O(links).
+    pub(crate) fn add_child_original(
+        &self,
+        genome: &mut Genome<G>,
+        pos: u32,
+        rng: &mut impl Rng,
+    ) -> (u32, usize) {
+        let k = self.kind_at(&genome.words, pos);
+        let at = (pos + HEADER_WORDS) as usize;
+        let empty = genome.words[at..at + k.links as usize]
+            .iter()
+            .filter(|&&w| w == 0)
+            .count();
+        let j = pick(rng, empty);
+        let link = (0..k.links)
+            .filter(|&l| genome.words[at + l as usize] == 0)
+            .nth(j)
+            .expect("the drawn index lies among the empty links");
+        let child_kind = self.link(&k, link).child;
+        (genome.push_gene(child_kind, Some((pos, link)), rng), empty)
     }
 
     /// The original's cut (`do_symbol_cut`): removes the subtree of a uniformly drawn
@@ -131,7 +131,7 @@ impl<G: Grammar> Operators<G> {
             Some(&mut s.starts),
             |_, _| {},
         );
-        let pos = s.starts[1 + below(rng, u64::from(genome.len - 1)) as usize];
+        let pos = s.starts[random_gene(genome.len, rng)];
         genome.len -= remove_subtree(&self.kinds, &mut genome.words, pos, &mut s.map, &s.link_of);
         if genome.len == 1 {
             self.grow_original(genome, 1, rng);
@@ -147,7 +147,7 @@ impl<G: Grammar> Operators<G> {
             return false;
         }
         gene_starts(&self.kinds, &genome.words, &mut self.s.starts);
-        let pos = self.s.starts[1 + below(rng, u64::from(genome.len - 1)) as usize];
+        let pos = self.s.starts[random_gene(genome.len, rng)];
         if !self.kind_at(&genome.words, pos).has_params {
             return false;
         }
@@ -178,7 +178,7 @@ impl<G: Grammar> Operators<G> {
             depths::<G>(&b.words, &mut self.s.depth_b);
         }
         for _ in 0..ORIGINAL_CROSSOVER_ATTEMPTS {
-            let ra = self.s.starts[1 + below(rng, u64::from(a.len - 1)) as usize];
+            let ra = self.s.starts[random_gene(a.len, rng)];
             let pa = parent_pos(&a.words, ra);
             let ka = self.kind_at(&a.words, pa);
             let link_a = (0..ka.links)
@@ -313,6 +313,14 @@ impl<G: Grammar> Operators<G> {
     }
 }
 
+/// The original's `getRandomGene` on a genome of `len > 1` genes: the index, in gene
+/// order, of a gene drawn by stepping `getRandomValue(1, len)` genes past the first (the
+/// root), so uniform over the genes but the root.
+#[inline]
+fn random_gene(len: u32, rng: &mut impl Rng) -> usize {
+    int_value(rng, 1, len as i32) as usize
+}
+
 /// Whether the gene at `pos`, of kind `k`, has an empty link.
 #[inline]
 fn has_empty_link(words: &[u32], pos: u32, k: &KindInfo) -> bool {
@@ -321,7 +329,7 @@ fn has_empty_link(words: &[u32], pos: u32, k: &KindInfo) -> bool {
 }
 
 /// Redraws all parameters of the gene at `pos` from their distributions.
-pub(super) fn redraw<G: Grammar>(genome: &mut Genome<G>, pos: u32, rng: &mut impl Rng) {
+pub(crate) fn redraw<G: Grammar>(genome: &mut Genome<G>, pos: u32, rng: &mut impl Rng) {
     let node = node_of::<G>(genome.words[pos as usize]);
     let at = (pos + HEADER_WORDS + node.links) as usize;
     for p in node.params {

@@ -16,7 +16,7 @@ use super::run::{Method, Progress, drive, grammar_struct_traits, stream};
 use super::{Budget, Evaluator, Observer, OptimizeError, RunResult, SettingsError};
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
-use crate::ops::Operators;
+use crate::ops::{OperatorVariant, Operators};
 
 /// Which RJMCMC an [`Mcmc`] runs.
 ///
@@ -426,7 +426,11 @@ impl<G: Grammar> Mcmc<G> {
         Ok(Mcmc {
             settings,
             limits,
-            ops: Operators::new(op_limits)?,
+            ops: Operators::new(op_limits)?.with_variant(if original {
+                OperatorVariant::Original
+            } else {
+                OperatorVariant::Weighted
+            }),
             progress: Progress::new(seed),
             chains: (0..n).map(|_| empty()).collect(),
             fitness: vec![f64::NAN; n],

@@ -14,18 +14,17 @@
 //! array of lots is the original's hundred lot symbols). As the original, the moves
 //! ignore the links' probabilities.
 
-use rand::{Rng, RngExt};
+use rand::Rng;
 use rayon::prelude::*;
 
 use super::Mcmc;
 use crate::derive::Grammar;
 use crate::genome::{DEPTH_CAP, Genome, depths, node_of};
 use crate::graph::HEADER_WORDS;
-use crate::ops::Operators;
-use crate::optimize::grow::link_facts;
+use crate::ops::draw::{int_value, pick, value, value01};
+use crate::ops::{Operators, redraw};
 use crate::optimize::run::stream;
 use crate::optimize::{Evaluator, OptimizeError};
-use crate::param;
 
 /// Chain `i` starts at the exponent `1 / (i + 1)^TEMPERATURE_EXPONENT`.
 const TEMPERATURE_EXPONENT: f32 = 1.03;
@@ -58,7 +57,7 @@ struct Scratch {
     genes: Vec<(u32, u32)>,
     /// Breadth-first queue, with depths.
     queue: Vec<(u32, u32)>,
-    /// Children or free links of one gene.
+    /// The children of one gene.
     list: Vec<u32>,
 }
 
@@ -69,12 +68,12 @@ impl<G: Grammar> Mcmc<G> {
         evaluator: &mut E,
     ) -> Result<(), OptimizeError> {
         let (seed, len) = (self.progress.seed, self.settings.initial_length);
-        self.chains
-            .par_iter_mut()
-            .enumerate()
-            .for_each_init(Scratch::default, |s, (i, g)| {
-                random_genome(g, len, s, &mut stream(seed, 0, i as u64))
-            });
+        // The operators follow the original's rules: `createRandomGenome`.
+        let ops = &self.ops;
+        self.chains.par_iter_mut().enumerate().for_each_init(
+            || ops.clone(),
+            |ops, (i, g)| ops.random_into(len, g, &mut stream(seed, 0, i as u64)),
+        );
         evaluator.evaluate(&self.chains, &mut self.fitness)?;
         self.progress.evaluations += self.chains.len() as u64;
         for (i, t) in self.temperatures.iter_mut().enumerate() {
@@ -147,36 +146,6 @@ impl<G: Grammar> Mcmc<G> {
             self.log_priors.swap(a, b);
         }
     }
-}
-
-/// The original's `getRandomValue01()`: uniform over `[0, 1)`.
-fn value01(rng: &mut impl Rng) -> f32 {
-    rng.random::<f32>()
-}
-
-/// The original's `getRandomValue(float min, float max)`: `min + (max - min) U`.
-fn value(rng: &mut impl Rng, min: f32, max: f32) -> f32 {
-    if max == min {
-        min
-    } else {
-        min + (max - min) * value01(rng)
-    }
-}
-
-/// The original's `getRandomValue(int min, int max)`: the float draw over
-/// `[min, max)` truncated toward zero, so `max` itself only when `min == max`.
-fn int_value(rng: &mut impl Rng, min: i32, max: i32) -> i32 {
-    if max == min {
-        min
-    } else {
-        value(rng, min as f32, max as f32) as i32
-    }
-}
-
-/// The original's pick among `n >= 1` candidates, `getRandomValue(0, n - 1)`: the last
-/// one only when it is alone.
-fn pick(rng: &mut impl Rng, n: usize) -> usize {
-    int_value(rng, 0, n as i32 - 1) as usize
 }
 
 /// Chain `i`'s initial exponent, `1 / (i + 1)^1.03`.
@@ -252,7 +221,7 @@ fn propose<G: Grammar>(
     let before = selection_log_prob(level_count(proposal, &s.depth, level), level, max_level);
     if jump {
         delete_children(ops, proposal, gene, s);
-        let deepest = add_random_symbols(proposal, gene, level + 1, s, rng);
+        let deepest = add_random_symbols(ops, proposal, gene, level + 1, s, rng);
         // `_max_level` only grows: deletions leave it as it was.
         let max_level = max_level.max(deepest);
         depths::<G>(proposal.words(), &mut s.depth);
@@ -262,7 +231,7 @@ fn propose<G: Grammar>(
             log_prior: after - before,
         }
     } else {
-        diffuse(proposal, gene, rng);
+        redraw(proposal, gene, rng);
         Move {
             accept_prior: 0.0,
             log_prior: before - chain_prior,
@@ -327,65 +296,12 @@ fn children<G: Grammar>(words: &[u32], pos: u32, out: &mut Vec<u32>) {
     out.sort_unstable();
 }
 
-/// Fills `out` with the links of the gene at `pos` (depth `depth`) that a child may be
-/// added at, in link order: the empty ones; none at [`DEPTH_CAP`].
-fn free_links<G: Grammar>(words: &[u32], pos: u32, depth: u32, out: &mut Vec<u32>) {
-    out.clear();
-    if depth < DEPTH_CAP {
-        let at = pos + HEADER_WORDS;
-        let links = node_of::<G>(words[pos as usize]).links;
-        out.extend((0..links).filter(|&l| words[(at + l) as usize] == 0));
-    }
-}
-
 /// Whether the gene at `pos` (depth `depth`) can have another child: the original's
 /// `can_have_children`.
 fn can_grow<G: Grammar>(words: &[u32], pos: u32, depth: u32) -> bool {
     let at = (pos + HEADER_WORDS) as usize;
     let links = node_of::<G>(words[pos as usize]).links as usize;
     depth < DEPTH_CAP && words[at..at + links].contains(&0)
-}
-
-/// Adds a child to the gene at `pos` (depth `depth`), which must be able to grow, as the
-/// original does: a child type drawn by [`pick`] among the free links (ignoring their
-/// probabilities), parameters drawn from their distributions. Returns its position.
-fn add_child<G: Grammar>(
-    genome: &mut Genome<G>,
-    pos: u32,
-    depth: u32,
-    free: &mut Vec<u32>,
-    rng: &mut impl Rng,
-) -> u32 {
-    free_links::<G>(genome.words(), pos, depth, free);
-    let link = free[pick(rng, free.len())];
-    let kind = link_facts::<G>(genome.words()[pos as usize], link).1;
-    genome.push_gene(kind, Some((pos, link)), rng)
-}
-
-/// The original's `createRandomGenome(len)` into `out`: the axiom, then `len - 1` times
-/// `GrowMutation::grow`, which adds a child ([`add_child`]) to a gene drawn by [`pick`]
-/// among the genes that can grow, in creation order (so never the newest of several).
-/// Stops early only when no gene can grow.
-fn random_genome<G: Grammar>(out: &mut Genome<G>, len: u32, s: &mut Scratch, rng: &mut impl Rng) {
-    out.reset_to_axiom(rng);
-    s.genes.clear();
-    if can_grow::<G>(out.words(), 0, 1) {
-        s.genes.push((0, 1));
-    }
-    for _ in 1..len {
-        if s.genes.is_empty() {
-            break;
-        }
-        let i = pick(rng, s.genes.len());
-        let (pos, d) = s.genes[i];
-        let child = add_child(out, pos, d, &mut s.list, rng);
-        if !can_grow::<G>(out.words(), pos, d) {
-            s.genes.remove(i);
-        }
-        if can_grow::<G>(out.words(), child, d + 1) {
-            s.genes.push((child, d + 1));
-        }
-    }
 }
 
 /// The original's `deleteChildGenes` on the gene at `pos`: it deletes child `i` while
@@ -410,12 +326,13 @@ fn delete_children<G: Grammar>(
 }
 
 /// The original's `addRandomSymbols` below the gene at `root` (depth `root_depth`):
-/// adds a child ([`add_child`]) to a gene drawn by [`pick`] among the genes of `root`'s
+/// adds a child ([`Operators::add_child_original`]) to a gene drawn by [`pick`] among the genes of `root`'s
 /// subtree that can grow, in breadth-first order, again and again, until the whole tree
 /// reaches level [`LEVEL_CAP`] or a uniform draw after an addition falls below
 /// [`STOP_PROBABILITY`], or until no gene of the subtree can grow. No length limit.
 /// Returns the tree's deepest level.
 fn add_random_symbols<G: Grammar>(
+    ops: &Operators<G>,
     genome: &mut Genome<G>,
     root: u32,
     root_depth: u32,
@@ -424,7 +341,7 @@ fn add_random_symbols<G: Grammar>(
 ) -> u32 {
     let mut max_level = depths::<G>(genome.words(), &mut s.depth) - 1;
     while let Some((gene, d)) = valid_sub_gene(genome, root, root_depth, s, rng) {
-        add_child(genome, gene, d, &mut s.list, rng);
+        ops.add_child_original(genome, gene, rng);
         let stop = value01(rng);
         // The child lies at depth d + 1, level d.
         max_level = max_level.max(d);
@@ -466,16 +383,6 @@ fn valid_sub_gene<G: Grammar>(
     match s.genes.len() {
         0 => None,
         n => Some(s.genes[pick(rng, n)]),
-    }
-}
-
-/// The original's diffusion move: redraws every parameter of the gene at `pos` from its
-/// distribution.
-fn diffuse<G: Grammar>(genome: &mut Genome<G>, pos: u32, rng: &mut impl Rng) {
-    let node = node_of::<G>(genome.words()[pos as usize]);
-    let at = (pos + HEADER_WORDS + node.links) as usize;
-    for p in node.params {
-        param::sample(&p.dist, rng, &mut genome.words[at + p.offset as usize..]);
     }
 }
 
@@ -613,23 +520,8 @@ mod tests {
     }
 
     #[test]
-    fn integer_draws_never_reach_their_upper_bound() {
-        let mut r = rng(2);
-        let mut counts = [0u32; 4];
-        let n = 30_000;
-        for _ in 0..n {
-            counts[int_value(&mut r, 0, 3) as usize] += 1;
-        }
-        assert_eq!(counts[3], 0);
-        assert!(
-            counts[..3].iter().all(|&c| fits(c, n, 1.0 / 3.0)),
-            "{counts:?}"
-        );
-        assert_eq!(int_value(&mut r, 4, 4), 4);
-        assert_eq!(pick(&mut r, 1), 0);
-        assert!((0..1000).all(|_| pick(&mut r, 2) == 0));
-        assert!((0..1000).all(|_| pick(&mut r, 3) < 2));
-        // Chain exponents: chain 0 the coldest.
+    fn chains_start_at_their_exponents() {
+        // Chain 0 the coldest.
         assert_eq!(initial_temperature(0), 1.0);
         assert!(close(initial_temperature(1), 0.489_730_6));
     }
@@ -697,12 +589,12 @@ mod tests {
         let mut r = rng(5);
         let mut g = Genome::<Branchy>::axiom(&mut r);
         let a1 = g.push_gene(kind("A"), Some((0, 0)), &mut r);
-        let mut free = Vec::new();
+        let ops = original_ops::<Branchy>();
         let n = 10_000;
         let mut counts = [0u32; 4];
         for _ in 0..n {
             let mut h = g.clone();
-            let child = add_child(&mut h, a1, 2, &mut free, &mut r);
+            let (child, _) = ops.add_child_original(&mut h, a1, &mut r);
             counts[h.words()[child as usize] as usize] += 1;
         }
         // Links a, b, c free: a or b alike (whatever their probabilities), never c.
@@ -712,7 +604,7 @@ mod tests {
         g.push_gene(kind("A"), Some((a1, 0)), &mut r);
         for _ in 0..100 {
             let mut h = g.clone();
-            let child = add_child(&mut h, a1, 2, &mut free, &mut r);
+            let (child, _) = ops.add_child_original(&mut h, a1, &mut r);
             assert_eq!(h.words()[child as usize], kind("B"));
         }
     }
@@ -722,12 +614,12 @@ mod tests {
         let mut r = rng(6);
         let mut g = Genome::<Branchy>::axiom(&mut r);
         let a1 = g.push_gene(kind("A"), Some((0, 0)), &mut r);
-        let mut s = Scratch::default();
+        let (ops, mut s) = (original_ops::<Branchy>(), Scratch::default());
         let n = 2000;
         let mut added = Vec::with_capacity(n);
         for _ in 0..n {
             let mut h = g.clone();
-            let deepest = add_random_symbols(&mut h, a1, 2, &mut s, &mut r);
+            let deepest = add_random_symbols(&ops, &mut h, a1, 2, &mut s, &mut r);
             h.validate().unwrap();
             assert_eq!(deepest, h.depth() - 1);
             added.push(h.len() - 2);
@@ -743,7 +635,7 @@ mod tests {
     #[test]
     fn jumps_stop_at_level_25() {
         let mut r = rng(7);
-        let mut s = Scratch::default();
+        let (ops, mut s) = (original_ops::<Line>(), Scratch::default());
         // A line of levels 0..=2, grown from its end: one gene per addition.
         let mut g = Genome::<Line>::axiom(&mut r);
         let mut end = 0;
@@ -753,7 +645,7 @@ mod tests {
         let mut at_cap = 0;
         for _ in 0..500 {
             let mut h = g.clone();
-            let deepest = add_random_symbols(&mut h, end, 3, &mut s, &mut r);
+            let deepest = add_random_symbols(&ops, &mut h, end, 3, &mut s, &mut r);
             assert!(deepest <= 25 && deepest == h.depth() - 1);
             at_cap += u32::from(deepest == 25);
         }
@@ -765,17 +657,20 @@ mod tests {
         }
         for _ in 0..50 {
             let mut h = g.clone();
-            assert_eq!(add_random_symbols(&mut h, end, 31, &mut s, &mut r), 31);
+            assert_eq!(
+                add_random_symbols(&ops, &mut h, end, 31, &mut s, &mut r),
+                31
+            );
             assert_eq!(h.len(), g.len() + 1);
         }
     }
 
     #[test]
     fn random_genomes_have_exactly_the_length_and_grow_the_oldest_first() {
-        let mut s = Scratch::default();
+        let mut ops = original_ops::<Branchy>();
         let mut g = Genome::<Branchy>::axiom(&mut rng(0));
         for len in 1..=60 {
-            random_genome(&mut g, len, &mut s, &mut rng(u64::from(len)));
+            ops.random_into(len, &mut g, &mut rng(u64::from(len)));
             g.validate().unwrap();
             assert_eq!(g.len(), len as usize);
         }
@@ -783,9 +678,16 @@ mod tests {
         // grandchild (A1 is the older of the two genes that can grow) nor link c (the
         // last free one).
         for seed in 0..100 {
-            random_genome(&mut g, 4, &mut s, &mut rng(seed));
+            ops.random_into(4, &mut g, &mut rng(seed));
             let a1 = g.gene(g.root().link(0).unwrap());
             assert!(a1.link(0).is_some() && a1.link(1).is_some() && a1.link(2).is_none());
         }
+    }
+
+    /// Operators with the original's rules, as the original variant's chains use them.
+    fn original_ops<G: Grammar>() -> Operators<G> {
+        Operators::new(Limits::new(0, 100, 50).unwrap())
+            .unwrap()
+            .with_variant(crate::ops::OperatorVariant::Original)
     }
 }

@@ -2,7 +2,7 @@
 //! documentation gives the rules): the original's grows (`SMCGrowMutation`,
 //! `SoSmcGrowMutation`) and its resampling wheel (`SMCSelection`, `SoSmcSelection`).
 
-use rand::{Rng, RngExt};
+use rand::Rng;
 
 use super::super::fitness::rank;
 use super::super::grow::link_facts;
@@ -10,21 +10,7 @@ use super::Order;
 use crate::derive::Grammar;
 use crate::genome::{DEPTH_CAP, Genome, node_of};
 use crate::graph::HEADER_WORDS;
-
-/// The original's `getRandomValue01()`: uniform over `[0, 1)`.
-fn value01(rng: &mut impl Rng) -> f32 {
-    rng.random::<f32>()
-}
-
-/// The original's pick among `n >= 1` candidates, `getRandomValue(0, n - 1)`: the float
-/// `(n - 1) U` truncated, so the last candidate only when it is alone.
-fn pick(rng: &mut impl Rng, n: usize) -> usize {
-    if n == 1 {
-        0
-    } else {
-        ((n - 1) as f32 * value01(rng)) as usize
-    }
-}
+use crate::ops::draw::{pick, value01};
 
 /// Per-thread scratch of the grows.
 #[derive(Default)]
