@@ -86,6 +86,21 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
         "--seconds {}: give a wall-time budget of more than 0 seconds",
         args.seconds
     );
+    let multi_objective = |scene: &Scene| {
+        anyhow::ensure!(
+            scene.objectives.is_none(),
+            "`{}` has [[objective]] tables: compare measures single-objective methods by \
+             one fitness, and a multi-objective scene is searched by the multi-objective GA \
+             (`shapegen run`)",
+            args.scene.display()
+        );
+        Ok(())
+    };
+    // The scene as written, when it loads so (it may not: `--set` keys may belong to the
+    // compared methods rather than to the scene's own), says whether it has objectives.
+    if let Ok(scene) = Scene::load_with(&args.scene, &args.sets) {
+        multi_objective(&scene)?;
+    }
     // Each method's goal, as `shapegen run --method M` resolves it: `--set` keys are read
     // as the method's own (a `variant`, say, is each method's variant).
     let mut scenes = Vec::with_capacity(methods.len());
@@ -94,13 +109,7 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
         sets.push(format!("optimizer.method={:?}", method.name()));
         scenes.push(Scene::load_with(&args.scene, &sets)?);
     }
-    anyhow::ensure!(
-        scenes[0].objectives.is_none(),
-        "`{}` has [[objective]] tables: compare measures single-objective methods by one \
-         fitness, and a multi-objective scene is searched by the multi-objective GA \
-         (`shapegen run`)",
-        args.scene.display()
-    );
+    multi_objective(&scenes[0])?;
     let base = args.seed.unwrap_or(scenes[0].optimizer.seed);
     let seeds = (0..args.runs)
         .map(|r| base.checked_add(r))
