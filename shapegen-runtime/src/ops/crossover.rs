@@ -200,16 +200,8 @@ impl<G: Grammar> Operators<G> {
         rb: u32,
         track_depth: bool,
     ) -> (Split, Split) {
+        let sa = self.split_first(a, ra, track_depth);
         let s = &mut self.s;
-        let sa = split(
-            &self.kinds,
-            &a.words,
-            &s.starts,
-            ra,
-            &mut s.map,
-            &mut s.depth,
-            track_depth,
-        );
         let sb = split(
             &self.kinds,
             &b.words,
@@ -220,6 +212,21 @@ impl<G: Grammar> Operators<G> {
             track_depth,
         );
         (sa, sb)
+    }
+
+    /// Splits the first parent `a` at `ra` (its gene starts already in the scratch
+    /// buffers).
+    pub(super) fn split_first(&mut self, a: &Genome<G>, ra: u32, track_depth: bool) -> Split {
+        let s = &mut self.s;
+        split(
+            &self.kinds,
+            &a.words,
+            &s.starts,
+            ra,
+            &mut s.map,
+            &mut s.depth,
+            track_depth,
+        )
     }
 
     /// Writes both children of a swap whose splits are done.

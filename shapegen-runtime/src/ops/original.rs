@@ -5,7 +5,7 @@
 use rand::Rng;
 
 use super::draw::{int_value, pick};
-use super::edit::{Donor, cover, graft, record_links, remove_subtree, splice, split};
+use super::edit::{Donor, cover, graft, record_links, remove_subtree, splice};
 use super::{KindInfo, ORIGINAL_CROSSOVER_ATTEMPTS, Operators, gene_starts};
 use crate::derive::Grammar;
 use crate::genome::{DEPTH_CAP, Genome, depths, node_of, parent_pos};
@@ -274,16 +274,8 @@ impl<G: Grammar> Operators<G> {
         out_a: &mut Genome<G>,
         out_b: &mut Genome<G>,
     ) -> bool {
+        let sa = self.split_first(a, ra, track);
         let s = &mut self.s;
-        let sa = split(
-            &self.kinds,
-            &a.words,
-            &s.starts,
-            ra,
-            &mut s.map,
-            &mut s.depth,
-            track,
-        );
         if track {
             let b_depth = s.starts_b.iter().map(|&p| s.depth_b[p as usize]).max();
             let hung = s.depth_b[pb as usize] + 1 + sa.sub_max_depth - sa.root_depth;

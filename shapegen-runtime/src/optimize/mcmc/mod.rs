@@ -8,6 +8,7 @@ mod original;
 mod tempered;
 
 use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::error::check_range;
@@ -516,6 +517,20 @@ impl<G: Grammar> Mcmc<G> {
         observer: &mut impl Observer<G>,
     ) -> Result<RunResult<G>, OptimizeError> {
         drive(self, evaluator, budget, observer)
+    }
+
+    /// Grows every chain's initial genome, chain `i` from stream (seed, 0, `i`), with the
+    /// variant's operators, and evaluates them.
+    fn start_chains<E: Evaluator<G>>(&mut self, evaluator: &mut E) -> Result<(), OptimizeError> {
+        let (seed, len) = (self.progress.seed, self.settings.initial_length);
+        let ops = &self.ops;
+        self.chains.par_iter_mut().enumerate().for_each_init(
+            || ops.clone(),
+            |ops, (i, g)| ops.random_into(len, g, &mut stream(seed, 0, i as u64)),
+        );
+        evaluator.evaluate(&self.chains, &mut self.fitness)?;
+        self.progress.evaluations += self.chains.len() as u64;
+        Ok(())
     }
 }
 

@@ -67,15 +67,8 @@ impl<G: Grammar> Mcmc<G> {
         &mut self,
         evaluator: &mut E,
     ) -> Result<(), OptimizeError> {
-        let (seed, len) = (self.progress.seed, self.settings.initial_length);
         // The operators follow the original's rules: `createRandomGenome`.
-        let ops = &self.ops;
-        self.chains.par_iter_mut().enumerate().for_each_init(
-            || ops.clone(),
-            |ops, (i, g)| ops.random_into(len, g, &mut stream(seed, 0, i as u64)),
-        );
-        evaluator.evaluate(&self.chains, &mut self.fitness)?;
-        self.progress.evaluations += self.chains.len() as u64;
+        self.start_chains(evaluator)?;
         for (i, t) in self.temperatures.iter_mut().enumerate() {
             *t = f64::from(initial_temperature(i));
         }

@@ -39,14 +39,7 @@ impl<G: Grammar> Mcmc<G> {
         &mut self,
         evaluator: &mut E,
     ) -> Result<(), OptimizeError> {
-        let (seed, len) = (self.progress.seed, self.settings.initial_length);
-        let ops = &self.ops;
-        self.chains.par_iter_mut().enumerate().for_each_init(
-            || ops.clone(),
-            |ops, (i, g)| ops.random_into(len, g, &mut stream(seed, 0, i as u64)),
-        );
-        evaluator.evaluate(&self.chains, &mut self.fitness)?;
-        self.progress.evaluations += self.chains.len() as u64;
+        self.start_chains(evaluator)?;
         let (_, s) = mean_std(&self.fitness);
         let s = if s > 0.0 && s.is_finite() { s } else { 1.0 };
         let cold = -s / self.settings.cold_acceptance.ln();
