@@ -1,5 +1,5 @@
 //! Checks: the syntax tree into the [model](crate::model), every mistake reported as a
-//! `syn::Error` on the user's own tokens and collected in a [`Ctxt`], so that all of them
+//! `syn::Error` on the user's own tokens and collected in a [`Ctxt`](crate::ctxt::Ctxt), so that all of them
 //! are shown at once.
 //!
 //! What is checked: node, parameter, slot and mesh names are unique (and a parameter and a
@@ -9,40 +9,18 @@
 //! least one child; parameter types are supported and their distributions fit them, with
 //! non-empty ranges and valid weights; every node can be reached from the axiom.
 
-use std::cell::RefCell;
 use std::collections::{HashMap, HashSet, VecDeque};
 
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{ToTokens, format_ident, quote};
-use syn::{Error, Expr, Type};
+use syn::{Expr, Type};
 
 use crate::consteval::{eval_f32, eval_f64, eval_int, eval_vec, peel, to_f32};
-use crate::layout;
-use crate::model::{AngleUnit, Dist, Generator, Mesh, Node, Param, ParamType, Rule, Slot};
+use crate::ctxt::Ctxt;
+use crate::model::{
+    AngleUnit, Dist, Generator, HEADER_WORDS, Mesh, Node, Param, ParamType, Rule, Slot,
+};
 use crate::parse::{self, Item, Section, SlotTarget};
-
-/// Collects the errors of one expansion.
-#[derive(Default)]
-pub struct Ctxt {
-    errors: RefCell<Vec<Error>>,
-}
-
-impl Ctxt {
-    /// Records an error.
-    pub fn push(&self, e: Error) {
-        self.errors.borrow_mut().push(e);
-    }
-
-    /// Records an error spanning `tokens`.
-    pub fn error(&self, tokens: impl ToTokens, msg: impl std::fmt::Display) {
-        self.push(Error::new_spanned(tokens, msg));
-    }
-
-    /// Every error recorded, in order.
-    pub fn finish(self) -> Vec<Error> {
-        self.errors.into_inner()
-    }
-}
 
 /// Tokens whose first and last spans are `start` and `end`, so that an error spanned on
 /// them covers everything in between.
@@ -446,7 +424,7 @@ fn check_node<'a>(
         .map(|t| u64::from(t.words()))
         .sum();
     if let Some(links) = links
-        && u64::from(layout::HEADER_WORDS) + links + words > u64::from(u32::MAX)
+        && u64::from(HEADER_WORDS) + links + words > u64::from(u32::MAX)
     {
         bindings_ok = false;
         cx.error(

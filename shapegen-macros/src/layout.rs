@@ -1,6 +1,6 @@
 //! Gene layout: where each child link and parameter word sits in a gene.
 //!
-//! A gene is `HEADER_WORDS` header words (kind, parent offset), then one word per child
+//! A gene is [`HEADER_WORDS`](crate::model::HEADER_WORDS) header words (kind, parent offset), then one word per child
 //! link (slots in declaration order, an array slot `[Node; N]` taking `N` consecutive
 //! links), then the parameters' words in declaration order (`Vec2` 2 words, `Vec3` 3,
 //! every other type 1). The runtime reads the same numbers from the generator graph, and
@@ -8,10 +8,6 @@
 //! own word sizes.
 
 use crate::model::{Node, ParamType};
-
-/// Header words at the start of every gene: node kind and parent offset. The runtime's
-/// `graph::HEADER_WORDS`.
-pub const HEADER_WORDS: u32 = 2;
 
 /// The layout of one node type's genes.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -67,7 +63,8 @@ pub fn links(node: &Node) -> Option<u32> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::check::{Ctxt, check};
+    use crate::check::check;
+    use crate::ctxt::Ctxt;
     use crate::parse::parse_input;
     use quote::quote;
 

@@ -5,12 +5,15 @@
 //! The macro is a pipeline of modules: `parse` (tokens to syntax tree) -> `check` (syntax
 //! tree to the checked `model`, every mistake a spanned error) -> `layout` (gene layout)
 //! -> `expand` (Rust items), or `fallback` when a check failed. Constant expressions are
-//! evaluated by `consteval`.
+//! evaluated by `consteval`; every stage records its errors in the collector of `ctxt`.
+//! A module imports only from the stages before it (and from `model`, `consteval` and
+//! `ctxt`, which import none of the others).
 
 use proc_macro::TokenStream;
 
 mod check;
 mod consteval;
+mod ctxt;
 mod expand;
 mod fallback;
 mod layout;
@@ -27,7 +30,7 @@ pub fn generator_impl(input: TokenStream) -> TokenStream {
 
 /// The expansion of `input` (`runtime path ; generator`), errors included.
 fn generator(input: proc_macro2::TokenStream) -> proc_macro2::TokenStream {
-    let cx = check::Ctxt::default();
+    let cx = ctxt::Ctxt::default();
     let input = match parse::parse_input(input, &cx) {
         Ok(input) => input,
         Err(e) => {

@@ -8,6 +8,10 @@
 use proc_macro2::{Group, Ident};
 use syn::{Attribute, Token, Visibility};
 
+/// Header words at the start of every gene: node kind and parent offset. The runtime's
+/// `graph::HEADER_WORDS`.
+pub const HEADER_WORDS: u32 = 2;
+
 /// A generator.
 pub struct Generator<'a> {
     pub attrs: &'a [Attribute],

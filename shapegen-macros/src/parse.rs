@@ -32,7 +32,7 @@ use syn::{
     parenthesized, token,
 };
 
-use crate::check::Ctxt;
+use crate::ctxt::Ctxt;
 
 mod kw {
     syn::custom_keyword!(axiom);
