@@ -19,6 +19,8 @@
 
 use std::sync::OnceLock;
 
+use wgpu::naga;
+
 pub use wgpu;
 
 /// Why the GPU backend cannot be used, or failed.

@@ -546,14 +546,9 @@ fn the_shader_validates() {
 
 #[test]
 fn the_tree_meshes_take_the_hull_path_and_a_concave_mesh_does_not() {
-    let trunk = crate::Mesh::from_obj_str(
-        "trunk",
-        include_str!("../../../../generators/meshes/trunk.obj"),
-    );
-    let leaf = crate::Mesh::from_obj_str(
-        "leaf",
-        include_str!("../../../../generators/meshes/leaf.obj"),
-    );
+    // Copies of the tree generator's meshes, so that the crate's tests stay inside it.
+    let trunk = crate::Mesh::from_obj_str("trunk", include_str!("testdata/trunk.obj"));
+    let leaf = crate::Mesh::from_obj_str("leaf", include_str!("testdata/leaf.obj"));
     let mut library = MeshLibrary::new();
     library.register("trunk", trunk.unwrap()).unwrap();
     library.register("leaf", leaf.unwrap()).unwrap();

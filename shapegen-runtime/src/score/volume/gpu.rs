@@ -22,7 +22,7 @@ use crate::gpu::{GpuContext, GpuError};
 use crate::score::InstanceBatch;
 
 /// The shader's source.
-pub const VOLUME_WGSL: &str = include_str!("../../../../shaders/volume.wgsl");
+pub const VOLUME_WGSL: &str = include_str!("../../../shaders/volume.wgsl");
 
 /// Invocations per workgroup (`@workgroup_size` in the shader).
 const WORKGROUP: u64 = 64;
