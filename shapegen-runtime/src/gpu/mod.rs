@@ -17,8 +17,6 @@
 //! }
 //! ```
 
-use std::sync::OnceLock;
-
 use wgpu::naga;
 
 pub use wgpu;
@@ -203,33 +201,6 @@ pub fn validate_wgsl(source: &str) -> Result<(), String> {
     Ok(())
 }
 
-/// The device GPU tests run on, opened once per test binary.
-///
-/// Returns `None` after printing why when there is no adapter, unless the environment
-/// variable `SHAPEGEN_REQUIRE_GPU` is `1` (as in CI, which installs a software Vulkan
-/// driver): then it panics, so that GPU tests fail rather than skip where a GPU is expected.
-#[doc(hidden)]
-pub fn test_context() -> Option<&'static GpuContext> {
-    static CONTEXT: OnceLock<Result<GpuContext, String>> = OnceLock::new();
-    let context = CONTEXT.get_or_init(|| {
-        let context = GpuContext::new().map_err(|err| err.to_string());
-        if let Ok(gpu) = &context {
-            eprintln!("GPU tests run on {}", gpu.describe());
-        }
-        context
-    });
-    match context {
-        Ok(gpu) => Some(gpu),
-        Err(err) if std::env::var("SHAPEGEN_REQUIRE_GPU").as_deref() == Ok("1") => {
-            panic!("SHAPEGEN_REQUIRE_GPU=1 but there is no GPU: {err}")
-        }
-        Err(err) => {
-            eprintln!("skipping a GPU test: {err}");
-            None
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -239,28 +210,5 @@ mod tests {
         let err = validate_wgsl("@compute @workgroup_size(1) fn main() { let x: u32 = 1.5; }")
             .unwrap_err();
         assert!(err.contains("wgsl:1:"), "{err}");
-    }
-
-    #[test]
-    fn a_buffer_reads_back() {
-        let Some(gpu) = test_context() else { return };
-        let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: None,
-            size: 8,
-            usage: wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        gpu.queue
-            .write_buffer(&buffer, 0, &[1, 2, 3, 4, 5, 6, 7, 8]);
-        assert_eq!(gpu.read_back(&buffer, 6).unwrap(), [1, 2, 3, 4, 5, 6]);
-        assert!(gpu.max_binding() <= MAX_BINDING);
-        assert!(!gpu.describe().is_empty());
-    }
-
-    #[test]
-    fn a_bad_shader_is_an_error_not_a_panic() {
-        let Some(gpu) = test_context() else { return };
-        let err = gpu.shader("bad", "fn main( {").unwrap_err();
-        assert!(matches!(err, GpuError::Device(_)), "{err}");
     }
 }

@@ -1,0 +1,47 @@
+//! The tests that need a GPU adapter, under their own harness so that a missing adapter
+//! shows: without one every test is reported as ignored, after a line saying that no
+//! adapter was found, unless `SHAPEGEN_REQUIRE_GPU=1` (as in CI, which installs a
+//! software Vulkan driver), where every test fails instead.
+
+mod context;
+mod silhouette;
+mod volume;
+
+use std::process::ExitCode;
+
+use libtest_mimic::{Arguments, Failed, Trial};
+use shapegen_runtime::gpu::GpuContext;
+
+/// A GPU test: its name and its body, which panics when the test fails.
+type GpuTest = (&'static str, fn(&GpuContext));
+
+fn main() -> ExitCode {
+    let args = Arguments::from_args();
+    let tests = [context::TESTS, volume::TESTS, silhouette::TESTS].concat();
+    let required = std::env::var("SHAPEGEN_REQUIRE_GPU").as_deref() == Ok("1");
+    let gpu: Result<&'static GpuContext, String> = GpuContext::new()
+        .map(|gpu| &*Box::leak(Box::new(gpu)))
+        .map_err(|err| format!("no GPU adapter was found: {err}"));
+    match &gpu {
+        Ok(gpu) => eprintln!("GPU tests run on {}", gpu.describe()),
+        Err(err) if required => eprintln!("{err}; SHAPEGEN_REQUIRE_GPU=1, so the GPU tests fail"),
+        Err(err) => eprintln!("{err}; the GPU tests are ignored"),
+    }
+    let trials = tests
+        .into_iter()
+        .map(|(name, test)| match &gpu {
+            Ok(gpu) => {
+                let gpu = *gpu;
+                Trial::test(name, move || {
+                    test(gpu);
+                    Ok(())
+                })
+            }
+            Err(err) => {
+                let err = err.clone();
+                Trial::test(name, move || Err(Failed::from(err))).with_ignored_flag(!required)
+            }
+        })
+        .collect();
+    libtest_mimic::run(&args, trials).exit_code()
+}

@@ -1,0 +1,248 @@
+//! The silhouette scorer on the GPU agrees with the CPU up to pixels on edges.
+
+use std::path::{Path, PathBuf};
+
+use generators::{city, spaceship, tree};
+use glam::vec3;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use shapegen_runtime::gpu::GpuContext;
+use shapegen_runtime::score::silhouette::{
+    Camera, GpuSilhouetteScorer, ImageTarget, OrbitCamera, SilhouetteCounts, SilhouetteScorer,
+};
+use shapegen_runtime::score::{Form, InstanceBatch, count_batch};
+use shapegen_runtime::{Grammar, Limits, Operators};
+
+use crate::GpuTest;
+
+/// The tests of this module.
+pub const TESTS: &[GpuTest] = &[
+    (
+        "silhouette::gpu_matches_cpu_on_random_cities",
+        gpu_matches_cpu_on_random_cities,
+    ),
+    (
+        "silhouette::gpu_matches_cpu_on_random_trees",
+        gpu_matches_cpu_on_random_trees,
+    ),
+    (
+        "silhouette::gpu_matches_cpu_on_random_spaceships_through_a_close_camera",
+        gpu_matches_cpu_on_random_spaceships_through_a_close_camera,
+    ),
+    (
+        "silhouette::gpu_counts_a_batch_larger_than_one_chunk",
+        gpu_counts_a_batch_larger_than_one_chunk,
+    ),
+];
+
+const SMOOTH: Form = Form::Smooth {
+    good: 1.0,
+    bad: 1.0,
+};
+
+fn scenes() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/paper-scenes")
+}
+
+fn city_camera() -> Camera {
+    Camera::Orbit(OrbitCamera {
+        phi: -3.05161,
+        theta: 0.0479887,
+        radius: 12.4346,
+        lookat: vec3(1.82669, 4.65407, -0.620025),
+        fov_degrees: 60.0,
+        near: 0.1,
+        far: 100.0,
+    })
+}
+
+fn tree_camera() -> Camera {
+    Camera::Orbit(OrbitCamera {
+        // The published value, -1.5708 (about -pi/2).
+        #[allow(clippy::approx_constant)]
+        phi: -1.5708,
+        theta: 0.0,
+        radius: 9.4716,
+        lookat: vec3(-0.680994, 3.2558, 0.0),
+        fov_degrees: 60.0,
+        near: 0.1,
+        far: 100.0,
+    })
+}
+
+fn population<G: Grammar>(limits: Limits, initial_len: u32, n: usize, seed: u64) -> InstanceBatch {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut ops = Operators::<G>::new(limits).unwrap();
+    let mut batch = InstanceBatch::new();
+    for _ in 0..n {
+        batch.push_genome(&ops.random(initial_len, &mut rng));
+    }
+    batch
+}
+
+/// The GPU's counts agree with the CPU's up to pixels whose centres lie within rounding
+/// of an edge: at most 0.5% of the CPU's count plus 2 pixels per instance.
+fn assert_close(what: &str, cpu: u64, gpu: u64, instances: usize) {
+    let tolerance = cpu as f64 * 0.005 + 2.0 * instances as f64;
+    assert!(
+        (cpu as f64 - gpu as f64).abs() <= tolerance,
+        "{what}: cpu {cpu}, gpu {gpu}, tolerance {tolerance}"
+    );
+}
+
+fn small(scene: &str, file: &str, camera: Camera, weight_map: bool) -> ImageTarget {
+    let path = scenes().join(scene).join(file);
+    let image =
+        image::open(&path)
+            .unwrap()
+            .resize_exact(160, 120, image::imageops::FilterType::Triangle);
+    if weight_map {
+        ImageTarget::from_weight_map(file.to_owned(), &image, camera, 1.0, -0.5).unwrap()
+    } else {
+        ImageTarget::from_mask(file.to_owned(), &image, camera, 1.0, -1.0).unwrap()
+    }
+}
+
+fn compare_on_gpu(gpu: &GpuContext, scorer: &SilhouetteScorer, batch: &InstanceBatch) {
+    let on_gpu = GpuSilhouetteScorer::new(gpu, scorer).unwrap();
+    let mut cpu = vec![SilhouetteCounts::default(); batch.len()];
+    count_batch(scorer, batch, &mut cpu);
+    let mut out = vec![SilhouetteCounts::default(); batch.len()];
+    on_gpu.count_batch(batch, &mut out).unwrap();
+    let (mut exact, mut worst) = (0, 0);
+    for (i, (c, g)) in cpu.iter().zip(&out).enumerate() {
+        let n = batch.model(i).len();
+        for (tc, tg) in c.targets().iter().zip(g.targets()) {
+            let what = format!("model {i} ({n} instances)");
+            assert_close(
+                &format!("{what} covered"),
+                tc.covered.into(),
+                tg.covered.into(),
+                n,
+            );
+            assert_close(
+                &format!("{what} on"),
+                tc.on_target.into(),
+                tg.on_target.into(),
+                n,
+            );
+            assert_close(
+                &format!("{what} off"),
+                tc.off_target.into(),
+                tg.off_target.into(),
+                n,
+            );
+            assert_close(
+                &format!("{what} levels"),
+                tc.level_sum / 255,
+                tg.level_sum / 255,
+                n + 1,
+            );
+            assert_eq!(tg.covered, tg.on_target + tg.off_target);
+            worst = worst.max(tc.covered.abs_diff(tg.covered));
+        }
+        exact += usize::from(c == g);
+    }
+    eprintln!(
+        "{exact} of {} models counted identically; covered pixels differ by at most {worst}",
+        batch.len()
+    );
+    assert!(cpu.iter().any(|c| c.targets()[0].covered > 0));
+    // The same batch again gives the same counts: bitsets are cleared between calls.
+    let mut again = vec![SilhouetteCounts::default(); batch.len()];
+    on_gpu.count_batch(batch, &mut again).unwrap();
+    assert_eq!(out, again);
+}
+
+fn gpu_matches_cpu_on_random_cities(gpu: &GpuContext) {
+    let meshes = generators::default_meshes()
+        .bind(city::City::GRAPH)
+        .unwrap();
+    let targets = vec![
+        small("city_whale", "city_target_whale.png", city_camera(), false),
+        small("city_whale", "city_target_whale.png", tree_camera(), true),
+    ];
+    let scorer = SilhouetteScorer::new(targets, &meshes, SMOOTH).unwrap();
+    compare_on_gpu(
+        gpu,
+        &scorer,
+        &population::<city::City>(city::PAPER_LIMITS, 50, 40, 21),
+    );
+}
+
+fn gpu_matches_cpu_on_random_trees(gpu: &GpuContext) {
+    let meshes = generators::default_meshes()
+        .bind(tree::Tree::GRAPH)
+        .unwrap();
+    let targets = vec![small(
+        "tree_sketch1",
+        "tree_target_sketch1.png",
+        tree_camera(),
+        false,
+    )];
+    let scorer = SilhouetteScorer::new(targets, &meshes, SMOOTH).unwrap();
+    compare_on_gpu(
+        gpu,
+        &scorer,
+        &population::<tree::Tree>(tree::PAPER_LIMITS, 150, 30, 22),
+    );
+}
+
+fn gpu_matches_cpu_on_random_spaceships_through_a_close_camera(gpu: &GpuContext) {
+    // Close enough that some hulls reach behind the near plane.
+    let camera = Camera::Orbit(OrbitCamera {
+        phi: 0.7,
+        theta: 0.35,
+        radius: 6.0,
+        lookat: vec3(0.0, 0.4, 4.0),
+        fov_degrees: 70.0,
+        near: 0.5,
+        far: 50.0,
+    });
+    let meshes = generators::default_meshes()
+        .bind(spaceship::Spaceship::GRAPH)
+        .unwrap();
+    let targets = vec![small(
+        "tree_sketch1",
+        "tree_target_sketch1.png",
+        camera,
+        true,
+    )];
+    let scorer = SilhouetteScorer::new(targets, &meshes, SMOOTH).unwrap();
+    compare_on_gpu(
+        gpu,
+        &scorer,
+        &population::<spaceship::Spaceship>(spaceship::PAPER_LIMITS, 50, 40, 23),
+    );
+}
+
+fn gpu_counts_a_batch_larger_than_one_chunk(gpu: &GpuContext) {
+    let meshes = generators::default_meshes()
+        .bind(city::City::GRAPH)
+        .unwrap();
+    // 4096 x 4096 pixels: 2 MiB of bitset per model, so 64 models per 128 MiB binding.
+    let camera = city_camera();
+    let image = image::DynamicImage::ImageLuma8(image::GrayImage::from_fn(4096, 4096, |x, _| {
+        image::Luma([(x / 16) as u8])
+    }));
+    let target = ImageTarget::from_weight_map("big".into(), &image, camera, 1.0, -1.0).unwrap();
+    let scorer = SilhouetteScorer::new(vec![target], &meshes, SMOOTH).unwrap();
+    let on_gpu = GpuSilhouetteScorer::new(gpu, &scorer).unwrap();
+    assert_eq!(on_gpu.bitset_bytes(), 2 << 20);
+    let batch = population::<city::City>(city::PAPER_LIMITS, 20, on_gpu.chunk_size() + 3, 24);
+    let mut cpu = vec![SilhouetteCounts::default(); batch.len()];
+    count_batch(&scorer, &batch, &mut cpu);
+    let mut out = vec![SilhouetteCounts::default(); batch.len()];
+    on_gpu.count_batch(&batch, &mut out).unwrap();
+    for (i, (c, g)) in cpu.iter().zip(&out).enumerate() {
+        let n = batch.model(i).len();
+        assert_close(
+            &format!("model {i}"),
+            c.targets()[0].covered.into(),
+            g.targets()[0].covered.into(),
+            4 * n,
+        );
+    }
+    let err = on_gpu.count_batch(&batch, &mut out[1..]).unwrap_err();
+    assert!(err.to_string().contains("give one per model"), "{err}");
+}
