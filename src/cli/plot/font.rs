@@ -1,161 +1,39 @@
-//! A 5 x 7 pixel font for the plots' numbers and labels: digits, lower-case letters,
-//! `.`, `-`, `+`, `_`, parentheses and space.
+//! An 8 x 8 pixel font for the plots' numbers and labels: every printable ASCII
+//! character, from the public-domain glyphs of the `font8x8` crate. Any other character is
+//! drawn as an empty box, so that it shows rather than vanishing.
 
+use font8x8::legacy::BASIC_LEGACY;
 use image::{Rgb, RgbImage};
 
-/// Glyph width in font pixels, spacing excluded.
-pub const WIDTH: u32 = 5;
+/// Glyph width in font pixels; the glyphs hold their own spacing.
+pub const WIDTH: u32 = 8;
 /// Glyph height in font pixels.
-pub const HEIGHT: u32 = 7;
+pub const HEIGHT: u32 = 8;
 
-/// The rows of `c`'s glyph, top first, the leftmost pixel in bit 4; `None` for a
-/// character the font lacks (drawn as a space).
-fn glyph(c: char) -> Option<[u8; 7]> {
-    Some(match c {
-        '0' => [
-            0b01110, 0b10001, 0b10011, 0b10101, 0b11001, 0b10001, 0b01110,
-        ],
-        '1' => [
-            0b00100, 0b01100, 0b00100, 0b00100, 0b00100, 0b00100, 0b01110,
-        ],
-        '2' => [
-            0b01110, 0b10001, 0b00001, 0b00010, 0b00100, 0b01000, 0b11111,
-        ],
-        '3' => [
-            0b11111, 0b00010, 0b00100, 0b00010, 0b00001, 0b10001, 0b01110,
-        ],
-        '4' => [
-            0b00010, 0b00110, 0b01010, 0b10010, 0b11111, 0b00010, 0b00010,
-        ],
-        '5' => [
-            0b11111, 0b10000, 0b11110, 0b00001, 0b00001, 0b10001, 0b01110,
-        ],
-        '6' => [
-            0b00110, 0b01000, 0b10000, 0b11110, 0b10001, 0b10001, 0b01110,
-        ],
-        '7' => [
-            0b11111, 0b00001, 0b00010, 0b00100, 0b01000, 0b01000, 0b01000,
-        ],
-        '8' => [
-            0b01110, 0b10001, 0b10001, 0b01110, 0b10001, 0b10001, 0b01110,
-        ],
-        '9' => [
-            0b01110, 0b10001, 0b10001, 0b01111, 0b00001, 0b00010, 0b01100,
-        ],
-        '.' => [
-            0b00000, 0b00000, 0b00000, 0b00000, 0b00000, 0b01100, 0b01100,
-        ],
-        '-' => [
-            0b00000, 0b00000, 0b00000, 0b11111, 0b00000, 0b00000, 0b00000,
-        ],
-        '+' => [
-            0b00000, 0b00100, 0b00100, 0b11111, 0b00100, 0b00100, 0b00000,
-        ],
-        '_' => [
-            0b00000, 0b00000, 0b00000, 0b00000, 0b00000, 0b00000, 0b11111,
-        ],
-        '(' => [
-            0b00010, 0b00100, 0b01000, 0b01000, 0b01000, 0b00100, 0b00010,
-        ],
-        ')' => [
-            0b01000, 0b00100, 0b00010, 0b00010, 0b00010, 0b00100, 0b01000,
-        ],
-        'a' => [
-            0b00000, 0b00000, 0b01110, 0b00001, 0b01111, 0b10001, 0b01111,
-        ],
-        'b' => [
-            0b10000, 0b10000, 0b10110, 0b11001, 0b10001, 0b10001, 0b11110,
-        ],
-        'c' => [
-            0b00000, 0b00000, 0b01110, 0b10000, 0b10000, 0b10001, 0b01110,
-        ],
-        'd' => [
-            0b00001, 0b00001, 0b01101, 0b10011, 0b10001, 0b10001, 0b01111,
-        ],
-        'e' => [
-            0b00000, 0b00000, 0b01110, 0b10001, 0b11111, 0b10000, 0b01110,
-        ],
-        'f' => [
-            0b00110, 0b01001, 0b01000, 0b11100, 0b01000, 0b01000, 0b01000,
-        ],
-        'g' => [
-            0b00000, 0b00000, 0b01111, 0b10000, 0b10011, 0b10001, 0b01111,
-        ],
-        'h' => [
-            0b10000, 0b10000, 0b10110, 0b11001, 0b10001, 0b10001, 0b10001,
-        ],
-        'i' => [
-            0b00100, 0b00000, 0b01100, 0b00100, 0b00100, 0b00100, 0b01110,
-        ],
-        'j' => [
-            0b00010, 0b00000, 0b00110, 0b00010, 0b00010, 0b10010, 0b01100,
-        ],
-        'k' => [
-            0b10000, 0b10000, 0b10010, 0b10100, 0b11000, 0b10100, 0b10010,
-        ],
-        'l' => [
-            0b01100, 0b00100, 0b00100, 0b00100, 0b00100, 0b00100, 0b01110,
-        ],
-        'm' => [
-            0b00000, 0b00000, 0b11010, 0b10101, 0b10101, 0b10001, 0b10001,
-        ],
-        'n' => [
-            0b00000, 0b00000, 0b10110, 0b11001, 0b10001, 0b10001, 0b10001,
-        ],
-        'o' => [
-            0b00000, 0b00000, 0b01110, 0b10001, 0b10001, 0b10001, 0b01110,
-        ],
-        'p' => [
-            0b00000, 0b00000, 0b11110, 0b10001, 0b11110, 0b10000, 0b10000,
-        ],
-        'q' => [
-            0b00000, 0b00000, 0b01101, 0b10011, 0b01111, 0b00001, 0b00001,
-        ],
-        'r' => [
-            0b00000, 0b00000, 0b10110, 0b11001, 0b10000, 0b10000, 0b10000,
-        ],
-        's' => [
-            0b00000, 0b00000, 0b01110, 0b10000, 0b01110, 0b00001, 0b11110,
-        ],
-        't' => [
-            0b01000, 0b01000, 0b11100, 0b01000, 0b01000, 0b01001, 0b00110,
-        ],
-        'u' => [
-            0b00000, 0b00000, 0b10001, 0b10001, 0b10001, 0b10011, 0b01101,
-        ],
-        'v' => [
-            0b00000, 0b00000, 0b10001, 0b10001, 0b10001, 0b01010, 0b00100,
-        ],
-        'w' => [
-            0b00000, 0b00000, 0b10001, 0b10001, 0b10101, 0b10101, 0b01010,
-        ],
-        'x' => [
-            0b00000, 0b00000, 0b10001, 0b01010, 0b00100, 0b01010, 0b10001,
-        ],
-        'y' => [
-            0b00000, 0b00000, 0b10001, 0b10001, 0b01111, 0b00001, 0b01110,
-        ],
-        'z' => [
-            0b00000, 0b00000, 0b11111, 0b00010, 0b00100, 0b01000, 0b11111,
-        ],
-        _ => return None,
-    })
+/// The box drawn for a character the font lacks: an outline inside the glyph cell.
+const UNKNOWN: [u8; 8] = [0x00, 0x3f, 0x21, 0x21, 0x21, 0x21, 0x3f, 0x00];
+
+/// The rows of `c`'s glyph, top first, the leftmost pixel in bit 0.
+fn glyph(c: char) -> [u8; 8] {
+    match c {
+        ' '..='~' => BASIC_LEGACY[c as usize],
+        _ => UNKNOWN,
+    }
 }
 
 /// Pixels `text` spans horizontally at `scale` font pixels per glyph pixel.
 pub fn text_width(text: &str, scale: u32) -> u32 {
-    text.chars().count() as u32 * (WIDTH + 1) * scale
+    text.chars().count() as u32 * WIDTH * scale
 }
 
 /// Draws `text` with its top-left corner at `(x, y)`, each font pixel a `scale` x
 /// `scale` square; what falls outside the image is clipped.
 pub fn draw(image: &mut RgbImage, x: u32, y: u32, text: &str, scale: u32, colour: Rgb<u8>) {
     for (i, c) in text.chars().enumerate() {
-        let Some(rows) = glyph(c) else { continue };
-        let left = x + i as u32 * (WIDTH + 1) * scale;
-        for (row, bits) in rows.iter().enumerate() {
+        let left = x + i as u32 * WIDTH * scale;
+        for (row, bits) in glyph(c).iter().enumerate() {
             for col in 0..WIDTH {
-                if bits >> (WIDTH - 1 - col) & 1 == 0 {
+                if bits >> col & 1 == 0 {
                     continue;
                 }
                 for dy in 0..scale {
@@ -168,5 +46,53 @@ pub fn draw(image: &mut RgbImage, x: u32, y: u32, text: &str, scale: u32, colour
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const INK: Rgb<u8> = Rgb([0, 0, 0]);
+
+    /// `text` drawn at scale 1 on a white strip just large enough for it.
+    fn render(text: &str) -> RgbImage {
+        let mut image = RgbImage::from_pixel(text_width(text, 1), HEIGHT, Rgb([255; 3]));
+        draw(&mut image, 0, 0, text, 1, INK);
+        image
+    }
+
+    /// Whether the glyph cell of the `i`th character holds ink.
+    fn inked(image: &RgbImage, i: u32) -> bool {
+        (0..HEIGHT).any(|y| (0..WIDTH).any(|x| *image.get_pixel(i * WIDTH + x, y) == INK))
+    }
+
+    #[test]
+    fn every_letter_of_a_capitalised_word_is_drawn() {
+        let image = render("Height");
+        for i in 0..6 {
+            assert!(inked(&image, i), "letter {i} of \"Height\" is blank");
+        }
+    }
+
+    #[test]
+    fn capitals_differ_from_small_letters() {
+        assert_ne!(render("ABC"), render("abc"));
+    }
+
+    #[test]
+    fn every_printable_character_and_an_unknown_one_show() {
+        let printable: String = ('!'..='~').collect();
+        let image = render(&printable);
+        for i in 0..printable.len() as u32 {
+            assert!(
+                inked(&image, i),
+                "{:?} is blank",
+                printable.as_bytes()[i as usize]
+            );
+        }
+        assert!(inked(&render("é"), 0));
+        assert!(inked(&render("\t"), 0));
+        assert!(!inked(&render(" "), 0));
     }
 }
