@@ -14,6 +14,7 @@ use std::time::Instant;
 use criterion::{Criterion, criterion_group, criterion_main};
 use generators::{Spaceship, spaceship};
 use shapegen::Genome;
+use shapegen::optimize::Optimizer;
 use shapegen::optimize::{Budget, FnEvaluator, Ga, GaSettings, Silent};
 use shapegen::scene::{BackendChoice, Scene, SceneEvaluator, SceneScorer};
 

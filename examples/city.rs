@@ -16,6 +16,7 @@ use anyhow::Context;
 use generators::City;
 use shapegen::Grammar;
 use shapegen::export::{Palette, Preview, save_glb, save_obj};
+use shapegen::optimize::Optimizer;
 use shapegen::optimize::{Control, Ga, GaSettings, Snapshot};
 use shapegen::scene::{BackendChoice, Scene, SceneEvaluator, SceneScorer};
 

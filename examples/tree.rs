@@ -17,6 +17,7 @@ use generators::Tree;
 use image::Rgb;
 use shapegen::Grammar;
 use shapegen::export::{Palette, Preview, save_glb, save_obj};
+use shapegen::optimize::Optimizer;
 use shapegen::optimize::{Control, Ga, GaSettings, Snapshot};
 use shapegen::scene::{BackendChoice, Scene, SceneEvaluator, SceneScorer};
 

@@ -5,6 +5,7 @@
 //! Most users depend on the `shapegen` crate, which re-exports this one.
 
 pub mod derive;
+pub mod evaluate;
 pub mod export;
 pub mod genome;
 pub mod geometry;

@@ -12,6 +12,7 @@ use image::{Rgb, RgbImage};
 use serde::Serialize;
 use shapegen::export::{Palette, Preview, glb_bytes};
 use shapegen::genome::GenomeSet;
+use shapegen::optimize::Optimizer;
 use shapegen::optimize::multi::{
     Member, MultiGa, MultiGaState, MultiResult, MultiSnapshot, Ranking,
 };

@@ -4,6 +4,7 @@
 use serde::{Deserialize, Serialize};
 use shapegen::Grammar;
 use shapegen::genome::Limits;
+use shapegen::optimize::Optimizer;
 use shapegen::optimize::{
     Budget, Evaluator, Ga, GaState, Mcmc, McmcState, Observer, OptimizeError, RunResult, Smc,
     SmcState,

@@ -59,3 +59,22 @@ pub enum OptimizeError {
     #[error("checkpoint: {0}")]
     Checkpoint(String),
 }
+
+/// Checks the buffers of a started checkpoint against the run it must fit: each
+/// `(found, expected, what)`; the error lists every buffer, then `run`.
+pub(crate) fn check_sizes(
+    sizes: &[(usize, usize, &str)],
+    run: impl std::fmt::Display,
+) -> Result<(), OptimizeError> {
+    if sizes.iter().all(|&(found, expected, _)| found == expected) {
+        return Ok(());
+    }
+    let found: Vec<String> = sizes
+        .iter()
+        .map(|(found, expected, what)| format!("{found} {what} (expected {expected})"))
+        .collect();
+    Err(OptimizeError::Checkpoint(format!(
+        "{} for {run}",
+        found.join(", ")
+    )))
+}

@@ -4,10 +4,10 @@ use rand::{Rng, RngExt};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use super::error::check_range;
+use super::error::{check_range, check_sizes};
 use super::fitness::{Roulette, bits_vec, compare, rank};
-use super::run::{Method, Progress, drive, grammar_struct_traits, stream};
-use super::{Budget, Evaluator, Observer, OptimizeError, RunResult, SettingsError};
+use super::run::{Best, Progress, grammar_struct_traits, stream};
+use super::{Budget, Evaluator, OptimizeError, Optimizer, Record, SettingsError};
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
 use crate::ops::{OperatorVariant, Operators};
@@ -242,7 +242,7 @@ pub struct GaState<G> {
     /// The genome limits.
     pub limits: Limits,
     /// Generation, evaluations, best so far, history.
-    pub progress: Progress<G>,
+    pub progress: Progress<Best<G>>,
     /// The current population, best first after the first generation.
     pub population: Vec<Genome<G>>,
     /// Its cached fitness.
@@ -298,7 +298,7 @@ grammar_struct_traits!(GaState {
 /// included, so its evaluation counts are higher by `elitism` per generation.
 ///
 /// ```
-/// use shapegen_runtime::optimize::{Budget, FnEvaluator, Ga, GaSettings, Silent};
+/// use shapegen_runtime::optimize::{Budget, FnEvaluator, Ga, GaSettings, Optimizer, Silent};
 /// use shapegen_runtime::prelude::*;
 ///
 /// generator! {
@@ -326,7 +326,7 @@ grammar_struct_traits!(GaState {
 pub struct Ga<G> {
     settings: GaSettings,
     ops: Operators<G>,
-    progress: Progress<G>,
+    progress: Progress<Best<G>>,
     population: Vec<Genome<G>>,
     fitness: Vec<f64>,
     next: Vec<Genome<G>>,
@@ -344,10 +344,14 @@ impl<G: Grammar> std::fmt::Debug for Ga<G> {
     }
 }
 
-impl<G: Grammar> Ga<G> {
+impl<G: Grammar> Optimizer<G> for Ga<G> {
+    type Settings = GaSettings;
+    type State = GaState<G>;
+    type Record = Best<G>;
+
     /// A GA with these settings, keeping genomes within `limits` (the weighted operators)
     /// or its children within `[min_len, max_len)` (the original's), seeded with `seed`.
-    pub fn new(settings: GaSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {
+    fn new(settings: GaSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {
         settings.validate()?;
         let n = settings.population as usize;
         let empty = || Genome::from_parts(Vec::new(), 0);
@@ -364,19 +368,17 @@ impl<G: Grammar> Ga<G> {
         })
     }
 
-    /// Resumes from a checkpoint; fails if it does not fit its own settings.
-    pub fn resume(state: GaState<G>) -> Result<Self, OptimizeError> {
+    fn resume(state: GaState<G>) -> Result<Self, OptimizeError> {
         let mut ga = Ga::new(state.settings, state.limits, state.progress.seed)?;
-        let n = state.settings.population as usize;
-        let started = !state.progress.history.is_empty();
-        if started && (state.population.len() != n || state.fitness.len() != n) {
-            return Err(OptimizeError::Checkpoint(format!(
-                "{} genomes and {} fitness values for a population of {n}",
-                state.population.len(),
-                state.fitness.len()
-            )));
-        }
-        if started {
+        if state.progress.record.started() {
+            let n = ga.population.len();
+            check_sizes(
+                &[
+                    (state.population.len(), n, "genomes"),
+                    (state.fitness.len(), n, "fitness values"),
+                ],
+                format_args!("a population of {n}"),
+            )?;
             ga.population = state.population;
             ga.fitness = state.fitness;
         }
@@ -384,8 +386,7 @@ impl<G: Grammar> Ga<G> {
         Ok(ga)
     }
 
-    /// The state to resume from.
-    pub fn checkpoint(&self) -> GaState<G> {
+    fn checkpoint(&self) -> GaState<G> {
         GaState {
             settings: self.settings,
             limits: *self.ops.limits(),
@@ -395,28 +396,23 @@ impl<G: Grammar> Ga<G> {
         }
     }
 
-    /// The settings.
-    pub fn settings(&self) -> &GaSettings {
+    fn settings(&self) -> &GaSettings {
         &self.settings
     }
 
-    /// Runs until `budget` or `observer` stops it; a later call goes on from there.
-    pub fn run(
-        &mut self,
-        evaluator: &mut impl Evaluator<G>,
-        budget: &Budget,
-        observer: &mut impl Observer<G>,
-    ) -> Result<RunResult<G>, OptimizeError> {
-        drive(self, evaluator, budget, observer)
+    fn progress(&self) -> &Progress<Best<G>> {
+        &self.progress
     }
-}
 
-impl<G: Grammar> Method<G> for Ga<G> {
+    fn parts(&mut self) -> (&mut Progress<Best<G>>, &[Genome<G>], &[f64]) {
+        (&mut self.progress, &self.population, &self.fitness)
+    }
+
     fn step_cost(&self) -> u64 {
         u64::from(self.settings.population - self.settings.elitism)
     }
 
-    fn start<E: Evaluator<G>>(&mut self, evaluator: &mut E) -> Result<(), OptimizeError> {
+    fn start(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
         let seed = self.progress.seed;
         random_population(&self.ops, &self.settings, seed, &mut self.population);
         evaluator.evaluate(&self.population, &mut self.fitness)?;
@@ -424,7 +420,7 @@ impl<G: Grammar> Method<G> for Ga<G> {
         Ok(())
     }
 
-    fn step<E: Evaluator<G>>(&mut self, evaluator: &mut E) -> Result<(), OptimizeError> {
+    fn step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
         let elite = self.settings.elitism as usize;
         rank(&self.fitness, &mut self.order);
         self.roulette.build(&self.fitness);
@@ -451,10 +447,6 @@ impl<G: Grammar> Method<G> for Ga<G> {
         std::mem::swap(&mut self.population, &mut self.next);
         std::mem::swap(&mut self.fitness, &mut self.next_fitness);
         Ok(())
-    }
-
-    fn parts(&mut self) -> (&mut Progress<G>, &[Genome<G>], &[f64]) {
-        (&mut self.progress, &self.population, &self.fitness)
     }
 }
 
@@ -533,7 +525,7 @@ impl<G: Grammar> Breed<'_, G> {
     ) {
         let p1 = &self.population[self.tournament(rng)];
         let p2 = &self.population[self.roulette.spin(rng)];
-        if rng.random::<f64>() < self.settings.mutation_probability {
+        if self.mutates(rng) {
             a.clone_from(p1);
             self.mutate(ops, a, rng);
             b.clone_from(p2);
@@ -563,7 +555,7 @@ impl<G: Grammar> Breed<'_, G> {
             let p1 = &self.population[self.tournament(rng)];
             let p2 = &self.population[self.roulette.spin(rng)];
             let [c, d] = kids;
-            let bred = if rng.random::<f64>() < self.settings.mutation_probability {
+            let bred = if self.mutates(rng) {
                 c.clone_from(p1);
                 self.mutate(ops, c, rng);
                 d.clone_from(p2);
@@ -618,16 +610,248 @@ impl<G: Grammar> Breed<'_, G> {
         }
     }
 
-    /// One mutation, grow / cut / alter by their weights.
-    fn mutate(&self, ops: &mut Operators<G>, g: &mut Genome<G>, rng: &mut impl Rng) {
+    /// Whether a pair is mutated (rather than crossed over), with the mutation
+    /// probability.
+    fn mutates(&self, rng: &mut impl Rng) -> bool {
+        rng.random::<f64>() < self.settings.mutation_probability
+    }
+
+    /// Which mutation to apply, grow / cut / alter by their weights.
+    fn mutation(&self, rng: &mut impl Rng) -> Mutation {
         let s = self.settings;
         let r = rng.random::<f64>() * (s.grow_weight + s.cut_weight + s.alter_weight);
         if r < s.grow_weight {
-            ops.grow(g, rng);
+            Mutation::Grow
         } else if r < s.grow_weight + s.cut_weight {
-            ops.cut(g, rng);
+            Mutation::Cut
         } else {
-            ops.alter(g, rng);
+            Mutation::Alter
+        }
+    }
+
+    /// One mutation, grow / cut / alter by their weights.
+    fn mutate(&self, ops: &mut Operators<G>, g: &mut Genome<G>, rng: &mut impl Rng) {
+        match self.mutation(rng) {
+            Mutation::Grow => ops.grow(g, rng),
+            Mutation::Cut => ops.cut(g, rng),
+            Mutation::Alter => ops.alter(g, rng),
+        };
+    }
+}
+
+/// The three mutations.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Mutation {
+    Grow,
+    Cut,
+    Alter,
+}
+
+/// Selection and mutation rates, each on its own: statistical tests with fixed seeds,
+/// tolerances stated with each (about 5 standard deviations of the estimate or more).
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    crate::generator! {
+        /// A chain of blocks.
+        pub Chain {
+            axiom Seg;
+            node Seg {
+                children { next: Seg = 0.5 }
+                derive(s) { s.emit(crate::CUBE); if let Some(n) = next { s.derive(n); } }
+            }
+        }
+    }
+
+    const DRAWS: usize = 100_000;
+
+    /// A breeding context over `fitness`, with everything else from `settings`.
+    fn check<R>(
+        settings: GaSettings,
+        fitness: &[f64],
+        f: impl FnOnce(&Breed<'_, Chain>) -> R,
+    ) -> R {
+        let population: Vec<Genome<Chain>> = (0..fitness.len())
+            .map(|i| Genome::axiom(&mut stream(1, 0, i as u64)))
+            .collect();
+        let mut roulette = Roulette::default();
+        roulette.build(fitness);
+        let mut order = Vec::new();
+        rank(fitness, &mut order);
+        let breed = Breed {
+            settings: &settings,
+            population: &population,
+            fitness,
+            roulette: &roulette,
+            worst: *order.last().unwrap(),
+        };
+        f(&breed)
+    }
+
+    /// Counts of `draw` over [`DRAWS`] draws from one stream, as frequencies.
+    fn frequencies(
+        n: usize,
+        mut draw: impl FnMut(&mut rand_chacha::ChaCha8Rng) -> usize,
+    ) -> Vec<f64> {
+        let rng = &mut stream(42, 1, 0);
+        let mut counts = vec![0usize; n];
+        for _ in 0..DRAWS {
+            counts[draw(rng)] += 1;
+        }
+        counts.iter().map(|&c| c as f64 / DRAWS as f64).collect()
+    }
+
+    #[test]
+    fn a_tournament_returns_the_best_of_its_entrants() {
+        let fitness = [
+            3.0,
+            f64::NAN,
+            7.0,
+            -1.0,
+            7.0,
+            0.5,
+            2.0,
+            f64::INFINITY,
+            4.0,
+            1.0,
+        ];
+        for operators in OperatorVariant::ALL {
+            for k in [1, 2, 3, 10] {
+                let settings = GaSettings {
+                    tournament: k,
+                    operators,
+                    ..GaSettings::default()
+                };
+                check(settings, &fitness, |breed| {
+                    let rng = &mut stream(5, 2, u64::from(k));
+                    for _ in 0..2_000 {
+                        // The same draws, replayed: the entrants, then the winner.
+                        let mut replay = rng.clone();
+                        let entrants: Vec<usize> =
+                            (0..k).map(|_| breed.entrant(&mut replay)).collect();
+                        let winner = breed.tournament(rng);
+                        let best = entrants.iter().copied().fold(entrants[0], |b, i| {
+                            if compare(fitness[i], fitness[b]).is_gt() {
+                                i
+                            } else {
+                                b
+                            }
+                        });
+                        assert_eq!(winner, best, "{operators:?}, k = {k}: {entrants:?}");
+                        // The original's never draws the worst-ranked (the NaN, index 1).
+                        if operators == OperatorVariant::Original {
+                            assert!(!entrants.contains(&1));
+                        }
+                    }
+                });
+            }
+        }
+    }
+
+    #[test]
+    fn a_tournament_of_k_picks_rank_r_as_often_as_order_statistics_say() {
+        // Ten distinct values, k = 3 with replacement: the best of three uniform draws
+        // has rank r (0: best) with probability ((10 - r)^3 - (9 - r)^3) / 1000.
+        let fitness: Vec<f64> = (0..10).map(|i| f64::from(i) * 1.5).collect();
+        let settings = GaSettings {
+            tournament: 3,
+            ..GaSettings::default()
+        };
+        let freq = check(settings, &fitness, |breed| {
+            frequencies(10, |rng| breed.tournament(rng))
+        });
+        for (i, &got) in freq.iter().enumerate() {
+            let r = 9 - i as i32;
+            let want = f64::from((10 - r).pow(3) - (9 - r).pow(3)) / 1000.0;
+            // The standard deviation of an estimate is at most 0.0016.
+            assert!((got - want).abs() < 0.008, "index {i}: {got} vs {want}");
+        }
+    }
+
+    #[test]
+    fn roulette_frequencies_follow_fitness_above_the_minimum() {
+        let fitness = [1.0, 2.0, 4.0, 8.0, f64::NAN, 3.0];
+        // Weights f - f_min: 0, 1, 3, 7, NaN 0, 2; sum 13.
+        let want = [0.0, 1.0, 3.0, 7.0, 0.0, 2.0].map(|w| w / 13.0);
+        let freq = check(GaSettings::default(), &fitness, |breed| {
+            frequencies(6, |rng| breed.roulette.spin(rng))
+        });
+        for (i, (&got, &want)) in freq.iter().zip(&want).enumerate() {
+            // At most 0.0016 of standard deviation; the zero weights are never drawn.
+            assert!((got - want).abs() < 0.008, "index {i}: {got} vs {want}");
+            if want == 0.0 {
+                assert_eq!(got, 0.0, "index {i}");
+            }
+        }
+    }
+
+    #[test]
+    fn mutation_probability_and_weights_show_at_their_rates() {
+        let settings = GaSettings {
+            mutation_probability: 0.3,
+            grow_weight: 45.0,
+            cut_weight: 35.0,
+            alter_weight: 20.0,
+            ..GaSettings::default()
+        };
+        check(settings, &[1.0, 2.0], |breed| {
+            let mutated = frequencies(2, |rng| usize::from(breed.mutates(rng)));
+            // Standard deviation about 0.0015.
+            assert!((mutated[1] - 0.3).abs() < 0.008, "{mutated:?}");
+            let kinds = frequencies(3, |rng| breed.mutation(rng) as usize);
+            for (got, want) in kinds.iter().zip([0.45, 0.35, 0.20]) {
+                assert!((got - want).abs() < 0.008, "{kinds:?}");
+            }
+        });
+    }
+
+    #[test]
+    fn children_are_mutated_copies_at_the_mutation_rate() {
+        // Parents of different lengths, so that a child's origin shows: with mutation
+        // probability 0 every pair is crossed over (lengths add up to the parents'), with
+        // 1 and only grow every child is its parent grown by at least one gene.
+        let limits = Limits::new(1, 60, 60).unwrap();
+        let mut ops = Operators::<Chain>::new(limits).unwrap();
+        let population: Vec<Genome<Chain>> = [3, 9]
+            .iter()
+            .map(|&n| {
+                let mut g = Genome::axiom(&mut stream(1, 0, 0));
+                ops.grow_to(&mut g, n, &mut stream(1, 0, 1));
+                g
+            })
+            .collect();
+        assert_eq!([population[0].len(), population[1].len()], [3, 9]);
+        let fitness = [1.0, 2.0];
+        let mut roulette = Roulette::default();
+        roulette.build(&fitness);
+        for (p, grow) in [(0.0, 1.0), (1.0, 1.0)] {
+            let settings = GaSettings {
+                mutation_probability: p,
+                grow_weight: grow,
+                cut_weight: 0.0,
+                alter_weight: 0.0,
+                tournament: 2,
+                ..GaSettings::default()
+            };
+            let breed = Breed {
+                settings: &settings,
+                population: &population,
+                fitness: &fitness,
+                roulette: &roulette,
+                worst: 0,
+            };
+            let mut children: Vec<Genome<Chain>> =
+                (0..200).map(|_| population[0].clone()).collect();
+            breed.children(&ops, 3, 1, &mut children).unwrap();
+            for pair in children.chunks(2) {
+                let lens = (pair[0].len(), pair[1].len());
+                if p == 0.0 {
+                    assert!([6, 12, 18].contains(&(lens.0 + lens.1)), "{lens:?}");
+                } else {
+                    assert!(lens.0 > 3 && lens.1 > 3, "{lens:?}");
+                }
+            }
         }
     }
 }

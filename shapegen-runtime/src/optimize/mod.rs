@@ -4,16 +4,27 @@
 //! tempering ([`Mcmc`]); and, in [`multi`], the multi-objective GA ([`multi::MultiGa`]) with
 //! its selection on several objectives (Pareto fronts, summed rank, weighted sum).
 //!
-//! All are generic over the grammar and over an [`Evaluator`], which scores a whole
-//! population at once. They share:
+//! Every method implements one public trait, [`Optimizer`] (settings and checkpoint as
+//! serde types; start, step, step cost, checkpoint, resume), and one loop, [`drive`],
+//! runs them all; see the `driver` module's design notes on [`Optimizer`] and
+//! [`Record`]. A method's [`Record`] says what a run keeps: one fitness per individual
+//! ([`Best`]: best genome, best / mean / std history, [`RunResult`]) or an objective
+//! vector ([`multi::Front`]: per-objective best and archive front,
+//! [`multi::MultiResult`]). They share:
+//! - the evaluator kinds, [`Evaluator`] (one fitness) and [`MultiEvaluator`] (objective
+//!   vectors, with their [`Sense`]s), defined below this module in
+//!   [`evaluate`](crate::evaluate) and re-exported here;
 //! - [`Budget`]s of generations, evaluations and wall time (the first reached stops);
-//! - an [`Observer`] called after every generation with a [`Snapshot`], which can stop
-//!   the run;
-//! - determinism: every random choice comes from a ChaCha8 stream fixed by the seed, the
-//!   generation and the individual, so results never depend on the thread count;
-//! - checkpoints ([`GaState`], [`SmcState`], [`McmcState`]; serde) from which a resumed
-//!   run ends exactly as an uninterrupted one;
-//! - a [`RunResult`] with the best genome and the per-generation history.
+//! - an [`Observer`] (or [`multi::MultiObserver`]) called after every generation with a
+//!   [`Snapshot`], which can stop the run;
+//! - determinism: every random choice comes from a ChaCha8 [`stream`] fixed by the seed,
+//!   the generation and the individual, so results never depend on the thread count;
+//! - checkpoints ([`GaState`], [`SmcState`], [`McmcState`], [`multi::MultiGaState`];
+//!   serde) from which a resumed run ends exactly as an uninterrupted one, with the
+//!   shared counters in [`Progress`];
+//! - a [`Session`] running one optimizer to its budget with a stop flag, a progress hook
+//!   and checkpoints saved every few seconds and at the end, ending with a
+//!   [`StopReason`].
 //!
 //! Fitness is higher-is-better. NaN is the worst value everywhere: it ranks last, has
 //! zero selection weight, is never accepted by a Metropolis test and never becomes the
@@ -21,23 +32,25 @@
 //! ranking; each method's documentation says how its weights treat them. Population
 //! statistics (mean, std) are over the finite values.
 
+mod driver;
 mod error;
-mod evaluate;
 mod fitness;
 mod ga;
 mod grow;
 mod mcmc;
 pub mod multi;
 mod run;
-mod sense;
+mod session;
 mod smc;
 
+pub use crate::evaluate::{EvaluateError, Evaluator, FnEvaluator, MultiEvaluator, Sense};
+pub use driver::{Optimizer, Record, drive};
 pub use error::{OptimizeError, SettingsError};
-pub use evaluate::{EvaluateError, Evaluator, FnEvaluator};
 pub use ga::{Ga, GaSettings, GaState};
 pub use mcmc::{Mcmc, McmcSettings, McmcState, McmcVariant};
 pub use run::{
-    Budget, Control, HistoryEntry, Observer, Progress, RunResult, Silent, Snapshot, StopReason,
+    Best, Budget, Control, HistoryEntry, Observer, Progress, RunResult, Silent, Snapshot,
+    StopReason, stream,
 };
-pub use sense::Sense;
+pub use session::{Save, Session, SessionError};
 pub use smc::{Cursor, Order, Smc, SmcSettings, SmcState, SmcVariant};

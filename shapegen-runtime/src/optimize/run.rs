@@ -1,14 +1,16 @@
-//! The run loop shared by every optimizer: budgets, the observer hook, progress
-//! bookkeeping (best so far, history) and the per-individual random streams.
+//! What every run shares: budgets, the observer hook, the progress bookkeeping (the
+//! counters, and for one fitness the best so far and the history) and the
+//! per-individual random streams.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
+use super::Evaluator;
+use super::driver::Record;
 use super::fitness::{self, bits, compare};
-use super::{Evaluator, OptimizeError};
 use crate::derive::Grammar;
 use crate::genome::Genome;
 
@@ -71,7 +73,7 @@ impl Budget {
     /// Why a run that has done `generations` generations and `evaluations` evaluations in
     /// `elapsed_s` seconds must stop before a generation costing up to `cost` evaluations;
     /// `None` if it may go on.
-    pub(crate) fn stop(
+    pub fn stop(
         &self,
         generations: u64,
         evaluations: u64,
@@ -164,7 +166,14 @@ pub struct HistoryEntry {
 }
 
 /// Why a run ended.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+///
+/// ```
+/// use shapegen_runtime::optimize::StopReason;
+///
+/// assert_eq!(StopReason::WallTime.name(), "time");
+/// assert_eq!(StopReason::Observer.to_string(), "interrupted");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum StopReason {
     /// The generation budget was reached.
     Generations,
@@ -172,8 +181,27 @@ pub enum StopReason {
     Evaluations,
     /// The wall-time budget was reached.
     WallTime,
-    /// The observer asked to stop.
+    /// The observer or the stop flag asked to stop: the run was interrupted.
     Observer,
+}
+
+impl StopReason {
+    /// Its name in summaries: `"generations"`, `"evaluations"`, `"time"` or
+    /// `"interrupted"`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            StopReason::Generations => "generations",
+            StopReason::Evaluations => "evaluations",
+            StopReason::WallTime => "time",
+            StopReason::Observer => "interrupted",
+        }
+    }
+}
+
+impl std::fmt::Display for StopReason {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
 }
 
 /// The outcome of a run.
@@ -225,15 +253,6 @@ grammar_struct_traits!(RunResult {
     history,
     stopped
 });
-grammar_struct_traits!(Progress {
-    seed,
-    generation,
-    evaluations,
-    elapsed_s,
-    best,
-    best_fitness,
-    history
-});
 
 impl<G: Grammar> std::fmt::Debug for Snapshot<'_, G> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -249,10 +268,12 @@ impl<G: Grammar> std::fmt::Debug for Snapshot<'_, G> {
     }
 }
 
-/// Bookkeeping common to every optimizer's checkpoint.
-#[derive(Serialize, Deserialize)]
-#[serde(bound(serialize = "G: Grammar", deserialize = "G: Grammar"))]
-pub struct Progress<G> {
+/// Bookkeeping common to every optimizer's checkpoint: the counters the driver keeps
+/// (generations, evaluations, wall time) and the record of what the run found, `R`
+/// ([`Best`] for one fitness, [`multi::Front`](super::multi::Front) for objective
+/// vectors), whose fields serialize inline beside the counters.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Progress<R> {
     /// The run's seed: with the generation number it fixes every random stream.
     pub seed: u64,
     /// Generations done after the initial population.
@@ -261,6 +282,28 @@ pub struct Progress<G> {
     pub evaluations: u64,
     /// Wall time spent so far, in seconds.
     pub elapsed_s: f64,
+    /// What the run found, and its per-generation history.
+    #[serde(flatten)]
+    pub record: R,
+}
+
+impl<R: Default> Progress<R> {
+    /// Progress of a run not yet started.
+    pub fn new(seed: u64) -> Self {
+        Progress {
+            seed,
+            generation: 0,
+            evaluations: 0,
+            elapsed_s: 0.0,
+            record: R::default(),
+        }
+    }
+}
+
+/// The record of a run on one fitness: the best genome so far and the history.
+#[derive(Serialize, Deserialize)]
+#[serde(bound(serialize = "G: Grammar", deserialize = "G: Grammar"))]
+pub struct Best<G> {
     /// Best genome so far (`None` before the initial population is evaluated).
     pub best: Option<Genome<G>>,
     /// Its fitness.
@@ -270,14 +313,15 @@ pub struct Progress<G> {
     pub history: Vec<HistoryEntry>,
 }
 
-impl<G> Progress<G> {
-    /// Progress of a run not yet started.
-    pub(crate) fn new(seed: u64) -> Self {
-        Progress {
-            seed,
-            generation: 0,
-            evaluations: 0,
-            elapsed_s: 0.0,
+grammar_struct_traits!(Best {
+    best,
+    best_fitness,
+    history
+});
+
+impl<G> Default for Best<G> {
+    fn default() -> Self {
+        Best {
             best: None,
             best_fitness: f64::NAN,
             history: Vec::new(),
@@ -285,103 +329,80 @@ impl<G> Progress<G> {
     }
 }
 
+impl<G: Grammar> Record<G> for Best<G> {
+    type Evaluator<'e> = dyn Evaluator<G> + 'e;
+    type Observer<'o> = dyn Observer<G> + 'o;
+    type Result = RunResult<G>;
+
+    fn started(&self) -> bool {
+        !self.history.is_empty()
+    }
+
+    /// Takes the best of `fitness` if it beats the best so far, and appends the
+    /// generation's best, mean and standard deviation to the history.
+    fn record(progress: &mut Progress<Self>, genomes: &[Genome<G>], fitness: &[f64]) {
+        let r = &mut progress.record;
+        if let Some(i) = fitness::best_index(fitness)
+            && (r.best.is_none() || compare(fitness[i], r.best_fitness).is_gt())
+        {
+            match &mut r.best {
+                Some(b) => b.clone_from(&genomes[i]),
+                None => r.best = Some(genomes[i].clone()),
+            }
+            r.best_fitness = fitness[i];
+        }
+        let (mean, std) = fitness::mean_std(fitness);
+        r.history.push(HistoryEntry {
+            generation: progress.generation,
+            elapsed_s: progress.elapsed_s,
+            evaluations: progress.evaluations,
+            best: r.best_fitness,
+            mean,
+            std,
+        });
+    }
+
+    fn observe(progress: &Progress<Self>, observer: &mut Self::Observer<'_>) -> Control {
+        let r = &progress.record;
+        let last = r.history.last().expect("observed after a generation");
+        observer.observe(&Snapshot {
+            generation: progress.generation,
+            elapsed: Duration::from_secs_f64(progress.elapsed_s),
+            evaluations: progress.evaluations,
+            best_fitness: r.best_fitness,
+            mean: last.mean,
+            std: last.std,
+            best: r.best.as_ref().expect("a population is never empty"),
+        })
+    }
+
+    fn result(progress: &Progress<Self>, stopped: StopReason) -> RunResult<G> {
+        let r = &progress.record;
+        RunResult {
+            best: r.best.clone().expect("started runs have a best genome"),
+            best_fitness: r.best_fitness,
+            evaluations: progress.evaluations,
+            generations: progress.generation,
+            history: r.history.clone(),
+            stopped,
+        }
+    }
+}
+
 /// The random stream of individual `index` in generation `generation`: ChaCha8 seeded
-/// with the run's seed, on stream `generation << 32 | index`. Independent of threads.
-pub(crate) fn stream(seed: u64, generation: u64, index: u64) -> ChaCha8Rng {
+/// with the run's seed, on stream `generation << 32 | index`. Independent of threads;
+/// every optimizer draws from these, so that its results depend only on the seed.
+///
+/// ```
+/// use rand::RngExt;
+/// use shapegen_runtime::optimize::stream;
+///
+/// let a: u64 = stream(7, 3, 1).random();
+/// assert_eq!(a, stream(7, 3, 1).random::<u64>());
+/// assert_ne!(a, stream(7, 3, 2).random::<u64>());
+/// ```
+pub fn stream(seed: u64, generation: u64, index: u64) -> ChaCha8Rng {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(generation << 32 | (index & 0xffff_ffff));
     rng
-}
-
-/// One optimization method, as the run loop drives it.
-pub(crate) trait Method<G: Grammar> {
-    /// Evaluations the next step may use at most.
-    fn step_cost(&self) -> u64;
-    /// Builds and evaluates the initial population, counting evaluations in progress.
-    fn start<E: Evaluator<G>>(&mut self, evaluator: &mut E) -> Result<(), OptimizeError>;
-    /// Runs one generation (the generation counter is advanced by the caller after).
-    fn step<E: Evaluator<G>>(&mut self, evaluator: &mut E) -> Result<(), OptimizeError>;
-    /// The progress and the current population with its fitness.
-    fn parts(&mut self) -> (&mut Progress<G>, &[Genome<G>], &[f64]);
-}
-
-/// Runs `method` until the budget or the observer stops it.
-pub(crate) fn drive<G: Grammar, M: Method<G>>(
-    method: &mut M,
-    evaluator: &mut impl Evaluator<G>,
-    budget: &Budget,
-    observer: &mut impl Observer<G>,
-) -> Result<RunResult<G>, OptimizeError> {
-    let t0 = Instant::now();
-    let base = method.parts().0.elapsed_s;
-    let elapsed = || base + t0.elapsed().as_secs_f64();
-    if method.parts().0.history.is_empty() {
-        method.start(evaluator)?;
-        if record(method, elapsed(), observer) == Control::Stop {
-            return Ok(finish(method, StopReason::Observer));
-        }
-    }
-    loop {
-        let cost = method.step_cost();
-        let p = method.parts().0;
-        if let Some(reason) = budget.stop(p.generation, p.evaluations, cost, elapsed()) {
-            method.parts().0.elapsed_s = elapsed();
-            return Ok(finish(method, reason));
-        }
-        method.step(evaluator)?;
-        method.parts().0.generation += 1;
-        if record(method, elapsed(), observer) == Control::Stop {
-            return Ok(finish(method, StopReason::Observer));
-        }
-    }
-}
-
-/// Updates the best so far and the history after a generation, and asks the observer.
-fn record<G: Grammar, M: Method<G>>(
-    method: &mut M,
-    elapsed_s: f64,
-    observer: &mut impl Observer<G>,
-) -> Control {
-    let (p, genomes, fit) = method.parts();
-    if let Some(i) = fitness::best_index(fit)
-        && (p.best.is_none() || compare(fit[i], p.best_fitness).is_gt())
-    {
-        match &mut p.best {
-            Some(b) => b.clone_from(&genomes[i]),
-            None => p.best = Some(genomes[i].clone()),
-        }
-        p.best_fitness = fit[i];
-    }
-    let (mean, std) = fitness::mean_std(fit);
-    p.elapsed_s = elapsed_s;
-    p.history.push(HistoryEntry {
-        generation: p.generation,
-        elapsed_s,
-        evaluations: p.evaluations,
-        best: p.best_fitness,
-        mean,
-        std,
-    });
-    let best = p.best.as_ref().expect("a population is never empty");
-    observer.observe(&Snapshot {
-        generation: p.generation,
-        elapsed: Duration::from_secs_f64(elapsed_s),
-        evaluations: p.evaluations,
-        best_fitness: p.best_fitness,
-        mean,
-        std,
-        best,
-    })
-}
-
-fn finish<G: Grammar, M: Method<G>>(method: &mut M, stopped: StopReason) -> RunResult<G> {
-    let p = method.parts().0;
-    RunResult {
-        best: p.best.clone().expect("started runs have a best genome"),
-        best_fitness: p.best_fitness,
-        evaluations: p.evaluations,
-        generations: p.generation,
-        history: p.history.clone(),
-        stopped,
-    }
 }

@@ -11,10 +11,11 @@ use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use super::error::check_range;
+use super::driver::Record;
+use super::error::{check_range, check_sizes};
 use super::fitness::bits_vec;
-use super::run::{Method, Progress, drive, grammar_struct_traits, stream};
-use super::{Budget, Evaluator, Observer, OptimizeError, RunResult, SettingsError};
+use super::run::{Best, Progress, grammar_struct_traits, stream};
+use super::{Budget, Evaluator, OptimizeError, Optimizer, SettingsError};
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
 use crate::ops::{OperatorVariant, Operators};
@@ -310,7 +311,7 @@ pub struct McmcState<G> {
     /// The genome limits.
     pub limits: Limits,
     /// Generation, evaluations, best so far, history.
-    pub progress: Progress<G>,
+    pub progress: Progress<Best<G>>,
     /// The chains' current states, by position.
     pub chains: Vec<Genome<G>>,
     /// Their fitness.
@@ -345,7 +346,7 @@ grammar_struct_traits!(McmcState {
 ///
 /// ```
 /// use shapegen_runtime::optimize::{
-///     Budget, FnEvaluator, Mcmc, McmcSettings, McmcVariant, Silent,
+///     Budget, FnEvaluator, Mcmc, McmcSettings, McmcVariant, Optimizer, Silent,
 /// };
 /// use shapegen_runtime::prelude::*;
 ///
@@ -377,7 +378,7 @@ pub struct Mcmc<G> {
     settings: McmcSettings,
     limits: Limits,
     ops: Operators<G>,
-    progress: Progress<G>,
+    progress: Progress<Best<G>>,
     chains: Vec<Genome<G>>,
     fitness: Vec<f64>,
     temperatures: Vec<f64>,
@@ -409,8 +410,40 @@ impl<G: Grammar> std::fmt::Debug for Mcmc<G> {
 }
 
 impl<G: Grammar> Mcmc<G> {
+    /// Each chain position's current temperature. Tempered variant: the temperatures,
+    /// ascending (coldest first). Original variant: the original's "temperature", an
+    /// exponent on the fitness ratio (an inverse temperature, `f32` values): it starts at
+    /// `1 / (i + 1)^1.03` for position `i`, descending (coldest first), and is multiplied
+    /// by 1.1 after every move.
+    pub fn temperatures(&self) -> &[f64] {
+        &self.temperatures
+    }
+
+    /// Grows every chain's initial genome, chain `i` from stream (seed, 0, `i`), with the
+    /// variant's operators, and evaluates them.
+    fn start_chains<E: Evaluator<G> + ?Sized>(
+        &mut self,
+        evaluator: &mut E,
+    ) -> Result<(), OptimizeError> {
+        let (seed, len) = (self.progress.seed, self.settings.initial_length);
+        let ops = &self.ops;
+        self.chains.par_iter_mut().enumerate().for_each_init(
+            || ops.clone(),
+            |ops, (i, g)| ops.random_into(len, g, &mut stream(seed, 0, i as u64)),
+        );
+        evaluator.evaluate(&self.chains, &mut self.fitness)?;
+        self.progress.evaluations += self.chains.len() as u64;
+        Ok(())
+    }
+}
+
+impl<G: Grammar> Optimizer<G> for Mcmc<G> {
+    type Settings = McmcSettings;
+    type State = McmcState<G>;
+    type Record = Best<G>;
+
     /// An MCMC run with these settings and limits, seeded with `seed`.
-    pub fn new(settings: McmcSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {
+    fn new(settings: McmcSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {
         settings.validate()?;
         let n = settings.chains as usize;
         let empty = || Genome::from_parts(Vec::new(), 0);
@@ -456,28 +489,22 @@ impl<G: Grammar> Mcmc<G> {
         })
     }
 
-    /// Resumes from a checkpoint; fails if it does not fit its own settings.
-    pub fn resume(state: McmcState<G>) -> Result<Self, OptimizeError> {
+    fn resume(state: McmcState<G>) -> Result<Self, OptimizeError> {
         let mut mcmc = Mcmc::new(state.settings, state.limits, state.progress.seed)?;
-        let n = state.settings.chains as usize;
-        if !state.progress.history.is_empty() {
-            let priors = match state.settings.variant {
-                McmcVariant::Original => n,
-                McmcVariant::Tempered => 0,
-            };
-            let lens = [
-                state.chains.len(),
-                state.fitness.len(),
-                state.temperatures.len(),
-                state.log_priors.len(),
-            ];
-            if lens != [n, n, n, priors] {
-                return Err(OptimizeError::Checkpoint(format!(
-                    "{} chains, {} fitness values, {} temperatures and {} log priors for \
-                     {n} chains of the {:?} variant",
-                    lens[0], lens[1], lens[2], lens[3], state.settings.variant
-                )));
-            }
+        if state.progress.record.started() {
+            let (n, priors) = (mcmc.chains.len(), mcmc.log_priors.len());
+            check_sizes(
+                &[
+                    (state.chains.len(), n, "chains"),
+                    (state.fitness.len(), n, "fitness values"),
+                    (state.temperatures.len(), n, "temperatures"),
+                    (state.log_priors.len(), priors, "log priors"),
+                ],
+                format_args!(
+                    "{n} chains of the {} variant",
+                    state.settings.variant.name()
+                ),
+            )?;
             mcmc.chains = state.chains;
             mcmc.fitness = state.fitness;
             mcmc.temperatures = state.temperatures;
@@ -487,8 +514,7 @@ impl<G: Grammar> Mcmc<G> {
         Ok(mcmc)
     }
 
-    /// The state to resume from.
-    pub fn checkpoint(&self) -> McmcState<G> {
+    fn checkpoint(&self) -> McmcState<G> {
         McmcState {
             settings: self.settings,
             limits: self.limits,
@@ -500,41 +526,18 @@ impl<G: Grammar> Mcmc<G> {
         }
     }
 
-    /// Each chain position's current temperature. Tempered variant: the temperatures,
-    /// ascending (coldest first). Original variant: the original's "temperature", an
-    /// exponent on the fitness ratio (an inverse temperature, `f32` values): it starts at
-    /// `1 / (i + 1)^1.03` for position `i`, descending (coldest first), and is multiplied
-    /// by 1.1 after every move.
-    pub fn temperatures(&self) -> &[f64] {
-        &self.temperatures
+    fn settings(&self) -> &McmcSettings {
+        &self.settings
     }
 
-    /// Runs until `budget` or `observer` stops it; a later call goes on from there.
-    pub fn run(
-        &mut self,
-        evaluator: &mut impl Evaluator<G>,
-        budget: &Budget,
-        observer: &mut impl Observer<G>,
-    ) -> Result<RunResult<G>, OptimizeError> {
-        drive(self, evaluator, budget, observer)
+    fn progress(&self) -> &Progress<Best<G>> {
+        &self.progress
     }
 
-    /// Grows every chain's initial genome, chain `i` from stream (seed, 0, `i`), with the
-    /// variant's operators, and evaluates them.
-    fn start_chains<E: Evaluator<G>>(&mut self, evaluator: &mut E) -> Result<(), OptimizeError> {
-        let (seed, len) = (self.progress.seed, self.settings.initial_length);
-        let ops = &self.ops;
-        self.chains.par_iter_mut().enumerate().for_each_init(
-            || ops.clone(),
-            |ops, (i, g)| ops.random_into(len, g, &mut stream(seed, 0, i as u64)),
-        );
-        evaluator.evaluate(&self.chains, &mut self.fitness)?;
-        self.progress.evaluations += self.chains.len() as u64;
-        Ok(())
+    fn parts(&mut self) -> (&mut Progress<Best<G>>, &[Genome<G>], &[f64]) {
+        (&mut self.progress, &self.chains, &self.fitness)
     }
-}
 
-impl<G: Grammar> Method<G> for Mcmc<G> {
     fn step_cost(&self) -> u64 {
         let tries = match self.settings.variant {
             McmcVariant::Original => 1,
@@ -543,21 +546,17 @@ impl<G: Grammar> Method<G> for Mcmc<G> {
         u64::from(self.settings.chains) * tries
     }
 
-    fn start<E: Evaluator<G>>(&mut self, evaluator: &mut E) -> Result<(), OptimizeError> {
+    fn start(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
         match self.settings.variant {
             McmcVariant::Original => self.start_original(evaluator),
             McmcVariant::Tempered => self.start_tempered(evaluator),
         }
     }
 
-    fn step<E: Evaluator<G>>(&mut self, evaluator: &mut E) -> Result<(), OptimizeError> {
+    fn step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
         match self.settings.variant {
             McmcVariant::Original => self.step_original(evaluator),
             McmcVariant::Tempered => self.step_tempered(evaluator),
         }
-    }
-
-    fn parts(&mut self) -> (&mut Progress<G>, &[Genome<G>], &[f64]) {
-        (&mut self.progress, &self.chains, &self.fitness)
     }
 }

@@ -63,7 +63,7 @@ struct Scratch {
 
 impl<G: Grammar> Mcmc<G> {
     /// Builds and evaluates the initial chains with their exponents and log priors.
-    pub(super) fn start_original<E: Evaluator<G>>(
+    pub(super) fn start_original<E: Evaluator<G> + ?Sized>(
         &mut self,
         evaluator: &mut E,
     ) -> Result<(), OptimizeError> {
@@ -77,7 +77,7 @@ impl<G: Grammar> Mcmc<G> {
     }
 
     /// One iteration: a move per chain, each followed by its annealing, then one swap.
-    pub(super) fn step_original<E: Evaluator<G>>(
+    pub(super) fn step_original<E: Evaluator<G> + ?Sized>(
         &mut self,
         evaluator: &mut E,
     ) -> Result<(), OptimizeError> {

@@ -35,7 +35,7 @@ struct Scratch {
 
 impl<G: Grammar> Mcmc<G> {
     /// Builds and evaluates the initial chains and sets the temperature ladder.
-    pub(super) fn start_tempered<E: Evaluator<G>>(
+    pub(super) fn start_tempered<E: Evaluator<G> + ?Sized>(
         &mut self,
         evaluator: &mut E,
     ) -> Result<(), OptimizeError> {
@@ -57,7 +57,7 @@ impl<G: Grammar> Mcmc<G> {
     }
 
     /// One iteration: a move per chain, delayed rejection, swaps, annealing.
-    pub(super) fn step_tempered<E: Evaluator<G>>(
+    pub(super) fn step_tempered<E: Evaluator<G> + ?Sized>(
         &mut self,
         evaluator: &mut E,
     ) -> Result<(), OptimizeError> {

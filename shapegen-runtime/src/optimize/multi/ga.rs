@@ -1,7 +1,7 @@
 //! The multi-objective GA: the GA's breeding, selecting on a multi-objective selection
 //! fitness, with an archive of the non-dominated models found.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use serde::{Deserialize, Serialize};
 
@@ -10,30 +10,14 @@ use super::settings::MultiGaSettings;
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
 use crate::ops::Operators;
+use crate::optimize::error::check_sizes;
 use crate::optimize::fitness::{Roulette, bits_vec, rank};
 use crate::optimize::ga::{Breed, random_population};
 use crate::optimize::run::grammar_struct_traits;
-use crate::optimize::{Budget, Control, EvaluateError, OptimizeError, Sense, Silent, StopReason};
-
-/// Scores a whole population on `k` objectives at once.
-pub trait MultiEvaluator<G: Grammar> {
-    /// The `k` objectives' senses (at least one).
-    fn senses(&self) -> &[Sense];
-
-    /// Writes the `k` raw objective values of `genomes[i]` to `out[i * k..(i + 1) * k]`.
-    /// `out` holds `genomes.len() * k` values.
-    fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError>;
-}
-
-impl<G: Grammar, E: MultiEvaluator<G> + ?Sized> MultiEvaluator<G> for &mut E {
-    fn senses(&self) -> &[Sense] {
-        (**self).senses()
-    }
-
-    fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError> {
-        (**self).evaluate(genomes, out)
-    }
-}
+use crate::optimize::{
+    Control, EvaluateError, MultiEvaluator, OptimizeError, Optimizer, Progress, Record, Sense,
+    Silent, StopReason,
+};
 
 /// A model of the archive: its genome and its raw objective values.
 #[derive(Serialize, Deserialize)]
@@ -136,6 +120,85 @@ grammar_struct_traits!(MultiResult {
     stopped
 });
 
+/// The record of a multi-objective run: the objectives' senses, the archive front, the
+/// best value of each objective so far, and the history.
+///
+/// The optimizer keeps the archive and the best values up to date as it evaluates (only
+/// it knows which individuals are new); recording a generation appends its history
+/// entry.
+#[derive(Serialize, Deserialize)]
+#[serde(bound(serialize = "G: Grammar", deserialize = "G: Grammar"))]
+pub struct Front<G> {
+    /// The objectives' senses (empty before the first run).
+    pub senses: Vec<Sense>,
+    /// The non-dominated models found so far.
+    pub archive: Vec<Member<G>>,
+    /// Per objective, the best value so far.
+    #[serde(with = "bits_vec")]
+    pub best: Vec<f64>,
+    /// Per-generation history.
+    pub history: Vec<MultiHistoryEntry>,
+}
+
+grammar_struct_traits!(Front {
+    senses,
+    archive,
+    best,
+    history
+});
+
+impl<G> Default for Front<G> {
+    fn default() -> Self {
+        Front {
+            senses: Vec::new(),
+            archive: Vec::new(),
+            best: Vec::new(),
+            history: Vec::new(),
+        }
+    }
+}
+
+impl<G: Grammar> Record<G> for Front<G> {
+    type Evaluator<'e> = dyn MultiEvaluator<G> + 'e;
+    type Observer<'o> = dyn MultiObserver<G> + 'o;
+    type Result = MultiResult<G>;
+
+    fn started(&self) -> bool {
+        !self.history.is_empty()
+    }
+
+    fn record(progress: &mut Progress<Self>, _: &[Genome<G>], _: &[f64]) {
+        let r = &mut progress.record;
+        r.history.push(MultiHistoryEntry {
+            generation: progress.generation,
+            elapsed_s: progress.elapsed_s,
+            evaluations: progress.evaluations,
+            front: r.archive.len() as u32,
+            best: r.best.clone(),
+        });
+    }
+
+    fn observe(progress: &Progress<Self>, observer: &mut Self::Observer<'_>) -> Control {
+        observer.observe(&MultiSnapshot {
+            generation: progress.generation,
+            elapsed: Duration::from_secs_f64(progress.elapsed_s),
+            evaluations: progress.evaluations,
+            best: &progress.record.best,
+            front: &progress.record.archive,
+        })
+    }
+
+    fn result(progress: &Progress<Self>, stopped: StopReason) -> MultiResult<G> {
+        MultiResult {
+            front: progress.record.archive.clone(),
+            evaluations: progress.evaluations,
+            generations: progress.generation,
+            history: progress.record.history.clone(),
+            stopped,
+        }
+    }
+}
+
 /// A checkpoint of a [`MultiGa`]: serialize it (e.g. with `serde_json`) and give it to
 /// [`MultiGa::resume`] to go on exactly as an uninterrupted run would.
 #[derive(Serialize, Deserialize)]
@@ -215,7 +278,7 @@ struct ArchiveScratch {
 ///
 /// ```
 /// use shapegen_runtime::optimize::multi::{MultiEvaluator, MultiGa, MultiGaSettings};
-/// use shapegen_runtime::optimize::{Budget, EvaluateError, GaSettings, Sense, Silent};
+/// use shapegen_runtime::optimize::{Budget, EvaluateError, GaSettings, Optimizer, Sense, Silent};
 /// use shapegen_runtime::prelude::*;
 ///
 /// generator! {
@@ -257,18 +320,11 @@ struct ArchiveScratch {
 pub struct MultiGa<G> {
     settings: MultiGaSettings,
     ops: Operators<G>,
-    seed: u64,
-    generation: u64,
-    evaluations: u64,
-    elapsed_s: f64,
-    senses: Vec<Sense>,
+    progress: Progress<Front<G>>,
     population: Vec<Genome<G>>,
     values: Vec<f64>,
     next: Vec<Genome<G>>,
     next_values: Vec<f64>,
-    archive: Vec<Member<G>>,
-    best: Vec<f64>,
-    history: Vec<MultiHistoryEntry>,
     fitness: Vec<f64>,
     order: Vec<u32>,
     roulette: Roulette,
@@ -280,220 +336,27 @@ impl<G: Grammar> std::fmt::Debug for MultiGa<G> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("MultiGa")
             .field("settings", &self.settings)
-            .field("generation", &self.generation)
-            .field("evaluations", &self.evaluations)
-            .field("archive", &self.archive.len())
+            .field("generation", &self.progress.generation)
+            .field("evaluations", &self.progress.evaluations)
+            .field("archive", &self.progress.record.archive.len())
             .finish_non_exhaustive()
     }
 }
 
 impl<G: Grammar> MultiGa<G> {
-    /// A multi-objective GA with these settings, keeping genomes within `limits`, seeded
-    /// with `seed`.
-    pub fn new(
-        settings: MultiGaSettings,
-        limits: Limits,
-        seed: u64,
-    ) -> Result<Self, OptimizeError> {
-        settings.validate()?;
-        let n = settings.ga.population as usize;
-        let empty = || Genome::from_parts(Vec::new(), 0);
-        Ok(MultiGa {
-            ops: settings.ga.build_operators(limits)?,
-            seed,
-            generation: 0,
-            evaluations: 0,
-            elapsed_s: 0.0,
-            senses: Vec::new(),
-            population: (0..n).map(|_| empty()).collect(),
-            values: Vec::new(),
-            next: (0..n).map(|_| empty()).collect(),
-            next_values: Vec::new(),
-            archive: Vec::new(),
-            best: Vec::new(),
-            history: Vec::new(),
-            fitness: vec![f64::NAN; n],
-            order: Vec::with_capacity(n),
-            roulette: Roulette::default(),
-            rank_scratch: RankScratch::default(),
-            archive_scratch: ArchiveScratch::default(),
-            settings,
-        })
-    }
-
-    /// Resumes from a checkpoint; fails if it does not fit its own settings.
-    pub fn resume(state: MultiGaState<G>) -> Result<Self, OptimizeError> {
-        let mut ga = MultiGa::new(state.settings, state.limits, state.seed)?;
-        let n = ga.population.len();
-        let k = state.senses.len();
-        if !state.history.is_empty() {
-            let fits = k > 0
-                && state.population.len() == n
-                && state.values.len() == n * k
-                && state.best.len() == k
-                && state.archive.iter().all(|m| m.values.len() == k);
-            if !fits {
-                return Err(OptimizeError::Checkpoint(format!(
-                    "{} genomes, {} values, {} best values for a population of {n} on {k} \
-                     objectives",
-                    state.population.len(),
-                    state.values.len(),
-                    state.best.len()
-                )));
-            }
-            ga.population = state.population;
-            ga.values = state.values;
-            ga.senses = state.senses;
-            ga.archive = state.archive;
-            ga.best = state.best;
-        }
-        ga.generation = state.generation;
-        ga.evaluations = state.evaluations;
-        ga.elapsed_s = state.elapsed_s;
-        ga.history = state.history;
-        Ok(ga)
-    }
-
-    /// The state to resume from.
-    pub fn checkpoint(&self) -> MultiGaState<G> {
-        MultiGaState {
-            settings: self.settings.clone(),
-            limits: *self.ops.limits(),
-            seed: self.seed,
-            generation: self.generation,
-            evaluations: self.evaluations,
-            elapsed_s: self.elapsed_s,
-            senses: self.senses.clone(),
-            population: self.population.clone(),
-            values: self.values.clone(),
-            archive: self.archive.clone(),
-            best: self.best.clone(),
-            history: self.history.clone(),
-        }
-    }
-
-    /// The settings.
-    pub fn settings(&self) -> &MultiGaSettings {
-        &self.settings
-    }
-
     /// The archive: the non-dominated models found so far.
     pub fn front(&self) -> &[Member<G>] {
-        &self.archive
-    }
-
-    /// Runs until `budget` or `observer` stops it; a later call goes on from there.
-    ///
-    /// Fails if the evaluator has no objectives, if its senses differ from those of
-    /// earlier runs, or if a weighted sum's weights are not one per objective.
-    pub fn run(
-        &mut self,
-        evaluator: &mut impl MultiEvaluator<G>,
-        budget: &Budget,
-        observer: &mut impl MultiObserver<G>,
-    ) -> Result<MultiResult<G>, OptimizeError> {
-        let senses = evaluator.senses();
-        if senses.is_empty() {
-            return Err(EvaluateError("the evaluator has no objectives".into()).into());
-        }
-        if !self.history.is_empty() && self.senses != senses {
-            return Err(OptimizeError::Checkpoint(format!(
-                "objectives {:?} for a run on {:?}",
-                senses, self.senses
-            )));
-        }
-        self.settings.selection.check_objectives(senses.len())?;
-        let t0 = Instant::now();
-        let base = self.elapsed_s;
-        let elapsed = || base + t0.elapsed().as_secs_f64();
-        if self.history.is_empty() {
-            self.start(evaluator)?;
-            if self.record(elapsed(), observer) == Control::Stop {
-                return Ok(self.finish(StopReason::Observer));
-            }
-        }
-        let cost = u64::from(self.settings.ga.population - self.settings.ga.elitism);
-        loop {
-            if let Some(reason) = budget.stop(self.generation, self.evaluations, cost, elapsed()) {
-                self.elapsed_s = elapsed();
-                return Ok(self.finish(reason));
-            }
-            self.step(evaluator)?;
-            self.generation += 1;
-            if self.record(elapsed(), observer) == Control::Stop {
-                return Ok(self.finish(StopReason::Observer));
-            }
-        }
-    }
-
-    /// Grows and evaluates the initial population.
-    fn start(&mut self, evaluator: &mut impl MultiEvaluator<G>) -> Result<(), OptimizeError> {
-        self.senses = evaluator.senses().to_vec();
-        let (n, k) = (self.population.len(), self.senses.len());
-        random_population(
-            &self.ops,
-            &self.settings.ga,
-            self.seed,
-            &mut self.population,
-        );
-        self.values.clear();
-        self.values.resize(n * k, f64::NAN);
-        evaluator.evaluate(&self.population, &mut self.values)?;
-        self.evaluations += n as u64;
-        self.best = vec![f64::NAN; k];
-        self.update(0);
-        Ok(())
-    }
-
-    /// One generation: selection fitness, elites, breeding, evaluation of the children.
-    fn step(&mut self, evaluator: &mut impl MultiEvaluator<G>) -> Result<(), OptimizeError> {
-        let k = self.senses.len();
-        let elite = self.settings.ga.elitism as usize;
-        selection_fitness(
-            &self.settings.selection,
-            &self.values,
-            k,
-            &self.senses,
-            &mut self.fitness,
-            &mut self.rank_scratch,
-        );
-        rank(&self.fitness, &mut self.order);
-        self.roulette.build(&self.fitness);
-        self.next_values.clear();
-        self.next_values.resize(self.values.len(), f64::NAN);
-        for (e, &i) in self.order[..elite].iter().enumerate() {
-            let i = i as usize;
-            self.next[e].clone_from(&self.population[i]);
-            self.next_values[e * k..(e + 1) * k].copy_from_slice(&self.values[i * k..(i + 1) * k]);
-        }
-        let breed = Breed {
-            settings: &self.settings.ga,
-            population: &self.population,
-            fitness: &self.fitness,
-            roulette: &self.roulette,
-            worst: *self.order.last().expect("a population of at least 2"),
-        };
-        breed.children(
-            &self.ops,
-            self.seed,
-            self.generation + 1,
-            &mut self.next[elite..],
-        )?;
-        evaluator.evaluate(&self.next[elite..], &mut self.next_values[elite * k..])?;
-        self.evaluations += (self.population.len() - elite) as u64;
-        std::mem::swap(&mut self.population, &mut self.next);
-        std::mem::swap(&mut self.values, &mut self.next_values);
-        self.update(elite);
-        Ok(())
+        &self.progress.record.archive
     }
 
     /// Takes the population's individuals from `from` on (the newly evaluated) into the
     /// best values and the archive.
     fn update(&mut self, from: usize) {
-        let k = self.senses.len();
+        let record = &mut self.progress.record;
+        let k = record.senses.len();
         let fresh = &self.values[from * k..];
         for row in fresh.chunks_exact(k) {
-            for ((b, &v), s) in self.best.iter_mut().zip(row).zip(&self.senses) {
+            for ((b, &v), s) in record.best.iter_mut().zip(row).zip(&record.senses) {
                 if b.is_nan() || s.better(v, *b) {
                     *b = v;
                 }
@@ -501,12 +364,12 @@ impl<G: Grammar> MultiGa<G> {
         }
         let s = &mut self.archive_scratch;
         s.values.clear();
-        for m in &self.archive {
+        for m in &record.archive {
             s.values.extend_from_slice(&m.values);
         }
         s.values.extend_from_slice(fresh);
-        let old = self.archive.len();
-        s.fronts.sort(&s.values, k, &self.senses);
+        let old = record.archive.len();
+        s.fronts.sort(&s.values, k, &record.senses);
         s.first.clear();
         s.first.resize(s.values.len() / k, true);
         first_of_equals(&s.values, k, &mut s.order, &mut s.first);
@@ -527,7 +390,7 @@ impl<G: Grammar> MultiGa<G> {
             crowding(
                 &s.values,
                 k,
-                &self.senses,
+                &record.senses,
                 &s.keep,
                 &mut s.order,
                 &mut s.crowd,
@@ -547,7 +410,7 @@ impl<G: Grammar> MultiGa<G> {
             }
             s.keep.truncate(cap);
         }
-        let mut previous = std::mem::take(&mut self.archive);
+        let mut previous = std::mem::take(&mut record.archive);
         for &i in &s.keep {
             let i = i as usize;
             let member = if i < old {
@@ -564,36 +427,176 @@ impl<G: Grammar> MultiGa<G> {
                     values: s.values[i * k..(i + 1) * k].to_vec(),
                 }
             };
-            self.archive.push(member);
+            record.archive.push(member);
         }
     }
+}
 
-    /// Appends the history entry of the generation just done and asks the observer.
-    fn record(&mut self, elapsed_s: f64, observer: &mut impl MultiObserver<G>) -> Control {
-        self.elapsed_s = elapsed_s;
-        self.history.push(MultiHistoryEntry {
-            generation: self.generation,
-            elapsed_s,
-            evaluations: self.evaluations,
-            front: self.archive.len() as u32,
-            best: self.best.clone(),
-        });
-        observer.observe(&MultiSnapshot {
-            generation: self.generation,
-            elapsed: Duration::from_secs_f64(elapsed_s),
-            evaluations: self.evaluations,
-            best: &self.best,
-            front: &self.archive,
+impl<G: Grammar> Optimizer<G> for MultiGa<G> {
+    type Settings = MultiGaSettings;
+    type State = MultiGaState<G>;
+    type Record = Front<G>;
+
+    /// A multi-objective GA with these settings, keeping genomes within `limits`, seeded
+    /// with `seed`.
+    fn new(settings: MultiGaSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {
+        settings.validate()?;
+        let n = settings.ga.population as usize;
+        let empty = || Genome::from_parts(Vec::new(), 0);
+        Ok(MultiGa {
+            ops: settings.ga.build_operators(limits)?,
+            progress: Progress::new(seed),
+            population: (0..n).map(|_| empty()).collect(),
+            values: Vec::new(),
+            next: (0..n).map(|_| empty()).collect(),
+            next_values: Vec::new(),
+            fitness: vec![f64::NAN; n],
+            order: Vec::with_capacity(n),
+            roulette: Roulette::default(),
+            rank_scratch: RankScratch::default(),
+            archive_scratch: ArchiveScratch::default(),
+            settings,
         })
     }
 
-    fn finish(&self, stopped: StopReason) -> MultiResult<G> {
-        MultiResult {
-            front: self.archive.clone(),
-            evaluations: self.evaluations,
-            generations: self.generation,
-            history: self.history.clone(),
-            stopped,
+    fn resume(state: MultiGaState<G>) -> Result<Self, OptimizeError> {
+        let mut ga = MultiGa::new(state.settings, state.limits, state.seed)?;
+        let record = Front {
+            senses: state.senses,
+            archive: state.archive,
+            best: state.best,
+            history: state.history,
+        };
+        if record.started() {
+            let (n, k) = (ga.population.len(), record.senses.len());
+            let odd = record.archive.iter().filter(|m| m.values.len() != k);
+            check_sizes(
+                &[
+                    (k.min(1), 1, "objectives (at least)"),
+                    (state.population.len(), n, "genomes"),
+                    (state.values.len(), n * k, "values"),
+                    (record.best.len(), k, "best values"),
+                    (odd.count(), 0, "archive members of another size"),
+                ],
+                format_args!("a population of {n} on {k} objectives"),
+            )?;
+            ga.population = state.population;
+            ga.values = state.values;
         }
+        ga.progress = Progress {
+            seed: state.seed,
+            generation: state.generation,
+            evaluations: state.evaluations,
+            elapsed_s: state.elapsed_s,
+            record,
+        };
+        Ok(ga)
+    }
+
+    fn checkpoint(&self) -> MultiGaState<G> {
+        let (p, r) = (&self.progress, &self.progress.record);
+        MultiGaState {
+            settings: self.settings.clone(),
+            limits: *self.ops.limits(),
+            seed: p.seed,
+            generation: p.generation,
+            evaluations: p.evaluations,
+            elapsed_s: p.elapsed_s,
+            senses: r.senses.clone(),
+            population: self.population.clone(),
+            values: self.values.clone(),
+            archive: r.archive.clone(),
+            best: r.best.clone(),
+            history: r.history.clone(),
+        }
+    }
+
+    fn settings(&self) -> &MultiGaSettings {
+        &self.settings
+    }
+
+    fn progress(&self) -> &Progress<Front<G>> {
+        &self.progress
+    }
+
+    fn parts(&mut self) -> (&mut Progress<Front<G>>, &[Genome<G>], &[f64]) {
+        (&mut self.progress, &self.population, &self.values)
+    }
+
+    fn step_cost(&self) -> u64 {
+        u64::from(self.settings.ga.population - self.settings.ga.elitism)
+    }
+
+    /// Fails if the evaluator has no objectives, if its senses differ from those of
+    /// earlier runs, or if a weighted sum's weights are not one per objective.
+    fn check(&self, evaluator: &mut (dyn MultiEvaluator<G> + '_)) -> Result<(), OptimizeError> {
+        let senses = evaluator.senses();
+        if senses.is_empty() {
+            return Err(EvaluateError("the evaluator has no objectives".into()).into());
+        }
+        let record = &self.progress.record;
+        if record.started() && record.senses != senses {
+            return Err(OptimizeError::Checkpoint(format!(
+                "objectives {:?} for a run on {:?}",
+                senses, record.senses
+            )));
+        }
+        self.settings.selection.check_objectives(senses.len())?;
+        Ok(())
+    }
+
+    /// Grows and evaluates the initial population.
+    fn start(&mut self, evaluator: &mut (dyn MultiEvaluator<G> + '_)) -> Result<(), OptimizeError> {
+        let senses = evaluator.senses().to_vec();
+        let (n, k) = (self.population.len(), senses.len());
+        let seed = self.progress.seed;
+        random_population(&self.ops, &self.settings.ga, seed, &mut self.population);
+        self.values.clear();
+        self.values.resize(n * k, f64::NAN);
+        evaluator.evaluate(&self.population, &mut self.values)?;
+        self.progress.evaluations += n as u64;
+        self.progress.record.senses = senses;
+        self.progress.record.best = vec![f64::NAN; k];
+        self.update(0);
+        Ok(())
+    }
+
+    /// One generation: selection fitness, elites, breeding, evaluation of the children.
+    fn step(&mut self, evaluator: &mut (dyn MultiEvaluator<G> + '_)) -> Result<(), OptimizeError> {
+        let senses = &self.progress.record.senses;
+        let k = senses.len();
+        let elite = self.settings.ga.elitism as usize;
+        selection_fitness(
+            &self.settings.selection,
+            &self.values,
+            k,
+            senses,
+            &mut self.fitness,
+            &mut self.rank_scratch,
+        );
+        rank(&self.fitness, &mut self.order);
+        self.roulette.build(&self.fitness);
+        self.next_values.clear();
+        self.next_values.resize(self.values.len(), f64::NAN);
+        for (e, &i) in self.order[..elite].iter().enumerate() {
+            let i = i as usize;
+            self.next[e].clone_from(&self.population[i]);
+            self.next_values[e * k..(e + 1) * k].copy_from_slice(&self.values[i * k..(i + 1) * k]);
+        }
+        let breed = Breed {
+            settings: &self.settings.ga,
+            population: &self.population,
+            fitness: &self.fitness,
+            roulette: &self.roulette,
+            worst: *self.order.last().expect("a population of at least 2"),
+        };
+        let (seed, generation) = (self.progress.seed, self.progress.generation + 1);
+        breed.children(&self.ops, seed, generation, &mut self.next[elite..])?;
+        evaluator.evaluate(&self.next[elite..], &mut self.next_values[elite * k..])?;
+        self.progress.evaluations += self.step_cost();
+        std::mem::swap(&mut self.population, &mut self.next);
+        std::mem::swap(&mut self.values, &mut self.next_values);
+        self.update(elite);
+        Ok(())
     }
 }

@@ -8,8 +8,10 @@
 //!   [`Selection`] says;
 //! - [`MultiGaSettings`], [`Selection`] and [`Ranking`]: the scene-file settings;
 //! - [`MultiGa`]: the GA breeding on that selection fitness, with an archive of the
-//!   non-dominated models found ([`Member`]s), checkpoints ([`MultiGaState`]) and a
-//!   [`MultiObserver`].
+//!   non-dominated models found ([`Member`]s) kept in its record ([`Front`]),
+//!   checkpoints ([`MultiGaState`]) and a [`MultiObserver`]; it is an
+//!   [`Optimizer`](super::Optimizer), run by the same driver as the single-objective
+//!   methods.
 //!
 //! ```
 //! use shapegen_runtime::optimize::Sense;
@@ -30,8 +32,9 @@ mod ga;
 mod rank;
 mod settings;
 
+pub use crate::evaluate::MultiEvaluator;
 pub use ga::{
-    Member, MultiEvaluator, MultiGa, MultiGaState, MultiHistoryEntry, MultiObserver, MultiResult,
+    Front, Member, MultiGa, MultiGaState, MultiHistoryEntry, MultiObserver, MultiResult,
     MultiSnapshot,
 };
 pub use rank::{

@@ -11,10 +11,11 @@ mod original;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use super::error::check_range;
+use super::driver::Record;
+use super::error::{check_range, check_sizes};
 use super::fitness::{Roulette, bits_vec};
-use super::run::{Method, Progress, drive, grammar_struct_traits, stream};
-use super::{Budget, Evaluator, Observer, OptimizeError, RunResult, SettingsError};
+use super::run::{Best, Progress, grammar_struct_traits, stream};
+use super::{Budget, Evaluator, OptimizeError, Optimizer, SettingsError};
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
 
@@ -269,7 +270,7 @@ pub struct SmcState<G> {
     /// The genome limits.
     pub limits: Limits,
     /// Generation, evaluations, best so far, history.
-    pub progress: Progress<G>,
+    pub progress: Progress<Best<G>>,
     /// The particles as last grown and evaluated.
     pub particles: Vec<Genome<G>>,
     /// Their growth bookkeeping: one per particle in the generative variant, none in the
@@ -297,7 +298,9 @@ grammar_struct_traits!(SmcState {
 /// step costs one evaluation per particle, as does the initial population.
 ///
 /// ```
-/// use shapegen_runtime::optimize::{Budget, FnEvaluator, Order, Silent, Smc, SmcSettings};
+/// use shapegen_runtime::optimize::{
+///     Budget, FnEvaluator, Optimizer, Order, Silent, Smc, SmcSettings,
+/// };
 /// use shapegen_runtime::prelude::*;
 ///
 /// generator! {
@@ -324,7 +327,7 @@ grammar_struct_traits!(SmcState {
 pub struct Smc<G> {
     settings: SmcSettings,
     limits: Limits,
-    progress: Progress<G>,
+    progress: Progress<Best<G>>,
     particles: Vec<Genome<G>>,
     cursors: Vec<Cursor>,
     fitness: Vec<f64>,
@@ -345,85 +348,12 @@ impl<G: Grammar> std::fmt::Debug for Smc<G> {
 }
 
 impl<G: Grammar> Smc<G> {
-    /// An SMC run with these settings and limits, seeded with `seed`.
-    pub fn new(settings: SmcSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {
-        settings.validate()?;
-        limits.check()?;
-        let n = settings.particles as usize;
-        let empty = || Genome::from_parts(Vec::new(), 0);
-        let cursors = Smc::<G>::cursors(&settings);
-        Ok(Smc {
-            settings,
-            limits,
-            progress: Progress::new(seed),
-            particles: (0..n).map(|_| empty()).collect(),
-            cursors: vec![Cursor::default(); cursors],
-            fitness: vec![f64::NAN; n],
-            next: (0..n).map(|_| empty()).collect(),
-            next_cursors: vec![Cursor::default(); cursors],
-            roulette: Roulette::default(),
-            wheel: original::Wheel::default(),
-            picks: Vec::new(),
-        })
-    }
-
     /// How many cursors the variant keeps.
     fn cursors(settings: &SmcSettings) -> usize {
         match settings.variant {
             SmcVariant::Original => 0,
             SmcVariant::Generative => settings.particles as usize,
         }
-    }
-
-    /// Resumes from a checkpoint; fails if it does not fit its own settings.
-    pub fn resume(state: SmcState<G>) -> Result<Self, OptimizeError> {
-        let mut smc = Smc::new(state.settings, state.limits, state.progress.seed)?;
-        let n = state.settings.particles as usize;
-        if !state.progress.history.is_empty() {
-            let lens = [
-                state.particles.len(),
-                state.cursors.len(),
-                state.fitness.len(),
-            ];
-            if lens != [n, smc.cursors.len(), n] {
-                return Err(OptimizeError::Checkpoint(format!(
-                    "{} particles, {} cursors and {} fitness values for {n} particles of the \
-                     {} variant, which keeps {} cursors",
-                    lens[0],
-                    lens[1],
-                    lens[2],
-                    state.settings.variant.name(),
-                    smc.cursors.len()
-                )));
-            }
-            smc.particles = state.particles;
-            smc.cursors = state.cursors;
-            smc.fitness = state.fitness;
-        }
-        smc.progress = state.progress;
-        Ok(smc)
-    }
-
-    /// The state to resume from.
-    pub fn checkpoint(&self) -> SmcState<G> {
-        SmcState {
-            settings: self.settings,
-            limits: self.limits,
-            progress: self.progress.clone(),
-            particles: self.particles.clone(),
-            cursors: self.cursors.clone(),
-            fitness: self.fitness.clone(),
-        }
-    }
-
-    /// Runs until `budget` or `observer` stops it; a later call goes on from there.
-    pub fn run(
-        &mut self,
-        evaluator: &mut impl Evaluator<G>,
-        budget: &Budget,
-        observer: &mut impl Observer<G>,
-    ) -> Result<RunResult<G>, OptimizeError> {
-        drive(self, evaluator, budget, observer)
     }
 
     /// Grows every particle once as the original does, particle `i` from the stream
@@ -464,12 +394,84 @@ impl<G: Grammar> Smc<G> {
     }
 }
 
-impl<G: Grammar> Method<G> for Smc<G> {
+impl<G: Grammar> Optimizer<G> for Smc<G> {
+    type Settings = SmcSettings;
+    type State = SmcState<G>;
+    type Record = Best<G>;
+
+    /// An SMC run with these settings and limits, seeded with `seed`.
+    fn new(settings: SmcSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {
+        settings.validate()?;
+        limits.check()?;
+        let n = settings.particles as usize;
+        let empty = || Genome::from_parts(Vec::new(), 0);
+        let cursors = Smc::<G>::cursors(&settings);
+        Ok(Smc {
+            settings,
+            limits,
+            progress: Progress::new(seed),
+            particles: (0..n).map(|_| empty()).collect(),
+            cursors: vec![Cursor::default(); cursors],
+            fitness: vec![f64::NAN; n],
+            next: (0..n).map(|_| empty()).collect(),
+            next_cursors: vec![Cursor::default(); cursors],
+            roulette: Roulette::default(),
+            wheel: original::Wheel::default(),
+            picks: Vec::new(),
+        })
+    }
+
+    fn resume(state: SmcState<G>) -> Result<Self, OptimizeError> {
+        let mut smc = Smc::new(state.settings, state.limits, state.progress.seed)?;
+        if state.progress.record.started() {
+            let (n, cursors) = (smc.particles.len(), smc.cursors.len());
+            check_sizes(
+                &[
+                    (state.particles.len(), n, "particles"),
+                    (state.cursors.len(), cursors, "cursors"),
+                    (state.fitness.len(), n, "fitness values"),
+                ],
+                format_args!(
+                    "{n} particles of the {} variant",
+                    state.settings.variant.name()
+                ),
+            )?;
+            smc.particles = state.particles;
+            smc.cursors = state.cursors;
+            smc.fitness = state.fitness;
+        }
+        smc.progress = state.progress;
+        Ok(smc)
+    }
+
+    fn checkpoint(&self) -> SmcState<G> {
+        SmcState {
+            settings: self.settings,
+            limits: self.limits,
+            progress: self.progress.clone(),
+            particles: self.particles.clone(),
+            cursors: self.cursors.clone(),
+            fitness: self.fitness.clone(),
+        }
+    }
+
+    fn settings(&self) -> &SmcSettings {
+        &self.settings
+    }
+
+    fn progress(&self) -> &Progress<Best<G>> {
+        &self.progress
+    }
+
+    fn parts(&mut self) -> (&mut Progress<Best<G>>, &[Genome<G>], &[f64]) {
+        (&mut self.progress, &self.particles, &self.fitness)
+    }
+
     fn step_cost(&self) -> u64 {
         u64::from(self.settings.particles)
     }
 
-    fn start<E: Evaluator<G>>(&mut self, evaluator: &mut E) -> Result<(), OptimizeError> {
+    fn start(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
         match self.settings.variant {
             SmcVariant::Original => self.grow_original(0, true),
             SmcVariant::Generative => {
@@ -490,7 +492,7 @@ impl<G: Grammar> Method<G> for Smc<G> {
         Ok(())
     }
 
-    fn step<E: Evaluator<G>>(&mut self, evaluator: &mut E) -> Result<(), OptimizeError> {
+    fn step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
         let (seed, generation) = (self.progress.seed, self.progress.generation + 1);
         match self.settings.variant {
             SmcVariant::Original => {
@@ -524,9 +526,5 @@ impl<G: Grammar> Method<G> for Smc<G> {
         evaluator.evaluate(&self.particles, &mut self.fitness)?;
         self.progress.evaluations += self.step_cost();
         Ok(())
-    }
-
-    fn parts(&mut self) -> (&mut Progress<G>, &[Genome<G>], &[f64]) {
-        (&mut self.progress, &self.particles, &self.fitness)
     }
 }

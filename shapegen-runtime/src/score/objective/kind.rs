@@ -6,7 +6,7 @@ use super::ObjectiveError;
 use super::normals::{cluster, spread};
 use super::projection::{ProjectionMatch, View};
 use super::surface::Surface;
-use crate::optimize::Sense;
+use crate::evaluate::Sense;
 use crate::score::silhouette::raster::Coverage;
 
 /// One geometric objective: a raw value measured on a model's [`Surface`], with the

@@ -6,7 +6,7 @@ use super::ObjectiveError;
 use super::kind::{Objective, ObjectiveScratch};
 use super::surface::Surface;
 use crate::geometry::{BoundMeshes, Instance};
-use crate::optimize::{EvaluateError, Evaluator, Sense};
+use crate::evaluate::{EvaluateError, Evaluator, Sense};
 use crate::score::InstanceBatch;
 use crate::{Genome, Grammar};
 

@@ -1,0 +1,119 @@
+//! How a population is scored, on one fitness ([`Evaluator`], [`FnEvaluator`]) or on
+//! several objectives ([`MultiEvaluator`], each objective with its [`Sense`]).
+//!
+//! This module sits below both the scorers ([`score`](crate::score)), which implement
+//! these traits, and the optimizers ([`optimize`](crate::optimize)), which call them and
+//! re-export every item here; neither depends on the other.
+
+use serde::{Deserialize, Serialize};
+
+use crate::derive::Grammar;
+use crate::genome::Genome;
+
+/// Why an [`Evaluator`] could not score a population.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("evaluation failed: {0}")]
+pub struct EvaluateError(pub String);
+
+/// Scores a whole population at once (the scene scorers batch it onto the CPU or the GPU).
+///
+/// Fitness is higher-is-better. A NaN fitness is the worst of all values: it ranks last,
+/// has zero selection weight and is never accepted by a Metropolis test; `+inf` and
+/// `-inf` are ordinary extremes (see the module documentation of
+/// [`optimize`](crate::optimize) for each method's exact treatment).
+pub trait Evaluator<G: Grammar> {
+    /// Writes the fitness of `genomes[i]` to `out[i]` (higher is better). `out` has the
+    /// length of `genomes`.
+    fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError>;
+}
+
+impl<G: Grammar, E: Evaluator<G> + ?Sized> Evaluator<G> for &mut E {
+    fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError> {
+        (**self).evaluate(genomes, out)
+    }
+}
+
+/// An [`Evaluator`] scoring each genome on its own with a closure, in order.
+///
+/// ```
+/// use shapegen_runtime::evaluate::{Evaluator, FnEvaluator};
+/// use shapegen_runtime::prelude::*;
+///
+/// generator! {
+///     /// A single block.
+///     pub Block { axiom B; node B { derive(s) { s.emit(CUBE); } } }
+/// }
+///
+/// let mut by_len = FnEvaluator(|g: &Genome<Block>| g.len() as f64);
+/// let genomes = [Genome::<Block>::axiom(&mut rand::rng())];
+/// let mut out = [0.0];
+/// by_len.evaluate(&genomes, &mut out)?;
+/// assert_eq!(out, [1.0]);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct FnEvaluator<F>(pub F);
+
+impl<G: Grammar, F: FnMut(&Genome<G>) -> f64> Evaluator<G> for FnEvaluator<F> {
+    fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError> {
+        for (g, o) in genomes.iter().zip(out.iter_mut()) {
+            *o = (self.0)(g);
+        }
+        Ok(())
+    }
+}
+
+/// Scores a whole population on `k` objectives at once.
+pub trait MultiEvaluator<G: Grammar> {
+    /// The `k` objectives' senses (at least one).
+    fn senses(&self) -> &[Sense];
+
+    /// Writes the `k` raw objective values of `genomes[i]` to `out[i * k..(i + 1) * k]`.
+    /// `out` holds `genomes.len() * k` values.
+    fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError>;
+}
+
+impl<G: Grammar, E: MultiEvaluator<G> + ?Sized> MultiEvaluator<G> for &mut E {
+    fn senses(&self) -> &[Sense] {
+        (**self).senses()
+    }
+
+    fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError> {
+        (**self).evaluate(genomes, out)
+    }
+}
+
+/// The direction of one objective of a multi-objective search.
+///
+/// ```
+/// use shapegen_runtime::evaluate::Sense;
+///
+/// assert!(Sense::Minimize.better(1.0, 2.0));
+/// assert_eq!(Sense::Minimize.oriented(2.0), -2.0);
+/// assert!(Sense::Maximize.oriented(f64::NAN).is_nan());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Sense {
+    /// Higher values are better.
+    Maximize,
+    /// Lower values are better.
+    Minimize,
+}
+
+impl Sense {
+    /// The value in the higher-is-better convention: itself, or its negation.
+    pub fn oriented(self, value: f64) -> f64 {
+        match self {
+            Sense::Maximize => value,
+            Sense::Minimize => -value,
+        }
+    }
+
+    /// Whether `a` is strictly better than `b` (NaN is never better, and every number is
+    /// better than NaN).
+    pub fn better(self, a: f64, b: f64) -> bool {
+        let (a, b) = (self.oriented(a), self.oriented(b));
+        !a.is_nan() && (b.is_nan() || a > b)
+    }
+}

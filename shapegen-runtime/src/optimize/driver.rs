@@ -1,0 +1,238 @@
+//! The one search driver: the [`Optimizer`] trait every method implements, the
+//! [`Record`] trait telling a run on one fitness from a run on objective vectors, and the
+//! loop ([`drive`]) that runs any optimizer under a [`Budget`].
+//!
+//! # Design
+//!
+//! A method is one type implementing [`Optimizer`]: it builds and evaluates its initial
+//! population ([`start`](Optimizer::start)), runs one generation
+//! ([`step`](Optimizer::step)), says how many evaluations the next generation may use at
+//! most ([`step_cost`](Optimizer::step_cost)), and converts itself to and from a serde
+//! checkpoint ([`checkpoint`](Optimizer::checkpoint), [`resume`](Optimizer::resume)).
+//! Everything else (budgets, generation counting, wall time across resumes, the history,
+//! the best so far, the observer, the stop reasons) lives once, in [`drive`] and in the
+//! method's [`Record`]. Adding a method is one file with one `impl Optimizer`, plus its
+//! registration where the command-line tool lists the methods; nothing in the trait is
+//! private to this crate, so other crates can add methods too (see
+//! `tests/toy_optimizer.rs`).
+//!
+//! What a run records is the associated type [`Optimizer::Record`]: [`Best`] for one
+//! fitness per individual (best genome, best / mean / std history, [`RunResult`](super::RunResult)) or
+//! [`Front`](super::multi::Front) for `k` objective values per individual (per-objective
+//! best, archive front, [`MultiResult`](super::multi::MultiResult)). The record also
+//! names the evaluator and observer kinds, as trait objects (`dyn Evaluator<G>`,
+//! `dyn MultiEvaluator<G>`; `dyn Observer<G>`, `dyn MultiObserver<G>`): the evaluator
+//! kind is then fixed by the method (a GA cannot be handed a multi-objective evaluator
+//! by mistake), the trait stays free of generic methods (so a session can own any
+//! optimizer behind one type parameter), and the cost is one dynamic call per
+//! generation, next to a whole population's evaluation. Callers pass `&mut evaluator`;
+//! it coerces to the trait object.
+
+use std::time::Instant;
+
+use serde::Serialize;
+use serde::de::DeserializeOwned;
+
+use super::OptimizeError;
+use super::run::{Budget, Control, Progress, StopReason};
+use crate::derive::Grammar;
+use crate::genome::{Genome, Limits};
+
+/// What a kind of run records after every generation, and how it reports: one fitness
+/// per individual ([`Best`](super::Best)) or an objective vector
+/// ([`Front`](super::multi::Front)).
+///
+/// The record is the part of an optimizer's [`Progress`] that is not a counter; it holds
+/// the per-generation history, and serializes inline with the counters.
+pub trait Record<G: Grammar>: Default + Sized {
+    /// The evaluator kind of this record's runs (a trait object).
+    type Evaluator<'e>: ?Sized;
+    /// The observer kind of this record's runs (a trait object), called after every
+    /// generation.
+    type Observer<'o>: ?Sized;
+    /// The outcome of a run.
+    type Result;
+
+    /// Whether the initial population has been recorded.
+    fn started(&self) -> bool;
+
+    /// Called by the driver after every generation, the initial population's included,
+    /// with the counters (generation, evaluations, elapsed time) already updated: takes
+    /// in the current population and its scores (one value per individual, or `k`), and
+    /// appends the generation's history entry.
+    fn record(progress: &mut Progress<Self>, population: &[Genome<G>], scores: &[f64]);
+
+    /// Shows the last recorded generation to `observer`; returns whether to go on.
+    fn observe(progress: &Progress<Self>, observer: &mut Self::Observer<'_>) -> Control;
+
+    /// The outcome of a run that stopped for `stopped`.
+    fn result(progress: &Progress<Self>, stopped: StopReason) -> Self::Result;
+}
+
+/// A search method, as the driver ([`drive`], [`Session`](super::Session)) runs it.
+///
+/// Implementations keep a [`Progress`] of their [`Record`]: the driver advances the
+/// generation counter and the wall time and records each generation; the method counts
+/// its evaluations in [`start`](Self::start) and [`step`](Self::step). Random choices
+/// should come from [`stream`](super::stream) (seed, generation, index), so that a
+/// resumed run ends exactly as an uninterrupted one.
+///
+/// ```
+/// use shapegen_runtime::optimize::{
+///     Best, Budget, FnEvaluator, Ga, GaSettings, Optimizer, Silent, StopReason,
+/// };
+/// use shapegen_runtime::prelude::*;
+///
+/// generator! {
+///     /// A chain of blocks.
+///     pub Chain {
+///         axiom Seg;
+///         node Seg {
+///             children { next: Seg = 0.5 }
+///             derive(s) {
+///                 s.emit(CUBE);
+///                 if let Some(next) = next { s.translate(vec3(0.0, 1.0, 0.0)).derive(next); }
+///             }
+///         }
+///     }
+/// }
+///
+/// /// Any optimizer, on the same evaluator and budget.
+/// fn search<O: Optimizer<Chain, Record = Best<Chain>>>(
+///     settings: O::Settings,
+/// ) -> Result<f64, Box<dyn std::error::Error>> {
+///     let mut eval = FnEvaluator(|g: &Genome<Chain>| -(g.len() as f64 - 6.0).abs());
+///     let mut optimizer = O::new(settings, Limits::new(1, 30, 30)?, 7)?;
+///     let result = optimizer.run(&mut eval, &Budget::evaluations(400), &mut Silent)?;
+///     assert_eq!(result.stopped, StopReason::Evaluations);
+///     Ok(result.best_fitness)
+/// }
+///
+/// let ga = GaSettings { population: 20, elitism: 4, initial_length: 3, ..GaSettings::default() };
+/// assert_eq!(search::<Ga<Chain>>(ga)?, 0.0);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub trait Optimizer<G: Grammar>: Sized {
+    /// The settings, as scene files give them.
+    type Settings: Clone + Serialize + DeserializeOwned;
+    /// A checkpoint, from which [`resume`](Self::resume) goes on exactly as an
+    /// uninterrupted run would.
+    type State: Serialize + DeserializeOwned;
+    /// What the run records: [`Best`](super::Best) or [`Front`](super::multi::Front).
+    type Record: Record<G>;
+
+    /// An optimizer with these settings, keeping genomes within `limits`, seeded with
+    /// `seed`; fails if the settings are out of range or do not fit the limits.
+    fn new(settings: Self::Settings, limits: Limits, seed: u64) -> Result<Self, OptimizeError>;
+
+    /// Resumes from a checkpoint; fails if it does not fit its own settings.
+    fn resume(state: Self::State) -> Result<Self, OptimizeError>;
+
+    /// The state to resume from.
+    fn checkpoint(&self) -> Self::State;
+
+    /// The settings.
+    fn settings(&self) -> &Self::Settings;
+
+    /// The counters and the record.
+    fn progress(&self) -> &Progress<Self::Record>;
+
+    /// The progress, mutably, with the current population and its scores (one value per
+    /// individual for one fitness, `k` for objective vectors), as the driver records a
+    /// generation.
+    fn parts(&mut self) -> (&mut Progress<Self::Record>, &[Genome<G>], &[f64]);
+
+    /// Evaluations the next [`step`](Self::step) may use at most.
+    fn step_cost(&self) -> u64;
+
+    /// Checks that `evaluator` fits this run, before every run (e.g. the objectives of
+    /// a resumed multi-objective run); by default, any does.
+    fn check(
+        &self,
+        evaluator: &mut <Self::Record as Record<G>>::Evaluator<'_>,
+    ) -> Result<(), OptimizeError> {
+        let _ = evaluator;
+        Ok(())
+    }
+
+    /// Builds and evaluates the initial population, counting its evaluations in the
+    /// progress.
+    fn start(
+        &mut self,
+        evaluator: &mut <Self::Record as Record<G>>::Evaluator<'_>,
+    ) -> Result<(), OptimizeError>;
+
+    /// Runs one generation, counting its evaluations (the driver then advances the
+    /// generation counter).
+    fn step(
+        &mut self,
+        evaluator: &mut <Self::Record as Record<G>>::Evaluator<'_>,
+    ) -> Result<(), OptimizeError>;
+
+    /// Runs until `budget` or `observer` stops it; a later call goes on from there. For
+    /// checkpoints between generations, a stop flag and saving, see
+    /// [`Session`](super::Session).
+    fn run(
+        &mut self,
+        evaluator: &mut <Self::Record as Record<G>>::Evaluator<'_>,
+        budget: &Budget,
+        observer: &mut <Self::Record as Record<G>>::Observer<'_>,
+    ) -> Result<<Self::Record as Record<G>>::Result, OptimizeError> {
+        let stopped = drive(self, evaluator, budget, |o: &mut Self| {
+            Ok::<_, OptimizeError>(Self::Record::observe(o.progress(), observer))
+        })?;
+        Ok(Self::Record::result(self.progress(), stopped))
+    }
+}
+
+/// The run loop every optimizer shares: checks the evaluator, starts the optimizer if it
+/// has not started (recording the initial population), then, while `budget` allows the
+/// next generation, steps it, advances the generation counter and records it; after
+/// every recorded generation `after` sees the optimizer and may stop the run
+/// ([`StopReason::Observer`]) or fail it. Wall time adds to the progress's, so it counts
+/// across resumed runs. Returns why the run stopped.
+///
+/// Before each generation the budget is checked with the optimizer's
+/// [`step_cost`](Optimizer::step_cost): a generation that could take the evaluation
+/// count past the budget is not run.
+pub fn drive<G, O, E>(
+    optimizer: &mut O,
+    evaluator: &mut <O::Record as Record<G>>::Evaluator<'_>,
+    budget: &Budget,
+    mut after: impl FnMut(&mut O) -> Result<Control, E>,
+) -> Result<StopReason, E>
+where
+    G: Grammar,
+    O: Optimizer<G>,
+    E: From<OptimizeError>,
+{
+    optimizer.check(evaluator)?;
+    let t0 = Instant::now();
+    let base = optimizer.progress().elapsed_s;
+    let elapsed = || base + t0.elapsed().as_secs_f64();
+    let mut record = |optimizer: &mut O| {
+        let (progress, population, scores) = optimizer.parts();
+        progress.elapsed_s = elapsed();
+        O::Record::record(progress, population, scores);
+        after(optimizer)
+    };
+    if !optimizer.progress().record.started() {
+        optimizer.start(evaluator)?;
+        if record(optimizer)? == Control::Stop {
+            return Ok(StopReason::Observer);
+        }
+    }
+    loop {
+        let cost = optimizer.step_cost();
+        let p = optimizer.progress();
+        if let Some(reason) = budget.stop(p.generation, p.evaluations, cost, elapsed()) {
+            optimizer.parts().0.elapsed_s = elapsed();
+            return Ok(reason);
+        }
+        optimizer.step(evaluator)?;
+        optimizer.parts().0.generation += 1;
+        if record(optimizer)? == Control::Stop {
+            return Ok(StopReason::Observer);
+        }
+    }
+}
