@@ -274,7 +274,7 @@ struct ArchiveScratch {
 /// [`crowding`](super::crowding) distance (the extremes of each objective first; ties
 /// keep the earlier member, archive before population).
 ///
-/// Results never depend on the thread count; budgets are those of [`Budget`].
+/// Results never depend on the thread count; budgets are those of [`Budget`](crate::optimize::Budget).
 ///
 /// ```
 /// use shapegen_runtime::optimize::multi::{MultiEvaluator, MultiGa, MultiGaSettings};
