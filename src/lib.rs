@@ -1,5 +1,10 @@
 #![doc = include_str!("../README.md")]
 
+// The command-line tool names this crate as its users do.
+extern crate self as shapegen;
+
 pub use shapegen_runtime::*;
 
+pub mod cli;
+pub mod registry;
 pub mod scene;

@@ -1,18 +1,5 @@
-//! The `shapegen` command-line tool.
+//! The `shapegen` command-line tool, for the published generators.
 
-mod cli;
-
-use std::process::ExitCode;
-
-use clap::Parser;
-
-fn main() -> ExitCode {
-    let args = cli::Cli::parse();
-    match cli::run(args) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(err) => {
-            eprintln!("error: {err:#}");
-            ExitCode::FAILURE
-        }
-    }
+fn main() -> std::process::ExitCode {
+    shapegen::cli::Cli::new().published().run()
 }

@@ -94,7 +94,7 @@ fn shapegen_cube_obj() -> String {
 fn well_formed_scenes_load() {
     let fixture = Fixture::new();
     let volume = fixture.load(VOLUME).unwrap();
-    assert_eq!(volume.generator, generators::Published::Spaceship);
+    assert_eq!(volume.generator, "spaceship");
     assert_eq!((volume.limits.min_len, volume.optimal_len), (4, Some(10)));
     assert!(volume.volume.is_some() && volume.silhouette.is_none());
     let silhouette = fixture.load(SILHOUETTE).unwrap();
@@ -284,7 +284,8 @@ fn project_scenes_are_reachable() {
     ] {
         let scene = Scene::load(scenes.join(format!("{name}.toml"))).unwrap();
         let genome = scenes.join(format!("targets/{name}.genome.json"));
-        let (fitness, counts) = scene.generator.visit(Check(&scene, &genome));
+        let generator: generators::Published = scene.generator.parse().unwrap();
+        let (fitness, counts) = generator.visit(Check(&scene, &genome));
         if let Some(v) = counts.volume {
             assert_eq!(
                 v.outside + v.out_of_grid_hits + v.span_out_of_grid,

@@ -5,7 +5,8 @@ use std::fs;
 
 use shapegen::ops::OperatorVariant;
 use shapegen::optimize::GaSettings;
-use shapegen::scene::{MethodSettings, Scene};
+use shapegen::registry::Registry;
+use shapegen::scene::{MethodSettings, Overrides, Scene, SceneError};
 
 /// A spaceship volume scene with a unit-cube target; `optimizer` is appended.
 fn scene(dir: &tempfile::TempDir, optimizer: &str) -> std::path::PathBuf {
@@ -69,13 +70,12 @@ fn operators_and_cross_array_index_are_read_from_the_file_and_from_set() {
         "optimizer.operators=original".to_owned(),
         "optimizer.cross_array_index=false".to_owned(),
     ];
-    let s = ga(&Scene::load_with(&path, &sets).unwrap());
+    let s = ga(&load_with(&path, &sets).unwrap());
     assert_eq!(
         (s.operators, s.cross_array_index),
         (OperatorVariant::Original, false)
     );
-    let s =
-        ga(&Scene::load_with(scene(&dir, ""), &["optimizer.operators=weighted".into()]).unwrap());
+    let s = ga(&load_with(scene(&dir, ""), &["optimizer.operators=weighted".into()]).unwrap());
     assert_eq!(s.operators, OperatorVariant::Weighted);
 }
 
@@ -105,7 +105,7 @@ fn bad_operator_keys_are_refused_with_the_valid_values() {
         assert!(message.contains(reason), "says `{reason}`: {message}");
     }
     let path = scene(&dir, "");
-    let message = Scene::load_with(&path, &["optimizer.operators=paper".into()])
+    let message = load_with(&path, &["optimizer.operators=paper".into()])
         .unwrap_err()
         .to_string();
     assert!(message.contains("optimizer.operators"), "{message}");
@@ -113,4 +113,13 @@ fn bad_operator_keys_are_refused_with_the_valid_values() {
         message.contains("\"weighted\" and \"original\""),
         "{message}"
     );
+}
+
+/// The scene at `path` with `--set` overrides.
+fn load_with(path: impl AsRef<std::path::Path>, sets: &[String]) -> Result<Scene, SceneError> {
+    let overrides = Overrides {
+        sets: sets.to_vec(),
+        ..Overrides::default()
+    };
+    Scene::open(path, &Registry::published(), &overrides)
 }

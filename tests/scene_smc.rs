@@ -4,7 +4,8 @@
 use std::fs;
 
 use shapegen::optimize::{Order, SmcSettings, SmcVariant};
-use shapegen::scene::{MethodSettings, Scene, SceneError};
+use shapegen::registry::Registry;
+use shapegen::scene::{MethodSettings, Overrides, Scene, SceneError};
 
 fn scene(generator: &str, optimizer: &str, sets: &[&str]) -> Result<Scene, SceneError> {
     let dir = tempfile::tempdir().unwrap();
@@ -24,7 +25,11 @@ fn scene(generator: &str, optimizer: &str, sets: &[&str]) -> Result<Scene, Scene
     )
     .unwrap();
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-    Scene::load_with(&path, &sets)
+    let overrides = Overrides {
+        sets,
+        ..Overrides::default()
+    };
+    Scene::open(&path, &Registry::published(), &overrides)
 }
 
 fn smc(scene: Result<Scene, SceneError>) -> SmcSettings {

@@ -26,19 +26,19 @@ use std::time::Duration;
 
 use anyhow::Context;
 use clap::Args;
-use generators::GeneratorVisitor;
 use image::Rgb;
 use serde::Serialize;
 use shapegen::Grammar;
-use shapegen::genome::Limits;
 use shapegen::optimize::{Budget, Control, HistoryEntry, Snapshot, StopReason};
-use shapegen::scene::{Method, OptimizerGoal, Scene, SceneEvaluator, SceneScorer};
+use shapegen::scene::{Method, OptimizerGoal, Overrides, Scene, SceneEvaluator, SceneScorer};
 
 use super::backend::BackendArgs;
+use super::dispatch::{Generators, Visit};
 use super::files::{atomic_write, save_png};
 use super::interrupt;
 use super::plot::{self, Band};
 use super::search::Search;
+use crate::registry::Entry;
 
 /// Points of the common time grid the curves are sampled on.
 const GRID_POINTS: usize = 400;
@@ -74,7 +74,7 @@ pub struct CompareArgs {
 }
 
 /// Runs `shapegen compare`.
-pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
+pub fn run(args: &CompareArgs, tool: &Generators) -> anyhow::Result<()> {
     let methods = parse_methods(&args.methods)?;
     anyhow::ensure!(
         args.runs >= 1,
@@ -98,19 +98,26 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
     };
     // The scene as written, when it loads so (it may not: `--set` keys may belong to the
     // compared methods rather than to the scene's own), says whether it has objectives.
-    if let Ok(scene) = Scene::load_with(&args.scene, &args.sets) {
+    let overrides = Overrides {
+        sets: args.sets.clone(),
+        ..Overrides::default()
+    };
+    if let Ok(scene) = Scene::open(&args.scene, tool.registry(), &overrides) {
         multi_objective(&scene)?;
     }
     // Each method's goal, as `shapegen run --method M` resolves it: `--set` keys are read
     // as the method's own (a `variant`, say, is each method's variant).
-    let mut scenes = Vec::with_capacity(methods.len());
-    for &method in &methods {
-        let mut sets = args.sets.clone();
-        sets.push(format!("optimizer.method={:?}", method.name()));
-        scenes.push(Scene::load_with(&args.scene, &sets)?);
-    }
-    multi_objective(&scenes[0])?;
-    let base = args.seed.unwrap_or(scenes[0].optimizer.seed);
+    let overrides = Overrides {
+        method: Some(methods[0]),
+        ..overrides
+    };
+    let scene = Scene::open(&args.scene, tool.registry(), &overrides)?;
+    multi_objective(&scene)?;
+    let goals = methods
+        .iter()
+        .map(|&method| scene.optimizer_for(method))
+        .collect::<Result<Vec<_>, _>>()?;
+    let base = args.seed.unwrap_or(scene.optimizer.seed);
     let seeds = (0..args.runs)
         .map(|r| base.checked_add(r))
         .collect::<Option<Vec<u64>>>()
@@ -123,12 +130,16 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
         })?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create `{}`", args.out.display()))?;
-    scenes[0].generator.visit(Compare {
-        args,
-        methods: &methods,
-        scenes: &scenes,
-        seeds: &seeds,
-    })
+    tool.visit(
+        &scene.generator,
+        Compare {
+            args,
+            methods: &methods,
+            scene: &scene,
+            goals: &goals,
+            seeds: &seeds,
+        },
+    )
 }
 
 /// The methods `names` lists, in order.
@@ -170,11 +181,13 @@ fn parse_methods(names: &[String]) -> anyhow::Result<Vec<Method>> {
     Ok(methods)
 }
 
-struct Compare<'a> {
+/// The body of `shapegen compare`.
+pub struct Compare<'a> {
     args: &'a CompareArgs,
     methods: &'a [Method],
-    /// The scene as each method sees it.
-    scenes: &'a [Scene],
+    scene: &'a Scene,
+    /// Each method's goal.
+    goals: &'a [OptimizerGoal],
     /// Seed of each run.
     seeds: &'a [u64],
 }
@@ -189,11 +202,9 @@ struct Finished {
     history: Vec<HistoryEntry>,
 }
 
-impl GeneratorVisitor for Compare<'_> {
-    type Output = anyhow::Result<()>;
-
-    fn visit<G: Grammar>(self, _: Limits) -> anyhow::Result<()> {
-        let scorer = SceneScorer::new::<G>(&self.scenes[0])?;
+impl Visit for Compare<'_> {
+    fn visit<G: Grammar>(self, _: &Entry) -> anyhow::Result<()> {
+        let scorer = SceneScorer::new::<G>(self.scene)?;
         let gpu = self.args.backend.open();
         let backend = scorer.on(self.args.backend.choice(), gpu.as_ref())?;
         let total = self.seeds.len() * self.methods.len();
@@ -218,17 +229,17 @@ impl GeneratorVisitor for Compare<'_> {
             backend: backend.describe(),
         };
         for (run, &seed) in self.seeds.iter().enumerate() {
-            for (&method, scene) in self.methods.iter().zip(self.scenes) {
+            for (&method, goal) in self.methods.iter().zip(self.goals) {
                 let goal = OptimizerGoal {
                     seed,
-                    ..scene.optimizer.clone()
+                    ..goal.clone()
                 };
                 let budget = Budget {
                     generations: None,
                     evaluations: goal.evaluations,
                     wall_time: Some(Duration::from_secs_f64(self.args.seconds)),
                 };
-                let mut search = Search::<G>::start(&goal, scene.limits)?;
+                let mut search = Search::<G>::start(&goal, self.scene.limits)?;
                 let mut observe = |_: &Snapshot<'_, G>| {
                     if stop.load(Ordering::SeqCst) {
                         Control::Stop

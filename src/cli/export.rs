@@ -5,23 +5,23 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::Args;
-use generators::{GeneratorVisitor, Published};
 use shapegen::Grammar;
 use shapegen::MeshLibrary;
 use shapegen::export::{Palette, glb_bytes, write_mtl, write_obj};
-use shapegen::genome::Limits;
-use shapegen::scene::Scene;
+use shapegen::scene::{Overrides, Scene};
 
+use super::dispatch::{Generators, Visit};
 use super::files::atomic_write;
 use super::genomes::GenomeFile;
+use crate::registry::Entry;
 
 /// Arguments of `shapegen export`.
 #[derive(Debug, Args)]
 pub struct ExportArgs {
-    /// The generator: spaceship, tree, city or building (default: the scene's, or else
-    /// the one the genome file names). With --scene it must be the scene's.
+    /// The generator, by name (default: the scene's, or else the one the genome file
+    /// names). With --scene it must be the scene's.
     #[arg(long, short)]
-    generator: Option<Published>,
+    generator: Option<String>,
     /// The genome file: a single genome or a set, in either JSON form.
     #[arg(long)]
     genome: PathBuf,
@@ -60,46 +60,54 @@ impl Format {
 }
 
 /// Runs `shapegen export`.
-pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
+pub fn run(args: &ExportArgs, tool: &Generators) -> anyhow::Result<()> {
     let format = Format::of(&args.out)?;
-    let scene = args.scene.as_deref().map(Scene::load).transpose()?;
+    let scene = args
+        .scene
+        .as_deref()
+        .map(|path| Scene::open(path, tool.registry(), &Overrides::default()))
+        .transpose()?;
     let file = GenomeFile::read(&args.genome)?;
-    let generator = match (&scene, args.generator) {
-        (Some(scene), Some(generator)) if generator != scene.generator => anyhow::bail!(
-            "--generator {generator} disagrees with the scene `{}`, whose generator is {}",
-            scene.path.display(),
-            scene.generator
-        ),
-        (Some(scene), _) => scene.generator,
-        (None, Some(generator)) => generator,
+    let generator = match (&scene, &args.generator) {
+        (Some(scene), Some(generator)) if !generator.eq_ignore_ascii_case(&scene.generator) => {
+            anyhow::bail!(
+                "--generator {generator} disagrees with the scene `{}`, whose generator is {}",
+                scene.path.display(),
+                scene.generator
+            )
+        }
+        (Some(scene), _) => scene.generator.as_str(),
+        (None, Some(generator)) => generator.as_str(),
         (None, None) => file.generator()?,
     };
-    let meshes = match scene {
-        Some(scene) => scene.meshes,
-        None => generators::default_meshes(),
-    };
-    generator.visit(Export {
-        args,
-        file: &file,
-        meshes: &meshes,
-        format,
-    })
+    tool.visit(
+        generator,
+        Export {
+            args,
+            file: &file,
+            meshes: scene.as_ref().map(|s| &s.meshes),
+            format,
+        },
+    )
 }
 
-struct Export<'a> {
+/// The body of `shapegen export`.
+pub struct Export<'a> {
     args: &'a ExportArgs,
     file: &'a GenomeFile,
-    meshes: &'a MeshLibrary,
+    /// The scene's meshes, if a scene was given.
+    meshes: Option<&'a MeshLibrary>,
     format: Format,
 }
 
-impl GeneratorVisitor for Export<'_> {
-    type Output = anyhow::Result<()>;
-
-    fn visit<G: Grammar>(self, _: Limits) -> anyhow::Result<()> {
+impl Visit for Export<'_> {
+    fn visit<G: Grammar>(self, entry: &Entry) -> anyhow::Result<()> {
         let args = self.args;
         let genome = self.file.genome::<G>(args.index)?;
-        let meshes = self.meshes.bind(G::GRAPH)?;
+        let meshes = self
+            .meshes
+            .unwrap_or(&entry.defaults.meshes)
+            .bind(G::GRAPH)?;
         let mut instances = Vec::new();
         genome.derive_into(&mut instances);
         if let Some(parent) = args.out.parent().filter(|p| !p.as_os_str().is_empty()) {

@@ -17,15 +17,15 @@ use shapegen::optimize::multi::{
     Member, MultiGa, MultiGaState, MultiResult, MultiSnapshot, Ranking,
 };
 use shapegen::optimize::{Budget, Control, Sense, StopReason};
-use shapegen::scene::{ObjectiveEvaluator, Scene};
+use shapegen::scene::{ObjectiveEvaluator, Overrides, Scene};
 use shapegen::score::objective::{ObjectiveSet, Surface};
 use shapegen::{BoundMeshes, Grammar, Instance};
 
+use super::checkpoint::{Checkpoint, finished};
 use super::files::{atomic_write, save_png};
 use super::interrupt;
+use super::overlay::{projection_overlay, projections};
 use super::plot;
-use super::render::{projection_overlay, projections};
-use super::run::{Checkpoint, finished};
 
 /// Most models drawn on the contact sheet; a larger front is shown evenly thinned.
 const SHEET_MODELS: usize = 100;
@@ -65,7 +65,7 @@ pub struct FrontRun<'a> {
     /// The scene file as given.
     pub scene_path: &'a Path,
     /// The overrides.
-    pub sets: &'a [String],
+    pub overrides: &'a Overrides,
     /// The output folder.
     pub dir: &'a Path,
     /// The folder of the run to resume, if any.
@@ -133,7 +133,7 @@ impl FrontRun<'_> {
                 outputs.table(self.dir, &result)?;
                 Checkpoint {
                     scene: self.scene_path.to_owned(),
-                    sets: self.sets.to_vec(),
+                    overrides: self.overrides.clone(),
                     search: ga.checkpoint(),
                 }
                 .save(self.dir)?;

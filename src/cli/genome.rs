@@ -3,12 +3,13 @@
 use std::path::PathBuf;
 
 use clap::{Args, Subcommand, ValueEnum};
-use generators::GeneratorVisitor;
-use shapegen::genome::{GenomeSet, Limits};
+use shapegen::genome::GenomeSet;
 use shapegen::{Genome, Grammar};
 
+use super::dispatch::{Generators, Visit};
 use super::files::atomic_write;
 use super::genomes::GenomeFile;
+use crate::registry::Entry;
 
 /// Arguments of `shapegen genome`.
 #[derive(Debug, Args)]
@@ -58,36 +59,38 @@ impl Form {
 }
 
 /// Runs `shapegen genome`.
-pub fn run(args: &GenomeArgs) -> anyhow::Result<()> {
+pub fn run(args: &GenomeArgs, tool: &Generators) -> anyhow::Result<()> {
     match &args.command {
-        GenomeCommand::Convert(args) => convert(args),
+        GenomeCommand::Convert(args) => convert(args, tool),
     }
 }
 
-fn convert(args: &ConvertArgs) -> anyhow::Result<()> {
+fn convert(args: &ConvertArgs, tool: &Generators) -> anyhow::Result<()> {
     let file = GenomeFile::read(&args.input)?;
     let to = args.to.unwrap_or(if file.layout.nested {
         Form::Packed
     } else {
         Form::Nested
     });
-    file.generator()?.visit(Convert {
-        args,
-        file: &file,
-        to,
-    })
+    tool.visit(
+        file.generator()?,
+        Convert {
+            args,
+            file: &file,
+            to,
+        },
+    )
 }
 
-struct Convert<'a> {
+/// The body of `shapegen genome convert`.
+pub struct Convert<'a> {
     args: &'a ConvertArgs,
     file: &'a GenomeFile,
     to: Form,
 }
 
-impl GeneratorVisitor for Convert<'_> {
-    type Output = anyhow::Result<()>;
-
-    fn visit<G: Grammar>(self, _: Limits) -> anyhow::Result<()> {
+impl Visit for Convert<'_> {
+    fn visit<G: Grammar>(self, _: &Entry) -> anyhow::Result<()> {
         let (text, what) = if self.file.layout.set {
             let set = GenomeSet::<G>::new(self.file.genomes()?);
             let text = match self.to {

@@ -4,7 +4,6 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
-use generators::Published;
 use shapegen::genome::{GenomeSet, JsonLayout};
 use shapegen::{Genome, Grammar};
 
@@ -30,17 +29,15 @@ impl GenomeFile {
         })
     }
 
-    /// The published generator the file names.
-    pub fn generator(&self) -> anyhow::Result<Published> {
-        let name = self.layout.generator.as_deref().with_context(|| {
+    /// The generator the file names (by its grammar's name, as `"Spaceship"`).
+    pub fn generator(&self) -> anyhow::Result<&str> {
+        self.layout.generator.as_deref().with_context(|| {
             format!(
                 "`{}` names no generator; a genome file names it as `\"generator\": \
-                 \"Spaceship\"` (or Tree, City, Building)",
+                 \"Spaceship\"` (the grammar's name)",
                 self.path.display()
             )
-        })?;
-        name.parse()
-            .with_context(|| format!("`{}`", self.path.display()))
+        })
     }
 
     /// Every genome of the file, checked fully.

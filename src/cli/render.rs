@@ -4,18 +4,16 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::Args;
-use generators::GeneratorVisitor;
-use image::{Rgb, RgbImage};
 use rayon::prelude::*;
 use shapegen::Grammar;
 use shapegen::export::{Palette, Preview};
-use shapegen::genome::Limits;
-use shapegen::scene::{Scene, SceneScorer};
-use shapegen::score::objective::{Objective, ObjectiveSet, ProjectionMatch, Surface};
-use shapegen::score::silhouette::ImageTarget;
+use shapegen::scene::{Overrides, Scene, SceneScorer};
+use shapegen::score::objective::Surface;
 
+use super::dispatch::{Generators, Visit};
 use super::genomes::load_genomes;
-use super::target::numbered;
+use super::overlay::{numbered, overlay, projection_overlay, projections};
+use crate::registry::Entry;
 
 /// Arguments of `shapegen render`.
 #[derive(Debug, Args)]
@@ -36,34 +34,30 @@ pub struct RenderArgs {
     height: u32,
 }
 
-/// Overlay colours: target alone, model alone, both.
-const TARGET: Rgb<u8> = Rgb([150, 170, 215]);
-const MODEL: Rgb<u8> = Rgb([225, 90, 70]);
-const BOTH: Rgb<u8> = Rgb([40, 120, 60]);
-const NEITHER: Rgb<u8> = Rgb([255, 255, 255]);
-
 /// Runs `shapegen render`.
-pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
+pub fn run(args: &RenderArgs, tool: &Generators) -> anyhow::Result<()> {
     anyhow::ensure!(
         args.width > 0 && args.height > 0,
         "--width and --height must be at least 1"
     );
-    let scene = Scene::load(&args.scene)?;
-    scene.generator.visit(Render {
-        args,
-        scene: &scene,
-    })
+    let scene = Scene::open(&args.scene, tool.registry(), &Overrides::default())?;
+    tool.visit(
+        &scene.generator,
+        Render {
+            args,
+            scene: &scene,
+        },
+    )
 }
 
-struct Render<'a> {
+/// The body of `shapegen render`.
+pub struct Render<'a> {
     args: &'a RenderArgs,
     scene: &'a Scene,
 }
 
-impl GeneratorVisitor for Render<'_> {
-    type Output = anyhow::Result<()>;
-
-    fn visit<G: Grammar>(self, _: Limits) -> anyhow::Result<()> {
+impl Visit for Render<'_> {
+    fn visit<G: Grammar>(self, _: &Entry) -> anyhow::Result<()> {
         let args = self.args;
         let genomes = load_genomes::<G>(&args.genomes)?;
         let scorer = match self.scene.objectives {
@@ -143,43 +137,4 @@ impl GeneratorVisitor for Render<'_> {
         );
         Ok(())
     }
-}
-
-/// The projection objectives of `set`, under their names.
-pub fn projections(set: &ObjectiveSet) -> Vec<(&str, &ProjectionMatch)> {
-    set.entries()
-        .iter()
-        .filter_map(|(name, objective)| match objective {
-            Objective::Projection(p) => Some((name.as_str(), p)),
-            _ => None,
-        })
-        .collect()
-}
-
-/// The overlay of a model's coverage `mask` on `target`: target alone blue, model alone
-/// red, both green, neither white.
-pub fn overlay(target: &ImageTarget, mask: &[bool]) -> RgbImage {
-    let w = target.width();
-    overlay_with(w, target.height(), |x, y| {
-        (target.is_target(x, y), mask[(y * w + x) as usize])
-    })
-}
-
-/// The overlay of a model's orthographic projection on a projection objective's target,
-/// coloured as [`overlay`]'s.
-pub fn projection_overlay(projection: &ProjectionMatch, surface: &Surface) -> RgbImage {
-    let covered = projection.render(surface);
-    overlay_with(projection.width(), projection.height(), |x, y| {
-        (projection.mask(x, y), covered.get_pixel(x, y).0[0] == 0)
-    })
-}
-
-/// An overlay picture from `(is target, is covered)` per pixel.
-fn overlay_with(width: u32, height: u32, pixel: impl Fn(u32, u32) -> (bool, bool)) -> RgbImage {
-    RgbImage::from_fn(width, height, |x, y| match pixel(x, y) {
-        (true, true) => BOTH,
-        (true, false) => TARGET,
-        (false, true) => MODEL,
-        (false, false) => NEITHER,
-    })
 }

@@ -8,21 +8,23 @@ use std::time::{Duration, Instant};
 
 use anyhow::Context;
 use clap::Args;
-use generators::GeneratorVisitor;
 use image::Rgb;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 use shapegen::export::{Palette, Preview, glb_bytes, write_mtl, write_obj};
-use shapegen::genome::Limits;
 use shapegen::optimize::{Control, RunResult, Snapshot, StopReason};
-use shapegen::scene::{Scene, SceneEvaluator, SceneScorer};
+use shapegen::scene::{Method, Overrides, Scene, SceneEvaluator, SceneScorer};
 use shapegen::{Genome, Grammar};
 
+use crate::registry::Entry;
+
 use super::backend::BackendArgs;
-use super::files::{atomic_write, read, save_png};
+use super::checkpoint::{Checkpoint, Head, finished};
+use super::dispatch::{Generators, Visit};
+use super::files::{atomic_write, save_png};
 use super::front::FrontRun;
 use super::interrupt;
+use super::overlay::overlay;
 use super::plot;
-use super::render::overlay;
 use super::search::{Search, SearchState};
 
 /// Arguments of `shapegen run`.
@@ -33,13 +35,17 @@ pub struct RunArgs {
     scene: Option<PathBuf>,
     /// The search method: ga, smc, sosmc or rjmcmc (overrides `optimizer.method`).
     #[arg(long)]
-    method: Option<String>,
+    method: Option<Method>,
     /// Seed of the run (overrides `optimizer.seed`).
     #[arg(long)]
     seed: Option<u64>,
     /// Wall-time budget in seconds (overrides `optimizer.seconds`).
     #[arg(long)]
     seconds: Option<f64>,
+    /// Evaluation budget (overrides `optimizer.evaluations`); unlike a time budget, it
+    /// makes the result independent of the machine's speed.
+    #[arg(long)]
+    evaluations: Option<u64>,
     /// Generations after the initial population: the GA's generations, SMC's steps,
     /// RJMCMC's iterations (overrides `optimizer.generations`).
     #[arg(long)]
@@ -58,46 +64,6 @@ pub struct RunArgs {
     resume: Option<PathBuf>,
 }
 
-/// What `checkpoint.json` holds: the scene and overrides a run started with, and the
-/// state `S` of its optimizer.
-#[derive(Serialize, Deserialize)]
-pub struct Checkpoint<S> {
-    /// The scene, as given on the command line of the run that started.
-    pub scene: PathBuf,
-    /// Its overrides.
-    pub sets: Vec<String>,
-    /// The optimizer's state.
-    pub search: S,
-}
-
-impl<S: Serialize> Checkpoint<S> {
-    /// Writes `checkpoint.json` into `dir`, atomically.
-    pub fn save(&self, dir: &Path) -> anyhow::Result<()> {
-        atomic_write(
-            &dir.join("checkpoint.json"),
-            serde_json::to_string(self)?.as_bytes(),
-        )
-    }
-}
-
-impl<S: serde::de::DeserializeOwned> Checkpoint<S> {
-    /// Reads `checkpoint.json` from `dir`; `what` says what kind of run it must be from.
-    pub fn load(dir: &Path, what: &str) -> anyhow::Result<Checkpoint<S>> {
-        let path = dir.join("checkpoint.json");
-        serde_json::from_str(&read(&path)?)
-            .with_context(|| format!("`{}` is not a checkpoint of {what}", path.display()))
-    }
-}
-
-/// Whether a stretch of a run that stopped for `stopped` after `generations` of at most
-/// `total` generations ends the run.
-pub fn finished(stopped: StopReason, generations: u64, total: u64) -> bool {
-    match stopped {
-        StopReason::Generations => generations >= total,
-        _ => true,
-    }
-}
-
 /// `summary.json`.
 #[derive(Serialize)]
 struct Summary<'a> {
@@ -114,72 +80,56 @@ struct Summary<'a> {
 }
 
 /// Runs `shapegen run`.
-pub fn run(args: &RunArgs) -> anyhow::Result<()> {
-    let (dir, scene_path, mut sets) = match &args.resume {
+pub fn run(args: &RunArgs, tool: &Generators) -> anyhow::Result<()> {
+    let given = Overrides {
+        method: args.method,
+        seed: args.seed,
+        seconds: args.seconds,
+        evaluations: args.evaluations,
+        generations: args.generations,
+        sets: args.sets.clone(),
+    };
+    let (dir, scene_path, overrides) = match &args.resume {
         Some(dir) => {
-            let text = read(&dir.join("checkpoint.json"))?;
-            let head: Head = serde_json::from_str(&text).with_context(|| {
-                format!(
-                    "`{}` is not a checkpoint",
-                    dir.join("checkpoint.json").display()
-                )
-            })?;
-            (dir.clone(), head.scene, head.sets)
+            let head = Head::load(dir)?;
+            (dir.clone(), head.scene, head.overrides.then(&given))
         }
         None => (
             args.out.clone().context("--out is required")?,
             args.scene.clone().context("the scene is required")?,
-            Vec::new(),
+            given,
         ),
     };
-    sets.extend(args.sets.iter().cloned());
-    if let Some(method) = &args.method {
-        sets.push(format!("optimizer.method={method:?}"));
-    }
-    if let Some(seed) = args.seed {
-        sets.push(format!("optimizer.seed={seed}"));
-    }
-    if let Some(s) = args.seconds {
-        sets.push(format!("optimizer.seconds={s:?}"));
-    }
-    if let Some(g) = args.generations {
-        sets.push(format!("optimizer.generations={g}"));
-    }
-    let scene = Scene::load_with(&scene_path, &sets)?;
+    let scene = Scene::open(&scene_path, tool.registry(), &overrides)?;
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create `{}`", dir.display()))?;
-    scene.generator.visit(Run {
-        args,
-        scene: &scene,
-        scene_path: &scene_path,
-        sets: &sets,
-        dir: &dir,
-    })
+    tool.visit(
+        &scene.generator,
+        Run {
+            args,
+            scene: &scene,
+            scene_path: &scene_path,
+            overrides: &overrides,
+            dir: &dir,
+        },
+    )
 }
 
-/// The part of a checkpoint that says which scene it belongs to.
-#[derive(Deserialize)]
-struct Head {
-    scene: PathBuf,
-    sets: Vec<String>,
-}
-
-struct Run<'a> {
+/// The body of `shapegen run`.
+pub struct Run<'a> {
     args: &'a RunArgs,
     scene: &'a Scene,
     scene_path: &'a Path,
-    sets: &'a [String],
+    overrides: &'a Overrides,
     dir: &'a Path,
 }
 
-impl GeneratorVisitor for Run<'_> {
-    type Output = anyhow::Result<()>;
-
-    fn visit<G: Grammar>(self, _: Limits) -> anyhow::Result<()> {
+impl Visit for Run<'_> {
+    fn visit<G: Grammar>(self, _: &Entry) -> anyhow::Result<()> {
         if self.scene.objectives.is_some() {
             return FrontRun {
                 scene: self.scene,
                 scene_path: self.scene_path,
-                sets: self.sets,
+                overrides: self.overrides,
                 dir: self.dir,
                 resume: self.args.resume.as_deref(),
             }
@@ -239,7 +189,7 @@ impl GeneratorVisitor for Run<'_> {
                 outputs.curves(self.dir, &result)?;
                 Checkpoint {
                     scene: self.scene_path.to_owned(),
-                    sets: self.sets.to_vec(),
+                    overrides: self.overrides.clone(),
                     search: search.checkpoint(),
                 }
                 .save(self.dir)?;

@@ -1,11 +1,10 @@
-//! `shapegen sample`: random models of a published generator, from its own distribution.
+//! `shapegen sample`: random models of a generator, from its own distribution.
 
 use std::fs;
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::Args;
-use generators::{GeneratorVisitor, Published};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
@@ -14,12 +13,16 @@ use shapegen::genome::{GenomeSet, Limits};
 use shapegen::ops::Operators;
 use shapegen::{Genome, Grammar};
 
+use super::dispatch::{Generators, Visit};
+use crate::registry::Entry;
+
 /// Arguments of `shapegen sample`.
 #[derive(Debug, Args)]
 pub struct SampleArgs {
-    /// The generator: spaceship, tree, city or building.
+    /// The generator, by name (the `shapegen` tool's: spaceship, tree, city or
+    /// building).
     #[arg(long, short)]
-    generator: Published,
+    generator: String,
     /// How many models to write.
     #[arg(long, short = 'n', default_value_t = 10)]
     count: u32,
@@ -29,10 +32,11 @@ pub struct SampleArgs {
     /// Folder to write into; created if missing.
     #[arg(long, short)]
     out: PathBuf,
-    /// Largest genome, in genes (default: the generator's paper scene).
+    /// Largest genome, in genes (default: the generator's, for the published ones their
+    /// paper scene's).
     #[arg(long, value_name = "GENES")]
     max_len: Option<u32>,
-    /// Deepest derivation tree (default: the generator's paper scene).
+    /// Deepest derivation tree (default: the generator's).
     #[arg(long, value_name = "LEVELS")]
     max_depth: Option<u32>,
     /// Grow each model to about this many genes (the optimizers' initial population)
@@ -43,23 +47,23 @@ pub struct SampleArgs {
 }
 
 /// Runs `shapegen sample`.
-pub fn run(args: &SampleArgs) -> anyhow::Result<()> {
-    args.generator.visit(Sample { args })
+pub fn run(args: &SampleArgs, tool: &Generators) -> anyhow::Result<()> {
+    tool.visit(&args.generator, Sample { args })
 }
 
-struct Sample<'a> {
+/// The body of `shapegen sample`.
+pub struct Sample<'a> {
     args: &'a SampleArgs,
 }
 
-impl GeneratorVisitor for Sample<'_> {
-    type Output = anyhow::Result<()>;
-
-    fn visit<G: Grammar>(self, paper: Limits) -> anyhow::Result<()> {
+impl Visit for Sample<'_> {
+    fn visit<G: Grammar>(self, entry: &Entry) -> anyhow::Result<()> {
         let args = self.args;
+        let own = entry.defaults.limits;
         let limits = Limits {
             min_len: 1,
-            max_len: args.max_len.unwrap_or(paper.max_len),
-            max_depth: args.max_depth.unwrap_or(paper.max_depth),
+            max_len: args.max_len.unwrap_or(own.max_len),
+            max_depth: args.max_depth.unwrap_or(own.max_depth),
         };
         let ops = Operators::<G>::new(limits).context("bad --max-len or --max-depth")?;
         if let Some(genes) = args.genes {
@@ -69,7 +73,9 @@ impl GeneratorVisitor for Sample<'_> {
                 limits.max_len
             );
         }
-        let meshes = generators::default_meshes()
+        let meshes = entry
+            .defaults
+            .meshes
             .bind(G::GRAPH)
             .context("the generator's meshes")?;
         fs::create_dir_all(&args.out)

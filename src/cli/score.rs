@@ -6,16 +6,16 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::Args;
-use generators::GeneratorVisitor;
 use serde::Serialize;
-use shapegen::genome::Limits;
 use shapegen::optimize::multi::MultiEvaluator;
-use shapegen::scene::{ObjectiveEvaluator, Scene, SceneCounts, SceneScorer};
+use shapegen::scene::{ObjectiveEvaluator, Overrides, Scene, SceneCounts, SceneScorer};
 use shapegen::score::InstanceBatch;
 use shapegen::{Genome, Grammar};
 
 use super::backend::BackendArgs;
+use super::dispatch::{Generators, Visit};
 use super::genomes::load_genomes;
+use crate::registry::Entry;
 
 /// Arguments of `shapegen score`.
 #[derive(Debug, Args)]
@@ -41,23 +41,25 @@ struct Line<'a> {
 }
 
 /// Runs `shapegen score`.
-pub fn run(args: &ScoreArgs) -> anyhow::Result<()> {
-    let scene = Scene::load(&args.scene)?;
-    scene.generator.visit(Score {
-        args,
-        scene: &scene,
-    })
+pub fn run(args: &ScoreArgs, tool: &Generators) -> anyhow::Result<()> {
+    let scene = Scene::open(&args.scene, tool.registry(), &Overrides::default())?;
+    tool.visit(
+        &scene.generator,
+        Score {
+            args,
+            scene: &scene,
+        },
+    )
 }
 
-struct Score<'a> {
+/// The body of `shapegen score`.
+pub struct Score<'a> {
     args: &'a ScoreArgs,
     scene: &'a Scene,
 }
 
-impl GeneratorVisitor for Score<'_> {
-    type Output = anyhow::Result<()>;
-
-    fn visit<G: Grammar>(self, _: Limits) -> anyhow::Result<()> {
+impl Visit for Score<'_> {
+    fn visit<G: Grammar>(self, _: &Entry) -> anyhow::Result<()> {
         let genomes = load_genomes::<G>(&self.args.genomes)?;
         if self.scene.objectives.is_some() {
             return objectives(self.scene, &genomes);

@@ -5,18 +5,18 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::Args;
-use generators::GeneratorVisitor;
 use image::{GrayImage, Luma};
 use shapegen::Grammar;
 use shapegen::Instance;
-use shapegen::genome::Limits;
-use shapegen::scene::{Scene, SceneScorer};
+use shapegen::scene::{Overrides, Scene, SceneScorer};
 use shapegen::score::Scorer;
 use shapegen::score::objective::{ObjectiveSet, Surface};
 
+use super::dispatch::{Generators, Visit};
 use super::genomes::load_genome;
-use super::render::projections;
+use super::overlay::{numbered, projections};
 use super::voxels::voxel_surface_obj;
+use crate::registry::Entry;
 
 /// Arguments of `shapegen target`.
 #[derive(Debug, Args)]
@@ -38,23 +38,25 @@ pub struct TargetArgs {
 }
 
 /// Runs `shapegen target`.
-pub fn run(args: &TargetArgs) -> anyhow::Result<()> {
-    let scene = Scene::load(&args.scene)?;
-    scene.generator.visit(Target {
-        args,
-        scene: &scene,
-    })
+pub fn run(args: &TargetArgs, tool: &Generators) -> anyhow::Result<()> {
+    let scene = Scene::open(&args.scene, tool.registry(), &Overrides::default())?;
+    tool.visit(
+        &scene.generator,
+        Target {
+            args,
+            scene: &scene,
+        },
+    )
 }
 
-struct Target<'a> {
+/// The body of `shapegen target`.
+pub struct Target<'a> {
     args: &'a TargetArgs,
     scene: &'a Scene,
 }
 
-impl GeneratorVisitor for Target<'_> {
-    type Output = anyhow::Result<()>;
-
-    fn visit<G: Grammar>(self, _: Limits) -> anyhow::Result<()> {
+impl Visit for Target<'_> {
+    fn visit<G: Grammar>(self, _: &Entry) -> anyhow::Result<()> {
         let args = self.args;
         let genome = load_genome::<G>(&args.genome, args.index)?;
         let mut instances = Vec::new();
@@ -143,15 +145,6 @@ fn projection_targets<G: Grammar>(
         );
     }
     Ok(())
-}
-
-/// `path` with extension `ext`, and `_k` after its stem when there are several files.
-pub fn numbered(path: &Path, k: usize, of: usize, ext: &str) -> PathBuf {
-    if of <= 1 {
-        return path.with_extension(ext);
-    }
-    let stem = path.file_stem().unwrap_or_default().to_string_lossy();
-    path.with_file_name(format!("{stem}_{k}.{ext}"))
 }
 
 fn write(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {

@@ -17,7 +17,7 @@ pub(super) struct SceneFile {
     pub silhouette: Option<SilhouetteFile>,
     /// `[[objective]]`: the objectives of a multi-objective scene.
     #[serde(default)]
-    pub objective: Vec<super::objective::ObjectiveFile>,
+    pub objective: Vec<ObjectiveFile>,
     /// `[selection]`: how a multi-objective scene's objective vectors are ranked.
     pub selection: Option<shapegen_runtime::optimize::multi::Selection>,
     /// `[optimizer]`: kept as a table, checked against the optimizer's own settings.
@@ -188,4 +188,18 @@ pub(super) struct CameraFile {
     pub view: Option<[[f32; 4]; 4]>,
     /// Row-major 4 x 4 projection matrix.
     pub projection: Option<[[f32; 4]; 4]>,
+}
+
+/// One `[[objective]]` table as written. Which keys apply depends on `kind`; the
+/// resolver refuses the others by name.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct ObjectiveFile {
+    pub kind: String,
+    pub name: Option<String>,
+    pub target: Option<f32>,
+    pub tolerance_deg: Option<f32>,
+    pub min: Option<[f32; 2]>,
+    pub max: Option<[f32; 2]>,
+    pub image: Option<String>,
 }

@@ -5,7 +5,8 @@
 //! silhouettes seen through cameras. Paths in it are relative to the scene file.
 //!
 //! ```toml
-//! generator = "spaceship"            # spaceship, tree, city or building
+//! generator = "spaceship"            # a registered generator: spaceship, tree, city,
+//!                                    # building, or one of your own (shapegen::registry)
 //!
 //! [meshes]                           # optional: replace or add meshes by name
 //! cube = "meshes/cube.obj"           # normalized to unit extent, as the original does
@@ -45,7 +46,7 @@
 //!            fov = 60, near = 0.1, far = 100, width = 800, height = 600 }
 //! # or: camera = { view = [[..], [..], [..], [..]], projection = [..], width = .., height = .. }
 //!
-//! [optimizer]                        # optional: the paper's settings for the generator
+//! [optimizer]                        # optional: the generator's presets for the method
 //! method = "ga"
 //! seed = 1
 //! seconds = 60                       # budgets: time, evaluations, generations
@@ -86,7 +87,9 @@
 //!
 //! Unknown keys, missing files, values out of range and images whose size differs from
 //! their camera's are all refused with the file, the key and the reason.
-//! [`Scene::load_with`] applies `key=value` overrides (`--set`) before checking.
+//! [`Scene::open`] reads a scene naming any generator of a [`Registry`], with the
+//! command line's [`Overrides`]: typed flags, and `key=value` overrides (`--set`) applied
+//! before checking.
 
 mod error;
 mod evaluate;
@@ -97,7 +100,7 @@ mod resolve;
 
 use std::path::{Path, PathBuf};
 
-use generators::Published;
+use crate::registry::{Presets, Registry};
 use shapegen_runtime::genome::Limits;
 use shapegen_runtime::geometry::MeshLibrary;
 use shapegen_runtime::optimize::multi::{MultiGaSettings, Selection};
@@ -109,15 +112,15 @@ use shapegen_runtime::score::{Form, LengthPenalty};
 pub use error::SceneError;
 pub use evaluate::{Backend, BackendChoice, SceneCounts, SceneEvaluator, SceneScorer};
 pub use objective::ObjectiveEvaluator;
-pub use optimizer::{Method, MethodSettings, OptimizerGoal};
+pub use optimizer::{Method, MethodSettings, OptimizerGoal, Overrides, UnknownMethod};
 
 /// A loaded and checked scene.
 #[derive(Clone, Debug)]
 pub struct Scene {
     /// The scene file.
     pub path: PathBuf,
-    /// The generator whose models are scored.
-    pub generator: Published,
+    /// The name of the generator whose models are scored, as registered.
+    pub generator: String,
     /// The generator's default meshes with the scene's replacements and additions.
     pub meshes: MeshLibrary,
     /// Genome limits of the search.
@@ -137,6 +140,12 @@ pub struct Scene {
     /// The optimizer, its settings, seed and budget. A multi-objective scene's method
     /// is the GA, whose settings breed for [`multi_settings`](Self::multi_settings).
     pub optimizer: OptimizerGoal,
+    /// The `[optimizer]` table as written and overridden, for the goals of other methods.
+    optimizer_table: toml::Table,
+    /// The generator's presets.
+    presets: Presets,
+    /// The overrides the scene was read with.
+    overrides: Overrides,
 }
 
 /// The `[[objective]]` tables and the `[selection]` table, resolved.
@@ -172,44 +181,69 @@ pub struct SilhouetteGoal {
 }
 
 impl Scene {
-    /// Loads and checks the scene file at `path`.
+    /// Loads and checks the scene file at `path`, which names a published generator.
     pub fn load(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
-        Scene::load_with(path, &[])
+        Scene::open(path, &Registry::published(), &Overrides::default())
     }
 
-    /// Loads the scene file at `path` with `key=value` overrides applied first, as
-    /// `--set optimizer.population=200` gives them.
-    pub fn load_with(path: impl AsRef<Path>, sets: &[String]) -> Result<Scene, SceneError> {
+    /// Loads the scene file at `path`, naming one of `registry`'s generators, with
+    /// `overrides` applied.
+    pub fn open(
+        path: impl AsRef<Path>,
+        registry: &Registry,
+        overrides: &Overrides,
+    ) -> Result<Scene, SceneError> {
         let path = path.as_ref();
         let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
             path: path.to_owned(),
             source,
         })?;
-        Scene::parse_with(&text, path, sets)
+        Scene::parse_in(&text, path, registry, overrides)
     }
 
     /// Checks the scene written in `text`, as if read from `path` (paths in it are
-    /// relative to `path`'s folder).
+    /// relative to `path`'s folder), naming a published generator.
     pub fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
-        Scene::parse_with(text, path, &[])
+        Scene::parse_in(text, path, &Registry::published(), &Overrides::default())
     }
 
-    fn parse_with(text: &str, path: &Path, sets: &[String]) -> Result<Scene, SceneError> {
+    /// Checks the scene written in `text`, as if read from `path`, naming one of
+    /// `registry`'s generators, with `overrides` applied.
+    pub fn parse_in(
+        text: &str,
+        path: &Path,
+        registry: &Registry,
+        overrides: &Overrides,
+    ) -> Result<Scene, SceneError> {
         let syntax = |message: String| SceneError::Syntax {
             path: path.to_owned(),
             message: message.trim_end().to_owned(),
         };
-        let file: file::SceneFile = if sets.is_empty() {
+        let file: file::SceneFile = if overrides.sets.is_empty() {
             toml::from_str(text).map_err(|err| syntax(err.to_string()))?
         } else {
             let mut table: toml::Table =
                 toml::from_str(text).map_err(|err| syntax(err.to_string()))?;
-            optimizer::apply_overrides(&mut table, sets).map_err(syntax)?;
+            optimizer::apply_overrides(&mut table, &overrides.sets).map_err(syntax)?;
             toml::Value::Table(table)
                 .try_into()
                 .map_err(|err: toml::de::Error| syntax(format!("after --set: {}", err.message())))?
         };
-        resolve::Resolver::new(path).scene(file)
+        resolve::Resolver::new(path).scene(file, registry, overrides)
+    }
+
+    /// The scene's optimizer goal had it named `method`: the `[optimizer]` keys and the
+    /// overrides read as that method's (`shapegen compare` runs each method so).
+    ///
+    /// # Errors
+    /// When a key of the table is not one of the method's settings, or out of range.
+    pub fn optimizer_for(&self, method: Method) -> Result<OptimizerGoal, SceneError> {
+        let overrides = Overrides {
+            method: Some(method),
+            ..self.overrides.clone()
+        };
+        optimizer::resolve(&self.presets, self.optimizer_table.clone(), &overrides)
+            .map_err(|(key, reason)| self.invalid(&key, reason))
     }
 
     /// The multi-objective GA's settings of a scene with objectives: the `[optimizer]`

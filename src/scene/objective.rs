@@ -2,7 +2,6 @@
 //! resolved into an [`ObjectiveSet`], and the evaluator that measures whole populations.
 
 use glam::Vec2;
-use serde::Deserialize;
 use shapegen_runtime::geometry::BoundMeshes;
 use shapegen_runtime::optimize::multi::MultiEvaluator;
 use shapegen_runtime::optimize::{EvaluateError, Sense};
@@ -10,22 +9,9 @@ use shapegen_runtime::score::InstanceBatch;
 use shapegen_runtime::score::objective::{Objective, ObjectiveSet, ProjectionMatch, View};
 use shapegen_runtime::{Genome, Grammar};
 
+use super::file::ObjectiveFile;
 use super::resolve::Resolver;
 use super::{Scene, SceneError};
-
-/// One `[[objective]]` table as written. Which keys apply depends on `kind`; the
-/// resolver refuses the others by name.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct ObjectiveFile {
-    pub kind: String,
-    pub name: Option<String>,
-    pub target: Option<f32>,
-    pub tolerance_deg: Option<f32>,
-    pub min: Option<[f32; 2]>,
-    pub max: Option<[f32; 2]>,
-    pub image: Option<String>,
-}
 
 /// The kinds of objective a table may name.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

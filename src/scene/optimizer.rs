@@ -2,9 +2,9 @@
 
 use std::time::Duration;
 
-use generators::Published;
-use serde::Serialize;
+use crate::registry::Presets;
 use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
 use shapegen_runtime::ops::OperatorVariant;
 use shapegen_runtime::optimize::multi::MultiGaSettings;
 use shapegen_runtime::optimize::{
@@ -100,6 +100,15 @@ impl OptimizerGoal {
         }
     }
 
+    /// Sets the generations (steps, iterations) the method's settings ask for.
+    pub fn set_generations(&mut self, n: u64) {
+        match &mut self.settings {
+            MethodSettings::Ga(s) => s.generations = n,
+            MethodSettings::Smc(s) => s.steps = n,
+            MethodSettings::Mcmc(s) => s.iterations = n,
+        }
+    }
+
     /// The run's budget: the settings' generations, and the time and evaluation limits
     /// when given.
     pub fn budget(&self) -> Budget {
@@ -114,29 +123,19 @@ impl OptimizerGoal {
     }
 }
 
-/// The paper's settings of `method` for `generator`'s scene.
-fn paper(method: Method, generator: Published) -> MethodSettings {
-    use Published::{Building, City, Spaceship, Tree};
-    let order = if method == Method::Sosmc {
-        Order::Stochastic
-    } else {
-        Order::Chromosome
-    };
-    match (method, generator) {
-        (Method::Ga, Spaceship) => MethodSettings::Ga(GaSettings::paper_spaceship()),
-        (Method::Ga, Tree) => MethodSettings::Ga(GaSettings::paper_tree()),
-        (Method::Ga, City) => MethodSettings::Ga(GaSettings::paper_city()),
-        (Method::Ga, Building) => MethodSettings::Ga(MultiGaSettings::thesis().ga),
-        (Method::Smc | Method::Sosmc, Spaceship) => {
-            MethodSettings::Smc(SmcSettings::paper_spaceship(order))
-        }
-        (Method::Smc | Method::Sosmc, Tree) => MethodSettings::Smc(SmcSettings::paper_tree(order)),
-        (Method::Smc | Method::Sosmc, City | Building) => {
-            MethodSettings::Smc(SmcSettings::paper_city(order))
-        }
-        (Method::Rjmcmc, Spaceship) => MethodSettings::Mcmc(McmcSettings::paper_spaceship()),
-        (Method::Rjmcmc, Tree) => MethodSettings::Mcmc(McmcSettings::paper_tree()),
-        (Method::Rjmcmc, City | Building) => MethodSettings::Mcmc(McmcSettings::paper_city()),
+/// The settings `presets` give `method`.
+fn preset(method: Method, presets: &Presets) -> MethodSettings {
+    match method {
+        Method::Ga => MethodSettings::Ga(presets.ga),
+        Method::Smc => MethodSettings::Smc(SmcSettings {
+            order: Order::Chromosome,
+            ..presets.smc
+        }),
+        Method::Sosmc => MethodSettings::Smc(SmcSettings {
+            order: Order::Stochastic,
+            ..presets.sosmc
+        }),
+        Method::Rjmcmc => MethodSettings::Mcmc(presets.rjmcmc),
     }
 }
 
@@ -156,24 +155,88 @@ fn merged<T: Serialize + DeserializeOwned>(
     Ok(settings)
 }
 
-/// Resolves the `[optimizer]` table over the paper's settings for the method and the
-/// generator; errors are `(key, reason)`.
+/// What the command line sets over a scene: typed flags (`--method`, `--seed`,
+/// `--seconds`, `--evaluations`, `--generations`), which take the place of the
+/// `[optimizer]` keys of the same names, and free `key=value` overrides (`--set`), which
+/// are applied to the scene's TOML before it is read, so that they are checked exactly
+/// as the file's own keys are.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Overrides {
+    /// The search method (`optimizer.method`).
+    pub method: Option<Method>,
+    /// The seed (`optimizer.seed`).
+    pub seed: Option<u64>,
+    /// The wall-time budget in seconds (`optimizer.seconds`).
+    pub seconds: Option<f64>,
+    /// The evaluation budget (`optimizer.evaluations`).
+    pub evaluations: Option<u64>,
+    /// Generations, steps or iterations (`optimizer.generations`).
+    pub generations: Option<u64>,
+    /// `key=value` overrides of any scene key, in order.
+    pub sets: Vec<String>,
+}
+
+impl Overrides {
+    /// `self` with `later` over it: its flags where given, its `--set`s after these.
+    pub fn then(mut self, later: &Overrides) -> Overrides {
+        self.method = later.method.or(self.method);
+        self.seed = later.seed.or(self.seed);
+        self.seconds = later.seconds.or(self.seconds);
+        self.evaluations = later.evaluations.or(self.evaluations);
+        self.generations = later.generations.or(self.generations);
+        self.sets.extend(later.sets.iter().cloned());
+        self
+    }
+}
+
+/// A method name that names no method.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("\"{0}\" is not a method; the methods are ga, smc, sosmc and rjmcmc")]
+pub struct UnknownMethod(pub String);
+
+impl std::str::FromStr for Method {
+    type Err = UnknownMethod;
+
+    fn from_str(s: &str) -> Result<Method, UnknownMethod> {
+        Method::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| UnknownMethod(s.to_owned()))
+    }
+}
+
+impl Serialize for Method {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
+}
+
+impl<'de> Deserialize<'de> for Method {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Method, D::Error> {
+        let name = String::deserialize(deserializer)?;
+        name.parse().map_err(serde::de::Error::custom)
+    }
+}
+
+/// A number of seconds that can be a budget.
+fn seconds(value: f64) -> Option<f64> {
+    (value.is_finite() && value > 0.0).then_some(value)
+}
+
+/// Resolves the `[optimizer]` table over the generator's `presets` for the method, with
+/// the typed `overrides` in place of the keys they name; errors are `(key, reason)`.
 pub(super) fn resolve(
-    generator: Published,
+    presets: &Presets,
     mut table: toml::Table,
+    overrides: &Overrides,
 ) -> Result<OptimizerGoal, (String, String)> {
     let key = |k: &str| format!("optimizer.{k}");
-    let method = match table.remove("method") {
+    let written = match table.remove("method") {
         None => Method::Ga,
-        Some(toml::Value::String(m)) => Method::ALL
-            .into_iter()
-            .find(|x| x.name() == m)
-            .ok_or_else(|| {
-                (
-                    key("method"),
-                    format!("\"{m}\" is not a method; the methods are ga, smc, sosmc and rjmcmc"),
-                )
-            })?,
+        Some(toml::Value::String(m)) => m
+            .parse()
+            .map_err(|e: UnknownMethod| (key("method"), e.to_string()))?,
         Some(other) => {
             return Err((
                 key("method"),
@@ -181,16 +244,21 @@ pub(super) fn resolve(
             ));
         }
     };
+    let method = overrides.method.unwrap_or(written);
     let seed = match table.remove("seed") {
         None => 1,
         Some(toml::Value::Integer(s)) if s >= 0 => s as u64,
         Some(other) => return Err((key("seed"), format!("{other} must be a whole number >= 0"))),
     };
-    let seconds = match table.remove("seconds") {
+    let written_seconds = match table.remove("seconds") {
         None => None,
-        Some(v) => match v.as_float().or(v.as_integer().map(|i| i as f64)) {
-            Some(s) if s.is_finite() && s > 0.0 => Some(s),
-            _ => {
+        Some(v) => match v
+            .as_float()
+            .or(v.as_integer().map(|i| i as f64))
+            .and_then(seconds)
+        {
+            Some(s) => Some(s),
+            None => {
                 return Err((
                     key("seconds"),
                     format!("{v} must be a number of seconds > 0"),
@@ -198,7 +266,7 @@ pub(super) fn resolve(
             }
         },
     };
-    let evaluations = match table.remove("evaluations") {
+    let written_evaluations = match table.remove("evaluations") {
         None => None,
         Some(toml::Value::Integer(n)) if n > 0 => Some(n as u64),
         Some(other) => {
@@ -208,13 +276,32 @@ pub(super) fn resolve(
             ));
         }
     };
+    let seconds = match overrides.seconds {
+        None => written_seconds,
+        Some(s) => Some(seconds(s).ok_or_else(|| {
+            (
+                "--seconds".to_owned(),
+                format!("{s} must be a number of seconds > 0"),
+            )
+        })?),
+    };
+    let evaluations = match overrides.evaluations {
+        Some(0) => {
+            return Err((
+                "--evaluations".into(),
+                "0 must be a whole number > 0".into(),
+            ));
+        }
+        Some(n) => Some(n),
+        None => written_evaluations,
+    };
     // `generations` names the GA's generations, SMC's steps and RJMCMC's iterations.
     let rename = |table: &mut toml::Table, to: &str| {
         if let Some(g) = table.remove("generations") {
             table.insert(to.to_owned(), g);
         }
     };
-    let settings = match paper(method, generator) {
+    let settings = match preset(method, presets) {
         MethodSettings::Ga(base) => {
             check_ga_keys(&table)?;
             MethodSettings::Ga(merged(base, table, GaSettings::validate)?)
@@ -236,13 +323,17 @@ pub(super) fn resolve(
             MethodSettings::Mcmc(merged(base, table, McmcSettings::validate)?)
         }
     };
-    Ok(OptimizerGoal {
+    let mut goal = OptimizerGoal {
         method,
-        seed,
+        seed: overrides.seed.unwrap_or(seed),
         seconds,
         evaluations,
         settings,
-    })
+    };
+    if let Some(g) = overrides.generations {
+        goal.set_generations(g);
+    }
+    Ok(goal)
 }
 
 /// Checks the GA's keys whose serde errors would not name them: `operators` must name an
@@ -354,9 +445,17 @@ pub(super) fn apply_overrides(root: &mut toml::Table, sets: &[String]) -> Result
 mod mcmc_tests {
     use super::*;
 
-    fn mcmc(generator: Published, text: &str) -> Result<McmcSettings, (String, String)> {
+    fn presets(name: &str) -> Presets {
+        crate::registry::Registry::published()
+            .get(name)
+            .unwrap()
+            .defaults
+            .presets
+    }
+
+    fn mcmc(generator: &str, text: &str) -> Result<McmcSettings, (String, String)> {
         let table: toml::Table = toml::from_str(text).unwrap();
-        match resolve(generator, table)?.settings {
+        match resolve(&presets(generator), table, &Overrides::default())?.settings {
             MethodSettings::Mcmc(s) => Ok(s),
             other => panic!("{other:?}"),
         }
@@ -366,9 +465,9 @@ mod mcmc_tests {
     fn rjmcmc_takes_its_variant_over_the_originals_settings() {
         let m = "method = \"rjmcmc\"\n";
         for (generator, paper) in [
-            (Published::Spaceship, McmcSettings::paper_spaceship()),
-            (Published::Tree, McmcSettings::paper_tree()),
-            (Published::City, McmcSettings::paper_city()),
+            ("spaceship", McmcSettings::paper_spaceship()),
+            ("tree", McmcSettings::paper_tree()),
+            ("city", McmcSettings::paper_city()),
         ] {
             assert_eq!(mcmc(generator, m).unwrap(), paper);
             assert_eq!(paper.variant, McmcVariant::Original);
@@ -383,15 +482,15 @@ mod mcmc_tests {
         }
         for bad in ["\"talton\"", "1"] {
             let text = format!("{m}variant = {bad}\n");
-            let (key, reason) = mcmc(Published::Tree, &text).unwrap_err();
+            let (key, reason) = mcmc("tree", &text).unwrap_err();
             assert_eq!(key, "optimizer.variant");
             assert!(reason.contains("\"original\" and \"tempered\""), "{reason}");
         }
         // The tempered variant's own fields are checked when it runs.
         let odd = format!("{m}hot_acceptance = 1.0\n");
-        assert!(mcmc(Published::Spaceship, &odd).is_ok());
+        assert!(mcmc("spaceship", &odd).is_ok());
         let text = format!("{odd}variant = \"tempered\"\n");
-        let (key, _) = mcmc(Published::Spaceship, &text).unwrap_err();
+        let (key, _) = mcmc("spaceship", &text).unwrap_err();
         assert_eq!(key, "optimizer.hot_acceptance");
     }
 
@@ -401,10 +500,61 @@ mod mcmc_tests {
         let mut root: toml::Table = toml::from_str(text).unwrap();
         apply_overrides(&mut root, &["optimizer.variant=tempered".to_owned()]).unwrap();
         let table = root["optimizer"].as_table().unwrap().clone();
-        let settings = resolve(Published::Spaceship, table).unwrap().settings;
+        let settings = resolve(&presets("spaceship"), table, &Overrides::default())
+            .unwrap()
+            .settings;
         let MethodSettings::Mcmc(s) = settings else {
             panic!("{settings:?}");
         };
         assert_eq!(s.variant, McmcVariant::Tempered);
+    }
+
+    #[test]
+    fn typed_flags_set_the_fields_their_keys_name() {
+        let spaceship = presets("spaceship");
+        let flags = Overrides {
+            method: Some(Method::Sosmc),
+            seed: Some(9),
+            seconds: Some(2.5),
+            evaluations: Some(1000),
+            generations: Some(7),
+            sets: Vec::new(),
+        };
+        let goal = resolve(&spaceship, toml::Table::new(), &flags).unwrap();
+        let text = "method = \"sosmc\"\nseed = 9\nseconds = 2.5\nevaluations = 1000\n\
+                    generations = 7\n";
+        let keys = resolve(
+            &spaceship,
+            toml::from_str(text).unwrap(),
+            &Overrides::default(),
+        );
+        assert_eq!(goal, keys.unwrap());
+        let MethodSettings::Smc(s) = goal.settings else {
+            panic!("{goal:?}");
+        };
+        assert_eq!((s.order, s.steps), (Order::Stochastic, 7));
+        // Flags win over the table's keys.
+        let table = toml::from_str("method = \"ga\"\nseed = 3\n").unwrap();
+        let goal = resolve(&spaceship, table, &flags).unwrap();
+        assert_eq!((goal.method, goal.seed), (Method::Sosmc, 9));
+        for (bad, key) in [
+            (
+                Overrides {
+                    seconds: Some(-1.0),
+                    ..Overrides::default()
+                },
+                "--seconds",
+            ),
+            (
+                Overrides {
+                    evaluations: Some(0),
+                    ..Overrides::default()
+                },
+                "--evaluations",
+            ),
+        ] {
+            let (k, _) = resolve(&spaceship, toml::Table::new(), &bad).unwrap_err();
+            assert_eq!(k, key);
+        }
     }
 }

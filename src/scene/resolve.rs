@@ -14,7 +14,8 @@ use super::file::{
     CameraFile, FormName, ImageKind, ImageTargetFile, LengthFrom, LimitsFile, MeshFile, SceneFile,
     SilhouetteFile, VolumeFile,
 };
-use super::{Method, ObjectiveGoal, Scene, SceneError, SilhouetteGoal, VolumeGoal};
+use super::{Method, ObjectiveGoal, Overrides, Scene, SceneError, SilhouetteGoal, VolumeGoal};
+use crate::registry::Registry;
 
 pub(super) struct Resolver<'a> {
     path: &'a Path,
@@ -70,13 +71,24 @@ impl<'a> Resolver<'a> {
         }
     }
 
-    pub fn scene(&self, file: SceneFile) -> Result<Scene, SceneError> {
-        let generator = file
-            .generator
-            .parse()
-            .map_err(|err| self.invalid("generator", format!("{err}")))?;
-
-        let mut meshes = generators::default_meshes();
+    pub fn scene(
+        &self,
+        file: SceneFile,
+        registry: &Registry,
+        overrides: &Overrides,
+    ) -> Result<Scene, SceneError> {
+        let entry = registry.get(&file.generator).ok_or_else(|| {
+            self.invalid(
+                "generator",
+                format!(
+                    "`{}` is not a registered generator; the generators are {}",
+                    file.generator,
+                    registry.names()
+                ),
+            )
+        })?;
+        let presets = entry.defaults.presets;
+        let mut meshes = entry.defaults.meshes.clone();
         for (name, entry) in &file.meshes {
             let key = format!("meshes.{name}");
             let (written, normalize) = match entry {
@@ -160,7 +172,7 @@ impl<'a> Resolver<'a> {
             })
         };
 
-        let optimizer = super::optimizer::resolve(generator, table)
+        let optimizer = super::optimizer::resolve(&presets, table.clone(), overrides)
             .map_err(|(key, reason)| self.invalid(key, reason))?;
         if objectives.is_some() && optimizer.method != Method::Ga {
             return Err(self.invalid(
@@ -175,8 +187,11 @@ impl<'a> Resolver<'a> {
 
         Ok(Scene {
             optimizer,
+            optimizer_table: table,
+            presets,
+            overrides: overrides.clone(),
             path: self.path.to_owned(),
-            generator,
+            generator: entry.name.clone(),
             meshes,
             limits,
             optimal_len,

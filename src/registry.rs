@@ -1,0 +1,259 @@
+//! The generators a scene can name, with what each brings besides its grammar: the
+//! meshes it uses when a scene gives none, the genome limits `shapegen sample` uses, and
+//! each search method's settings where a scene's `[optimizer]` table leaves them out.
+//!
+//! [`Registry::published`] holds the four published generators with the original's
+//! settings; a user's own generators are added with [`Registry::add`] (the command-line
+//! tool's [`Cli::generator`](crate::cli::Cli::generator) does it).
+//!
+//! ```
+//! use shapegen::prelude::*;
+//! use shapegen::registry::{Defaults, Registry};
+//!
+//! generator! {
+//!     /// A stack of blocks.
+//!     pub Stack {
+//!         axiom Block;
+//!         node Block {
+//!             children { next: Block = 0.7 }
+//!             derive(s) {
+//!                 s.emit(CUBE);
+//!                 if let Some(next) = next { s.translate(vec3(0.0, 1.0, 0.0)).derive(next); }
+//!             }
+//!         }
+//!     }
+//! }
+//!
+//! let mut registry = Registry::published();
+//! registry.add::<Stack>("stack", Defaults::default())?;
+//! assert_eq!(registry.get("stack").unwrap().grammar, "Stack");
+//! // Genome files name their generator by its grammar, scenes by its name.
+//! assert_eq!(registry.find("Stack").unwrap().name, "stack");
+//! assert!(registry.add::<Stack>("spaceship", Defaults::default()).is_err());
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use generators::{GeneratorVisitor, Published};
+use shapegen_runtime::Grammar;
+use shapegen_runtime::genome::Limits;
+use shapegen_runtime::geometry::MeshLibrary;
+use shapegen_runtime::optimize::multi::MultiGaSettings;
+use shapegen_runtime::optimize::{GaSettings, McmcSettings, Order, SmcSettings};
+
+/// Each search method's settings for one generator, taken where a scene's `[optimizer]`
+/// table leaves a field out.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Presets {
+    /// The genetic algorithm's (and the multi-objective GA's breeding).
+    pub ga: GaSettings,
+    /// SMC's (its order is always [`Order::Chromosome`]).
+    pub smc: SmcSettings,
+    /// SOSMC's (its order is always [`Order::Stochastic`]).
+    pub sosmc: SmcSettings,
+    /// RJMCMC's.
+    pub rjmcmc: McmcSettings,
+}
+
+impl Default for Presets {
+    /// Every method's own defaults.
+    fn default() -> Self {
+        let smc = SmcSettings::default();
+        Presets {
+            ga: GaSettings::default(),
+            smc: SmcSettings {
+                order: Order::Chromosome,
+                ..smc
+            },
+            sosmc: SmcSettings {
+                order: Order::Stochastic,
+                ..smc
+            },
+            rjmcmc: McmcSettings::default(),
+        }
+    }
+}
+
+/// What a generator brings besides its grammar.
+#[derive(Clone, Debug)]
+pub struct Defaults {
+    /// The meshes its models use, by name; a scene's `[meshes]` table replaces or adds
+    /// to them. The built-in `cube` is always there.
+    pub meshes: MeshLibrary,
+    /// The genome limits `shapegen sample` draws within unless told otherwise.
+    pub limits: Limits,
+    /// Each method's settings where a scene leaves them out.
+    pub presets: Presets,
+}
+
+impl Default for Defaults {
+    /// The built-in meshes only, genomes of at most 200 genes and 30 levels, and every
+    /// method's own settings.
+    fn default() -> Self {
+        Defaults {
+            meshes: MeshLibrary::new(),
+            limits: Limits {
+                min_len: 1,
+                max_len: 200,
+                max_depth: 30,
+            },
+            presets: Presets::default(),
+        }
+    }
+}
+
+/// A generator known by name.
+#[derive(Clone, Debug)]
+pub struct Entry {
+    /// The name scenes and the command line use (`generator = "tower"`).
+    pub name: String,
+    /// The grammar's own name, which genome files record (`"generator": "Tower"`).
+    pub grammar: &'static str,
+    /// Its defaults.
+    pub defaults: Defaults,
+}
+
+/// A name is already taken, or is not usable.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum RegistryError {
+    /// Two generators under one name.
+    #[error("a generator named `{0}` is already registered; give the new one another name")]
+    Taken(String),
+    /// A name that scene files could not write plainly.
+    #[error(
+        "`{0}` cannot name a generator: use letters, digits, `_` and `-`, starting with a letter"
+    )]
+    BadName(String),
+}
+
+/// The generators a run can name; see the [module documentation](self).
+#[derive(Clone, Debug, Default)]
+pub struct Registry {
+    entries: Vec<Entry>,
+}
+
+impl Registry {
+    /// No generators.
+    pub fn new() -> Self {
+        Registry::default()
+    }
+
+    /// The published generators, `spaceship`, `tree`, `city` and `building`, with their
+    /// own meshes, their paper scenes' limits and the original's settings of every method
+    /// (the building, which has no paper scene, takes the thesis's GA).
+    pub fn published() -> Self {
+        let mut registry = Registry::new();
+        let meshes = generators::default_meshes();
+        for generator in Published::ALL {
+            registry.entries.push(Entry {
+                name: generator.name().to_owned(),
+                grammar: generator.visit(GrammarName),
+                defaults: Defaults {
+                    meshes: meshes.clone(),
+                    limits: generator.paper_limits(),
+                    presets: paper_presets(generator),
+                },
+            });
+        }
+        registry
+    }
+
+    /// Adds grammar `G` under `name` with `defaults`.
+    ///
+    /// # Errors
+    /// When `name` is taken (names compare without case) or is not a plain identifier.
+    pub fn add<G: Grammar>(&mut self, name: &str, defaults: Defaults) -> Result<(), RegistryError> {
+        let plain = name.chars().next().is_some_and(|c| c.is_ascii_alphabetic())
+            && name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+        if !plain {
+            return Err(RegistryError::BadName(name.to_owned()));
+        }
+        if self.get(name).is_some() {
+            return Err(RegistryError::Taken(name.to_owned()));
+        }
+        self.entries.push(Entry {
+            name: name.to_owned(),
+            grammar: G::GRAPH.name,
+            defaults,
+        });
+        Ok(())
+    }
+
+    /// The generator registered as `name` (without regard to case).
+    pub fn get(&self, name: &str) -> Option<&Entry> {
+        self.entries
+            .iter()
+            .find(|e| e.name.eq_ignore_ascii_case(name))
+    }
+
+    /// The generator named `name` or whose grammar is `name` (genome files record the
+    /// grammar's name), without regard to case.
+    pub fn find(&self, name: &str) -> Option<&Entry> {
+        self.get(name).or_else(|| {
+            self.entries
+                .iter()
+                .find(|e| e.grammar.eq_ignore_ascii_case(name))
+        })
+    }
+
+    /// Every generator, in the order they were added.
+    pub fn entries(&self) -> &[Entry] {
+        &self.entries
+    }
+
+    /// The names, for messages: `spaceship, tree, city and building`.
+    pub fn names(&self) -> String {
+        let names: Vec<&str> = self.entries.iter().map(|e| e.name.as_str()).collect();
+        match names.split_last() {
+            None => "none".to_owned(),
+            Some((last, [])) => (*last).to_owned(),
+            Some((last, rest)) => format!("{} and {last}", rest.join(", ")),
+        }
+    }
+}
+
+/// The original's settings of every method for a published generator's paper scene; the
+/// building, which has no paper scene, breeds with the thesis's GA and takes the city's
+/// settings of the other methods.
+fn paper_presets(generator: Published) -> Presets {
+    let (ga, smc, rjmcmc): (GaSettings, fn(Order) -> SmcSettings, McmcSettings) = match generator {
+        Published::Spaceship => (
+            GaSettings::paper_spaceship(),
+            SmcSettings::paper_spaceship,
+            McmcSettings::paper_spaceship(),
+        ),
+        Published::Tree => (
+            GaSettings::paper_tree(),
+            SmcSettings::paper_tree,
+            McmcSettings::paper_tree(),
+        ),
+        Published::City => (
+            GaSettings::paper_city(),
+            SmcSettings::paper_city,
+            McmcSettings::paper_city(),
+        ),
+        Published::Building => (
+            MultiGaSettings::thesis().ga,
+            SmcSettings::paper_city,
+            McmcSettings::paper_city(),
+        ),
+    };
+    Presets {
+        ga,
+        smc: smc(Order::Chromosome),
+        sosmc: smc(Order::Stochastic),
+        rjmcmc,
+    }
+}
+
+/// The name of the grammar a [`Published`] generator visits with.
+struct GrammarName;
+
+impl GeneratorVisitor for GrammarName {
+    type Output = &'static str;
+
+    fn visit<G: Grammar>(self, _: Limits) -> &'static str {
+        G::GRAPH.name
+    }
+}
