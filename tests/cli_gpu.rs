@@ -1,0 +1,120 @@
+//! `shapegen score --gpu` end to end, under its own harness so that a missing adapter
+//! shows: without one the test is reported as ignored, after a line saying that no
+//! adapter was found, unless `SHAPEGEN_REQUIRE_GPU=1` (as in CI, which installs a
+//! software Vulkan driver), where it fails instead.
+
+mod support;
+
+use std::fs;
+use std::path::Path;
+use std::process::ExitCode;
+
+use libtest_mimic::{Arguments, Failed, Trial};
+use shapegen::gpu::GpuContext;
+use support::{ok, s, shapegen};
+
+/// A test that runs the binary on the GPU: its name and its body, which panics when the
+/// test fails.
+type GpuTest = (&'static str, fn());
+
+/// The tests of this file.
+const TESTS: &[GpuTest] = &[(
+    "the_gpu_counts_as_the_cpu_does",
+    the_gpu_counts_as_the_cpu_does,
+)];
+
+fn main() -> ExitCode {
+    let args = Arguments::from_args();
+    let required = std::env::var("SHAPEGEN_REQUIRE_GPU").as_deref() == Ok("1");
+    // The binary opens its own device the same way; this one is only a probe, closed
+    // before the tests start.
+    let gpu: Result<(), String> = GpuContext::new()
+        .map(|gpu| eprintln!("GPU tests run on {}", gpu.describe()))
+        .map_err(|err| format!("no GPU adapter was found: {err}"));
+    match &gpu {
+        Ok(()) => {}
+        Err(err) if required => eprintln!("{err}; SHAPEGEN_REQUIRE_GPU=1, so the GPU tests fail"),
+        Err(err) => eprintln!("{err}; the GPU tests are ignored"),
+    }
+    let trials = TESTS
+        .iter()
+        .map(|&(name, test)| match &gpu {
+            Ok(()) => Trial::test(name, move || {
+                test();
+                Ok(())
+            }),
+            Err(err) => {
+                let err = err.clone();
+                Trial::test(name, move || Err(Failed::from(err))).with_ignored_flag(!required)
+            }
+        })
+        .collect();
+    libtest_mimic::run(&args, trials).exit_code()
+}
+
+/// The JSON lines `shapegen score` prints.
+fn score(scene: &Path, genomes: &Path, backend: &str) -> Vec<serde_json::Value> {
+    ok(&["score", s(scene), "--genomes", s(genomes), backend])
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect()
+}
+
+fn sample(generator: &str, seed: &str, dir: &Path) -> std::path::PathBuf {
+    ok(&[
+        "sample",
+        "-g",
+        generator,
+        "-n",
+        "6",
+        "-s",
+        seed,
+        "-o",
+        s(dir),
+    ]);
+    dir.join("genomes.json")
+}
+
+const SHIP_SCENE: &str = r#"
+generator = "spaceship"
+[limits]
+min_len = 4
+optimal_len = 10
+max_len = 100
+max_depth = 15
+[fitness]
+length = 0.1
+[volume]
+grid = { min = [-5, -5, -2], max = [5, 5, 18], resolution = [40, 40, 80] }
+good = 2.0
+bad = 15.0
+[[volume.target]]
+mesh = "TARGET"
+"#;
+
+fn shapegen_cube() -> &'static str {
+    "v -0.5 -0.5 -0.5\nv 0.5 -0.5 -0.5\nv 0.5 0.5 -0.5\nv -0.5 0.5 -0.5\nv -0.5 -0.5 0.5\nv 0.5 -0.5 0.5\nv 0.5 0.5 0.5\nv -0.5 0.5 0.5\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 3 4 8 7\nf 2 3 7 6\nf 1 5 8 4\n"
+}
+
+fn the_gpu_counts_as_the_cpu_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let genomes = sample("spaceship", "11", &dir.path().join("ships"));
+    let cube = dir.path().join("cube.obj");
+    fs::write(&cube, shapegen_cube()).unwrap();
+    let scene = dir.path().join("ship.toml");
+    fs::write(&scene, SHIP_SCENE.replace("TARGET", "cube.obj")).unwrap();
+    let gpu = shapegen(&["score", s(&scene), "--genomes", s(&genomes), "--gpu"]);
+    assert!(
+        gpu.status.success(),
+        "a GPU adapter was found, yet `score --gpu` failed: {}",
+        String::from_utf8_lossy(&gpu.stderr)
+    );
+    assert!(String::from_utf8_lossy(&gpu.stderr).contains("on GPU: "));
+    let cpu = score(&scene, &genomes, "--cpu");
+    let gpu: Vec<serde_json::Value> = String::from_utf8(gpu.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(cpu, gpu, "exact voxel counts and equal fitness");
+}
