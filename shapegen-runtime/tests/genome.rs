@@ -9,6 +9,7 @@ mod support {
 use glam::Vec3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use shapegen_runtime::error_chain;
 use shapegen_runtime::genome::{GeneAt, Genome, GenomeError, GenomeSet, JsonError, Limits};
 use shapegen_runtime::ops::Operators;
 use support::city_expanded::{self as city, City};
@@ -238,8 +239,8 @@ fn tampered(from: &str, to: &str) -> String {
 
 fn load_err(json: &str) -> String {
     Genome::<Spaceship>::from_json(json)
+        .map_err(|e| error_chain(&e))
         .unwrap_err()
-        .to_string()
 }
 
 #[test]
@@ -338,8 +339,8 @@ fn json_load_names_what_is_wrong() {
     // Through serde the messages are the same.
     let json = tampered(r#""shift": 0.1"#, r#""shift": 0.6"#);
     let err = serde_json::from_str::<Genome<Spaceship>>(&json)
-        .unwrap_err()
-        .to_string();
+        .map_err(|e| error_chain(&e))
+        .unwrap_err();
     assert!(err.contains("parameter `shift`: 0.6 is outside"), "{err}");
 }
 
@@ -388,8 +389,8 @@ fn json_integer_parameters_are_checked() {
     let json = g.to_json();
     let load = |from: &str, to: &str| {
         Genome::<City>::from_json(&json.replacen(from, to, 1))
+            .map_err(|e| error_chain(&e))
             .unwrap_err()
-            .to_string()
     };
     assert_eq!(
         load(r#""floors": -1"#, r#""floors": -1.5"#),
@@ -423,8 +424,8 @@ fn json_files_and_sets() {
 
     let missing = dir.path().join("missing.json");
     let err = Genome::<Spaceship>::load_json(&missing)
-        .unwrap_err()
-        .to_string();
+        .map_err(|e| error_chain(&e))
+        .unwrap_err();
     assert!(
         err.starts_with(&format!("{}: ", missing.display())),
         "{err}"
@@ -432,8 +433,8 @@ fn json_files_and_sets() {
 
     std::fs::write(&path, small().to_json().replace("0.83", "1.83")).unwrap();
     let err = Genome::<Spaceship>::load_json(&path)
-        .unwrap_err()
-        .to_string();
+        .map_err(|e| error_chain(&e))
+        .unwrap_err();
     assert_eq!(
         err,
         format!(
@@ -460,14 +461,16 @@ fn json_files_and_sets() {
         text[third..].replacen("[3]", "[4]", 1)
     );
     let err = GenomeSet::<Spaceship>::from_json(&bad)
-        .unwrap_err()
-        .to_string();
+        .map_err(|e| error_chain(&e))
+        .unwrap_err();
     assert_eq!(
         err,
         "genome 2 of the set: invalid genome: gene 0 (`Start` @0): slot `body` has offset 4, \
          which lands on word 4: not the start of a gene"
     );
-    let err = GenomeSet::<City>::from_json(&text).unwrap_err().to_string();
+    let err = GenomeSet::<City>::from_json(&text)
+        .map_err(|e| error_chain(&e))
+        .unwrap_err();
     assert_eq!(
         err,
         "the genome is of generator `Spaceship`, but is being read as `City`"

@@ -11,6 +11,7 @@ mod support {
 use generators::{GeneratorVisitor, Published};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use shapegen_runtime::error_chain;
 use shapegen_runtime::genome::{Genome, GenomeSet, JsonError, Limits};
 use shapegen_runtime::graph::HEADER_WORDS;
 use shapegen_runtime::ops::Operators;
@@ -355,8 +356,8 @@ fn tampered(from: &str, to: &str) -> String {
 
 fn load_err(json: &str) -> String {
     Genome::<Spaceship>::from_json(json)
+        .map_err(|e| error_chain(&e))
         .unwrap_err()
-        .to_string()
 }
 
 const SHIP_NODES: &str = "`Start`, `Body`, `Top`, `TopNext`, `Wing`, `WingNext`";
@@ -506,8 +507,8 @@ fn array_slot_mistakes_name_the_slot_and_its_length() {
         Genome::<City>::from_json(&format!(
             r#"{{"generator": "City", "tree": {{"node": "Start", "children": {{"lots": {lots}}}}}}}"#
         ))
+        .map_err(|e| error_chain(&e))
         .unwrap_err()
-        .to_string()
     };
     assert_eq!(
         city(&format!("[{}]", vec!["null"; 101].join(", "))),
@@ -631,8 +632,8 @@ fn both_forms_are_read_from_text_and_files() {
     std::fs::write(&path, nested.replace("0.83", "1.83")).unwrap();
     assert_eq!(
         Genome::<Spaceship>::load_json(&path)
-            .unwrap_err()
-            .to_string(),
+            .map_err(|e| error_chain(&e))
+            .unwrap_err(),
         format!(
             "{}: at `Start > body: Body`: parameter `size`: [1.83, 1.2, 0.7] is outside [[0.6, \
              0.6, 0.6], [1.5, 1.5, 1.5]]",
@@ -653,8 +654,8 @@ fn both_forms_are_read_from_text_and_files() {
     let bad = bad.replacen("1.83", "0.83", 1);
     assert_eq!(
         GenomeSet::<Spaceship>::from_json(&bad)
-            .unwrap_err()
-            .to_string(),
+            .map_err(|e| error_chain(&e))
+            .unwrap_err(),
         "genome 1 of the set: at `Start > body: Body`: parameter `size`: [1.83, 1.2, 0.7] is \
          outside [[0.6, 0.6, 0.6], [1.5, 1.5, 1.5]]"
     );
@@ -662,8 +663,8 @@ fn both_forms_are_read_from_text_and_files() {
     let mixed = r#"{"generator": "Spaceship", "genomes": [{"tree": {"node": "Start"}},
         {"genes": [{"node": "Start", "parent": 0, "links": [0], "params": {}}]}]}"#;
     let err = GenomeSet::<Spaceship>::from_json(mixed)
-        .unwrap_err()
-        .to_string();
+        .map_err(|e| error_chain(&e))
+        .unwrap_err();
     assert!(
         err.contains("unknown field `genes`, expected `tree`"),
         "{err}"
@@ -671,8 +672,8 @@ fn both_forms_are_read_from_text_and_files() {
     // The other grammar's sets are refused in either form.
     assert_eq!(
         GenomeSet::<City>::from_json(&set.to_nested_json())
-            .unwrap_err()
-            .to_string(),
+            .map_err(|e| error_chain(&e))
+            .unwrap_err(),
         "the genome is of generator `Spaceship`, but is being read as `City`"
     );
 }

@@ -7,6 +7,7 @@ use glam::{Affine3A, Quat, Vec2, Vec3};
 use image::{GrayImage, Luma};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use shapegen_runtime::error_chain;
 use shapegen_runtime::geometry::{BoundMeshes, Mesh, MeshId, MeshLibrary};
 use shapegen_runtime::optimize::Sense;
 use shapegen_runtime::score::InstanceBatch;
@@ -487,7 +488,7 @@ fn bad_sets_and_weights_are_refused_naming_the_objective() {
     ];
     for (objective, field) in cases {
         let e = ObjectiveSet::new(vec![("mine".into(), objective)]).unwrap_err();
-        let text = e.to_string();
+        let text = error_chain(&e);
         assert!(text.contains("`mine`") && text.contains(field), "{text}");
     }
     let set = ObjectiveSet::new(vec![("h".into(), height), ("u".into(), UNIQUE)]).unwrap();

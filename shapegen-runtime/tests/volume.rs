@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 use glam::{Affine3A, Quat, Vec3};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use shapegen_runtime::error_chain;
 use shapegen_runtime::genome::Limits;
 use shapegen_runtime::score::volume::{
     Grid, VolumeCounts, VolumeError, VolumeScorer, VolumeTarget, VoxelClasses,
@@ -391,16 +392,16 @@ fn errors_name_the_target_and_the_limit() {
 
     let nan = target("hull", Mesh::unit_cube(), 1.0, f64::NAN);
     let err = VolumeScorer::new(grid, &[nan], &cubes(), form)
-        .unwrap_err()
-        .to_string();
+        .map_err(|e| error_chain(&e))
+        .unwrap_err();
     assert_eq!(
         err,
         "volume target `hull`: outside weight NaN is not finite (finite numbers only)"
     );
     let empty = target("nothing", Mesh::default(), 1.0, 0.0);
     let err = VolumeScorer::new(grid, &[empty], &cubes(), form)
-        .unwrap_err()
-        .to_string();
+        .map_err(|e| error_chain(&e))
+        .unwrap_err();
     assert_eq!(
         err,
         "volume target `nothing`: mesh `nothing` has no triangles"

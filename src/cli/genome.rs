@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 
+use anyhow::Context;
 use clap::{Args, Subcommand, ValueEnum};
 use shapegen::genome::GenomeSet;
 use shapegen::{Genome, Grammar};
@@ -109,9 +110,9 @@ impl Visit for Convert<'_> {
             (Genome::<G>::from_json(&text).map(|_| text), what)
         };
         // What is written must read back: a tree too deep for the nested form stays packed.
-        let text = text.map_err(|e| {
-            anyhow::anyhow!(
-                "cannot write `{}` in the {} form, which would not read back: {e}",
+        let text = text.with_context(|| {
+            format!(
+                "cannot write `{}` in the {} form, which would not read back",
                 self.args.out.display(),
                 self.to.name()
             )

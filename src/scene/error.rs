@@ -8,7 +8,7 @@ use std::path::PathBuf;
 #[non_exhaustive]
 pub enum SceneError {
     /// The file could not be read.
-    #[error("cannot read scene `{}`: {source}", path.display())]
+    #[error("cannot read scene `{}`", path.display())]
     Io {
         /// The scene file.
         path: PathBuf,

@@ -128,8 +128,9 @@ impl Resolver<'_> {
                         .into_luma8();
                     let (min, max) = rect()?;
                     Objective::Projection(
-                        ProjectionMatch::from_image(view, min, max, &image)
-                            .map_err(|err| self.invalid(key("image"), err.to_string()))?,
+                        ProjectionMatch::from_image(view, min, max, &image).map_err(|err| {
+                            self.invalid(key("image"), shapegen_runtime::error_chain(&err))
+                        })?,
                     )
                 }
             };
@@ -138,7 +139,8 @@ impl Resolver<'_> {
                 objective,
             ));
         }
-        ObjectiveSet::new(entries).map_err(|err| self.invalid("objective", err.to_string()))
+        ObjectiveSet::new(entries)
+            .map_err(|err| self.invalid("objective", shapegen_runtime::error_chain(&err)))
     }
 }
 
@@ -168,7 +170,7 @@ impl<'a> ObjectiveEvaluator<'a> {
         let meshes = scene
             .meshes
             .bind(G::GRAPH)
-            .map_err(|err| scene.invalid("meshes", err.to_string()))?;
+            .map_err(|err| scene.invalid("meshes", shapegen_runtime::error_chain(&err)))?;
         Ok(ObjectiveEvaluator {
             set: &goal.set,
             meshes,

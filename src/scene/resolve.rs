@@ -14,7 +14,9 @@ use super::file::{
     CameraFile, FormName, ImageKind, ImageTargetFile, LengthFrom, LimitsFile, MeshFile, SceneFile,
     SilhouetteFile, VolumeFile,
 };
-use super::{Method, ObjectiveGoal, Overrides, Scene, SceneError, SilhouetteGoal, VolumeGoal};
+use super::{
+    Method, ObjectiveGoal, Overrides, Scene, SceneError, ScorerGoal, SilhouetteGoal, VolumeGoal,
+};
 use crate::registry::Registry;
 
 pub(super) struct Resolver<'a> {
@@ -101,7 +103,7 @@ impl<'a> Resolver<'a> {
             } else {
                 meshes.register_obj_as_written(name.clone(), &path)
             };
-            registered.map_err(|err| self.invalid(&key, err.to_string()))?;
+            registered.map_err(|err| self.invalid(&key, shapegen_runtime::error_chain(&err)))?;
         }
 
         let (limits, optimal_len) = self.limits(&file.limits)?;
@@ -123,19 +125,19 @@ impl<'a> Resolver<'a> {
         };
         let form = file.fitness.form;
 
-        let volume = file
-            .volume
-            .as_ref()
-            .map(|v| self.volume(v, form))
-            .transpose()?;
-        let silhouette = file
-            .silhouette
-            .as_ref()
-            .map(|s| self.silhouette(s, form))
-            .transpose()?;
+        // One arm per kind of scorer, in the order of `ScorerKind::ALL`.
+        let scorers: Vec<ScorerGoal> = [
+            (file.volume.as_ref()).map(|v| self.volume(v, form).map(ScorerGoal::Volume)),
+            (file.silhouette.as_ref())
+                .map(|s| self.silhouette(s, form).map(ScorerGoal::Silhouette)),
+        ]
+        .into_iter()
+        .flatten()
+        .collect::<Result<_, _>>()?;
+        debug_assert!(scorers.is_sorted_by_key(ScorerGoal::kind));
         let mut table = file.optimizer;
         let objectives = if file.objective.is_empty() {
-            if volume.is_none() && silhouette.is_none() {
+            if scorers.is_empty() {
                 return Err(self.invalid(
                     "volume",
                     "the scene has nothing to score: add a [volume] or [silhouette] table, \
@@ -150,14 +152,14 @@ impl<'a> Resolver<'a> {
             }
             None
         } else {
-            if volume.is_some() || silhouette.is_some() {
+            if !scorers.is_empty() {
                 return Err(self.invalid(
                     "objective",
                     "a scene scores either by [volume] / [silhouette] or by [[objective]] \
                      tables, not both",
                 ));
             }
-            let set = self.objectives(&file.objective)?;
+            let set = self.objectives(file.objective)?;
             let selection = file.selection.unwrap_or_default();
             selection
                 .validate()
@@ -196,8 +198,7 @@ impl<'a> Resolver<'a> {
             limits,
             optimal_len,
             length,
-            volume,
-            silhouette,
+            scorers,
             objectives,
         })
     }
@@ -271,8 +272,9 @@ impl<'a> Resolver<'a> {
         for (i, t) in v.target.iter().enumerate() {
             let key = format!("volume.target[{i}]");
             let path = self.file(&format!("{key}.mesh"), &t.mesh)?;
-            let mesh = Mesh::from_obj(&path)
-                .map_err(|err| self.invalid(format!("{key}.mesh"), err.to_string()))?;
+            let mesh = Mesh::from_obj(&path).map_err(|err| {
+                self.invalid(format!("{key}.mesh"), shapegen_runtime::error_chain(&err))
+            })?;
             targets.push(VolumeTarget {
                 name: t.mesh.clone(),
                 mesh,
@@ -351,7 +353,7 @@ impl<'a> Resolver<'a> {
             ImageKind::Mask => ImageTarget::from_mask_by(name, &image, camera, on, off, rule),
             ImageKind::Weights => ImageTarget::from_weight_map(name, &image, camera, on, off),
         };
-        target.map_err(|err| self.invalid(&image_key, err.to_string()))
+        target.map_err(|err| self.invalid(&image_key, shapegen_runtime::error_chain(&err)))
     }
 
     fn camera(&self, key: &str, c: &CameraFile) -> Result<Camera, SceneError> {
@@ -427,7 +429,7 @@ impl<'a> Resolver<'a> {
         };
         camera
             .validate()
-            .map_err(|err| self.invalid(key, err.to_string()))?;
+            .map_err(|err| self.invalid(key, shapegen_runtime::error_chain(&err)))?;
         Ok(camera)
     }
 }

@@ -29,10 +29,10 @@ use crate::geometry::{Instance, MeshId};
 #[non_exhaustive]
 pub enum ExportError {
     /// Writing failed.
-    #[error("cannot write the export: {0}")]
+    #[error("cannot write the export")]
     Io(#[from] std::io::Error),
     /// A file could not be created or written.
-    #[error("cannot write `{}`: {source}", path.display())]
+    #[error("cannot write `{}`", path.display())]
     File {
         /// The file.
         path: PathBuf,

@@ -28,7 +28,7 @@ pub struct Mesh {
 #[non_exhaustive]
 pub enum MeshError {
     /// The mesh file could not be read.
-    #[error("cannot read mesh file `{}`: {source}", path.display())]
+    #[error("cannot read mesh file `{}`", path.display())]
     Io {
         /// The file.
         path: PathBuf,

@@ -346,8 +346,8 @@ f 4//1 5//1 6//1
         let e = Mesh::from_obj("/no/such/dir/trunk.obj").unwrap_err();
         assert!(matches!(e, MeshError::Io { .. }));
         assert!(
-            e.to_string()
-                .starts_with("cannot read mesh file `/no/such/dir/trunk.obj`: ")
+            crate::error_chain(&e).starts_with("cannot read mesh file `/no/such/dir/trunk.obj`: "),
+            "{e}"
         );
     }
 }

@@ -50,7 +50,7 @@ pub enum OptimizeError {
     #[error(transparent)]
     Settings(#[from] SettingsError),
     /// The genome limits cannot be met.
-    #[error("genome limits: {0}")]
+    #[error("genome limits")]
     Limits(#[from] LimitsError),
     /// The evaluator failed.
     #[error(transparent)]

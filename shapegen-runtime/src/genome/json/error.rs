@@ -13,7 +13,7 @@ use crate::genome::{Genome, GenomeSet};
 #[non_exhaustive]
 pub enum JsonError {
     /// The text is not JSON of the genome form (serde's message gives line and column).
-    #[error("not a genome in JSON: {0}")]
+    #[error("not a genome in JSON")]
     Syntax(#[from] serde_json::Error),
     /// The genome belongs to another grammar.
     #[error("the genome is of generator `{found}`, but is being read as `{expected}`")]
@@ -280,10 +280,10 @@ pub enum JsonError {
         column: usize,
     },
     /// The genes do not form a valid genome (offsets, links, parameter ranges...).
-    #[error("invalid genome: {0}")]
+    #[error("invalid genome")]
     Invalid(#[from] GenomeError),
     /// A genome of a [`GenomeSet`] is wrong.
-    #[error("genome {index} of the set: {source}")]
+    #[error("genome {index} of the set")]
     InSet {
         /// Index of the genome in the set.
         index: usize,
@@ -291,7 +291,7 @@ pub enum JsonError {
         source: Box<JsonError>,
     },
     /// The content of a file is wrong.
-    #[error("{}: {source}", path.display())]
+    #[error("{}", path.display())]
     File {
         /// The file.
         path: PathBuf,
@@ -299,7 +299,7 @@ pub enum JsonError {
         source: Box<JsonError>,
     },
     /// A file could not be read or written.
-    #[error("{}: {source}", path.display())]
+    #[error("{}", path.display())]
     Io {
         /// The file.
         path: PathBuf,

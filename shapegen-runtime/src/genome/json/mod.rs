@@ -93,7 +93,7 @@ impl<G: Grammar> Genome<G> {
     /// assert_eq!(Genome::<Chain>::from_json(&json)?, g);
     /// let err = Genome::<Chain>::from_json(&json.replace("0.75", "2.0")).unwrap_err();
     /// assert_eq!(
-    ///     err.to_string(),
+    ///     shapegen_runtime::error_chain(&err),
     ///     "invalid genome: gene 1 (`Seg` @3): parameter `len`: 2 is outside [0.5, 1.5]"
     /// );
     /// # Ok::<(), Box<dyn std::error::Error>>(())

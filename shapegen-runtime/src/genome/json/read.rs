@@ -44,7 +44,7 @@ impl<'de, G: Grammar> Deserialize<'de> for Genome<G> {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         let fields = GenomeFields::deserialize(d)?;
         check_generator::<G>(&fields.generator).map_err(D::Error::custom)?;
-        genome_from_genes(fields.genes).map_err(D::Error::custom)
+        genome_from_genes(fields.genes).map_err(|e| D::Error::custom(crate::error_chain(&e)))
     }
 }
 
@@ -58,10 +58,10 @@ impl<'de, G: Grammar> Deserialize<'de> for GenomeSet<G> {
             .enumerate()
             .map(|(index, g)| {
                 genome_from_genes(g.genes).map_err(|e| {
-                    D::Error::custom(JsonError::InSet {
+                    D::Error::custom(crate::error_chain(&JsonError::InSet {
                         index,
                         source: Box::new(e),
-                    })
+                    }))
                 })
             })
             .collect::<Result<_, _>>()?;

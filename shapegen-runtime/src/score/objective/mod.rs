@@ -125,7 +125,7 @@ pub enum ObjectiveError {
     #[error("two objectives are named `{0}`; names must be unique")]
     DuplicateName(String),
     /// An objective of a set is invalid.
-    #[error("objective `{name}`: {source}")]
+    #[error("objective `{name}`")]
     Entry {
         /// The objective's name.
         name: String,

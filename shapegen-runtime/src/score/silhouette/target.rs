@@ -49,7 +49,7 @@ pub enum TargetError {
         value: f32,
     },
     /// The camera is unusable.
-    #[error("target `{name}`: {source}")]
+    #[error("target `{name}`")]
     Camera {
         /// The target's name.
         name: String,

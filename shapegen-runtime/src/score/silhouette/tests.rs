@@ -482,7 +482,7 @@ fn camera_errors_name_the_field_and_the_valid_range() {
     )
     .unwrap_err();
     assert_eq!(
-        err.to_string(),
+        crate::error_chain(&err),
         "target `sky`: camera `radius` is -1; it must be greater than 0"
     );
 }

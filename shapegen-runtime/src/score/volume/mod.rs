@@ -147,7 +147,7 @@ pub enum VolumeError {
         value: f64,
     },
     /// A target's mesh is malformed.
-    #[error("volume target `{target}`: {source}")]
+    #[error("volume target `{target}`")]
     Mesh {
         /// The target's name.
         target: String,
