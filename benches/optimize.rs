@@ -25,7 +25,7 @@ fn ga_generation(c: &mut Criterion) {
         .expect("a one-thread pool");
     let settings = GaSettings {
         population: 200,
-        ..GaSettings::paper_spaceship()
+        ..spaceship::paper_ga()
     };
     // Trivial fitness that keeps lengths near the initial length.
     let fitness = |g: &Genome<Spaceship>| -(g.len() as f64 - 50.0).abs();
@@ -77,7 +77,7 @@ fn ga_search(c: &mut Criterion) {
     let settings = GaSettings {
         population: 200,
         generations: 50,
-        ..GaSettings::paper_spaceship()
+        ..spaceship::paper_ga()
     };
     let mut group = c.benchmark_group("optimize/ga_search");
     group.sample_size(10);

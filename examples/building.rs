@@ -17,8 +17,8 @@ use std::time::Duration;
 use anyhow::Context;
 use generators::Building;
 use shapegen::export::{Palette, Preview, save_glb};
-use shapegen::optimize::Optimizer;
 use shapegen::optimize::Control;
+use shapegen::optimize::Optimizer;
 use shapegen::optimize::multi::{MultiGa, MultiSnapshot};
 use shapegen::scene::{ObjectiveEvaluator, Scene};
 

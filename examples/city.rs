@@ -40,7 +40,7 @@ fn main() -> anyhow::Result<()> {
     // The search: the paper's GA settings for its city scene, under a time budget.
     let settings = GaSettings {
         generations: 400,
-        ..GaSettings::paper_city()
+        ..generators::city::paper_ga()
     };
     let mut ga = Ga::<City>::new(settings, scene.limits, 1)?;
     let budget = settings

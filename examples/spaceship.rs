@@ -40,7 +40,7 @@ fn main() -> anyhow::Result<()> {
     // The search: the paper's GA settings for its spaceship scene, for longer.
     let settings = GaSettings {
         generations: 300,
-        ..GaSettings::paper_spaceship()
+        ..generators::spaceship::paper_ga()
     };
     let mut ga = Ga::<Spaceship>::new(settings, scene.limits, 1)?;
     let budget = settings

@@ -18,7 +18,7 @@ use image::Rgb;
 use shapegen::Grammar;
 use shapegen::export::{Palette, Preview, save_glb, save_obj};
 use shapegen::optimize::Optimizer;
-use shapegen::optimize::{Control, Ga, GaSettings, Snapshot};
+use shapegen::optimize::{Control, Ga, Snapshot};
 use shapegen::scene::{BackendChoice, Scene, SceneEvaluator, SceneScorer};
 
 fn main() -> anyhow::Result<()> {
@@ -39,7 +39,7 @@ fn main() -> anyhow::Result<()> {
     println!("scoring on {}", backend.describe());
 
     // The search: the paper's GA settings for its tree scene, under a time budget.
-    let settings = GaSettings::paper_tree();
+    let settings = generators::tree::paper_ga();
     let mut ga = Ga::<Tree>::new(settings, scene.limits, 1)?;
     let budget = settings
         .budget()

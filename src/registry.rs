@@ -219,24 +219,24 @@ impl Registry {
 fn paper_presets(generator: Published) -> Presets {
     let (ga, smc, rjmcmc): (GaSettings, fn(Order) -> SmcSettings, McmcSettings) = match generator {
         Published::Spaceship => (
-            GaSettings::paper_spaceship(),
-            SmcSettings::paper_spaceship,
-            McmcSettings::paper_spaceship(),
+            generators::spaceship::paper_ga(),
+            generators::spaceship::paper_smc,
+            generators::spaceship::paper_rjmcmc(),
         ),
         Published::Tree => (
-            GaSettings::paper_tree(),
-            SmcSettings::paper_tree,
-            McmcSettings::paper_tree(),
+            generators::tree::paper_ga(),
+            generators::tree::paper_smc,
+            generators::tree::paper_rjmcmc(),
         ),
         Published::City => (
-            GaSettings::paper_city(),
-            SmcSettings::paper_city,
-            McmcSettings::paper_city(),
+            generators::city::paper_ga(),
+            generators::city::paper_smc,
+            generators::city::paper_rjmcmc(),
         ),
         Published::Building => (
             MultiGaSettings::thesis().ga,
-            SmcSettings::paper_city,
-            McmcSettings::paper_city(),
+            generators::city::paper_smc,
+            generators::city::paper_rjmcmc(),
         ),
     };
     Presets {

@@ -134,8 +134,8 @@ fn convert_explains_its_mistakes() {
     assert_eq!(
         err.trim(),
         format!(
-            "error: `{}`: unknown generator `Rocket`; the published generators are spaceship, \
-             tree, city and building",
+            "error: `{}`: unknown generator `Rocket`; the generators are spaceship, tree, city \
+             and building",
             rocket.display()
         )
     );
@@ -465,8 +465,8 @@ fn export_explains_its_mistakes() {
     ]);
     assert!(
         err.contains(
-            "invalid value 'rocket' for '--generator <GENERATOR>': unknown generator `rocket`; \
-             the published generators are spaceship, tree, city and building"
+            "error: unknown generator `rocket`; the generators are spaceship, tree, city and \
+             building"
         ),
         "{err}"
     );

@@ -48,7 +48,7 @@ fn ga(scene: &Scene) -> GaSettings {
 fn the_paper_settings_use_the_original_operators() {
     let dir = tempfile::tempdir().unwrap();
     let s = ga(&Scene::load(scene(&dir, "")).unwrap());
-    assert_eq!(s, GaSettings::paper_spaceship());
+    assert_eq!(s, generators::spaceship::paper_ga());
     assert_eq!(s.operators, OperatorVariant::Original);
     assert!(!s.cross_array_index);
 }
@@ -65,7 +65,7 @@ fn operators_and_cross_array_index_are_read_from_the_file_and_from_set() {
         (s.operators, s.cross_array_index),
         (OperatorVariant::Weighted, true)
     );
-    assert_eq!(s.population, GaSettings::paper_spaceship().population);
+    assert_eq!(s.population, generators::spaceship::paper_ga().population);
     let sets = [
         "optimizer.operators=original".to_owned(),
         "optimizer.cross_array_index=false".to_owned(),

@@ -10,6 +10,7 @@
 
 use shapegen_runtime::generator;
 use shapegen_runtime::genome::Limits;
+use shapegen_runtime::optimize::{GaSettings, McmcSettings, Order, SmcSettings};
 use shapegen_runtime::prelude::*;
 
 /// Lots per row of the grid (the original's `GridX`).
@@ -93,3 +94,38 @@ pub const PAPER_LIMITS: Limits = Limits {
     max_len: 300,
     max_depth: 8,
 };
+
+/// The original's GA settings for the paper's city-skyline (whale) scene, as its
+/// `run/experiments/city_whale/ga.cfg` sets them: population 100, elitism 30, initial
+/// length 50, 100 generations, mutation 30% split 45 / 45 / 10, tournament of 10, the
+/// original's operators.
+pub fn paper_ga() -> GaSettings {
+    GaSettings {
+        population: 100,
+        initial_length: 50,
+        generations: 100,
+        ..crate::spaceship::paper_ga()
+    }
+}
+
+/// The original's SMC or SOSMC settings for the paper's city-whale scene
+/// (`city_whale/smc.cfg`, `sosmc.cfg`): 100 particles, 100 steps; the rest as the
+/// spaceship's ([`crate::spaceship::paper_smc`]).
+pub fn paper_smc(order: Order) -> SmcSettings {
+    SmcSettings {
+        particles: 100,
+        steps: 100,
+        ..crate::spaceship::paper_smc(order)
+    }
+}
+
+/// The original's RJMCMC settings for the paper's city-whale scene (`city_whale/mh.cfg`):
+/// 50 chains, 200 iterations, initial length 50; the rest as the spaceship's
+/// ([`crate::spaceship::paper_rjmcmc`]).
+pub fn paper_rjmcmc() -> McmcSettings {
+    McmcSettings {
+        chains: 50,
+        iterations: 200,
+        ..crate::spaceship::paper_rjmcmc()
+    }
+}

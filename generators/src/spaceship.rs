@@ -8,6 +8,10 @@
 
 use shapegen_runtime::generator;
 use shapegen_runtime::genome::Limits;
+use shapegen_runtime::ops::OperatorVariant;
+use shapegen_runtime::optimize::{
+    GaSettings, McmcSettings, McmcVariant, Order, SmcSettings, SmcVariant,
+};
 use shapegen_runtime::prelude::*;
 
 generator! {
@@ -133,3 +137,58 @@ pub const PAPER_LIMITS: Limits = Limits {
     max_len: 100,
     max_depth: 15,
 };
+
+/// The original's GA settings for the paper's spaceship-volume scene, as its
+/// `run/experiments/spaceship_volume/ga.cfg` sets them: population 150, elitism 30,
+/// initial length 50, 130 generations, mutation (`basic_prob`) 30% split grow / cut /
+/// alter (`permutate`) 45 / 45 / 10, tournament of 10, the original's operators.
+pub fn paper_ga() -> GaSettings {
+    GaSettings {
+        population: 150,
+        elitism: 30,
+        initial_length: 50,
+        generations: 130,
+        mutation_probability: 0.3,
+        grow_weight: 45.0,
+        cut_weight: 45.0,
+        alter_weight: 10.0,
+        tournament: 10,
+        operators: OperatorVariant::Original,
+        cross_array_index: false,
+    }
+}
+
+/// The original's SMC (`Order::Chromosome`) or SOSMC (`Order::Stochastic`) settings for
+/// the paper's spaceship scene (`spaceship_volume/smc.cfg`, `sosmc.cfg`): the original
+/// variant, 500 particles, 40 steps, no step back (the files give no `basic_prob`). The
+/// generative variant's field holds its default: 64 grows per step.
+pub fn paper_smc(order: Order) -> SmcSettings {
+    SmcSettings {
+        particles: 500,
+        steps: 40,
+        order,
+        variant: SmcVariant::Original,
+        step_back_probability: 0.0,
+        max_grows_per_step: 64,
+    }
+}
+
+/// The original's RJMCMC settings for the paper's spaceship scene
+/// (`spaceship_volume/mh.cfg`): the original variant, 70 chains, 250 iterations, initial
+/// length 50, jump and diffusion 50 / 50. The tempered variant's fields hold its own
+/// defaults: delayed rejection 1, annealing by 1.1 every 10 iterations, acceptance 70%
+/// hot and 1% cold.
+pub fn paper_rjmcmc() -> McmcSettings {
+    McmcSettings {
+        variant: McmcVariant::Original,
+        chains: 70,
+        iterations: 250,
+        initial_length: 50,
+        jump_probability: 0.5,
+        delayed_rejection: 1,
+        anneal_factor: 1.1,
+        anneal_interval: 10,
+        hot_acceptance: 0.7,
+        cold_acceptance: 0.01,
+    }
+}

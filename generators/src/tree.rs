@@ -5,6 +5,7 @@
 
 use shapegen_runtime::generator;
 use shapegen_runtime::genome::Limits;
+use shapegen_runtime::optimize::{GaSettings, McmcSettings, Order, SmcSettings};
 use shapegen_runtime::prelude::*;
 
 generator! {
@@ -143,3 +144,42 @@ pub const PAPER_LIMITS: Limits = Limits {
     max_len: 400,
     max_depth: 12,
 };
+
+/// The original's GA settings for the paper's tree-sketch scene, as its
+/// `run/experiments/tree_sketch1/ga.cfg` sets them: population 200, elitism 30, initial
+/// length 250, 1500 generations, mutation 30% split 35 / 35 / 30, tournament of 10, the
+/// original's operators.
+pub fn paper_ga() -> GaSettings {
+    GaSettings {
+        population: 200,
+        initial_length: 250,
+        generations: 1500,
+        grow_weight: 35.0,
+        cut_weight: 35.0,
+        alter_weight: 30.0,
+        ..crate::spaceship::paper_ga()
+    }
+}
+
+/// The original's SMC or SOSMC settings for the paper's tree-sketch scene
+/// (`tree_sketch1/smc.cfg`, `sosmc.cfg`): 1000 particles, 500 steps; the rest as the
+/// spaceship's ([`crate::spaceship::paper_smc`]).
+pub fn paper_smc(order: Order) -> SmcSettings {
+    SmcSettings {
+        particles: 1000,
+        steps: 500,
+        ..crate::spaceship::paper_smc(order)
+    }
+}
+
+/// The original's RJMCMC settings for the paper's tree-sketch scene
+/// (`tree_sketch1/mh.cfg`): 100 chains, 3000 iterations, initial length 150; the rest
+/// as the spaceship's ([`crate::spaceship::paper_rjmcmc`]).
+pub fn paper_rjmcmc() -> McmcSettings {
+    McmcSettings {
+        chains: 100,
+        iterations: 3000,
+        initial_length: 150,
+        ..crate::spaceship::paper_rjmcmc()
+    }
+}

@@ -15,7 +15,7 @@ fn original(chains: u32, initial_length: u32) -> McmcSettings {
     McmcSettings {
         chains,
         initial_length,
-        ..McmcSettings::paper_spaceship()
+        ..spaceship::paper_rjmcmc()
     }
 }
 
@@ -51,7 +51,7 @@ fn original_chains_start_at_their_exponents_with_exactly_l_genes() {
         McmcSettings {
             chains: 4,
             initial_length: 150,
-            ..McmcSettings::paper_city()
+            ..city::paper_rjmcmc()
         },
         city::PAPER_LIMITS,
         1,
@@ -106,9 +106,9 @@ fn original_runs_reach_their_goal() {
 #[test]
 fn paper_settings_are_the_originals_mh_cfg() {
     let cases = [
-        (McmcSettings::paper_spaceship(), 70, 250, 50),
-        (McmcSettings::paper_tree(), 100, 3000, 150),
-        (McmcSettings::paper_city(), 50, 200, 50),
+        (spaceship::paper_rjmcmc(), 70, 250, 50),
+        (generators::tree::paper_rjmcmc(), 100, 3000, 150),
+        (city::paper_rjmcmc(), 50, 200, 50),
     ];
     for (s, chains, iterations, initial_length) in cases {
         assert_eq!(s.variant, McmcVariant::Original);
@@ -118,7 +118,10 @@ fn paper_settings_are_the_originals_mh_cfg() {
         );
         s.validate().unwrap();
     }
-    assert_eq!(McmcSettings::default(), McmcSettings::paper_spaceship());
+    assert_eq!(
+        McmcSettings::default(),
+        spaceship::paper_rjmcmc()
+    );
 }
 
 #[test]
@@ -133,7 +136,7 @@ fn settings_name_their_variant_and_validate_what_it_reads() {
     );
     let parsed: McmcSettings = serde_json::from_str(r#"{"chains": 3}"#).unwrap();
     assert_eq!(parsed.variant, McmcVariant::Original);
-    let json = serde_json::to_string(&McmcSettings::paper_tree()).unwrap();
+    let json = serde_json::to_string(&generators::tree::paper_rjmcmc()).unwrap();
     assert!(json.contains(r#""variant":"original""#), "{json}");
     assert!(serde_json::from_str::<McmcSettings>(r#"{"variant": "talton"}"#).is_err());
     // The tempered variant's own fields bind it only.
@@ -240,7 +243,7 @@ fn tempered_jumps_never_redraw_what_must_come_back_unchanged() {
         initial_length: 4,
         jump_probability: 1.0,
         delayed_rejection: 0,
-        ..McmcSettings::paper_city()
+        ..city::paper_rjmcmc()
     };
     let limits = Limits::new(1, 10, 10).unwrap();
     let mut mcmc = Mcmc::<Fixed>::new(s, limits, 9).unwrap();

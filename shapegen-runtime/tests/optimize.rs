@@ -102,7 +102,7 @@ fn small_ga() -> GaSettings {
         elitism: 8,
         initial_length: 30,
         generations: 15,
-        ..GaSettings::paper_city()
+        ..city::paper_ga()
     }
 }
 
@@ -270,7 +270,7 @@ fn ga_original_keeps_children_shorter_than_max_len() {
         population: 30,
         elitism: 4,
         initial_length: 8,
-        ..GaSettings::paper_spaceship()
+        ..spaceship::paper_ga()
     };
     let mut eval = Lengths::default();
     Ga::<Spaceship>::new(s, limits, 6)
@@ -419,7 +419,7 @@ fn multi_ga_breeds_with_the_original_rules() {
             population: 24,
             elitism: 4,
             initial_length: 10,
-            ..GaSettings::paper_spaceship()
+            ..spaceship::paper_ga()
         },
         ..MultiGaSettings::thesis()
     };
@@ -546,9 +546,9 @@ fn ga_settings_are_validated() {
     );
     check(GaSettings { tournament: 0, ..d }, "tournament");
     for s in [
-        GaSettings::paper_spaceship(),
-        GaSettings::paper_tree(),
-        GaSettings::paper_city(),
+        spaceship::paper_ga(),
+        generators::tree::paper_ga(),
+        city::paper_ga(),
         d,
     ] {
         s.validate().unwrap();
@@ -607,7 +607,7 @@ fn ga_paper_settings_are_the_original_configurations() {
     };
     let original = OperatorVariant::Original;
     assert_eq!(
-        row(GaSettings::paper_spaceship()),
+        row(spaceship::paper_ga()),
         (
             150,
             30,
@@ -621,7 +621,7 @@ fn ga_paper_settings_are_the_original_configurations() {
         )
     );
     assert_eq!(
-        row(GaSettings::paper_tree()),
+        row(generators::tree::paper_ga()),
         (
             200,
             30,
@@ -635,7 +635,7 @@ fn ga_paper_settings_are_the_original_configurations() {
         )
     );
     assert_eq!(
-        row(GaSettings::paper_city()),
+        row(city::paper_ga()),
         (
             100,
             30,
@@ -706,7 +706,7 @@ fn small_smcs() -> impl Iterator<Item = SmcSettings> {
             particles: 40,
             steps: 12,
             variant,
-            ..SmcSettings::paper_city(order)
+            ..city::paper_smc(order)
         })
     })
 }
@@ -802,7 +802,7 @@ fn smc_survives_nan_fitness_and_honours_budgets() {
     ));
     let bad = SmcSettings {
         step_back_probability: 1.5,
-        ..SmcSettings::paper_city(Order::Chromosome)
+        ..city::paper_smc(Order::Chromosome)
     };
     assert_eq!(bad.validate().unwrap_err().field, "step_back_probability");
     let parsed: SmcSettings = serde_json::from_str(r#"{"order": "stochastic"}"#).unwrap();
@@ -827,7 +827,7 @@ fn small_mcmc(variant: McmcVariant) -> McmcSettings {
         chains: 16,
         iterations: 30,
         initial_length: 30,
-        ..McmcSettings::paper_city()
+        ..city::paper_rjmcmc()
     }
 }
 
@@ -1032,9 +1032,9 @@ fn mcmc_survives_nan_fitness_and_honours_budgets() {
         assert_eq!(bad.validate().unwrap_err().field, field);
     }
     for s in [
-        McmcSettings::paper_spaceship(),
-        McmcSettings::paper_tree(),
-        McmcSettings::paper_city(),
+        spaceship::paper_rjmcmc(),
+        generators::tree::paper_rjmcmc(),
+        city::paper_rjmcmc(),
     ] {
         s.validate().unwrap();
     }

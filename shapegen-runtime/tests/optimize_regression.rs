@@ -168,7 +168,7 @@ fn ga_both_operator_variants() {
             elitism: 6,
             initial_length: 20,
             operators,
-            ..GaSettings::paper_city()
+            ..generators::city::paper_ga()
         };
         let r = Ga::<City>::new(settings, limits(), 11)
             .unwrap()
@@ -221,7 +221,7 @@ fn smc_and_sosmc_both_variants() {
         let settings = SmcSettings {
             particles: 24,
             variant,
-            ..SmcSettings::paper_city(order)
+            ..generators::city::paper_smc(order)
         };
         let r = Smc::<City>::new(settings, limits(), 5)
             .unwrap()
@@ -258,7 +258,7 @@ fn rjmcmc_both_variants() {
             variant,
             chains: 10,
             initial_length: 15,
-            ..McmcSettings::paper_spaceship()
+            ..generators::spaceship::paper_rjmcmc()
         };
         let r = Mcmc::<Spaceship>::new(settings, Limits::new(1, 120, 10).unwrap(), 3)
             .unwrap()

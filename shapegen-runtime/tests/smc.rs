@@ -45,7 +45,7 @@ impl Evaluator<Chain> for FirstWins {
 fn original(order: Order, particles: u32) -> SmcSettings {
     SmcSettings {
         particles,
-        ..SmcSettings::paper_city(order)
+        ..generators::city::paper_smc(order)
     }
 }
 

@@ -4,7 +4,6 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use serde::{Deserialize, Serialize};
-use shapegen::optimize::StopReason;
 use shapegen::scene::Overrides;
 
 use super::files::{atomic_write, read};
@@ -57,14 +56,5 @@ impl<S: serde::de::DeserializeOwned> Checkpoint<S> {
         let path = path(dir);
         serde_json::from_str(&read(&path)?)
             .with_context(|| format!("`{}` is not a checkpoint of {what}", path.display()))
-    }
-}
-
-/// Whether a stretch of a run that stopped for `stopped` after `generations` of at most
-/// `total` generations ends the run.
-pub fn finished(stopped: StopReason, generations: u64, total: u64) -> bool {
-    match stopped {
-        StopReason::Generations => generations >= total,
-        _ => true,
     }
 }

@@ -19,9 +19,8 @@
 //! Runs go run-major (run 0 of every method, then run 1, ...) so that slow drifts of the
 //! machine's load hit every method alike.
 
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::Ordering;
+use std::sync::atomic::AtomicBool;
 use std::time::Duration;
 
 use anyhow::Context;
@@ -29,15 +28,16 @@ use clap::Args;
 use image::Rgb;
 use serde::Serialize;
 use shapegen::Grammar;
-use shapegen::optimize::{Budget, Control, HistoryEntry, Snapshot, StopReason};
+use shapegen::genome::Limits;
+use shapegen::optimize::{Best, Budget, HistoryEntry, Optimizer, RunResult, Session, StopReason};
 use shapegen::scene::{Method, OptimizerGoal, Overrides, Scene, SceneEvaluator, SceneScorer};
 
 use super::backend::BackendArgs;
 use super::dispatch::{Generators, Visit};
-use super::files::{atomic_write, save_png};
+use super::files::{atomic_write, csv_bytes, save_png};
 use super::interrupt;
 use super::plot::{self, Band};
-use super::search::Search;
+use super::search::{MethodJob, with_method};
 use crate::registry::Entry;
 
 /// Points of the common time grid the curves are sampled on.
@@ -239,15 +239,16 @@ impl Visit for Compare<'_> {
                     evaluations: goal.evaluations,
                     wall_time: Some(Duration::from_secs_f64(self.args.seconds)),
                 };
-                let mut search = Search::<G>::start(&goal, self.scene.limits)?;
-                let mut observe = |_: &Snapshot<'_, G>| {
-                    if stop.load(Ordering::SeqCst) {
-                        Control::Stop
-                    } else {
-                        Control::Continue
-                    }
-                };
-                let result = search.run(&mut evaluator, &budget, &mut observe)?;
+                let result = with_method::<G, _>(
+                    &goal,
+                    OneRun {
+                        goal: &goal,
+                        limits: self.scene.limits,
+                        budget,
+                        stop: &stop,
+                        evaluator: &mut evaluator,
+                    },
+                )?;
                 if result.stopped == StopReason::Observer {
                     outputs.write(&done)?;
                     anyhow::bail!(
@@ -296,6 +297,24 @@ impl Visit for Compare<'_> {
     }
 }
 
+/// One run of one method in a comparison.
+struct OneRun<'a, 'b> {
+    goal: &'a OptimizerGoal,
+    limits: Limits,
+    budget: Budget,
+    stop: &'a AtomicBool,
+    evaluator: &'a mut SceneEvaluator<'b>,
+}
+
+impl<G: Grammar> MethodJob<G> for OneRun<'_, '_> {
+    type Output = anyhow::Result<RunResult<G>>;
+
+    fn run<O: Optimizer<G, Record = Best<G>>>(self, settings: O::Settings) -> Self::Output {
+        let session = Session::<G, O>::start(settings, self.limits, self.goal.seed, self.budget)?;
+        Ok(session.stop_flag(self.stop).run(self.evaluator)?)
+    }
+}
+
 /// Writes `compare.csv`, `summary.json` and `compare.png` for the runs done so far.
 struct Outputs<'a> {
     args: &'a CompareArgs,
@@ -341,22 +360,21 @@ struct MethodSummary {
 impl Outputs<'_> {
     fn write(&self, done: &[Finished]) -> anyhow::Result<()> {
         let dir = &self.args.out;
-        let mut csv = String::from("method,run,seed,elapsed_s,evaluations,best\n");
-        for f in done {
-            for h in &f.history {
-                writeln!(
-                    csv,
-                    "{},{},{},{:.4},{},{}",
-                    f.method.name(),
-                    f.run,
-                    f.seed,
-                    h.elapsed_s,
-                    h.evaluations,
-                    h.best
-                )?;
-            }
-        }
-        atomic_write(&dir.join("compare.csv"), csv.as_bytes())?;
+        let header =
+            ["method", "run", "seed", "elapsed_s", "evaluations", "best"].map(str::to_owned);
+        let rows = done.iter().flat_map(|f| {
+            f.history.iter().map(|h| {
+                vec![
+                    f.method.name().to_owned(),
+                    f.run.to_string(),
+                    f.seed.to_string(),
+                    format!("{:.4}", h.elapsed_s),
+                    h.evaluations.to_string(),
+                    h.best.to_string(),
+                ]
+            })
+        });
+        atomic_write(&dir.join("compare.csv"), &csv_bytes(&header, rows)?)?;
 
         let summary = Summary {
             scene: &self.args.scene,

@@ -86,15 +86,19 @@ impl Generators {
         &self.registry
     }
 
-    /// Runs `job` with the grammar of the generator named `name`, or whose grammar is
-    /// `name` (as genome files name it).
-    pub fn visit<'a>(&self, name: &str, job: impl Into<Job<'a>>) -> anyhow::Result<()> {
-        let entry = self.registry.find(name).ok_or_else(|| {
+    /// The generator named `name`, or whose grammar is `name` (as genome files name it).
+    pub fn find(&self, name: &str) -> anyhow::Result<&Entry> {
+        self.registry.find(name).ok_or_else(|| {
             anyhow::anyhow!(
                 "unknown generator `{name}`; the generators are {}",
                 self.registry.names()
             )
-        })?;
+        })
+    }
+
+    /// Runs `job` with the grammar of the generator [`find`](Self::find) finds.
+    pub fn visit<'a>(&self, name: &str, job: impl Into<Job<'a>>) -> anyhow::Result<()> {
+        let entry = self.find(name)?;
         let typed = self
             .typed
             .get(&entry.name)

@@ -78,7 +78,7 @@ pub fn run(args: &ExportArgs, tool: &Generators) -> anyhow::Result<()> {
         }
         (Some(scene), _) => scene.generator.as_str(),
         (None, Some(generator)) => generator.as_str(),
-        (None, None) => file.generator()?,
+        (None, None) => file.generator(tool)?.name.as_str(),
     };
     tool.visit(
         generator,

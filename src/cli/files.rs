@@ -30,3 +30,39 @@ pub fn atomic_write(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     std::fs::write(&tmp, bytes).with_context(|| format!("cannot write `{}`", tmp.display()))?;
     std::fs::rename(&tmp, path).with_context(|| format!("cannot write `{}`", path.display()))
 }
+
+/// A CSV file's bytes: `header`, then one record per row, each field quoted where it
+/// holds a comma, a quote or a line break (names given by users may).
+pub fn csv_bytes<R, F>(header: &[String], rows: R) -> anyhow::Result<Vec<u8>>
+where
+    R: IntoIterator<Item = Vec<F>>,
+    F: AsRef<[u8]>,
+{
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    writer.write_record(header)?;
+    for row in rows {
+        writer.write_record(row)?;
+    }
+    writer
+        .into_inner()
+        .map_err(|err| anyhow::anyhow!("cannot write CSV: {}", err.error()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::csv_bytes;
+
+    #[test]
+    fn names_with_commas_and_quotes_stay_one_field() {
+        let header = [
+            "model".to_owned(),
+            "width, m".to_owned(),
+            "say \"hi\"".to_owned(),
+        ];
+        let bytes = csv_bytes(&header, [vec!["0", "1.5", "2"]]).unwrap();
+        assert_eq!(
+            String::from_utf8(bytes).unwrap(),
+            "model,\"width, m\",\"say \"\"hi\"\"\"\n0,1.5,2\n"
+        );
+    }
+}

@@ -4,8 +4,6 @@
 
 use std::io::IsTerminal;
 use std::path::Path;
-use std::sync::atomic::Ordering;
-use std::time::{Duration, Instant};
 
 use anyhow::Context;
 use image::{Rgb, RgbImage};
@@ -16,13 +14,13 @@ use shapegen::optimize::Optimizer;
 use shapegen::optimize::multi::{
     Member, MultiGa, MultiGaState, MultiResult, MultiSnapshot, Ranking,
 };
-use shapegen::optimize::{Budget, Control, Sense, StopReason};
+use shapegen::optimize::{Control, Sense, Session};
 use shapegen::scene::{ObjectiveEvaluator, Overrides, Scene};
 use shapegen::score::objective::{ObjectiveSet, Surface};
 use shapegen::{BoundMeshes, Grammar, Instance};
 
-use super::checkpoint::{Checkpoint, finished};
-use super::files::{atomic_write, save_png};
+use super::checkpoint::Checkpoint;
+use super::files::{atomic_write, csv_bytes, save_png};
 use super::interrupt;
 use super::overlay::{projection_overlay, projections};
 use super::plot;
@@ -81,7 +79,7 @@ impl FrontRun<'_> {
             .multi_settings()
             .context("the scene has no objectives")?;
         let goal = &self.scene.optimizer;
-        let mut ga = match self.resume {
+        let ga = match self.resume {
             Some(dir) => {
                 let checkpoint: Checkpoint<MultiGaState<G>> =
                     Checkpoint::load(dir, "a multi-objective run of this scene")?;
@@ -89,6 +87,7 @@ impl FrontRun<'_> {
             }
             None => MultiGa::<G>::new(settings, self.scene.limits, goal.seed)?,
         };
+        let ranking = ranking_name(&ga.settings().selection.ranking);
         let mut evaluator = ObjectiveEvaluator::new::<G>(self.scene)?;
         let set = evaluator.set();
         let names: Vec<&str> = set.names().collect();
@@ -98,7 +97,7 @@ impl FrontRun<'_> {
             self.scene.generator,
             set.len(),
             names.join(", "),
-            ranking_name(&ga.settings().selection.ranking),
+            ranking,
         );
         let outputs = Outputs {
             set,
@@ -107,42 +106,25 @@ impl FrontRun<'_> {
         };
 
         let stop = interrupt::flag();
-        let budget = goal.budget();
-        let total = budget.generations.unwrap_or(u64::MAX);
-        let mut done = ga.checkpoint().generation;
+        let total = goal.generations();
         let terminal = std::io::stderr().is_terminal();
-        let mut last_save = Instant::now();
-        let result = loop {
-            // One generation at a time, so that the run can be saved between them.
-            let step = Budget {
-                generations: Some((done + 1).min(total)),
-                ..budget
-            };
-            let mut observe = |s: &MultiSnapshot<'_, G>| {
-                progress(s, &names, total, terminal);
-                if stop.load(Ordering::SeqCst) {
-                    Control::Stop
-                } else {
-                    Control::Continue
-                }
-            };
-            let result = ga.run(&mut evaluator, &step, &mut observe)?;
-            done = result.generations;
-            let finished = finished(result.stopped, result.generations, total);
-            if finished || last_save.elapsed() >= Duration::from_secs(1) {
-                outputs.table(self.dir, &result)?;
+        let mut show = |s: &MultiSnapshot<'_, G>| {
+            progress(s, &names, total, terminal);
+            Control::Continue
+        };
+        let result = Session::new(ga, goal.budget())
+            .stop_flag(&stop)
+            .on_progress(&mut show)
+            .on_save(|save| {
+                outputs.table(self.dir, &save.result())?;
                 Checkpoint {
                     scene: self.scene_path.to_owned(),
                     overrides: self.overrides.clone(),
-                    search: ga.checkpoint(),
+                    search: save.state,
                 }
-                .save(self.dir)?;
-                last_save = Instant::now();
-            }
-            if finished {
-                break result;
-            }
-        };
+                .save(self.dir)
+            })
+            .run(&mut evaluator)?;
         if terminal {
             eprintln!();
         }
@@ -152,12 +134,7 @@ impl FrontRun<'_> {
         outputs.scatters(self.dir, &front)?;
         outputs.overlays(self.dir, &front)?;
 
-        let stopped = match result.stopped {
-            StopReason::Generations => "generations",
-            StopReason::Evaluations => "evaluations",
-            StopReason::WallTime => "time",
-            StopReason::Observer => "interrupted",
-        };
+        let stopped = result.stopped.name();
         let objectives = set
             .entries()
             .iter()
@@ -177,7 +154,7 @@ impl FrontRun<'_> {
             elapsed_s: result.history.last().map_or(0.0, |h| h.elapsed_s),
             seed: goal.seed,
             method: "ga",
-            ranking: ranking_name(&ga.settings().selection.ranking),
+            ranking,
             objectives,
             stopped,
         };
@@ -271,34 +248,40 @@ impl Outputs<'_> {
     fn table<G: Grammar>(&self, dir: &Path, result: &MultiResult<G>) -> anyhow::Result<()> {
         let front = sorted(&result.front, self.set.senses());
         let names: Vec<&str> = self.set.names().collect();
-        let mut csv = format!("model,genes,{}\n", names.join(","));
-        for (i, member) in front.iter().enumerate() {
-            let values: Vec<String> = member.values.iter().map(f64::to_string).collect();
-            csv += &format!("{i},{},{}\n", member.genome.len(), values.join(","));
-        }
-        atomic_write(&dir.join("front.csv"), csv.as_bytes())?;
+        let header: Vec<String> = ["model", "genes"]
+            .into_iter()
+            .chain(names.iter().copied())
+            .map(str::to_owned)
+            .collect();
+        let rows = front.iter().enumerate().map(|(i, member)| {
+            [i.to_string(), member.genome.len().to_string()]
+                .into_iter()
+                .chain(member.values.iter().map(f64::to_string))
+                .collect::<Vec<_>>()
+        });
+        atomic_write(&dir.join("front.csv"), &csv_bytes(&header, rows)?)?;
         let genomes = GenomeSet::new(front.iter().map(|m| m.genome.clone()).collect());
         atomic_write(
             &dir.join("front.genomes.json"),
             genomes.to_json().as_bytes(),
         )?;
-        let best: Vec<String> = names.iter().map(|n| format!("best_{n}")).collect();
-        let mut history = format!(
-            "generation,elapsed_s,evaluations,front,{}\n",
-            best.join(",")
-        );
-        for h in &result.history {
-            let values: Vec<String> = h.best.iter().map(f64::to_string).collect();
-            history += &format!(
-                "{},{:.3},{},{},{}\n",
-                h.generation,
-                h.elapsed_s,
-                h.evaluations,
-                h.front,
-                values.join(",")
-            );
-        }
-        atomic_write(&dir.join("history.csv"), history.as_bytes())
+        let header: Vec<String> = ["generation", "elapsed_s", "evaluations", "front"]
+            .into_iter()
+            .map(str::to_owned)
+            .chain(names.iter().map(|n| format!("best_{n}")))
+            .collect();
+        let rows = result.history.iter().map(|h| {
+            [
+                h.generation.to_string(),
+                format!("{:.3}", h.elapsed_s),
+                h.evaluations.to_string(),
+                h.front.to_string(),
+            ]
+            .into_iter()
+            .chain(h.best.iter().map(f64::to_string))
+            .collect::<Vec<_>>()
+        });
+        atomic_write(&dir.join("history.csv"), &csv_bytes(&header, rows)?)
     }
 
     /// `front/model_NNN.glb`, numbered as in `front.csv`; models of an earlier, larger

@@ -74,7 +74,7 @@ fn convert(args: &ConvertArgs, tool: &Generators) -> anyhow::Result<()> {
         Form::Nested
     });
     tool.visit(
-        file.generator()?,
+        &file.generator(tool)?.name,
         Convert {
             args,
             file: &file,

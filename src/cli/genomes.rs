@@ -7,6 +7,9 @@ use anyhow::Context;
 use shapegen::genome::{GenomeSet, JsonLayout};
 use shapegen::{Genome, Grammar};
 
+use super::dispatch::Generators;
+use crate::registry::Entry;
+
 /// A genome file read into memory, with what its top-level keys tell: the generator it
 /// names, whether it is a set (`genomes`) and whether it is in the nested form (`tree`).
 pub struct GenomeFile {
@@ -29,15 +32,17 @@ impl GenomeFile {
         })
     }
 
-    /// The generator the file names (by its grammar's name, as `"Spaceship"`).
-    pub fn generator(&self) -> anyhow::Result<&str> {
-        self.layout.generator.as_deref().with_context(|| {
+    /// The generator of `tool` the file names (by its grammar's name, as `"Spaceship"`).
+    pub fn generator<'t>(&self, tool: &'t Generators) -> anyhow::Result<&'t Entry> {
+        let name = self.layout.generator.as_deref().with_context(|| {
             format!(
                 "`{}` names no generator; a genome file names it as `\"generator\": \
                  \"Spaceship\"` (the grammar's name)",
                 self.path.display()
             )
-        })
+        })?;
+        tool.find(name)
+            .with_context(|| format!("`{}`", self.path.display()))
     }
 
     /// Every genome of the file, checked fully.

@@ -3,29 +3,27 @@
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::Ordering;
-use std::time::{Duration, Instant};
 
 use anyhow::Context;
 use clap::Args;
 use image::Rgb;
 use serde::Serialize;
 use shapegen::export::{Palette, Preview, glb_bytes, write_mtl, write_obj};
-use shapegen::optimize::{Control, RunResult, Snapshot, StopReason};
+use shapegen::optimize::{Best, Control, Optimizer, RunResult, Session, Snapshot};
 use shapegen::scene::{Method, Overrides, Scene, SceneEvaluator, SceneScorer};
 use shapegen::{Genome, Grammar};
 
 use crate::registry::Entry;
 
 use super::backend::BackendArgs;
-use super::checkpoint::{Checkpoint, Head, finished};
+use super::checkpoint::{Checkpoint, Head};
 use super::dispatch::{Generators, Visit};
-use super::files::{atomic_write, save_png};
+use super::files::{atomic_write, csv_bytes, save_png};
 use super::front::FrontRun;
 use super::interrupt;
 use super::overlay::overlay;
 use super::plot;
-use super::search::{Search, SearchState};
+use super::search::{MethodJob, with_method};
 
 /// Arguments of `shapegen run`.
 #[derive(Debug, Args)]
@@ -135,53 +133,47 @@ impl Visit for Run<'_> {
             }
             .run::<G>();
         }
+        with_method::<G, _>(&self.scene.optimizer, self)
+    }
+}
+
+impl<G: Grammar> MethodJob<G> for Run<'_> {
+    type Output = anyhow::Result<()>;
+
+    fn run<O: Optimizer<G, Record = Best<G>>>(self, settings: O::Settings) -> anyhow::Result<()> {
         let goal = &self.scene.optimizer;
-        let mut done = 0;
-        let mut search = match &self.args.resume {
-            Some(dir) => {
-                let checkpoint: Checkpoint<SearchState<G>> =
-                    Checkpoint::load(dir, "a run of this scene")?;
-                done = checkpoint.search.generation();
-                Search::resume(checkpoint.search)?
-            }
-            None => Search::<G>::start(goal, self.scene.limits)?,
-        };
+        let budget = goal.budget();
         let scorer = SceneScorer::new::<G>(self.scene)?;
         let gpu = self.args.backend.open();
         let backend = scorer.on(self.args.backend.choice(), gpu.as_ref())?;
         eprintln!(
-            "evolving {} on {}",
+            "evolving {} with {} on {}",
             self.scene.generator,
+            goal.method.name(),
             backend.describe()
         );
         let mut evaluator = SceneEvaluator::new(&backend);
-
         let stop = interrupt::flag();
-
-        let budget = goal.budget();
-        let total = budget.generations.unwrap_or(u64::MAX);
         let outputs = Outputs::new::<G>(self.scene, &scorer)?;
-        let mut last_save = Instant::now();
         let mut progress = Progress::new(goal, std::io::stderr().is_terminal());
+        let mut show = |s: &Snapshot<'_, G>| {
+            progress.show(s);
+            Control::Continue
+        };
         let mut best_written = f64::NAN;
-        let result = loop {
-            // One generation at a time, so that the run can be saved between them.
-            let step = shapegen::optimize::Budget {
-                generations: Some((done + 1).min(total)),
-                ..budget
-            };
-            let mut observe = |s: &Snapshot<'_, G>| {
-                progress.show(s);
-                if stop.load(Ordering::SeqCst) {
-                    Control::Stop
-                } else {
-                    Control::Continue
-                }
-            };
-            let result = search.run(&mut evaluator, &step, &mut observe)?;
-            done = result.generations;
-            let finished = finished(result.stopped, result.generations, total);
-            if finished || last_save.elapsed() >= Duration::from_secs(1) {
+        let session = match &self.args.resume {
+            Some(dir) => {
+                let checkpoint: Checkpoint<O::State> =
+                    Checkpoint::load(dir, &format!("a {} run of this scene", goal.method.name()))?;
+                Session::<G, O>::resume(checkpoint.search, budget)?
+            }
+            None => Session::<G, O>::start(settings, self.scene.limits, goal.seed, budget)?,
+        };
+        let result = session
+            .stop_flag(&stop)
+            .on_progress(&mut show)
+            .on_save(|save| {
+                let result = save.result();
                 if best_written.to_bits() != result.best_fitness.to_bits() {
                     outputs.best(self.dir, &result.best)?;
                     best_written = result.best_fitness;
@@ -190,15 +182,11 @@ impl Visit for Run<'_> {
                 Checkpoint {
                     scene: self.scene_path.to_owned(),
                     overrides: self.overrides.clone(),
-                    search: search.checkpoint(),
+                    search: save.state,
                 }
-                .save(self.dir)?;
-                last_save = Instant::now();
-            }
-            if finished {
-                break result;
-            }
-        };
+                .save(self.dir)
+            })
+            .run(&mut evaluator)?;
         progress.finish();
 
         let mut instances = Vec::new();
@@ -213,12 +201,7 @@ impl Visit for Run<'_> {
             backend: backend.describe(),
             genes: result.best.len(),
             instances: instances.len(),
-            stopped: match result.stopped {
-                StopReason::Generations => "generations",
-                StopReason::Evaluations => "evaluations",
-                StopReason::WallTime => "time",
-                StopReason::Observer => "interrupted",
-            },
+            stopped: result.stopped.name(),
         };
         atomic_write(
             &self.dir.join("summary.json"),
@@ -311,14 +294,26 @@ impl<'a> Outputs<'a> {
 
     /// `fitness.csv` and `fitness.png` (best in dark blue, mean in orange).
     fn curves<G>(&self, dir: &Path, result: &RunResult<G>) -> anyhow::Result<()> {
-        let mut csv = String::from("generation,elapsed_s,evaluations,best,mean,std\n");
-        for h in &result.history {
-            csv += &format!(
-                "{},{:.3},{},{},{},{}\n",
-                h.generation, h.elapsed_s, h.evaluations, h.best, h.mean, h.std
-            );
-        }
-        atomic_write(&dir.join("fitness.csv"), csv.as_bytes())?;
+        let header = [
+            "generation",
+            "elapsed_s",
+            "evaluations",
+            "best",
+            "mean",
+            "std",
+        ]
+        .map(str::to_owned);
+        let rows = result.history.iter().map(|h| {
+            vec![
+                h.generation.to_string(),
+                format!("{:.3}", h.elapsed_s),
+                h.evaluations.to_string(),
+                h.best.to_string(),
+                h.mean.to_string(),
+                h.std.to_string(),
+            ]
+        });
+        atomic_write(&dir.join("fitness.csv"), &csv_bytes(&header, rows)?)?;
         let best: Vec<f64> = result.history.iter().map(|h| h.best).collect();
         let mean: Vec<f64> = result.history.iter().map(|h| h.mean).collect();
         let picture = plot::curves(

@@ -1,89 +1,23 @@
-//! The four search methods behind one face, for `shapegen run`: start, resume, run a
-//! stretch of generations, save.
+//! From a scene's method to the optimizer type that runs it: the single-fitness methods
+//! behind one generic call, so that the commands are written once for all of them.
 
-use serde::{Deserialize, Serialize};
 use shapegen::Grammar;
-use shapegen::genome::Limits;
-use shapegen::optimize::Optimizer;
-use shapegen::optimize::{
-    Budget, Evaluator, Ga, GaState, Mcmc, McmcState, Observer, OptimizeError, RunResult, Smc,
-    SmcState,
-};
+use shapegen::optimize::{Best, Ga, Mcmc, Optimizer, Smc};
 use shapegen::scene::{MethodSettings, OptimizerGoal};
 
-/// A running search.
-pub enum Search<G: Grammar> {
-    /// The genetic algorithm.
-    Ga(Ga<G>),
-    /// SMC or SOSMC.
-    Smc(Smc<G>),
-    /// Reversible-jump MCMC.
-    Mcmc(Mcmc<G>),
+/// Work generic over the optimizer that searches one fitness.
+pub trait MethodJob<G: Grammar> {
+    /// What the work returns.
+    type Output;
+    /// Does the work with optimizer `O`, whose settings the scene gives as `settings`.
+    fn run<O: Optimizer<G, Record = Best<G>>>(self, settings: O::Settings) -> Self::Output;
 }
 
-/// A saved search.
-#[derive(Serialize, Deserialize)]
-#[serde(bound(serialize = "G: Grammar", deserialize = "G: Grammar"))]
-#[serde(rename_all = "snake_case")]
-pub enum SearchState<G: Grammar> {
-    /// The genetic algorithm.
-    Ga(GaState<G>),
-    /// SMC or SOSMC.
-    Smc(SmcState<G>),
-    /// Reversible-jump MCMC.
-    Mcmc(McmcState<G>),
-}
-
-impl<G: Grammar> Search<G> {
-    /// A new search as `goal` says, within `limits`.
-    pub fn start(goal: &OptimizerGoal, limits: Limits) -> Result<Search<G>, OptimizeError> {
-        Ok(match goal.settings {
-            MethodSettings::Ga(s) => Search::Ga(Ga::new(s, limits, goal.seed)?),
-            MethodSettings::Smc(s) => Search::Smc(Smc::new(s, limits, goal.seed)?),
-            MethodSettings::Mcmc(s) => Search::Mcmc(Mcmc::new(s, limits, goal.seed)?),
-        })
-    }
-
-    /// The search saved in `state`.
-    pub fn resume(state: SearchState<G>) -> Result<Search<G>, OptimizeError> {
-        Ok(match state {
-            SearchState::Ga(s) => Search::Ga(Ga::resume(s)?),
-            SearchState::Smc(s) => Search::Smc(Smc::resume(s)?),
-            SearchState::Mcmc(s) => Search::Mcmc(Mcmc::resume(s)?),
-        })
-    }
-
-    /// The search's state, to resume from.
-    pub fn checkpoint(&self) -> SearchState<G> {
-        match self {
-            Search::Ga(m) => SearchState::Ga(m.checkpoint()),
-            Search::Smc(m) => SearchState::Smc(m.checkpoint()),
-            Search::Mcmc(m) => SearchState::Mcmc(m.checkpoint()),
-        }
-    }
-
-    /// Runs until `budget` or `observer` stops it.
-    pub fn run(
-        &mut self,
-        evaluator: &mut impl Evaluator<G>,
-        budget: &Budget,
-        observer: &mut impl Observer<G>,
-    ) -> Result<RunResult<G>, OptimizeError> {
-        match self {
-            Search::Ga(m) => m.run(evaluator, budget, observer),
-            Search::Smc(m) => m.run(evaluator, budget, observer),
-            Search::Mcmc(m) => m.run(evaluator, budget, observer),
-        }
-    }
-}
-
-impl<G: Grammar> SearchState<G> {
-    /// Generations done when it was saved.
-    pub fn generation(&self) -> u64 {
-        match self {
-            SearchState::Ga(s) => s.progress.generation,
-            SearchState::Smc(s) => s.progress.generation,
-            SearchState::Mcmc(s) => s.progress.generation,
-        }
+/// Runs `job` with the optimizer of `goal`'s method: one arm per optimizer type.
+pub fn with_method<G: Grammar, J: MethodJob<G>>(goal: &OptimizerGoal, job: J) -> J::Output {
+    match goal.settings {
+        MethodSettings::Ga(s) => job.run::<Ga<G>>(s),
+        MethodSettings::Smc(s) => job.run::<Smc<G>>(s),
+        MethodSettings::Mcmc(s) => job.run::<Mcmc<G>>(s),
     }
 }

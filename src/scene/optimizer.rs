@@ -465,9 +465,9 @@ mod mcmc_tests {
     fn rjmcmc_takes_its_variant_over_the_originals_settings() {
         let m = "method = \"rjmcmc\"\n";
         for (generator, paper) in [
-            ("spaceship", McmcSettings::paper_spaceship()),
-            ("tree", McmcSettings::paper_tree()),
-            ("city", McmcSettings::paper_city()),
+            ("spaceship", generators::spaceship::paper_rjmcmc()),
+            ("tree", generators::tree::paper_rjmcmc()),
+            ("city", generators::city::paper_rjmcmc()),
         ] {
             assert_eq!(mcmc(generator, m).unwrap(), paper);
             assert_eq!(paper.variant, McmcVariant::Original);

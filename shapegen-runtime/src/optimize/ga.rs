@@ -23,8 +23,8 @@ const ORIGINAL_BREEDS_PER_PAIR: u32 = 10_000;
 /// The default is the good setting of the CESCG study (ALGORITHMS.md, section 4):
 /// population 200, elitism 30, initial length 20, 50 generations, mutation 30% with
 /// uniform grow / cut / alter, tournament of 10, with the weighted operators. The
-/// `paper_*` settings are the original's configuration files, with the original's
-/// operators and breeding.
+/// published generators carry the original's settings for their paper scenes
+/// (`generators::spaceship::paper_ga`, ...), with the original's operators and breeding.
 ///
 /// ```
 /// use shapegen_runtime::ops::OperatorVariant;
@@ -33,7 +33,6 @@ const ORIGINAL_BREEDS_PER_PAIR: u32 = 10_000;
 /// let s: GaSettings = serde_json::from_str(r#"{"operators": "original", "population": 50}"#)?;
 /// assert_eq!(s.operators, OperatorVariant::Original);
 /// assert!(!s.cross_array_index);
-/// assert_eq!(GaSettings::paper_city().operators, OperatorVariant::Original);
 /// # Ok::<(), serde_json::Error>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -91,59 +90,6 @@ impl Default for GaSettings {
 }
 
 impl GaSettings {
-    /// The paper's spaceship-volume scene as the original's
-    /// `run/experiments/spaceship_volume/ga.cfg` sets it: population 150, elitism 30,
-    /// initial length 50, 130 generations, mutation (`basic_prob`) 30% split grow / cut /
-    /// alter (`permutate`) 45 / 45 / 10, tournament of 10, the original's operators.
-    pub fn paper_spaceship() -> Self {
-        GaSettings {
-            population: 150,
-            elitism: 30,
-            initial_length: 50,
-            generations: 130,
-            mutation_probability: 0.3,
-            grow_weight: 45.0,
-            cut_weight: 45.0,
-            alter_weight: 10.0,
-            tournament: 10,
-            operators: OperatorVariant::Original,
-            cross_array_index: false,
-        }
-    }
-
-    /// The paper's tree-sketch scene as the original's
-    /// `run/experiments/tree_sketch1/ga.cfg` sets it: population 200, elitism 30, initial
-    /// length 250, 1500 generations, mutation 30% split 35 / 35 / 30, tournament of 10,
-    /// the original's operators.
-    pub fn paper_tree() -> Self {
-        GaSettings {
-            population: 200,
-            elitism: 30,
-            initial_length: 250,
-            generations: 1500,
-            mutation_probability: 0.3,
-            grow_weight: 35.0,
-            cut_weight: 35.0,
-            alter_weight: 30.0,
-            tournament: 10,
-            operators: OperatorVariant::Original,
-            cross_array_index: false,
-        }
-    }
-
-    /// The paper's city-skyline (whale) scene as the original's
-    /// `run/experiments/city_whale/ga.cfg` sets it: population 100, elitism 30, initial
-    /// length 50, 100 generations, mutation 30% split 45 / 45 / 10, tournament of 10, the
-    /// original's operators.
-    pub fn paper_city() -> Self {
-        GaSettings {
-            population: 100,
-            initial_length: 50,
-            generations: 100,
-            ..GaSettings::paper_spaceship()
-        }
-    }
-
     /// Checks every field; the error names the first one out of range.
     ///
     /// ```

@@ -185,18 +185,11 @@ pub struct McmcSettings {
 }
 
 impl Default for McmcSettings {
+    /// The original variant with the original's settings for the paper's spaceship
+    /// scene (70 chains, 250 iterations, initial length 50, jumps half the moves); the
+    /// tempered variant's fields hold its own defaults: delayed rejection 1, annealing
+    /// by 1.1 every 10 iterations, acceptance 70% hot and 1% cold.
     fn default() -> Self {
-        McmcSettings::paper_spaceship()
-    }
-}
-
-impl McmcSettings {
-    /// The original's settings for the paper's spaceship scene
-    /// (`spaceship_volume/mh.cfg`): the original variant, 70 chains, 250 iterations,
-    /// initial length 50, jump and diffusion 50 / 50. The tempered variant's fields hold
-    /// its own defaults: delayed rejection 1, annealing by 1.1 every 10 iterations,
-    /// acceptance 70% hot and 1% cold.
-    pub fn paper_spaceship() -> Self {
         McmcSettings {
             variant: McmcVariant::Original,
             chains: 70,
@@ -210,30 +203,9 @@ impl McmcSettings {
             cold_acceptance: 0.01,
         }
     }
+}
 
-    /// The original's settings for the paper's tree-sketch scene
-    /// (`tree_sketch1/mh.cfg`): 100 chains, 3000 iterations, initial length 150; the
-    /// rest as [`paper_spaceship`](Self::paper_spaceship).
-    pub fn paper_tree() -> Self {
-        McmcSettings {
-            chains: 100,
-            iterations: 3000,
-            initial_length: 150,
-            ..McmcSettings::paper_spaceship()
-        }
-    }
-
-    /// The original's settings for the paper's city-whale scene (`city_whale/mh.cfg`):
-    /// 50 chains, 200 iterations, initial length 50; the rest as
-    /// [`paper_spaceship`](Self::paper_spaceship).
-    pub fn paper_city() -> Self {
-        McmcSettings {
-            chains: 50,
-            iterations: 200,
-            ..McmcSettings::paper_spaceship()
-        }
-    }
-
+impl McmcSettings {
     /// Checks every field the variant reads; the error names the first one out of
     /// range.
     pub fn validate(&self) -> Result<(), SettingsError> {
@@ -367,7 +339,7 @@ grammar_struct_traits!(McmcState {
 /// let mut eval = FnEvaluator(|g: &Genome<Chain>| -(g.len() as f64 - 8.0).abs());
 /// for variant in [McmcVariant::Original, McmcVariant::Tempered] {
 ///     let settings =
-///         McmcSettings { variant, chains: 8, initial_length: 2, ..McmcSettings::paper_city() };
+///         McmcSettings { variant, chains: 8, initial_length: 2, ..McmcSettings::default() };
 ///     let mut mcmc = Mcmc::<Chain>::new(settings, Limits::new(1, 30, 30)?, 3)?;
 ///     let result = mcmc.run(&mut eval, &Budget::generations(60), &mut Silent)?;
 ///     assert_eq!(result.best.len(), 8);

@@ -141,8 +141,8 @@ impl SmcVariant {
 /// [`Default`] values, unknown fields are errors.
 ///
 /// The default is the [generative](SmcVariant::Generative) variant with the spaceship
-/// scene's sizes; the `paper_*` settings are the original's configuration files with the
-/// [original](SmcVariant::Original) variant.
+/// scene's sizes; the published generators carry the original's configuration files with
+/// the [original](SmcVariant::Original) variant (`generators::spaceship::paper_smc`, ...).
 ///
 /// ```
 /// use shapegen_runtime::optimize::{Order, SmcSettings, SmcVariant};
@@ -150,7 +150,6 @@ impl SmcVariant {
 /// let s: SmcSettings = serde_json::from_str(r#"{"variant": "original", "particles": 50}"#)?;
 /// assert_eq!((s.variant, s.particles), (SmcVariant::Original, 50));
 /// assert_eq!(SmcSettings::default().variant, SmcVariant::Generative);
-/// assert_eq!(SmcSettings::paper_tree(Order::Stochastic).variant, SmcVariant::Original);
 /// # Ok::<(), serde_json::Error>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -175,50 +174,17 @@ pub struct SmcSettings {
 impl Default for SmcSettings {
     fn default() -> Self {
         SmcSettings {
+            particles: 500,
+            steps: 40,
+            order: Order::Chromosome,
             variant: SmcVariant::Generative,
-            ..SmcSettings::paper_spaceship(Order::Chromosome)
+            step_back_probability: 0.0,
+            max_grows_per_step: 64,
         }
     }
 }
 
 impl SmcSettings {
-    /// The original's settings for the paper's spaceship scene
-    /// (`spaceship_volume/smc.cfg`, `sosmc.cfg`): the original variant, 500 particles,
-    /// 40 steps, no step back (the files give no `basic_prob`). The generative variant's
-    /// field holds its default: 64 grows per step.
-    pub fn paper_spaceship(order: Order) -> Self {
-        SmcSettings {
-            particles: 500,
-            steps: 40,
-            order,
-            variant: SmcVariant::Original,
-            step_back_probability: 0.0,
-            max_grows_per_step: 64,
-        }
-    }
-
-    /// The original's settings for the paper's tree-sketch scene (`tree_sketch1/smc.cfg`,
-    /// `sosmc.cfg`): 1000 particles, 500 steps; the rest as
-    /// [`paper_spaceship`](Self::paper_spaceship).
-    pub fn paper_tree(order: Order) -> Self {
-        SmcSettings {
-            particles: 1000,
-            steps: 500,
-            ..SmcSettings::paper_spaceship(order)
-        }
-    }
-
-    /// The original's settings for the paper's city-whale scene (`city_whale/smc.cfg`,
-    /// `sosmc.cfg`): 100 particles, 100 steps; the rest as
-    /// [`paper_spaceship`](Self::paper_spaceship).
-    pub fn paper_city(order: Order) -> Self {
-        SmcSettings {
-            particles: 100,
-            steps: 100,
-            ..SmcSettings::paper_spaceship(order)
-        }
-    }
-
     /// Checks every field the variant reads; the error names the first one out of range.
     pub fn validate(&self) -> Result<(), SettingsError> {
         if self.particles == 0 {
@@ -317,7 +283,7 @@ grammar_struct_traits!(SmcState {
 ///     }
 /// }
 ///
-/// let settings = SmcSettings { particles: 20, ..SmcSettings::paper_city(Order::Stochastic) };
+/// let settings = SmcSettings { particles: 20, ..SmcSettings::default() };
 /// let mut smc = Smc::<Chain>::new(settings, Limits::new(1, 30, 30)?, 1)?;
 /// let mut eval = FnEvaluator(|g: &Genome<Chain>| g.len().min(6) as f64);
 /// let result = smc.run(&mut eval, &Budget::generations(10), &mut Silent)?;

@@ -70,7 +70,7 @@ struct Pass {
 /// A [`VolumeScorer`]'s counting on the GPU: the class grid uploaded once, populations
 /// counted in one submission each.
 ///
-/// ```
+/// ```no_run
 /// use glam::{Affine3A, Vec3};
 /// use shapegen_runtime::gpu::GpuContext;
 /// use shapegen_runtime::score::volume::{GpuVolumeScorer, Grid, VolumeCounts, VolumeScorer};
@@ -82,7 +82,7 @@ struct Pass {
 /// let scorer = VolumeScorer::new(grid, &[], &meshes, Form::Weighted { overlap: 1.0 })?;
 /// let mut batch = InstanceBatch::new();
 /// batch.push_with(|out| out.push(Instance { transform: Affine3A::from_scale(Vec3::splat(3.0)), mesh: CUBE }));
-/// let Ok(gpu) = GpuContext::new() else { return Ok(()) }; // no adapter: the CPU path
+/// let gpu = GpuContext::new()?;
 /// let mut counts = [VolumeCounts::default()];
 /// GpuVolumeScorer::new(&gpu, &scorer)?.count_batch(&batch, &mut counts)?;
 /// assert_eq!(counts[0], scorer.count(batch.model(0), &mut scorer.scratch()));
