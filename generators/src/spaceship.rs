@@ -185,10 +185,6 @@ pub fn paper_rjmcmc() -> McmcSettings {
         iterations: 250,
         initial_length: 50,
         jump_probability: 0.5,
-        delayed_rejection: 1,
-        anneal_factor: 1.1,
-        anneal_interval: 10,
-        hot_acceptance: 0.7,
-        cold_acceptance: 0.01,
+        ..McmcSettings::default()
     }
 }

@@ -4,9 +4,10 @@ use rand::{Rng, RngExt};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+use super::best::Best;
 use super::error::{check_range, check_sizes};
 use super::fitness::{Roulette, bits_vec, compare, rank};
-use super::run::{Best, Progress, grammar_struct_traits, stream};
+use super::run::{Progress, grammar_struct_traits, stream};
 use super::{Budget, Evaluator, OptimizeError, Optimizer, Record, SettingsError};
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};

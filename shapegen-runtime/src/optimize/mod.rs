@@ -32,6 +32,7 @@
 //! ranking; each method's documentation says how its weights treat them. Population
 //! statistics (mean, std) are over the finite values.
 
+mod best;
 mod driver;
 mod error;
 mod fitness;
@@ -44,13 +45,14 @@ mod session;
 mod smc;
 
 pub use crate::evaluate::{EvaluateError, Evaluator, FnEvaluator, MultiEvaluator, Sense};
+pub use best::Best;
 pub use driver::{Optimizer, Record, drive};
 pub use error::{OptimizeError, SettingsError};
 pub use ga::{Ga, GaSettings, GaState};
 pub use mcmc::{Mcmc, McmcSettings, McmcState, McmcVariant};
 pub use run::{
-    Best, Budget, Control, HistoryEntry, Observer, Progress, RunResult, Silent, Snapshot,
-    StopReason, stream,
+    Budget, Control, HistoryEntry, Observer, Progress, RunResult, Silent, Snapshot, StopReason,
+    stream,
 };
 pub use session::{Save, Session, SessionError};
 pub use smc::{Cursor, Order, Smc, SmcSettings, SmcState, SmcVariant};

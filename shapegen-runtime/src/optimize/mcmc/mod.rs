@@ -11,10 +11,11 @@ use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+use super::best::Best;
 use super::driver::Record;
 use super::error::{check_range, check_sizes};
 use super::fitness::bits_vec;
-use super::run::{Best, Progress, grammar_struct_traits, stream};
+use super::run::{Progress, grammar_struct_traits, stream};
 use super::{Budget, Evaluator, OptimizeError, Optimizer, SettingsError};
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
