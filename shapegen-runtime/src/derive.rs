@@ -347,3 +347,6 @@ impl<'a, G: Grammar> Shape<'a, G> {
         }
     }
 }
+
+#[cfg(test)]
+mod shape_tests;

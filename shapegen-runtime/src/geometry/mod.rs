@@ -7,8 +7,7 @@ mod mesh;
 mod normals;
 mod obj;
 mod scope;
-#[cfg(test)]
-mod shape_tests;
+
 mod split;
 
 pub use face::{Face, Faces};
