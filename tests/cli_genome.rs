@@ -146,7 +146,7 @@ fn convert_explains_its_mistakes() {
         err.trim(),
         format!(
             "error: `{}` names no generator; a genome file names it as `\"generator\": \
-             \"Spaceship\"` (or Tree, City, Building)",
+             \"Spaceship\"` (the grammar's name)",
             nameless.display()
         )
     );
