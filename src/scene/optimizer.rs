@@ -145,12 +145,21 @@ fn merged<T: Serialize + DeserializeOwned>(
     table: toml::Table,
     validate: impl Fn(&T) -> Result<(), SettingsError>,
 ) -> Result<T, (String, String)> {
-    let mut merged =
+    let base =
         toml::Table::try_from(base).map_err(|err| (String::from("optimizer"), err.to_string()))?;
-    merged.extend(table);
-    let settings: T = toml::Value::Table(merged)
-        .try_into()
-        .map_err(|err: toml::de::Error| (String::from("optimizer"), err.message().to_owned()))?;
+    let read = |keys: &toml::Table| -> Result<T, toml::de::Error> {
+        let mut merged = base.clone();
+        merged.extend(keys.clone());
+        toml::Value::Table(merged).try_into()
+    };
+    let settings: T = read(&table).map_err(|err| {
+        // Name the key that is wrong: the first that fails on its own.
+        let key = table
+            .iter()
+            .find(|(k, v)| read(&toml::Table::from_iter([((*k).clone(), (*v).clone())])).is_err())
+            .map_or_else(|| "optimizer".to_owned(), |(k, _)| format!("optimizer.{k}"));
+        (key, err.message().to_owned())
+    })?;
     validate(&settings).map_err(|err| (format!("optimizer.{}", err.field), err.to_string()))?;
     Ok(settings)
 }
@@ -556,5 +565,14 @@ mod mcmc_tests {
             let (k, _) = resolve(&spaceship, toml::Table::new(), &bad).unwrap_err();
             assert_eq!(k, key);
         }
+    }
+
+    #[test]
+    fn a_value_of_the_wrong_type_is_refused_under_its_own_key() {
+        let table = toml::from_str("population = \"abc\"\nelitism = 3\n").unwrap();
+        let (key, reason) =
+            resolve(&presets("spaceship"), table, &Overrides::default()).unwrap_err();
+        assert_eq!(key, "optimizer.population");
+        assert!(reason.contains("abc"), "{reason}");
     }
 }
