@@ -2,8 +2,8 @@
 
 use glam::vec3;
 
-use crate::geometry::{Axis, Face, Instance, Part};
 use super::{Derivation, GeneView, Grammar, Shape};
+use crate::geometry::{Axis, Face, Instance, Part};
 use crate::graph::{GeneratorGraph, NodeDesc};
 
 /// A one-node grammar whose rule builds a small house: walls cut into a ground floor
