@@ -268,7 +268,7 @@ impl<G: Grammar> std::fmt::Debug for Snapshot<'_, G> {
 
 /// Bookkeeping common to every optimizer's checkpoint: the counters the driver keeps
 /// (generations, evaluations, wall time) and the record of what the run found, `R`
-/// ([`Best`] for one fitness, [`multi::Front`](super::multi::Front) for objective
+/// ([`Best`](super::Best) for one fitness, [`multi::Front`](super::multi::Front) for objective
 /// vectors), whose fields serialize inline beside the counters.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Progress<R> {
