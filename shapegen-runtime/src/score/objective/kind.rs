@@ -14,7 +14,7 @@ use crate::score::silhouette::raster::Coverage;
 ///
 /// ```
 /// use glam::{Affine3A, Vec2};
-/// use shapegen_runtime::optimize::Sense;
+/// use shapegen_runtime::evaluate::Sense;
 /// use shapegen_runtime::score::objective::{Objective, ObjectiveScratch, Surface};
 /// use shapegen_runtime::{CUBE, Instance, MeshLibrary};
 ///

@@ -2,7 +2,7 @@
 //!
 //! A model's instances become a [`Surface`]: its world-space triangles, each with its
 //! unit face normal. Each [`Objective`] measures one raw value on it, with a
-//! [`Sense`](crate::optimize::Sense) saying whether higher or lower is better: the
+//! [`Sense`](crate::evaluate::Sense) saying whether higher or lower is better: the
 //! distance of the model's top to a target height, the number of distinct face normals,
 //! how far apart those normals are, how far the footprint exceeds a rectangle, and how
 //! well a top-down or front orthographic projection matches a black-and-white target

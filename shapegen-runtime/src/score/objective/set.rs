@@ -5,8 +5,8 @@ use rayon::prelude::*;
 use super::ObjectiveError;
 use super::kind::{Objective, ObjectiveScratch};
 use super::surface::Surface;
-use crate::geometry::{BoundMeshes, Instance};
 use crate::evaluate::{EvaluateError, Evaluator, Sense};
+use crate::geometry::{BoundMeshes, Instance};
 use crate::score::InstanceBatch;
 use crate::{Genome, Grammar};
 
@@ -15,7 +15,7 @@ use crate::{Genome, Grammar};
 ///
 /// ```
 /// use glam::Affine3A;
-/// use shapegen_runtime::optimize::Sense;
+/// use shapegen_runtime::evaluate::Sense;
 /// use shapegen_runtime::score::objective::{Objective, ObjectiveSet};
 /// use shapegen_runtime::{CUBE, Instance, MeshLibrary};
 ///
@@ -198,7 +198,7 @@ impl ObjectiveSet {
 /// weighted combination. Its buffers are kept between populations.
 ///
 /// ```
-/// use shapegen_runtime::optimize::Evaluator;
+/// use shapegen_runtime::evaluate::Evaluator;
 /// use shapegen_runtime::prelude::*;
 /// use shapegen_runtime::score::objective::{Objective, ObjectiveSet, WeightedObjectives};
 /// use shapegen_runtime::MeshLibrary;
