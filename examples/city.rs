@@ -73,11 +73,7 @@ fn main() -> anyhow::Result<()> {
     save_obj(out.join("best"), &instances, &meshes, &palette)?;
     save_glb(out.join("best.glb"), &instances, &meshes, &palette)?;
     result.best.save_json(out.join("best.genome.json"))?;
-    let target = &scorer
-        .silhouette
-        .as_ref()
-        .context("a silhouette scene")?
-        .targets()[0];
+    let target = &scorer.silhouette().context("a silhouette scene")?.targets()[0];
     let preview = Preview {
         view_projection: target.view_projection(),
         width: target.width(),

@@ -74,11 +74,7 @@ fn main() -> anyhow::Result<()> {
     save_obj(out.join("best"), &instances, &meshes, &palette)?;
     save_glb(out.join("best.glb"), &instances, &meshes, &palette)?;
     result.best.save_json(out.join("best.genome.json"))?;
-    let sketch = &scorer
-        .silhouette
-        .as_ref()
-        .context("a silhouette scene")?
-        .targets()[0];
+    let sketch = &scorer.silhouette().context("a silhouette scene")?.targets()[0];
     let preview = Preview {
         view_projection: sketch.view_projection(),
         width: sketch.width(),

@@ -4,7 +4,7 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use shapegen::scene::{Scene, SceneError};
+use shapegen::scene::{Scene, SceneError, ScorerGoal};
 
 /// A folder with a target mesh (`cube.obj`), an 8 x 6 target image (`target.png`) and
 /// whatever scene text a test writes.
@@ -96,10 +96,12 @@ fn well_formed_scenes_load() {
     let volume = fixture.load(VOLUME).unwrap();
     assert_eq!(volume.generator, "spaceship");
     assert_eq!((volume.limits.min_len, volume.optimal_len), (4, Some(10)));
-    assert!(volume.volume.is_some() && volume.silhouette.is_none());
+    assert!(matches!(volume.scorers(), [ScorerGoal::Volume(_)]));
     let silhouette = fixture.load(SILHOUETTE).unwrap();
-    assert!(silhouette.volume.is_none());
-    assert_eq!(silhouette.silhouette.unwrap().targets.len(), 1);
+    let [ScorerGoal::Silhouette(goal)] = silhouette.scorers() else {
+        panic!("{:?}", silhouette.scorers());
+    };
+    assert_eq!(goal.targets.len(), 1);
 }
 
 #[test]
@@ -257,7 +259,7 @@ fn bad_values_are_refused() {
 fn project_scenes_are_reachable() {
     use generators::GeneratorVisitor;
     use shapegen::genome::Limits;
-    use shapegen::scene::{BackendChoice, SceneScorer};
+    use shapegen::scene::{AnyCounts, BackendChoice, SceneScorer};
     use shapegen::score::InstanceBatch;
     use shapegen::{Genome, Grammar};
 
@@ -272,7 +274,10 @@ fn project_scenes_are_reachable() {
             batch.push_genome(&genome);
             let mut counts = Vec::new();
             backend.count(&batch, &mut counts).unwrap();
-            (scorer.fitness(&counts[0], genome.len()), counts[0])
+            (
+                scorer.fitness(&counts[0], genome.len()),
+                counts.swap_remove(0),
+            )
         }
     }
 
@@ -286,15 +291,17 @@ fn project_scenes_are_reachable() {
         let genome = scenes.join(format!("targets/{name}.genome.json"));
         let generator: generators::Published = scene.generator.parse().unwrap();
         let (fitness, counts) = generator.visit(Check(&scene, &genome));
-        if let Some(v) = counts.volume {
-            assert_eq!(
-                v.outside + v.out_of_grid_hits + v.span_out_of_grid,
-                0,
-                "{name}: {v:?}"
-            );
-        }
-        if let Some(s) = counts.silhouette {
-            assert_eq!(s.targets()[0].off_target, 0, "{name}: {s:?}");
+        for part in counts.parts() {
+            match part {
+                AnyCounts::Volume(v) => assert_eq!(
+                    v.outside + v.out_of_grid_hits + v.span_out_of_grid,
+                    0,
+                    "{name}: {v:?}"
+                ),
+                AnyCounts::Silhouette(s) => {
+                    assert_eq!(s.targets()[0].off_target, 0, "{name}: {s:?}");
+                }
+            }
         }
         assert!(
             (fitness - optimum).abs() < 1e-3,
@@ -362,7 +369,7 @@ fn objective_scenes_load() {
     assert_eq!(settings.selection.ranking, Ranking::Pareto);
     assert_eq!(settings.selection.diversity_penalty, 20.0);
     assert_eq!(settings.ga.population, 300);
-    assert!(Scene::load(fixture.path()).unwrap().volume.is_none());
+    assert!(Scene::load(fixture.path()).unwrap().scorers().is_empty());
 }
 
 #[test]
@@ -371,22 +378,40 @@ fn objective_mistakes_are_refused() {
     fixture.refuses(
         &OBJECTIVES.replace("kind = \"height\"", "kind = \"tallness\""),
         "objective[2].kind",
-        "the kinds are height, unique_normals",
+        "`tallness`, expected one of `height`, `unique_normals`",
     );
     fixture.refuses(
         &OBJECTIVES.replace("target = 30", ""),
-        "objective[2].target",
-        "needed by kind \"height\"",
+        "objective[2]",
+        "kind \"height\": missing field `target`",
     );
     fixture.refuses(
         &OBJECTIVES.replace("target = 30", "target = 30\nimage = \"target.png\""),
-        "objective[2].image",
-        "not used by kind \"height\"",
+        "objective[2]",
+        "kind \"height\": unknown field `image`, expected `target`",
     );
     fixture.refuses(
         &OBJECTIVES.replace("max = [8, 6]", ""),
-        "objective[0].max",
-        "needed by kind \"top_match\"",
+        "objective[0]",
+        "kind \"top_match\": missing field `max`",
+    );
+    fixture.refuses(
+        &OBJECTIVES.replace("kind = \"height\"\n", ""),
+        "objective[2]",
+        "missing field `kind`",
+    );
+    fixture.refuses(
+        &OBJECTIVES.replace("name = \"top\"", "name = 3"),
+        "objective[0].name",
+        "string",
+    );
+    fixture.refuses(
+        &OBJECTIVES.replace(
+            "kind = \"unique_normals\"",
+            "kind = \"unique_normals\"\nmax = [1, 1]",
+        ),
+        "objective[1]",
+        "kind \"unique_normals\": unknown field `max`, expected `tolerance_deg`",
     );
     fixture.refuses(
         &OBJECTIVES.replace("image = \"target.png\"", "image = \"missing.png\""),
@@ -518,7 +543,10 @@ fn masks_take_the_original_rule_or_a_threshold() {
     .unwrap();
     let targets = |text: &str| {
         let scene = fixture.load(text).unwrap();
-        scene.silhouette.unwrap().targets[0].target_pixels()
+        let [ScorerGoal::Silhouette(goal)] = scene.scorers() else {
+            panic!("{:?}", scene.scorers());
+        };
+        goal.targets[0].target_pixels()
     };
     // The original's rule: red channel 0, so the grey column is not target.
     assert_eq!(targets(SILHOUETTE), 4 * 6);

@@ -69,7 +69,7 @@ impl Visit for Render<'_> {
             .with_context(|| format!("cannot create `{}`", args.out.display()))?;
         let targets = scorer
             .as_ref()
-            .and_then(|s| s.silhouette.as_ref())
+            .and_then(SceneScorer::silhouette)
             .map(|s| s.targets())
             .unwrap_or_default();
         let has_overlays = !targets.is_empty()
@@ -110,7 +110,7 @@ impl Visit for Render<'_> {
                             .with_context(|| format!("cannot write `{}`", path.display()))?;
                     }
                 }
-                if let Some(silhouette) = scorer.as_ref().and_then(|s| s.silhouette.as_ref()) {
+                if let Some(silhouette) = scorer.as_ref().and_then(SceneScorer::silhouette) {
                     for (k, target) in targets.iter().enumerate() {
                         let (w, h) = (target.width(), target.height());
                         let mut mask = vec![false; w as usize * h as usize];

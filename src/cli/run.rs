@@ -242,7 +242,7 @@ impl<'a> Outputs<'a> {
     }
 
     fn has_overlay(&self) -> bool {
-        self.scorer.silhouette.is_some()
+        self.scorer.silhouette().is_some()
     }
 
     /// The best model: OBJ with its MTL, GLB, a shaded picture, the overlay and the genome.
@@ -265,11 +265,7 @@ impl<'a> Outputs<'a> {
             &glb_bytes(&instances, &self.meshes, &self.palette)?,
         )?;
         atomic_write(&dir.join("best.genome.json"), best.to_json().as_bytes())?;
-        let target = self
-            .scorer
-            .silhouette
-            .as_ref()
-            .map(|s| (s, &s.targets()[0]));
+        let target = self.scorer.silhouette().map(|s| (s, &s.targets()[0]));
         let preview = match target {
             Some((_, t)) => Preview {
                 view_projection: t.view_projection(),

@@ -70,7 +70,7 @@ impl Visit for Target<'_> {
         }
         let scorer = SceneScorer::new::<G>(self.scene)?;
 
-        if let Some(volume) = &scorer.volume {
+        if let Some(volume) = scorer.volume() {
             let mut covered = Vec::new();
             let counts = volume.coverage(&instances, &mut volume.scratch(), &mut covered);
             let voxels = counts.inside + counts.outside;
@@ -83,7 +83,7 @@ impl Visit for Target<'_> {
             write(&path, obj.as_bytes())?;
             println!("wrote {} ({voxels} voxels, {faces} faces)", path.display());
         }
-        if let Some(silhouette) = &scorer.silhouette {
+        if let Some(silhouette) = scorer.silhouette() {
             let targets = silhouette.targets();
             for (k, target) in targets.iter().enumerate() {
                 let (w, h) = (target.width(), target.height());

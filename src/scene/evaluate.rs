@@ -1,7 +1,15 @@
 //! A scene's scorers for one grammar, and the backend that counts them: whole populations
 //! counted at once, on the CPU or the GPU, and their counts turned into fitness.
+//!
+//! The kinds of scorer are listed once, in the `scorer_kinds!` invocation below: each
+//! kind's table, resolved goal, CPU scorer (a runtime [`Scorer`], which counts and turns
+//! counts into fitness), GPU path and counts, and the one arm that makes its scorer from
+//! its goal. A scene holds a list of [`ScorerGoal`]s, its [`SceneScorer`] a list of
+//! [`AnyScorer`]s and each model's [`SceneCounts`] a list of [`AnyCounts`], all in the
+//! order of [`ScorerKind::ALL`] with at most one of each kind.
 
-use serde::Serialize;
+use serde::{Serialize, Serializer};
+use shapegen_runtime::geometry::BoundMeshes;
 use shapegen_runtime::gpu::{GpuContext, GpuError, wgpu};
 use shapegen_runtime::optimize::{EvaluateError, Evaluator};
 use shapegen_runtime::score::silhouette::{
@@ -11,7 +19,214 @@ use shapegen_runtime::score::volume::{GpuVolumeScorer, VolumeCounts, VolumeScore
 use shapegen_runtime::score::{InstanceBatch, LengthPenalty, Scorer, count_batch};
 use shapegen_runtime::{Genome, Grammar};
 
-use super::{Scene, SceneError};
+use super::{Scene, SceneError, SilhouetteGoal, VolumeGoal};
+
+/// Declares the kinds of scorer, each once:
+///
+/// ```text
+/// /// docs
+/// Kind(table): Goal => CpuScorer, GpuScorer, Counts, |goal, meshes| make the CpuScorer;
+/// ```
+///
+/// `table` names the kind's table in scene files and its key in `shapegen score`'s
+/// output; `CpuScorer` implements [`Scorer`] with `Counts`, and `GpuScorer` has
+/// `new(&GpuContext, &CpuScorer)` and `count_batch(&InstanceBatch, &mut [Counts])`. It
+/// expands into [`ScorerKind`], [`ScorerGoal`], [`AnyScorer`], [`AnyCounts`], the GPU
+/// paths, their dispatch, and a typed accessor per kind on [`SceneScorer`]
+/// (`scorer.volume()`, `scorer.silhouette()`, ...).
+macro_rules! scorer_kinds {
+    ($(
+        $(#[doc = $doc:literal])*
+        $kind:ident($name:ident): $goal:ty => $scorer:ident, $gpu:ident, $counts:ident,
+            |$g:ident, $meshes:ident| $new:expr;
+    )*) => {
+        /// The kinds of scorer a scene may have, at most one of each.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+        pub enum ScorerKind {
+            $($(#[doc = $doc])* $kind,)*
+        }
+
+        impl ScorerKind {
+            /// Every kind, in the order a scene holds them and sums their parts of the
+            /// fitness.
+            pub const ALL: &[ScorerKind] = &[$(ScorerKind::$kind),*];
+
+            /// Its table in scene files, and its key in `shapegen score`'s output.
+            pub fn name(self) -> &'static str {
+                match self {
+                    $(ScorerKind::$kind => stringify!($name),)*
+                }
+            }
+        }
+
+        /// One scorer's settings, resolved from its table.
+        #[derive(Clone, Debug)]
+        pub enum ScorerGoal {
+            $($(#[doc = $doc])* $kind($goal),)*
+        }
+
+        /// One scorer of a scene, counting on the CPU.
+        #[derive(Clone, Debug)]
+        #[allow(clippy::large_enum_variant, reason = "a scene holds one of each kind")]
+        pub enum AnyScorer {
+            $($(#[doc = $doc])* $kind($scorer),)*
+        }
+
+        /// What one model covers for one scorer. It serializes as the kind's counts.
+        #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+        #[serde(untagged)]
+        pub enum AnyCounts {
+            $($(#[doc = $doc])* $kind($counts),)*
+        }
+
+        /// One scorer's GPU path.
+        enum AnyGpuScorer<'a> {
+            $($kind($gpu<'a>),)*
+        }
+
+        impl ScorerGoal {
+            /// Its kind.
+            pub fn kind(&self) -> ScorerKind {
+                match self {
+                    $(ScorerGoal::$kind(_) => ScorerKind::$kind,)*
+                }
+            }
+
+            /// Its scorer of models made of `meshes`, or why there is none.
+            fn scorer(&self, meshes: &BoundMeshes) -> Result<AnyScorer, String> {
+                match self {
+                    $(ScorerGoal::$kind($g) => {
+                        let $meshes = meshes;
+                        $new.map(AnyScorer::$kind)
+                            .map_err(|err| shapegen_runtime::error_chain(&err))
+                    })*
+                }
+            }
+        }
+
+        impl AnyScorer {
+            /// Its kind.
+            pub fn kind(&self) -> ScorerKind {
+                match self {
+                    $(AnyScorer::$kind(_) => ScorerKind::$kind,)*
+                }
+            }
+
+            /// Its part of the fitness of a model with `counts` ([`Scorer::fitness`]); 0
+            /// for counts of another kind.
+            pub fn fitness(&self, counts: &AnyCounts) -> f64 {
+                #[allow(unreachable_patterns)]
+                match (self, counts) {
+                    $((AnyScorer::$kind(s), AnyCounts::$kind(c)) => s.fitness(c),)*
+                    _ => 0.0,
+                }
+            }
+
+            /// Its GPU path on `context`.
+            fn gpu<'a>(&'a self, context: &'a GpuContext) -> Result<AnyGpuScorer<'a>, GpuError> {
+                Ok(match self {
+                    $(AnyScorer::$kind(s) => AnyGpuScorer::$kind($gpu::new(context, s)?),)*
+                })
+            }
+
+            /// Counts every model of `batch`, on `gpu` when given, and appends each
+            /// model's counts to its slot of `out`.
+            fn count(
+                &self,
+                gpu: Option<&AnyGpuScorer<'_>>,
+                batch: &InstanceBatch,
+                out: &mut [SceneCounts],
+            ) -> Result<(), GpuError> {
+                #[allow(unreachable_patterns)]
+                match (self, gpu) {
+                    $((AnyScorer::$kind(s), gpu) => {
+                        let gpu = match gpu {
+                            Some(AnyGpuScorer::$kind(g)) => Some(g),
+                            _ => None,
+                        };
+                        count_parts(s, gpu, batch, out, AnyCounts::$kind)
+                    })*
+                }
+            }
+        }
+
+        impl AnyCounts {
+            /// Its kind.
+            pub fn kind(&self) -> ScorerKind {
+                match self {
+                    $(AnyCounts::$kind(_) => ScorerKind::$kind,)*
+                }
+            }
+        }
+
+        $(
+            impl GpuCount for $gpu<'_> {
+                type Counts = $counts;
+
+                fn count_batch(
+                    &self,
+                    batch: &InstanceBatch,
+                    out: &mut [$counts],
+                ) -> Result<(), GpuError> {
+                    $gpu::count_batch(self, batch, out)
+                }
+            }
+
+            impl SceneScorer {
+                #[doc = concat!("The `", stringify!($name), "` scorer, when the scene has one.")]
+                pub fn $name(&self) -> Option<&$scorer> {
+                    #[allow(unreachable_patterns)]
+                    self.scorers.iter().find_map(|scorer| match scorer {
+                        AnyScorer::$kind(scorer) => Some(scorer),
+                        _ => None,
+                    })
+                }
+            }
+        )*
+    };
+}
+
+scorer_kinds! {
+    /// `[volume]`: weighted target volumes to fill or avoid on a voxel grid.
+    Volume(volume): VolumeGoal => VolumeScorer, GpuVolumeScorer, VolumeCounts,
+        |goal, meshes| VolumeScorer::new(goal.grid, &goal.targets, meshes, goal.form);
+    /// `[silhouette]`: target images seen through cameras.
+    Silhouette(silhouette): SilhouetteGoal => SilhouetteScorer, GpuSilhouetteScorer, SilhouetteCounts,
+        |goal, meshes| SilhouetteScorer::new(goal.targets.clone(), meshes, goal.form);
+}
+
+/// A GPU path's counting of whole batches, as [`count_batch`] counts on the CPU.
+trait GpuCount {
+    /// What it counts per model.
+    type Counts;
+
+    /// Counts every model of `batch` into `out`, one slot per model.
+    fn count_batch(&self, batch: &InstanceBatch, out: &mut [Self::Counts]) -> Result<(), GpuError>;
+}
+
+/// Counts every model of `batch` with `scorer`, on `gpu` when given, and appends each
+/// model's counts, made [`AnyCounts`] by `any`, to its slot of `out`.
+fn count_parts<S, G>(
+    scorer: &S,
+    gpu: Option<&G>,
+    batch: &InstanceBatch,
+    out: &mut [SceneCounts],
+    any: fn(S::Counts) -> AnyCounts,
+) -> Result<(), GpuError>
+where
+    S: Scorer<Counts: Default>,
+    G: GpuCount<Counts = S::Counts>,
+{
+    let mut counts = vec![S::Counts::default(); batch.len()];
+    match gpu {
+        Some(gpu) => gpu.count_batch(batch, &mut counts)?,
+        None => count_batch(scorer, batch, &mut counts),
+    }
+    for (slot, c) in out.iter_mut().zip(counts) {
+        slot.parts.push(any(c));
+    }
+    Ok(())
+}
 
 /// Which backend counts: the CPU path always exists; the GPU path needs an adapter.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -26,27 +241,43 @@ pub enum BackendChoice {
     Gpu,
 }
 
-/// What one model of a scene covers, per scorer.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+/// What one model of a scene covers: one [`AnyCounts`] per scorer, in the scorers'
+/// order. It serializes as a map from each kind's [name](ScorerKind::name) to its
+/// counts (`{"volume": {...}, "silhouette": [...]}`).
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct SceneCounts {
-    /// The volume scorer's counts, when the scene has one.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub volume: Option<VolumeCounts>,
-    /// The silhouette scorer's counts, when the scene has one.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub silhouette: Option<SilhouetteCounts>,
+    parts: Vec<AnyCounts>,
+}
+
+impl SceneCounts {
+    /// Each scorer's counts, in the scorers' order.
+    pub fn parts(&self) -> &[AnyCounts] {
+        &self.parts
+    }
+}
+
+impl Serialize for SceneCounts {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_map(self.parts.iter().map(|c| (c.kind().name(), c)))
+    }
 }
 
 /// A scene's scorers for one grammar, counting on the CPU; [`on`](Self::on) gives the
 /// backend that counts whole populations.
 #[derive(Clone, Debug)]
 pub struct SceneScorer {
-    /// The volume scorer, when the scene has one.
-    pub volume: Option<VolumeScorer>,
-    /// The silhouette scorer, when the scene has one.
-    pub silhouette: Option<SilhouetteScorer>,
+    /// One per goal of the scene, in its order.
+    scorers: Vec<AnyScorer>,
     /// The genome-length term.
     pub length: LengthPenalty,
+}
+
+impl Scene {
+    /// The scene's scorers' settings, at most one of each kind, in the order of
+    /// [`ScorerKind::ALL`]; empty for a scene with [`objectives`](Scene::objectives).
+    pub fn scorers(&self) -> &[ScorerGoal] {
+        &self.scorers
+    }
 }
 
 impl SceneScorer {
@@ -69,27 +300,23 @@ impl SceneScorer {
             .meshes
             .bind(G::GRAPH)
             .map_err(|err| scene.invalid("meshes", shapegen_runtime::error_chain(&err)))?;
-        let volume = scene
-            .volume
-            .as_ref()
+        let scorers = scene
+            .scorers
+            .iter()
             .map(|goal| {
-                VolumeScorer::new(goal.grid, &goal.targets, &meshes, goal.form)
-                    .map_err(|err| scene.invalid("volume", shapegen_runtime::error_chain(&err)))
+                goal.scorer(&meshes)
+                    .map_err(|reason| scene.invalid(goal.kind().name(), reason))
             })
-            .transpose()?;
-        let silhouette = scene
-            .silhouette
-            .as_ref()
-            .map(|goal| {
-                SilhouetteScorer::new(goal.targets.clone(), &meshes, goal.form)
-                    .map_err(|err| scene.invalid("silhouette", shapegen_runtime::error_chain(&err)))
-            })
-            .transpose()?;
+            .collect::<Result<_, _>>()?;
         Ok(SceneScorer {
-            volume,
-            silhouette,
+            scorers,
             length: scene.length,
         })
+    }
+
+    /// The scorers, one per goal of the scene, in its order.
+    pub fn scorers(&self) -> &[AnyScorer] {
+        &self.scorers
     }
 
     /// The backend `choice` asks for. `gpu` is the device, opened by the caller (`None`
@@ -106,8 +333,7 @@ impl SceneScorer {
     ) -> Result<Backend<'a>, SceneError> {
         let cpu = |why: &str| Backend {
             scorer: self,
-            volume: None,
-            silhouette: None,
+            gpu: Vec::new(),
             description: format!("CPU{why}"),
         };
         let context = match (choice, gpu) {
@@ -125,11 +351,11 @@ impl SceneScorer {
             }
             (_, Some(context)) => context,
         };
-        match self.gpu_paths(context) {
-            Ok((volume, silhouette)) => Ok(Backend {
+        let paths: Result<Vec<_>, _> = self.scorers.iter().map(|s| s.gpu(context)).collect();
+        match paths {
+            Ok(gpu) => Ok(Backend {
                 scorer: self,
-                volume,
-                silhouette,
+                gpu,
                 description: format!("GPU: {}", context.describe()),
             }),
             Err(err) if choice == BackendChoice::Gpu => Err(SceneError::Backend(err.to_string())),
@@ -137,44 +363,28 @@ impl SceneScorer {
         }
     }
 
-    #[allow(clippy::type_complexity)]
-    fn gpu_paths<'a>(
-        &'a self,
-        context: &'a GpuContext,
-    ) -> Result<(Option<GpuVolumeScorer<'a>>, Option<GpuSilhouetteScorer<'a>>), GpuError> {
-        let volume = self
-            .volume
-            .as_ref()
-            .map(|v| GpuVolumeScorer::new(context, v))
-            .transpose()?;
-        let silhouette = self
-            .silhouette
-            .as_ref()
-            .map(|s| GpuSilhouetteScorer::new(context, s))
-            .transpose()?;
-        Ok((volume, silhouette))
-    }
-
     /// The fitness of a model of `genes` genes with these counts: the scorers' parts, less
     /// the genome-length term.
     pub fn fitness(&self, counts: &SceneCounts, genes: usize) -> f64 {
-        let volume = match (&self.volume, &counts.volume) {
-            (Some(s), Some(c)) => s.fitness(c),
-            _ => 0.0,
+        // Every kind adds its part, 0 when the scene lacks it, in the order of the kinds:
+        // the same sum, to the bit (signed zeros too), whichever kinds a scene has.
+        let part = |kind: &ScorerKind| {
+            self.scorers
+                .iter()
+                .zip(&counts.parts)
+                .find(|(scorer, _)| scorer.kind() == *kind)
+                .map_or(0.0, |(scorer, counts)| scorer.fitness(counts))
         };
-        let silhouette = match (&self.silhouette, &counts.silhouette) {
-            (Some(s), Some(c)) => s.fitness(c),
-            _ => 0.0,
-        };
-        volume + silhouette - self.length.apply(genes)
+        let parts = ScorerKind::ALL.iter().map(part).reduce(|a, b| a + b);
+        parts.unwrap_or(0.0) - self.length.apply(genes)
     }
 }
 
 /// A scene's scorers on the backend that counts them.
 pub struct Backend<'a> {
     scorer: &'a SceneScorer,
-    volume: Option<GpuVolumeScorer<'a>>,
-    silhouette: Option<GpuSilhouetteScorer<'a>>,
+    /// Each scorer's GPU path, in the scorers' order; empty on the CPU.
+    gpu: Vec<AnyGpuScorer<'a>>,
     description: String,
 }
 
@@ -195,28 +405,12 @@ impl Backend<'_> {
     /// # Errors
     /// When the GPU fails while counting.
     pub fn count(&self, batch: &InstanceBatch, out: &mut Vec<SceneCounts>) -> Result<(), GpuError> {
-        let n = batch.len();
-        out.clear();
-        out.resize(n, SceneCounts::default());
-        if let Some(volume) = &self.scorer.volume {
-            let mut counts = vec![VolumeCounts::default(); n];
-            match &self.volume {
-                Some(gpu) => gpu.count_batch(batch, &mut counts)?,
-                None => count_batch(volume, batch, &mut counts),
-            }
-            for (slot, c) in out.iter_mut().zip(counts) {
-                slot.volume = Some(c);
-            }
+        out.resize_with(batch.len(), SceneCounts::default);
+        for slot in out.iter_mut() {
+            slot.parts.clear();
         }
-        if let Some(silhouette) = &self.scorer.silhouette {
-            let mut counts = vec![SilhouetteCounts::default(); n];
-            match &self.silhouette {
-                Some(gpu) => gpu.count_batch(batch, &mut counts)?,
-                None => count_batch(silhouette, batch, &mut counts),
-            }
-            for (slot, c) in out.iter_mut().zip(counts) {
-                slot.silhouette = Some(c);
-            }
+        for (i, scorer) in self.scorer.scorers.iter().enumerate() {
+            scorer.count(self.gpu.get(i), batch, out)?;
         }
         Ok(())
     }

@@ -15,9 +15,10 @@ pub(super) struct SceneFile {
     pub fitness: FitnessFile,
     pub volume: Option<VolumeFile>,
     pub silhouette: Option<SilhouetteFile>,
-    /// `[[objective]]`: the objectives of a multi-objective scene.
+    /// `[[objective]]`: the objectives of a multi-objective scene, each read as an
+    /// [`ObjectiveFile`] by the resolver, which names the table at fault.
     #[serde(default)]
-    pub objective: Vec<ObjectiveFile>,
+    pub objective: Vec<toml::Table>,
     /// `[selection]`: how a multi-objective scene's objective vectors are ranked.
     pub selection: Option<shapegen_runtime::optimize::multi::Selection>,
     /// `[optimizer]`: kept as a table, checked against the optimizer's own settings.
@@ -190,16 +191,45 @@ pub(super) struct CameraFile {
     pub projection: Option<[[f32; 4]; 4]>,
 }
 
-/// One `[[objective]]` table as written. Which keys apply depends on `kind`; the
-/// resolver refuses the others by name.
+/// One `[[objective]]` table as written, less its optional `name`: `kind` picks the
+/// variant, whose fields are exactly the keys that kind takes (any other is refused, and
+/// the message lists the valid ones). The kinds' names are the runtime's
+/// [`Objective::name`](shapegen_runtime::score::objective::Objective::name)s.
+#[derive(Debug, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub(super) enum ObjectiveFile {
+    /// `|top - target|`.
+    Height { target: f32 },
+    /// Distinct face normals.
+    UniqueNormals {
+        #[serde(default = "one_degree")]
+        tolerance_deg: f32,
+    },
+    /// How far apart the distinct face normals are.
+    NormalSpread {
+        #[serde(default = "one_degree")]
+        tolerance_deg: f32,
+    },
+    /// How far the x/z extent leaves `[min, max]`.
+    FootprintExcess { min: [f32; 2], max: [f32; 2] },
+    /// An image matched by the view from above.
+    TopMatch(ProjectionFile),
+    /// An image matched by the view from the front.
+    FrontMatch(ProjectionFile),
+}
+
+/// Default tolerance between normals counted as one, in degrees.
+fn one_degree() -> f32 {
+    1.0
+}
+
+/// The keys of a `top_match` or `front_match` objective.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct ObjectiveFile {
-    pub kind: String,
-    pub name: Option<String>,
-    pub target: Option<f32>,
-    pub tolerance_deg: Option<f32>,
-    pub min: Option<[f32; 2]>,
-    pub max: Option<[f32; 2]>,
-    pub image: Option<String>,
+pub(super) struct ProjectionFile {
+    /// The target image; black = covered.
+    pub image: String,
+    /// The view plane's area the image covers: (x, z) from above, (x, y) from the front.
+    pub min: [f32; 2],
+    pub max: [f32; 2],
 }

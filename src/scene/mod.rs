@@ -110,7 +110,10 @@ use shapegen_runtime::score::volume::{Grid, VolumeTarget};
 use shapegen_runtime::score::{Form, LengthPenalty};
 
 pub use error::SceneError;
-pub use evaluate::{Backend, BackendChoice, SceneCounts, SceneEvaluator, SceneScorer};
+pub use evaluate::{
+    AnyCounts, AnyScorer, Backend, BackendChoice, SceneCounts, SceneEvaluator, SceneScorer,
+    ScorerGoal, ScorerKind,
+};
 pub use objective::ObjectiveEvaluator;
 pub use optimizer::{Method, MethodSettings, OptimizerGoal, Overrides, UnknownMethod};
 
@@ -130,12 +133,11 @@ pub struct Scene {
     pub optimal_len: Option<u32>,
     /// The genome-length term of the fitness.
     pub length: LengthPenalty,
-    /// The volume scorer's settings, when the scene has one.
-    pub volume: Option<VolumeGoal>,
-    /// The silhouette scorer's settings, when the scene has one.
-    pub silhouette: Option<SilhouetteGoal>,
+    /// The scorers' settings, at most one of each [kind](ScorerKind), in the order of
+    /// [`ScorerKind::ALL`]; read them with [`scorers`](Self::scorers).
+    scorers: Vec<ScorerGoal>,
     /// The objectives of a multi-objective scene (`[[objective]]` tables), which has no
-    /// volume or silhouette goal.
+    /// scorers.
     pub objectives: Option<ObjectiveGoal>,
     /// The optimizer, its settings, seed and budget. A multi-objective scene's method
     /// is the GA, whose settings breed for [`multi_settings`](Self::multi_settings).

@@ -9,138 +9,90 @@ use shapegen_runtime::score::InstanceBatch;
 use shapegen_runtime::score::objective::{Objective, ObjectiveSet, ProjectionMatch, View};
 use shapegen_runtime::{Genome, Grammar};
 
-use super::file::ObjectiveFile;
+use super::file::{ObjectiveFile, ProjectionFile};
 use super::resolve::Resolver;
 use super::{Scene, SceneError};
 
-/// The kinds of objective a table may name.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Kind {
-    Height,
-    UniqueNormals,
-    NormalSpread,
-    FootprintExcess,
-    TopMatch,
-    FrontMatch,
-}
-
-impl Kind {
-    const ALL: [Kind; 6] = [
-        Kind::Height,
-        Kind::UniqueNormals,
-        Kind::NormalSpread,
-        Kind::FootprintExcess,
-        Kind::TopMatch,
-        Kind::FrontMatch,
-    ];
-
-    /// Its name in scene files.
-    fn name(self) -> &'static str {
-        match self {
-            Kind::Height => "height",
-            Kind::UniqueNormals => "unique_normals",
-            Kind::NormalSpread => "normal_spread",
-            Kind::FootprintExcess => "footprint_excess",
-            Kind::TopMatch => "top_match",
-            Kind::FrontMatch => "front_match",
-        }
-    }
-
-    /// The keys it takes besides `kind` and `name`.
-    fn keys(self) -> &'static [&'static str] {
-        match self {
-            Kind::Height => &["target"],
-            Kind::UniqueNormals | Kind::NormalSpread => &["tolerance_deg"],
-            Kind::FootprintExcess => &["min", "max"],
-            Kind::TopMatch | Kind::FrontMatch => &["image", "min", "max"],
-        }
-    }
-}
-
-/// Default tolerance between normals counted as one, in degrees.
-const TOLERANCE_DEG: f32 = 1.0;
-
 impl Resolver<'_> {
     /// The objectives of `[[objective]]` tables, in order.
-    pub(super) fn objectives(&self, files: &[ObjectiveFile]) -> Result<ObjectiveSet, SceneError> {
-        let mut entries = Vec::with_capacity(files.len());
-        for (i, file) in files.iter().enumerate() {
-            let key = |k: &str| format!("objective[{i}].{k}");
-            let Some(kind) = Kind::ALL.into_iter().find(|k| k.name() == file.kind) else {
-                let valid: Vec<&str> = Kind::ALL.iter().map(|k| k.name()).collect();
-                return Err(self.invalid(
-                    key("kind"),
-                    format!(
-                        "\"{}\" is not an objective; the kinds are {}",
-                        file.kind,
-                        valid.join(", ")
-                    ),
-                ));
-            };
-            let given = [
-                ("target", file.target.is_some()),
-                ("tolerance_deg", file.tolerance_deg.is_some()),
-                ("min", file.min.is_some()),
-                ("max", file.max.is_some()),
-                ("image", file.image.is_some()),
-            ];
-            let keys = kind.keys();
-            if let Some((extra, _)) = given.iter().find(|(k, set)| *set && !keys.contains(k)) {
-                return Err(self.invalid(
-                    key(extra),
-                    format!(
-                        "is not used by kind \"{}\", which takes {}",
-                        kind.name(),
-                        keys.join(", ")
-                    ),
-                ));
-            }
-            let needed =
-                |k: &str| self.invalid(key(k), format!("is needed by kind \"{}\"", kind.name()));
-            let rect = || -> Result<(Vec2, Vec2), SceneError> {
-                let min = file.min.ok_or_else(|| needed("min"))?;
-                let max = file.max.ok_or_else(|| needed("max"))?;
-                Ok((Vec2::from(min), Vec2::from(max)))
-            };
-            let tolerance_deg = file.tolerance_deg.unwrap_or(TOLERANCE_DEG);
-            let objective = match kind {
-                Kind::Height => Objective::Height {
-                    target: file.target.ok_or_else(|| needed("target"))?,
+    pub(super) fn objectives(&self, tables: Vec<toml::Table>) -> Result<ObjectiveSet, SceneError> {
+        let mut entries = Vec::with_capacity(tables.len());
+        for (i, table) in tables.into_iter().enumerate() {
+            let (name, file) = self.objective_file(i, table)?;
+            let image = format!("objective[{i}].image");
+            // One arm per kind.
+            let objective = match file {
+                ObjectiveFile::Height { target } => Objective::Height { target },
+                ObjectiveFile::UniqueNormals { tolerance_deg } => {
+                    Objective::UniqueNormals { tolerance_deg }
+                }
+                ObjectiveFile::NormalSpread { tolerance_deg } => {
+                    Objective::NormalSpread { tolerance_deg }
+                }
+                ObjectiveFile::FootprintExcess { min, max } => Objective::FootprintExcess {
+                    min: Vec2::from(min),
+                    max: Vec2::from(max),
                 },
-                Kind::UniqueNormals => Objective::UniqueNormals { tolerance_deg },
-                Kind::NormalSpread => Objective::NormalSpread { tolerance_deg },
-                Kind::FootprintExcess => {
-                    let (min, max) = rect()?;
-                    Objective::FootprintExcess { min, max }
-                }
-                Kind::TopMatch | Kind::FrontMatch => {
-                    let view = if kind == Kind::TopMatch {
-                        View::Top
-                    } else {
-                        View::Front
-                    };
-                    let written = file.image.as_deref().ok_or_else(|| needed("image"))?;
-                    let path = self.file(&key("image"), written)?;
-                    let image = image::open(&path)
-                        .map_err(|err| {
-                            self.invalid(key("image"), format!("`{}`: {err}", path.display()))
-                        })?
-                        .into_luma8();
-                    let (min, max) = rect()?;
-                    Objective::Projection(
-                        ProjectionMatch::from_image(view, min, max, &image).map_err(|err| {
-                            self.invalid(key("image"), shapegen_runtime::error_chain(&err))
-                        })?,
-                    )
-                }
+                ObjectiveFile::TopMatch(p) => self.projection(&image, View::Top, &p)?,
+                ObjectiveFile::FrontMatch(p) => self.projection(&image, View::Front, &p)?,
             };
             entries.push((
-                file.name.clone().unwrap_or_else(|| kind.name().to_owned()),
+                name.unwrap_or_else(|| objective.name().to_owned()),
                 objective,
             ));
         }
         ObjectiveSet::new(entries)
             .map_err(|err| self.invalid("objective", shapegen_runtime::error_chain(&err)))
+    }
+
+    /// The `name` of the `i`th `[[objective]]` table, and the rest read as its kind's.
+    fn objective_file(
+        &self,
+        i: usize,
+        mut table: toml::Table,
+    ) -> Result<(Option<String>, ObjectiveFile), SceneError> {
+        let name = table
+            .remove("name")
+            .map(toml::Value::try_into::<String>)
+            .transpose()
+            .map_err(|err| self.invalid(format!("objective[{i}].name"), err.message()))?;
+        let kind = table
+            .get("kind")
+            .and_then(toml::Value::as_str)
+            .map(str::to_owned);
+        let file = toml::Value::Table(table).try_into().map_err(|err| {
+            // serde's message names the key and what is valid; this adds the table, and
+            // the kind whose keys they are.
+            let message = err.message();
+            match kind {
+                _ if message.starts_with("unknown variant") => {
+                    self.invalid(format!("objective[{i}].kind"), message)
+                }
+                Some(kind) => self.invalid(
+                    format!("objective[{i}]"),
+                    format!("kind \"{kind}\": {message}"),
+                ),
+                None => self.invalid(format!("objective[{i}]"), message),
+            }
+        })?;
+        Ok((name, file))
+    }
+
+    /// A projection objective through `view`, its image read as `key`.
+    fn projection(
+        &self,
+        key: &str,
+        view: View,
+        p: &ProjectionFile,
+    ) -> Result<Objective, SceneError> {
+        let path = self.file(key, &p.image)?;
+        let image = image::open(&path)
+            .map_err(|err| self.invalid(key, format!("`{}`: {err}", path.display())))?
+            .into_luma8();
+        let (min, max) = (Vec2::from(p.min), Vec2::from(p.max));
+        let projection = ProjectionMatch::from_image(view, min, max, &image)
+            .map_err(|err| self.invalid(key, shapegen_runtime::error_chain(&err)))?;
+        Ok(Objective::Projection(projection))
     }
 }
 
@@ -201,5 +153,54 @@ impl<G: Grammar> MultiEvaluator<G> for ObjectiveEvaluator<'_> {
         }
         self.set.measure_batch(&self.batch, &self.meshes, out);
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The kinds a table may name, as serde lists them when refusing an unknown one.
+    fn kinds() -> Vec<String> {
+        let table: toml::Table = toml::from_str("kind = \"?\"").unwrap();
+        let err = toml::Value::Table(table)
+            .try_into::<ObjectiveFile>()
+            .unwrap_err();
+        let message = err.message();
+        let (_, listed) = message.split_once("expected one of ").expect(message);
+        listed
+            .split(", ")
+            .map(|k| k.trim_matches('`').to_owned())
+            .collect()
+    }
+
+    /// A table of `kind` with the keys it needs; `image.png` is a 4 x 4 image.
+    fn table(kind: &str) -> toml::Table {
+        let keys = match kind {
+            "height" => "target = 2",
+            "unique_normals" | "normal_spread" => "",
+            "footprint_excess" => "min = [-1, -1]\nmax = [1, 1]",
+            "top_match" | "front_match" => "image = \"image.png\"\nmin = [-1, -1]\nmax = [1, 1]",
+            _ => panic!("give a table of the new kind `{kind}` here"),
+        };
+        toml::from_str(&format!("kind = \"{kind}\"\n{keys}")).unwrap()
+    }
+
+    #[test]
+    fn the_kinds_are_named_as_the_runtime_names_them() {
+        let dir = tempfile::tempdir().unwrap();
+        image::GrayImage::from_fn(4, 4, |x, _| image::Luma([if x < 2 { 0 } else { 255 }]))
+            .save(dir.path().join("image.png"))
+            .unwrap();
+        let path = dir.path().join("scene.toml");
+        let kinds = kinds();
+        assert!(kinds.len() > 1, "{kinds:?}");
+        let set = Resolver::new(&path)
+            .objectives(kinds.iter().map(|k| table(k)).collect())
+            .unwrap();
+        for (kind, (name, objective)) in kinds.iter().zip(set.entries()) {
+            assert_eq!(objective.name(), kind);
+            assert_eq!(name, kind, "unnamed objectives take their kind's name");
+        }
     }
 }
