@@ -1,99 +1,16 @@
 //! The optimizers on the published generators, with cheap deterministic evaluators
 //! computed from the derived instances.
 
+mod support {
+    pub mod evaluators;
+}
+
 use generators::{City, Spaceship, city, spaceship};
-use glam::Vec3;
 use shapegen_runtime::ops::OperatorVariant;
 use shapegen_runtime::optimize::multi::{MultiEvaluator, MultiGa, MultiGaSettings};
 use shapegen_runtime::optimize::*;
 use shapegen_runtime::prelude::*;
-
-/// City: buildings taller than 5 count 1 each, shorter ones cost 0.3 each.
-struct Skyline {
-    instances: Vec<Instance>,
-    calls: u64,
-    genomes: u64,
-}
-
-impl Skyline {
-    fn new() -> Self {
-        Skyline {
-            instances: Vec::new(),
-            calls: 0,
-            genomes: 0,
-        }
-    }
-
-    fn score(&mut self, g: &Genome<City>) -> f64 {
-        g.derive_into(&mut self.instances);
-        self.instances
-            .iter()
-            .map(|i| {
-                if i.transform.matrix3.y_axis.length() > 5.0 {
-                    1.0
-                } else {
-                    -0.3
-                }
-            })
-            .sum()
-    }
-}
-
-impl Evaluator<City> for Skyline {
-    fn evaluate(&mut self, genomes: &[Genome<City>], out: &mut [f64]) -> Result<(), EvaluateError> {
-        self.calls += 1;
-        self.genomes += genomes.len() as u64;
-        for (g, o) in genomes.iter().zip(out) {
-            *o = self.score(g);
-        }
-        Ok(())
-    }
-}
-
-/// Spaceship: minus the L1 distance of the model's bounding box to a target box.
-struct BoxTarget {
-    instances: Vec<Instance>,
-}
-
-impl BoxTarget {
-    const MIN: Vec3 = Vec3::new(-2.0, -0.5, -4.0);
-    const MAX: Vec3 = Vec3::new(2.0, 0.5, 4.0);
-
-    fn new() -> Self {
-        BoxTarget {
-            instances: Vec::new(),
-        }
-    }
-}
-
-impl Evaluator<Spaceship> for BoxTarget {
-    fn evaluate(
-        &mut self,
-        genomes: &[Genome<Spaceship>],
-        out: &mut [f64],
-    ) -> Result<(), EvaluateError> {
-        for (g, o) in genomes.iter().zip(out) {
-            g.derive_into(&mut self.instances);
-            let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-            for i in &self.instances {
-                let m = i.transform.matrix3;
-                let half = (m.x_axis.abs() + m.y_axis.abs() + m.z_axis.abs()) * 0.5;
-                let c = Vec3::from(i.transform.translation);
-                lo = lo.min(c - Vec3::from(half));
-                hi = hi.max(c + Vec3::from(half));
-            }
-            *o = if self.instances.is_empty() {
-                -100.0
-            } else {
-                -f64::from(
-                    (lo - BoxTarget::MIN).abs().element_sum()
-                        + (hi - BoxTarget::MAX).abs().element_sum(),
-                )
-            };
-        }
-        Ok(())
-    }
-}
+use support::evaluators::{BoxTarget, Skyline, timeless};
 
 /// The paper's city settings (the original's operators and breeding), smaller.
 fn small_ga() -> GaSettings {
@@ -116,21 +33,6 @@ fn both_variants() -> [GaSettings; 2] {
 
 fn initial_best<G: Grammar>(result: &RunResult<G>) -> f64 {
     result.history[0].best
-}
-
-/// The history without wall-clock times, which differ between runs.
-fn timeless(h: &[HistoryEntry]) -> Vec<(u64, u64, u64, u64, u64)> {
-    h.iter()
-        .map(|e| {
-            (
-                e.generation,
-                e.evaluations,
-                e.best.to_bits(),
-                e.mean.to_bits(),
-                e.std.to_bits(),
-            )
-        })
-        .collect()
 }
 
 fn same_result<G: Grammar>(a: &RunResult<G>, b: &RunResult<G>) {

@@ -5,73 +5,24 @@
 //!
 //! Set `REGRESSION_PRINT=1` to print the values instead of checking them.
 
+mod support {
+    pub mod evaluators;
+}
+
 use generators::{City, Spaceship};
-use glam::Vec3;
 use shapegen_runtime::ops::OperatorVariant;
 use shapegen_runtime::optimize::multi::{
     MultiEvaluator, MultiGa, MultiGaSettings, MultiHistoryEntry,
 };
 use shapegen_runtime::optimize::*;
 use shapegen_runtime::prelude::*;
+use support::evaluators::{BoxTarget, Skyline, timeless};
 
 /// FNV-1a, stable across Rust versions (unlike `DefaultHasher`).
 fn fnv(bytes: &[u8]) -> u64 {
     bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
         (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
     })
-}
-
-/// City: buildings taller than 5 count 1 each, shorter ones cost 0.3 each.
-struct Skyline(Vec<Instance>);
-
-impl Evaluator<City> for Skyline {
-    fn evaluate(&mut self, genomes: &[Genome<City>], out: &mut [f64]) -> Result<(), EvaluateError> {
-        for (g, o) in genomes.iter().zip(out) {
-            g.derive_into(&mut self.0);
-            *o = self
-                .0
-                .iter()
-                .map(|i| {
-                    if i.transform.matrix3.y_axis.length() > 5.0 {
-                        1.0
-                    } else {
-                        -0.3
-                    }
-                })
-                .sum();
-        }
-        Ok(())
-    }
-}
-
-/// Spaceship: minus the L1 distance of the bounding box to a target box.
-struct BoxTarget(Vec<Instance>);
-
-impl Evaluator<Spaceship> for BoxTarget {
-    fn evaluate(
-        &mut self,
-        genomes: &[Genome<Spaceship>],
-        out: &mut [f64],
-    ) -> Result<(), EvaluateError> {
-        let (min, max) = (Vec3::new(-2.0, -0.5, -4.0), Vec3::new(2.0, 0.5, 4.0));
-        for (g, o) in genomes.iter().zip(out) {
-            g.derive_into(&mut self.0);
-            let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-            for i in &self.0 {
-                let m = i.transform.matrix3;
-                let half = Vec3::from((m.x_axis.abs() + m.y_axis.abs() + m.z_axis.abs()) * 0.5);
-                let c = Vec3::from(i.transform.translation);
-                lo = lo.min(c - half);
-                hi = hi.max(c + half);
-            }
-            *o = if self.0.is_empty() {
-                -100.0
-            } else {
-                -f64::from((lo - min).abs().element_sum() + (hi - max).abs().element_sum())
-            };
-        }
-        Ok(())
-    }
 }
 
 /// City on two objectives: tall buildings (maximized) and instances (minimized).
@@ -107,19 +58,7 @@ struct Outcome {
 }
 
 fn outcome<G: Grammar>(r: &RunResult<G>) -> Outcome {
-    let history: Vec<_> = r
-        .history
-        .iter()
-        .map(|e| {
-            (
-                e.generation,
-                e.evaluations,
-                e.best.to_bits(),
-                e.mean.to_bits(),
-                e.std.to_bits(),
-            )
-        })
-        .collect();
+    let history = timeless(&r.history);
     Outcome {
         best_bits: r.best_fitness.to_bits(),
         evaluations: r.evaluations,
@@ -173,7 +112,7 @@ fn ga_both_operator_variants() {
         let r = Ga::<City>::new(settings, limits(), 11)
             .unwrap()
             .run(
-                &mut Skyline(Vec::new()),
+                &mut Skyline::new(),
                 &Budget::generations(12).and_evaluations(300),
                 &mut Silent,
             )
@@ -225,11 +164,7 @@ fn smc_and_sosmc_both_variants() {
         };
         let r = Smc::<City>::new(settings, limits(), 5)
             .unwrap()
-            .run(
-                &mut Skyline(Vec::new()),
-                &Budget::generations(10),
-                &mut Silent,
-            )
+            .run(&mut Skyline::new(), &Budget::generations(10), &mut Silent)
             .unwrap();
         check(&format!("smc {order:?} {variant:?}"), outcome(&r), want);
     }
@@ -263,7 +198,7 @@ fn rjmcmc_both_variants() {
         let r = Mcmc::<Spaceship>::new(settings, Limits::new(1, 120, 10).unwrap(), 3)
             .unwrap()
             .run(
-                &mut BoxTarget(Vec::new()),
+                &mut BoxTarget::new(),
                 &Budget::generations(25).and_evaluations(200),
                 &mut Silent,
             )

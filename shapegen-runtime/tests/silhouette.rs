@@ -1,51 +1,19 @@
 //! The silhouette scorer against the published scenes.
 
-use std::path::{Path, PathBuf};
+mod support {
+    pub mod scenes;
+    pub mod silhouette_scenes;
+}
 
 use generators::{city, tree};
 use glam::{Vec2, vec2, vec3};
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
 use shapegen_runtime::score::silhouette::{
-    Camera, ImageTarget, OrbitCamera, SilhouetteCounts, SilhouetteScorer,
+    Camera, ImageTarget, SilhouetteCounts, SilhouetteScorer,
 };
-use shapegen_runtime::score::{Form, InstanceBatch, Scorer, count_batch};
-use shapegen_runtime::{Genome, Grammar, Instance, Limits, Operators};
-
-const SMOOTH: Form = Form::Smooth {
-    good: 1.0,
-    bad: 1.0,
-};
-
-fn scenes() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/paper-scenes")
-}
-
-fn city_camera() -> Camera {
-    Camera::Orbit(OrbitCamera {
-        phi: -3.05161,
-        theta: 0.0479887,
-        radius: 12.4346,
-        lookat: vec3(1.82669, 4.65407, -0.620025),
-        fov_degrees: 60.0,
-        near: 0.1,
-        far: 100.0,
-    })
-}
-
-fn tree_camera() -> Camera {
-    Camera::Orbit(OrbitCamera {
-        // The published value, -1.5708 (about -pi/2).
-        #[allow(clippy::approx_constant)]
-        phi: -1.5708,
-        theta: 0.0,
-        radius: 9.4716,
-        lookat: vec3(-0.680994, 3.2558, 0.0),
-        fov_degrees: 60.0,
-        near: 0.1,
-        far: 100.0,
-    })
-}
+use shapegen_runtime::score::{Scorer, count_batch};
+use shapegen_runtime::{Genome, Grammar, Instance};
+use support::scenes::{population, scenes};
+use support::silhouette_scenes::{SMOOTH, city_camera, tree_camera};
 
 fn load(scene: &str, file: &str, camera: Camera) -> ImageTarget {
     let path = scenes().join(scene).join(file);
@@ -211,20 +179,10 @@ fn a_lone_trunk_stands_on_the_sketch_s_trunk() {
     assert!(rows[0] > 380 && *rows.last().unwrap() > 500, "{picture}");
 }
 
-fn population<G: Grammar>(limits: Limits, initial_len: u32, n: usize, seed: u64) -> InstanceBatch {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut ops = Operators::<G>::new(limits).unwrap();
-    let mut batch = InstanceBatch::new();
-    for _ in 0..n {
-        batch.push_genome(&ops.random(initial_len, &mut rng));
-    }
-    batch
-}
-
 #[test]
 fn counts_do_not_depend_on_the_thread_count() {
     let scorer = city_scorer();
-    let batch = population::<city::City>(city::PAPER_LIMITS, 50, 24, 3);
+    let batch = population::<city::City>(24, city::PAPER_LIMITS, 50, 3);
     let run = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
@@ -247,7 +205,7 @@ fn counts_do_not_depend_on_the_thread_count() {
 #[test]
 fn random_trees_score_between_the_bounds() {
     let scorer = tree_scorer();
-    let batch = population::<tree::Tree>(tree::PAPER_LIMITS, 100, 8, 5);
+    let batch = population::<tree::Tree>(8, tree::PAPER_LIMITS, 100, 5);
     let mut out = vec![SilhouetteCounts::default(); batch.len()];
     count_batch(&scorer, &batch, &mut out);
     for c in &out {

@@ -4,10 +4,10 @@
 mod support {
     pub mod city_expanded;
     pub mod original_volume;
+    pub mod scenes;
     pub mod spaceship_expanded;
+    pub mod volume_scenes;
 }
-
-use std::path::{Path, PathBuf};
 
 use glam::{Affine3A, Quat, Vec3};
 use rand::SeedableRng;
@@ -15,52 +15,20 @@ use rand_chacha::ChaCha8Rng;
 use shapegen_runtime::error_chain;
 use shapegen_runtime::genome::Limits;
 use shapegen_runtime::score::volume::{
-    Grid, VolumeCounts, VolumeError, VolumeScorer, VolumeTarget, VoxelClasses,
+    Grid, VolumeCounts, VolumeError, VolumeScorer, VoxelClasses,
 };
-use shapegen_runtime::score::{Form, InstanceBatch, Scorer, count_batch, smoothstep};
-use shapegen_runtime::{
-    BoundMeshes, CUBE, Grammar, Instance, Mesh, MeshId, MeshLibrary, Operators,
-};
+use shapegen_runtime::score::{Form, Scorer, count_batch, smoothstep};
+use shapegen_runtime::{BoundMeshes, CUBE, Grammar, Instance, Mesh, MeshId, MeshLibrary};
 use support::city_expanded::City;
 use support::original_volume as original;
+use support::scenes::{population, scenes};
 use support::spaceship_expanded::Spaceship;
-
-fn scenes() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/paper-scenes")
-}
-
-/// The unit cube mesh moved to span `lo ..= hi`.
-fn block(lo: Vec3, hi: Vec3) -> Mesh {
-    let mut m = Mesh::unit_cube();
-    for p in &mut m.positions {
-        *p = lo + (*p + 0.5) * (hi - lo);
-    }
-    m
-}
-
-fn target(name: &str, mesh: Mesh, inside: f64, outside: f64) -> VolumeTarget {
-    VolumeTarget {
-        name: name.into(),
-        mesh,
-        inside,
-        outside,
-    }
-}
+use support::volume_scenes::{
+    aabb, block, city_tower_scorer, paper_grid, paper_ship_scorer, target, turned_box,
+};
 
 fn cubes() -> BoundMeshes {
     MeshLibrary::new().bind_names("Boxes", &["cube"]).unwrap()
-}
-
-/// A box spanning `lo ..= hi`, axis-aligned.
-fn aabb(lo: Vec3, hi: Vec3) -> Instance {
-    Instance {
-        transform: Affine3A::from_scale_rotation_translation(
-            hi - lo,
-            Quat::IDENTITY,
-            (lo + hi) / 2.0,
-        ),
-        mesh: CUBE,
-    }
 }
 
 /// A 10^3 grid of unit voxels over [0, 10]^3 (centres at .5) with the target [0, 5]^3.
@@ -412,39 +380,10 @@ fn errors_name_the_target_and_the_limit() {
     assert!(VolumeScorer::new(grid, &[target("open", open, 1.0, 0.0)], &cubes(), form).is_ok());
 }
 
-fn paper_grid() -> Grid {
-    Grid::new(
-        Vec3::new(-5.0, -5.0, -2.0),
-        Vec3::new(5.0, 5.0, 18.0),
-        [100, 200, 100],
-    )
-    .unwrap()
-}
-
-fn population<G: Grammar>(n: usize, limits: Limits, initial: u32, seed: u64) -> InstanceBatch {
-    let mut ops = Operators::<G>::new(limits).unwrap();
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut batch = InstanceBatch::new();
-    for _ in 0..n {
-        batch.push_genome(&ops.random(initial, &mut rng));
-    }
-    batch
-}
-
 #[test]
 fn counts_do_not_depend_on_threads_or_scratch_history() {
-    let ship = Mesh::from_obj(scenes().join("spaceship_volume/spaceship_target.obj")).unwrap();
     let bound = MeshLibrary::new().bind(Spaceship::GRAPH).unwrap();
-    let scorer = VolumeScorer::new(
-        paper_grid(),
-        &[target("ship", ship, 1.0, -1.0)],
-        &bound,
-        Form::Smooth {
-            good: 2.0,
-            bad: 15.0,
-        },
-    )
-    .unwrap();
+    let scorer = paper_ship_scorer(&bound);
     let batch = population::<Spaceship>(40, Limits::new(4, 100, 15).unwrap(), 50, 9);
     let run = |threads| {
         let pool = rayon::ThreadPoolBuilder::new()
@@ -478,14 +417,7 @@ fn counts_do_not_depend_on_threads_or_scratch_history() {
         [48, 24, 48],
     )
     .unwrap();
-    let bound = MeshLibrary::new().bind(City::GRAPH).unwrap();
-    let t = target(
-        "tower",
-        block(Vec3::new(-3.0, 0.0, -3.0), Vec3::new(3.0, 8.0, 3.0)),
-        1.0,
-        -1.0,
-    );
-    let scorer = VolumeScorer::new(scene, &[t], &bound, Form::Weighted { overlap: 1.0 }).unwrap();
+    let scorer = city_tower_scorer(scene);
     let mut a = vec![VolumeCounts::default(); city.len()];
     let mut b = a.clone();
     rayon::ThreadPoolBuilder::new()
@@ -533,14 +465,7 @@ fn counts_equal_the_originals_on_random_spaceships() {
     // Hand-made: three copies of a rotated box, one poking out of the grid below and
     // beside it, one wholly outside, one flush with the grid's top face (none with a
     // face or a face's diagonal through voxel centres, where the two may differ).
-    let r = Instance {
-        transform: Affine3A::from_scale_rotation_translation(
-            Vec3::new(2.3, 0.7, 3.1),
-            Quat::from_euler(glam::EulerRot::XYZ, 0.3, 0.9, -0.2),
-            Vec3::new(1.5, 0.2, 0.5),
-        ),
-        mesh: CUBE,
-    };
+    let r = turned_box();
     let out = aabb(Vec3::new(3.37, -6.13, -2.71), Vec3::new(5.83, -4.23, 1.33));
     let far = aabb(Vec3::splat(30.0), Vec3::splat(31.3));
     let flush = aabb(Vec3::new(-1.03, -0.97, 16.55), Vec3::new(1.07, 1.01, 18.0));

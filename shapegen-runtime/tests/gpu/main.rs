@@ -3,6 +3,15 @@
 //! adapter was found, unless `SHAPEGEN_REQUIRE_GPU=1` (as in CI, which installs a
 //! software Vulkan driver), where every test fails instead.
 
+#[path = "../support"]
+mod support {
+    pub mod city_expanded;
+    pub mod scenes;
+    pub mod silhouette_scenes;
+    pub mod spaceship_expanded;
+    pub mod volume_scenes;
+}
+
 mod context;
 mod silhouette;
 mod volume;

@@ -1,19 +1,17 @@
 //! The silhouette scorer on the GPU agrees with the CPU up to pixels on edges.
 
-use std::path::{Path, PathBuf};
-
 use generators::{city, spaceship, tree};
 use glam::vec3;
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
+use shapegen_runtime::Grammar;
 use shapegen_runtime::gpu::GpuContext;
 use shapegen_runtime::score::silhouette::{
     Camera, GpuSilhouetteScorer, ImageTarget, OrbitCamera, SilhouetteCounts, SilhouetteScorer,
 };
-use shapegen_runtime::score::{Form, InstanceBatch, count_batch};
-use shapegen_runtime::{Grammar, Limits, Operators};
+use shapegen_runtime::score::{InstanceBatch, count_batch};
 
 use crate::GpuTest;
+use crate::support::scenes::{population, scenes};
+use crate::support::silhouette_scenes::{SMOOTH, city_camera, tree_camera};
 
 /// The tests of this module.
 pub const TESTS: &[GpuTest] = &[
@@ -34,51 +32,6 @@ pub const TESTS: &[GpuTest] = &[
         gpu_counts_a_batch_larger_than_one_chunk,
     ),
 ];
-
-const SMOOTH: Form = Form::Smooth {
-    good: 1.0,
-    bad: 1.0,
-};
-
-fn scenes() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/paper-scenes")
-}
-
-fn city_camera() -> Camera {
-    Camera::Orbit(OrbitCamera {
-        phi: -3.05161,
-        theta: 0.0479887,
-        radius: 12.4346,
-        lookat: vec3(1.82669, 4.65407, -0.620025),
-        fov_degrees: 60.0,
-        near: 0.1,
-        far: 100.0,
-    })
-}
-
-fn tree_camera() -> Camera {
-    Camera::Orbit(OrbitCamera {
-        // The published value, -1.5708 (about -pi/2).
-        #[allow(clippy::approx_constant)]
-        phi: -1.5708,
-        theta: 0.0,
-        radius: 9.4716,
-        lookat: vec3(-0.680994, 3.2558, 0.0),
-        fov_degrees: 60.0,
-        near: 0.1,
-        far: 100.0,
-    })
-}
-
-fn population<G: Grammar>(limits: Limits, initial_len: u32, n: usize, seed: u64) -> InstanceBatch {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut ops = Operators::<G>::new(limits).unwrap();
-    let mut batch = InstanceBatch::new();
-    for _ in 0..n {
-        batch.push_genome(&ops.random(initial_len, &mut rng));
-    }
-    batch
-}
 
 /// The GPU's counts agree with the CPU's up to pixels whose centres lie within rounding
 /// of an edge: at most 0.5% of the CPU's count plus 2 pixels per instance.
@@ -166,7 +119,7 @@ fn gpu_matches_cpu_on_random_cities(gpu: &GpuContext) {
     compare_on_gpu(
         gpu,
         &scorer,
-        &population::<city::City>(city::PAPER_LIMITS, 50, 40, 21),
+        &population::<city::City>(40, city::PAPER_LIMITS, 50, 21),
     );
 }
 
@@ -184,7 +137,7 @@ fn gpu_matches_cpu_on_random_trees(gpu: &GpuContext) {
     compare_on_gpu(
         gpu,
         &scorer,
-        &population::<tree::Tree>(tree::PAPER_LIMITS, 150, 30, 22),
+        &population::<tree::Tree>(30, tree::PAPER_LIMITS, 150, 22),
     );
 }
 
@@ -212,7 +165,7 @@ fn gpu_matches_cpu_on_random_spaceships_through_a_close_camera(gpu: &GpuContext)
     compare_on_gpu(
         gpu,
         &scorer,
-        &population::<spaceship::Spaceship>(spaceship::PAPER_LIMITS, 50, 40, 23),
+        &population::<spaceship::Spaceship>(40, spaceship::PAPER_LIMITS, 50, 23),
     );
 }
 
@@ -229,7 +182,7 @@ fn gpu_counts_a_batch_larger_than_one_chunk(gpu: &GpuContext) {
     let scorer = SilhouetteScorer::new(vec![target], &meshes, SMOOTH).unwrap();
     let on_gpu = GpuSilhouetteScorer::new(gpu, &scorer).unwrap();
     assert_eq!(on_gpu.bitset_bytes(), 2 << 20);
-    let batch = population::<city::City>(city::PAPER_LIMITS, 20, on_gpu.chunk_size() + 3, 24);
+    let batch = population::<city::City>(on_gpu.chunk_size() + 3, city::PAPER_LIMITS, 20, 24);
     let mut cpu = vec![SilhouetteCounts::default(); batch.len()];
     count_batch(&scorer, &batch, &mut cpu);
     let mut out = vec![SilhouetteCounts::default(); batch.len()];

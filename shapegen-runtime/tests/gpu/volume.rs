@@ -1,26 +1,21 @@
 //! The volume scorer on the GPU counts exactly what it counts on the CPU.
 
-#[path = "../support/city_expanded.rs"]
-mod city_expanded;
-#[path = "../support/spaceship_expanded.rs"]
-mod spaceship_expanded;
+use std::path::Path;
 
-use std::path::{Path, PathBuf};
-
-use city_expanded::City;
-use glam::{Affine3A, Quat, Vec3};
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
+use glam::{Affine3A, Vec3};
 use shapegen_runtime::genome::Limits;
 use shapegen_runtime::gpu::{GpuContext, GpuError};
-use shapegen_runtime::score::volume::{
-    GpuVolumeScorer, Grid, VolumeCounts, VolumeScorer, VolumeTarget,
-};
+use shapegen_runtime::score::volume::{GpuVolumeScorer, Grid, VolumeCounts, VolumeScorer};
 use shapegen_runtime::score::{Form, InstanceBatch, count_batch};
-use shapegen_runtime::{CUBE, Grammar, Instance, Mesh, MeshLibrary, Operators};
-use spaceship_expanded::Spaceship;
+use shapegen_runtime::{CUBE, Grammar, Instance, Mesh, MeshLibrary};
 
 use crate::GpuTest;
+use crate::support::city_expanded::City;
+use crate::support::scenes::{population, scenes};
+use crate::support::spaceship_expanded::Spaceship;
+use crate::support::volume_scenes::{
+    aabb, block, city_tower_scorer, paper_ship_scorer, target, turned_box,
+};
 
 /// The tests of this module.
 pub const TESTS: &[GpuTest] = &[
@@ -34,63 +29,20 @@ pub const TESTS: &[GpuTest] = &[
     ),
 ];
 
-fn scenes() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/paper-scenes")
-}
-
-/// The unit cube mesh moved to span `lo ..= hi`.
-fn block(lo: Vec3, hi: Vec3) -> Mesh {
-    let mut m = Mesh::unit_cube();
-    for p in &mut m.positions {
-        *p = lo + (*p + 0.5) * (hi - lo);
-    }
-    m
-}
-
-fn target(name: &str, mesh: Mesh, inside: f64, outside: f64) -> VolumeTarget {
-    VolumeTarget {
-        name: name.into(),
-        mesh,
-        inside,
-        outside,
-    }
-}
-
-/// A box spanning `lo ..= hi`, axis-aligned.
-fn aabb(lo: Vec3, hi: Vec3) -> Instance {
-    Instance {
-        transform: Affine3A::from_scale_rotation_translation(
-            hi - lo,
-            Quat::IDENTITY,
-            (lo + hi) / 2.0,
-        ),
-        mesh: CUBE,
-    }
-}
-
-fn paper_grid() -> Grid {
-    Grid::new(
-        Vec3::new(-5.0, -5.0, -2.0),
-        Vec3::new(5.0, 5.0, 18.0),
-        [100, 200, 100],
-    )
-    .unwrap()
-}
-
-fn population<G: Grammar>(n: usize, limits: Limits, initial: u32, seed: u64) -> InstanceBatch {
-    let mut ops = Operators::<G>::new(limits).unwrap();
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut batch = InstanceBatch::new();
-    for _ in 0..n {
-        batch.push_genome(&ops.random(initial, &mut rng));
-    }
-    batch
-}
-
 /// The CPU's counts of every model of `batch`.
 fn cpu_counts(scorer: &VolumeScorer, batch: &InstanceBatch) -> Vec<VolumeCounts> {
     let mut out = vec![VolumeCounts::default(); batch.len()];
     count_batch(scorer, batch, &mut out);
+    out
+}
+
+/// The GPU's counts of every model of `batch`, by a scorer of its own.
+fn gpu_counts(gpu: &GpuContext, scorer: &VolumeScorer, batch: &InstanceBatch) -> Vec<VolumeCounts> {
+    let mut out = vec![VolumeCounts::default(); batch.len()];
+    GpuVolumeScorer::new(gpu, scorer)
+        .unwrap()
+        .count_batch(batch, &mut out)
+        .unwrap();
     out
 }
 
@@ -128,14 +80,7 @@ fn the_gpu_counts_exactly_what_the_cpu_counts(gpu: &GpuContext) {
     // Hand-made models: empty, overlapping copies, a box far out, one too large to
     // rasterise, a flat one.
     batch.push_with(|_| {});
-    let r = Instance {
-        transform: Affine3A::from_scale_rotation_translation(
-            Vec3::new(2.3, 0.7, 3.1),
-            Quat::from_euler(glam::EulerRot::XYZ, 0.3, 0.9, -0.2),
-            Vec3::new(1.5, 0.2, 0.5),
-        ),
-        mesh: CUBE,
-    };
+    let r = turned_box();
     let far = aabb(Vec3::splat(30.0), Vec3::splat(31.3));
     let huge = Instance {
         transform: Affine3A::from_scale(Vec3::splat(1e4)),
@@ -186,49 +131,24 @@ fn the_gpu_counts_exactly_what_the_cpu_counts(gpu: &GpuContext) {
         [40, 20, 40],
     )
     .unwrap();
-    let bound = MeshLibrary::new().bind(City::GRAPH).unwrap();
-    let t = target(
-        "tower",
-        block(Vec3::new(-3.0, 0.0, -3.0), Vec3::new(3.0, 8.0, 3.0)),
-        1.0,
-        -1.0,
-    );
-    let scorer = VolumeScorer::new(grid, &[t], &bound, Form::Weighted { overlap: 1.0 }).unwrap();
+    let scorer = city_tower_scorer(grid);
     let cpu = cpu_counts(&scorer, &city);
     assert!(cpu.iter().any(|c| c.span_out_of_grid > 0 && c.inside > 0));
     assert!(cpu.iter().any(|c| c.overlap_voxels > 0));
-    let mut out = vec![VolumeCounts::default(); city.len()];
-    GpuVolumeScorer::new(gpu, &scorer)
-        .unwrap()
-        .count_batch(&city, &mut out)
-        .unwrap();
+    let out = gpu_counts(gpu, &scorer, &city);
     assert_eq!(cpu, out);
 
     // The paper's spaceships on the paper's grid, whose thin wing boxes are one lattice
     // point thick.
-    let ship = Mesh::from_obj(scenes().join("spaceship_volume/spaceship_target.obj")).unwrap();
     let bound = MeshLibrary::new()
         .bind(generators::Spaceship::GRAPH)
         .unwrap();
-    let scorer = VolumeScorer::new(
-        paper_grid(),
-        &[target("ship", ship, 1.0, -1.0)],
-        &bound,
-        Form::Smooth {
-            good: 2.0,
-            bad: 15.0,
-        },
-    )
-    .unwrap();
+    let scorer = paper_ship_scorer(&bound);
     let ships = population::<generators::Spaceship>(30, generators::spaceship::PAPER_LIMITS, 50, 2);
     let cpu = cpu_counts(&scorer, &ships);
     assert!(cpu.iter().filter(|c| c.span_out_of_grid > 0).count() > 5);
     assert!(cpu.iter().filter(|c| c.overlap_voxels > 0).count() > 5);
-    let mut out = vec![VolumeCounts::default(); ships.len()];
-    GpuVolumeScorer::new(gpu, &scorer)
-        .unwrap()
-        .count_batch(&ships, &mut out)
-        .unwrap();
+    let out = gpu_counts(gpu, &scorer, &ships);
     assert_eq!(cpu, out);
 }
 
