@@ -118,10 +118,7 @@ fn paper_settings_are_the_originals_mh_cfg() {
         );
         s.validate().unwrap();
     }
-    assert_eq!(
-        McmcSettings::default(),
-        spaceship::paper_rjmcmc()
-    );
+    assert_eq!(McmcSettings::default(), spaceship::paper_rjmcmc());
 }
 
 #[test]
