@@ -6,12 +6,11 @@
 mod support;
 
 use std::fs;
-use std::path::Path;
 use std::process::ExitCode;
 
 use libtest_mimic::{Arguments, Failed, Trial};
 use shapegen::gpu::GpuContext;
-use support::{ok, s, shapegen};
+use support::{SHIP_SCENE, UNIT_CUBE_OBJ, s, sample, score, shapegen};
 
 /// A test that runs the binary on the GPU: its name and its body, which panics when the
 /// test fails.
@@ -52,55 +51,11 @@ fn main() -> ExitCode {
     libtest_mimic::run(&args, trials).exit_code()
 }
 
-/// The JSON lines `shapegen score` prints.
-fn score(scene: &Path, genomes: &Path, backend: &str) -> Vec<serde_json::Value> {
-    ok(&["score", s(scene), "--genomes", s(genomes), backend])
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect()
-}
-
-fn sample(generator: &str, seed: &str, dir: &Path) -> std::path::PathBuf {
-    ok(&[
-        "sample",
-        "-g",
-        generator,
-        "-n",
-        "6",
-        "-s",
-        seed,
-        "-o",
-        s(dir),
-    ]);
-    dir.join("genomes.json")
-}
-
-const SHIP_SCENE: &str = r#"
-generator = "spaceship"
-[limits]
-min_len = 4
-optimal_len = 10
-max_len = 100
-max_depth = 15
-[fitness]
-length = 0.1
-[volume]
-grid = { min = [-5, -5, -2], max = [5, 5, 18], resolution = [40, 40, 80] }
-good = 2.0
-bad = 15.0
-[[volume.target]]
-mesh = "TARGET"
-"#;
-
-fn shapegen_cube() -> &'static str {
-    "v -0.5 -0.5 -0.5\nv 0.5 -0.5 -0.5\nv 0.5 0.5 -0.5\nv -0.5 0.5 -0.5\nv -0.5 -0.5 0.5\nv 0.5 -0.5 0.5\nv 0.5 0.5 0.5\nv -0.5 0.5 0.5\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 3 4 8 7\nf 2 3 7 6\nf 1 5 8 4\n"
-}
-
 fn the_gpu_counts_as_the_cpu_does() {
     let dir = tempfile::tempdir().unwrap();
     let genomes = sample("spaceship", "11", &dir.path().join("ships"));
     let cube = dir.path().join("cube.obj");
-    fs::write(&cube, shapegen_cube()).unwrap();
+    fs::write(&cube, UNIT_CUBE_OBJ).unwrap();
     let scene = dir.path().join("ship.toml");
     fs::write(&scene, SHIP_SCENE.replace("TARGET", "cube.obj")).unwrap();
     let gpu = shapegen(&["score", s(&scene), "--genomes", s(&genomes), "--gpu"]);

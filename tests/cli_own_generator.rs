@@ -5,8 +5,11 @@
 use std::fs;
 use std::path::Path;
 
+mod support;
+
 use shapegen::cli::Cli;
 use shapegen::prelude::*;
+use support::{UNIT_CUBE_OBJ, s};
 
 generator! {
     /// A pile of blocks, each on the one below, shifted a little.
@@ -34,10 +37,6 @@ fn pile(args: &[&str]) -> anyhow::Result<()> {
     let mut all = vec!["pile-tool"];
     all.extend_from_slice(args);
     Cli::new().generator::<Pile>("pile").run_from(all)
-}
-
-fn s(path: &Path) -> &str {
-    path.to_str().unwrap()
 }
 
 /// A volume scene for the pile, aiming at `target`.
@@ -80,7 +79,7 @@ fn a_generator_of_ones_own_gets_every_command() {
     assert!(samples.join("model_0.obj").is_file() && samples.join("model_3.glb").is_file());
 
     // A reachable target: the voxels of sample 2, through a scene that names the pile.
-    fs::write(d.join("unit.obj"), CUBE_OBJ).unwrap();
+    fs::write(d.join("unit.obj"), UNIT_CUBE_OBJ).unwrap();
     let first = scene(d, "unit.obj");
     let target = d.join("target.obj");
     pile(&[
@@ -167,7 +166,7 @@ fn unknown_and_clashing_names_are_refused() {
     assert!(err.to_string().contains("cannot name a generator"), "{err}");
 
     // A scene naming a generator the tool lacks says which it has.
-    fs::write(dir.path().join("unit.obj"), CUBE_OBJ).unwrap();
+    fs::write(dir.path().join("unit.obj"), UNIT_CUBE_OBJ).unwrap();
     let path = scene(dir.path(), "unit.obj");
     let published = fs::read_to_string(&path)
         .unwrap()
@@ -180,8 +179,3 @@ fn unknown_and_clashing_names_are_refused() {
         "{message}"
     );
 }
-
-/// A unit cube as OBJ.
-const CUBE_OBJ: &str = "v -0.5 -0.5 -0.5\nv 0.5 -0.5 -0.5\nv 0.5 0.5 -0.5\nv -0.5 0.5 -0.5\n\
-v -0.5 -0.5 0.5\nv 0.5 -0.5 0.5\nv 0.5 0.5 0.5\nv -0.5 0.5 0.5\n\
-f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 4 8 7\nf 4 7 3\nf 1 5 8\nf 1 8 4\nf 2 3 7\nf 2 7 6\n";

@@ -169,7 +169,10 @@ fn mistakes_are_explained() {
             &["--method", "annealing"],
             "the methods are ga, smc, sosmc and rjmcmc",
         ),
-        (&["--seconds=-1"], "`--seconds`: -1 must be a number of seconds > 0"),
+        (
+            &["--seconds=-1"],
+            "`--seconds`: -1 must be a number of seconds > 0",
+        ),
     ];
     for (extra, expected) in cases {
         let mut args = vec!["run", s(&scene), "--cpu", "--out", s(&out)];

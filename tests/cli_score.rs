@@ -7,47 +7,7 @@ mod support;
 use std::fs;
 use std::path::Path;
 
-use support::{fails, ok, s};
-
-/// The JSON lines `shapegen score` prints.
-fn score(scene: &Path, genomes: &Path, backend: &str) -> Vec<serde_json::Value> {
-    ok(&["score", s(scene), "--genomes", s(genomes), backend])
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect()
-}
-
-fn sample(generator: &str, seed: &str, dir: &Path) -> std::path::PathBuf {
-    ok(&[
-        "sample",
-        "-g",
-        generator,
-        "-n",
-        "6",
-        "-s",
-        seed,
-        "-o",
-        s(dir),
-    ]);
-    dir.join("genomes.json")
-}
-
-const SHIP_SCENE: &str = r#"
-generator = "spaceship"
-[limits]
-min_len = 4
-optimal_len = 10
-max_len = 100
-max_depth = 15
-[fitness]
-length = 0.1
-[volume]
-grid = { min = [-5, -5, -2], max = [5, 5, 18], resolution = [40, 40, 80] }
-good = 2.0
-bad = 15.0
-[[volume.target]]
-mesh = "TARGET"
-"#;
+use support::{SHIP_SCENE, UNIT_CUBE_OBJ, fails, ok, s, sample, score};
 
 const CITY_SCENE: &str = r#"
 generator = "city"
@@ -83,7 +43,7 @@ fn a_reachable_volume_target_is_filled_exactly() {
     let dir = tempfile::tempdir().unwrap();
     let genomes = sample("spaceship", "5", &dir.path().join("ships"));
     let cube = dir.path().join("cube.obj");
-    fs::write(&cube, shapegen_cube()).unwrap();
+    fs::write(&cube, UNIT_CUBE_OBJ).unwrap();
     let (maker, scene) = scenes(dir.path(), "ship", SHIP_SCENE, "ship.obj", &cube);
     let out = ok(&[
         "target",
@@ -181,10 +141,6 @@ fn a_reachable_silhouette_target_is_matched_exactly() {
     assert!((f - 1.0).abs() < 0.05, "good * S(T, T) - length: {f}");
 }
 
-fn shapegen_cube() -> &'static str {
-    "v -0.5 -0.5 -0.5\nv 0.5 -0.5 -0.5\nv 0.5 0.5 -0.5\nv -0.5 0.5 -0.5\nv -0.5 -0.5 0.5\nv 0.5 -0.5 0.5\nv 0.5 0.5 0.5\nv -0.5 0.5 0.5\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 3 4 8 7\nf 2 3 7 6\nf 1 5 8 4\n"
-}
-
 #[test]
 fn previews_and_overlays_are_written() {
     let dir = tempfile::tempdir().unwrap();
@@ -224,7 +180,7 @@ fn previews_and_overlays_are_written() {
     // A volume scene has no camera: previews frame each model.
     let ships = sample("spaceship", "4", &dir.path().join("ships"));
     let cube = dir.path().join("cube.obj");
-    fs::write(&cube, shapegen_cube()).unwrap();
+    fs::write(&cube, UNIT_CUBE_OBJ).unwrap();
     let (_, ship_scene) = scenes(dir.path(), "ship", SHIP_SCENE, "cube.obj", &cube);
     let out = dir.path().join("ship_render");
     ok(&[
@@ -249,7 +205,7 @@ fn mistakes_are_explained() {
     let dir = tempfile::tempdir().unwrap();
     let cities = sample("city", "1", &dir.path().join("cities"));
     let cube = dir.path().join("cube.obj");
-    fs::write(&cube, shapegen_cube()).unwrap();
+    fs::write(&cube, UNIT_CUBE_OBJ).unwrap();
     let (_, scene) = scenes(dir.path(), "ship", SHIP_SCENE, "cube.obj", &cube);
 
     let err = fails(&["score", s(&scene), "--genomes", s(&cities)]);

@@ -75,3 +75,46 @@ pub fn timeless_summary(dir: &Path) -> serde_json::Value {
         .remove("elapsed_s");
     summary
 }
+
+/// The JSON lines `shapegen score` prints.
+pub fn score(scene: &Path, genomes: &Path, backend: &str) -> Vec<serde_json::Value> {
+    ok(&["score", s(scene), "--genomes", s(genomes), backend])
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect()
+}
+
+pub fn sample(generator: &str, seed: &str, dir: &Path) -> std::path::PathBuf {
+    ok(&[
+        "sample",
+        "-g",
+        generator,
+        "-n",
+        "6",
+        "-s",
+        seed,
+        "-o",
+        s(dir),
+    ]);
+    dir.join("genomes.json")
+}
+
+pub const SHIP_SCENE: &str = r#"
+generator = "spaceship"
+[limits]
+min_len = 4
+optimal_len = 10
+max_len = 100
+max_depth = 15
+[fitness]
+length = 0.1
+[volume]
+grid = { min = [-5, -5, -2], max = [5, 5, 18], resolution = [40, 40, 80] }
+good = 2.0
+bad = 15.0
+[[volume.target]]
+mesh = "TARGET"
+"#;
+
+/// A unit cube centred at the origin, as OBJ.
+pub const UNIT_CUBE_OBJ: &str = "v -0.5 -0.5 -0.5\nv 0.5 -0.5 -0.5\nv 0.5 0.5 -0.5\nv -0.5 0.5 -0.5\nv -0.5 -0.5 0.5\nv 0.5 -0.5 0.5\nv 0.5 0.5 0.5\nv -0.5 0.5 0.5\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 3 4 8 7\nf 2 3 7 6\nf 1 5 8 4\n";
