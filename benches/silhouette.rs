@@ -1,8 +1,10 @@
 //! Silhouette scoring throughput: evaluations per second of populations of 200 random
 //! models against the paper's city whale and tree sketch targets (800 x 600), on one CPU
-//! thread, on all CPU threads, and on the GPU when there is one; and one city of 100
-//! buildings on one thread.
+//! thread, on all CPU threads, and on the GPU when there is one; one city of 100
+//! buildings on one thread; and one full evaluation of single 250-gene trees on one
+//! thread, with the published meshes and with the built-in ones.
 
+use std::hint::black_box;
 use std::path::Path;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
@@ -16,7 +18,7 @@ use shapegen::score::silhouette::{
     Camera, GpuSilhouetteScorer, ImageTarget, OrbitCamera, SilhouetteCounts, SilhouetteScorer,
 };
 use shapegen::score::{Form, InstanceBatch, Scorer, count_batch};
-use shapegen::{Genome, Grammar, gpu::GpuContext};
+use shapegen::{BoundMeshes, Genome, Grammar, gpu::GpuContext};
 
 const POPULATION: usize = 200;
 
@@ -71,20 +73,22 @@ fn city_whale() -> Scene {
     }
 }
 
+/// The tree sketch's camera.
+const TREE_CAMERA: OrbitCamera = OrbitCamera {
+    phi: -std::f32::consts::FRAC_PI_2,
+    theta: 0.0,
+    radius: 9.4716,
+    lookat: Vec3::new(-0.680994, 3.2558, 0.0),
+    fov_degrees: 60.0,
+    near: 0.1,
+    far: 100.0,
+};
+
 fn tree_sketch1() -> Scene {
-    let camera = OrbitCamera {
-        phi: -std::f32::consts::FRAC_PI_2,
-        theta: 0.0,
-        radius: 9.4716,
-        lookat: Vec3::new(-0.680994, 3.2558, 0.0),
-        fov_degrees: 60.0,
-        near: 0.1,
-        far: 100.0,
-    };
     let meshes = generators::default_meshes()
         .bind(tree::Tree::GRAPH)
         .unwrap();
-    let target = target("tree_sketch1", "tree_target_sketch1.png", camera);
+    let target = target("tree_sketch1", "tree_target_sketch1.png", TREE_CAMERA);
     Scene {
         name: "tree_sketch1",
         scorer: SilhouetteScorer::new(vec![target], &meshes, SMOOTH).unwrap(),
@@ -161,5 +165,78 @@ fn hundred_buildings(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, populations, hundred_buildings);
+/// The tree's meshes as the paper's scene file (`scenes/paper/tree_sketch1.toml`) loads
+/// them: the built-in library with the published trunk and leaf, normalized as the
+/// original normalizes them.
+fn published_tree_meshes() -> BoundMeshes {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/paper-scenes/tree_sketch1");
+    let mut library = generators::default_meshes();
+    for (name, file) in [("trunk", "trunk.obj"), ("leaf", "leaf.obj")] {
+        library.register_obj(name, dir.join(file)).unwrap();
+    }
+    library.bind(tree::Tree::GRAPH).unwrap()
+}
+
+/// A random tree of exactly `genes` genes under the paper scene's limits.
+fn random_tree(genes: u32, seed: u64) -> Genome<tree::Tree> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut ops = Operators::<tree::Tree>::new(tree::PAPER_LIMITS).unwrap();
+    let mut genome = ops.random(4, &mut rng);
+    ops.grow_to(&mut genome, genes, &mut rng);
+    assert_eq!(
+        genome.len(),
+        genes as usize,
+        "seed {seed}: the tree stopped growing"
+    );
+    genome
+}
+
+/// One full silhouette evaluation (`count`, then `fitness`) of single 250-gene trees
+/// against the tree sketch, on the calling thread: with the published meshes (the
+/// paper scene's) and with the built-in ones (the population rows'). Prints each tree's
+/// instances, triangles and counts.
+fn tree_single(c: &mut Criterion) {
+    const GENES: u32 = 250;
+    let target = target("tree_sketch1", "tree_target_sketch1.png", TREE_CAMERA);
+    let built_in = generators::default_meshes()
+        .bind(tree::Tree::GRAPH)
+        .unwrap();
+    let mut group = c.benchmark_group("silhouette/tree_single");
+    for (meshes_name, meshes) in [
+        ("published meshes", published_tree_meshes()),
+        ("built-in meshes", built_in),
+    ] {
+        let scorer = SilhouetteScorer::new(vec![target.clone()], &meshes, SMOOTH).unwrap();
+        let per_mesh: Vec<usize> = meshes.iter().map(|(_, _, m)| m.triangle_count()).collect();
+        for seed in 1..=3 {
+            let mut model = Vec::new();
+            random_tree(GENES, seed).derive_append(&mut model);
+            let triangles: usize = model.iter().map(|i| per_mesh[i.mesh.0 as usize]).sum();
+            let mut scratch = scorer.scratch();
+            let counts = scorer.count(&model, &mut scratch);
+            let t = counts.targets()[0];
+            eprintln!(
+                "tree_single/{meshes_name}/seed {seed}: {GENES} genes, {} instances, \
+                 {triangles} triangles; covered {}, on target {}, off target {}, fitness {:.4}",
+                model.len(),
+                t.covered,
+                t.on_target,
+                t.off_target,
+                scorer.fitness(&counts)
+            );
+            group.bench_function(
+                BenchmarkId::new(meshes_name, format!("{GENES} genes seed {seed}")),
+                |b| {
+                    b.iter(|| {
+                        let counts = scorer.count(black_box(&model), &mut scratch);
+                        black_box(scorer.fitness(&counts))
+                    })
+                },
+            );
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, populations, hundred_buildings, tree_single);
 criterion_main!(benches);
