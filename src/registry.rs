@@ -144,15 +144,12 @@ impl Registry {
         let mut registry = Registry::new();
         let meshes = generators::default_meshes();
         for generator in Published::ALL {
-            registry.entries.push(Entry {
-                name: generator.name().to_owned(),
-                grammar: generator.visit(GrammarName),
-                defaults: Defaults {
-                    meshes: meshes.clone(),
-                    limits: generator.paper_limits(),
-                    presets: paper_presets(generator),
-                },
+            let added = generator.visit(Add {
+                registry: &mut registry,
+                name: generator.name(),
+                defaults: published_defaults(generator, &meshes),
             });
+            added.expect("the published generators have distinct plain names");
         }
         registry
     }
@@ -213,6 +210,17 @@ impl Registry {
     }
 }
 
+/// What published `generator` brings: `meshes` (the published generators' own,
+/// [`generators::default_meshes`]), its paper scene's limits, and the original's settings of
+/// every method for that scene.
+pub fn published_defaults(generator: Published, meshes: &MeshLibrary) -> Defaults {
+    Defaults {
+        meshes: meshes.clone(),
+        limits: generator.paper_limits(),
+        presets: paper_presets(generator),
+    }
+}
+
 /// The original's settings of every method for a published generator's paper scene; the
 /// building, which has no paper scene, breeds with the thesis's GA and takes the city's
 /// settings of the other methods.
@@ -247,13 +255,17 @@ fn paper_presets(generator: Published) -> Presets {
     }
 }
 
-/// The name of the grammar a [`Published`] generator visits with.
-struct GrammarName;
+/// Adds the grammar a [`Published`] generator visits with to a registry.
+struct Add<'a> {
+    registry: &'a mut Registry,
+    name: &'static str,
+    defaults: Defaults,
+}
 
-impl GeneratorVisitor for GrammarName {
-    type Output = &'static str;
+impl GeneratorVisitor for Add<'_> {
+    type Output = Result<(), RegistryError>;
 
-    fn visit<G: Grammar>(self, _: Limits) -> &'static str {
-        G::GRAPH.name
+    fn visit<G: Grammar>(self, _: Limits) -> Self::Output {
+        self.registry.add::<G>(self.name, self.defaults)
     }
 }

@@ -163,15 +163,12 @@ fn parse_methods(names: &[String]) -> anyhow::Result<Vec<Method>> {
     );
     let mut methods = Vec::with_capacity(names.len());
     for name in names {
-        let method = Method::ALL
-            .into_iter()
-            .find(|m| m.name() == name)
-            .with_context(|| {
-                format!(
-                    "--methods: `{name}` is not a method; the methods are {}",
-                    valid()
-                )
-            })?;
+        let method: Method = name.parse().with_context(|| {
+            format!(
+                "--methods: `{name}` is not a method; the methods are {}",
+                valid()
+            )
+        })?;
         anyhow::ensure!(
             !methods.contains(&method),
             "--methods: `{name}` is listed twice"

@@ -2,7 +2,6 @@
 //! the non-dominated front it finds written as models, a contact sheet, a CSV and
 //! scatter plots, kept consistent on disk at every moment.
 
-use std::io::IsTerminal;
 use std::path::Path;
 
 use anyhow::Context;
@@ -24,6 +23,7 @@ use super::files::{atomic_write, csv_bytes, save_png};
 use super::interrupt;
 use super::overlay::{projection_overlay, projections};
 use super::plot;
+use super::progress::ProgressLine;
 
 /// Most models drawn on the contact sheet; a larger front is shown evenly thinned.
 const SHEET_MODELS: usize = 100;
@@ -107,9 +107,9 @@ impl FrontRun<'_> {
 
         let stop = interrupt::flag();
         let total = goal.generations();
-        let terminal = std::io::stderr().is_terminal();
+        let line = ProgressLine::new();
         let mut show = |s: &MultiSnapshot<'_, G>| {
-            progress(s, &names, total, terminal);
+            line.show(s.generation, &progress(s, &names, total));
             Control::Continue
         };
         let result = Session::new(ga, goal.budget())
@@ -125,9 +125,7 @@ impl FrontRun<'_> {
                 .save(self.dir)
             })
             .run(&mut evaluator)?;
-        if terminal {
-            eprintln!();
-        }
+        line.finish();
         let front = sorted(&result.front, set.senses());
         outputs.models(self.dir, &front)?;
         outputs.sheet(self.dir, &front)?;
@@ -211,28 +209,22 @@ fn best_by<'a, G>(front: &[&'a Member<G>], i: usize, sense: Sense) -> Option<&'a
     })
 }
 
-/// One line of progress per generation: rewritten in place on a terminal, every tenth
-/// generation otherwise.
-fn progress<G>(s: &MultiSnapshot<'_, G>, names: &[&str], total: u64, terminal: bool) {
+/// The progress line after a generation: the front's size and each objective's best.
+fn progress<G>(s: &MultiSnapshot<'_, G>, names: &[&str], total: u64) -> String {
     let elapsed = s.elapsed.as_secs_f64();
     let best: Vec<String> = names
         .iter()
         .zip(s.best)
         .map(|(name, v)| format!("{name} {v:.4}"))
         .collect();
-    let line = format!(
+    format!(
         "generation {:>4}/{}  front {:>4}  best {}  {:>6.0} evaluations/s",
         s.generation,
         total,
         s.front.len(),
         best.join("  "),
         s.evaluations as f64 / elapsed.max(1e-9)
-    );
-    if terminal {
-        eprint!("\r{line}");
-    } else if s.generation.is_multiple_of(10) {
-        eprintln!("{line}");
-    }
+    )
 }
 
 /// Writes a multi-objective run's files.

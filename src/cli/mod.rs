@@ -40,6 +40,7 @@ mod genomes;
 mod interrupt;
 mod overlay;
 mod plot;
+mod progress;
 mod render;
 mod run;
 mod sample;
@@ -58,7 +59,7 @@ use shapegen_runtime::Grammar;
 use generators::{GeneratorVisitor, Published};
 use shapegen_runtime::genome::Limits;
 
-use crate::registry::{Defaults, Registry, RegistryError};
+use crate::registry::{Defaults, RegistryError, published_defaults};
 use dispatch::Generators;
 
 /// The command-line tool, with the generators it knows; see the
@@ -77,16 +78,15 @@ impl Cli {
     }
 
     /// Adds the published generators: `spaceship`, `tree`, `city` and `building`, with
-    /// their meshes and the original's settings ([`Registry::published`]).
+    /// their meshes and the original's settings
+    /// ([`Registry::published`](crate::registry::Registry::published)).
     pub fn published(mut self) -> Cli {
-        let registry = Registry::published();
+        let meshes = generators::default_meshes();
         for generator in Published::ALL {
-            let entry = registry.get(generator.name());
-            let defaults = entry.map_or_else(Defaults::default, |e| e.defaults.clone());
             self = generator.visit(Register {
                 cli: self,
                 name: generator.name(),
-                defaults,
+                defaults: published_defaults(generator, &meshes),
             });
         }
         self

@@ -1,7 +1,6 @@
 //! `shapegen run`: evolves models toward a scene's goal and writes what it found, kept
 //! consistent on disk at every moment so that an interrupted run loses nothing.
 
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
@@ -23,6 +22,7 @@ use super::front::FrontRun;
 use super::interrupt;
 use super::overlay::overlay;
 use super::plot;
+use super::progress::ProgressLine;
 use super::search::{MethodJob, with_method};
 
 /// Arguments of `shapegen run`.
@@ -155,7 +155,7 @@ impl<G: Grammar> MethodJob<G> for Run<'_> {
         let mut evaluator = SceneEvaluator::new(&backend);
         let stop = interrupt::flag();
         let outputs = Outputs::new::<G>(self.scene, &scorer)?;
-        let mut progress = Progress::new(goal, std::io::stderr().is_terminal());
+        let mut progress = Progress::new(goal);
         let mut show = |s: &Snapshot<'_, G>| {
             progress.show(s);
             Control::Continue
@@ -321,18 +321,17 @@ impl<'a> Outputs<'a> {
     }
 }
 
-/// One line of progress per generation: rewritten in place on a terminal, every tenth
-/// generation otherwise.
+/// The progress line after a generation: best and mean fitness, rate, time left.
 struct Progress {
-    terminal: bool,
+    line: ProgressLine,
     total: u64,
     seconds: Option<f64>,
 }
 
 impl Progress {
-    fn new(goal: &shapegen::scene::OptimizerGoal, terminal: bool) -> Progress {
+    fn new(goal: &shapegen::scene::OptimizerGoal) -> Progress {
         Progress {
-            terminal,
+            line: ProgressLine::new(),
             total: goal.generations(),
             seconds: goal.seconds,
         }
@@ -354,16 +353,10 @@ impl Progress {
             "generation {:>4}/{}  best {:>9.5}  mean {:>9.5}  {:>7.0} evaluations/s  {:>4.0} s left",
             s.generation, self.total, s.best_fitness, s.mean, rate, left
         );
-        if self.terminal {
-            eprint!("\r{line}");
-        } else if s.generation.is_multiple_of(10) {
-            eprintln!("{line}");
-        }
+        self.line.show(s.generation, &line);
     }
 
     fn finish(&self) {
-        if self.terminal {
-            eprintln!();
-        }
+        self.line.finish();
     }
 }

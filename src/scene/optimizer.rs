@@ -228,8 +228,8 @@ impl<'de> Deserialize<'de> for Method {
     }
 }
 
-/// A number of seconds that can be a budget.
-fn seconds(value: f64) -> Option<f64> {
+/// `value` if it can be a budget in seconds.
+fn budget_seconds(value: f64) -> Option<f64> {
     (value.is_finite() && value > 0.0).then_some(value)
 }
 
@@ -264,7 +264,7 @@ pub(super) fn resolve(
         Some(v) => match v
             .as_float()
             .or(v.as_integer().map(|i| i as f64))
-            .and_then(seconds)
+            .and_then(budget_seconds)
         {
             Some(s) => Some(s),
             None => {
@@ -287,7 +287,7 @@ pub(super) fn resolve(
     };
     let seconds = match overrides.seconds {
         None => written_seconds,
-        Some(s) => Some(seconds(s).ok_or_else(|| {
+        Some(s) => Some(budget_seconds(s).ok_or_else(|| {
             (
                 "--seconds".to_owned(),
                 format!("{s} must be a number of seconds > 0"),
