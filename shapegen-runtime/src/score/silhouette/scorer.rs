@@ -203,49 +203,62 @@ impl SilhouetteScorer {
         scratch: &mut SilhouetteScratch,
     ) {
         let vp = target.view_projection();
-        let (w, h) = (target.width() as f32, target.height() as f32);
         for instance in instances {
-            let Some(mesh) = self.meshes.get(instance.mesh.0 as usize) else {
-                continue;
-            };
-            let m = vp * Mat4::from(instance.transform);
-            if let Some(hull) = &mesh.hull {
-                scratch.points.clear();
-                let mut front = true;
-                for &p in hull {
-                    let c = m * p.extend(1.0);
-                    front &= in_front(c);
-                    scratch.points.push(to_pixels(c, w, h));
-                }
-                if front {
-                    let mut poly = [Vec2::ZERO; MAX_POLYGON + 1];
-                    let n = convex_hull(&mut scratch.points, &mut poly);
-                    scratch.coverage.fill_convex(&poly[..n]);
-                    continue;
-                }
+            self.rasterize_instance(target, vp, instance, scratch);
+        }
+    }
+
+    /// Rasterizes one instance into `scratch.coverage` (already shaped for `target`,
+    /// whose view-projection matrix is `vp`). What an instance covers depends on the
+    /// instance alone, never on what else the coverage holds.
+    pub(super) fn rasterize_instance(
+        &self,
+        target: &ImageTarget,
+        vp: Mat4,
+        instance: &Instance,
+        scratch: &mut SilhouetteScratch,
+    ) {
+        let (w, h) = (target.width() as f32, target.height() as f32);
+        let Some(mesh) = self.meshes.get(instance.mesh.0 as usize) else {
+            return;
+        };
+        let m = vp * Mat4::from(instance.transform);
+        if let Some(hull) = &mesh.hull {
+            scratch.points.clear();
+            let mut front = true;
+            for &p in hull {
+                let c = m * p.extend(1.0);
+                front &= in_front(c);
+                scratch.points.push(to_pixels(c, w, h));
             }
-            scratch.clip.clear();
-            scratch
-                .clip
-                .extend(mesh.positions.iter().map(|&p| m * p.extend(1.0)));
-            for tri in &mesh.triangles {
-                let c = tri.map(|i| scratch.clip[i as usize]);
-                let mut poly = [Vec2::ZERO; 5];
-                let n = if c.iter().all(|&v| in_front(v)) {
-                    for k in 0..3 {
-                        poly[k] = to_pixels(c[k], w, h);
-                    }
-                    3
-                } else {
-                    let mut clipped = [Vec4::ZERO; 5];
-                    let n = clip_triangle(c, &mut clipped);
-                    for k in 0..n {
-                        poly[k] = to_pixels(clipped[k], w, h);
-                    }
-                    n
-                };
+            if front {
+                let mut poly = [Vec2::ZERO; MAX_POLYGON + 1];
+                let n = convex_hull(&mut scratch.points, &mut poly);
                 scratch.coverage.fill_convex(&poly[..n]);
+                return;
             }
+        }
+        scratch.clip.clear();
+        scratch
+            .clip
+            .extend(mesh.positions.iter().map(|&p| m * p.extend(1.0)));
+        for tri in &mesh.triangles {
+            let c = tri.map(|i| scratch.clip[i as usize]);
+            let mut poly = [Vec2::ZERO; 5];
+            let n = if c.iter().all(|&v| in_front(v)) {
+                for k in 0..3 {
+                    poly[k] = to_pixels(c[k], w, h);
+                }
+                3
+            } else {
+                let mut clipped = [Vec4::ZERO; 5];
+                let n = clip_triangle(c, &mut clipped);
+                for k in 0..n {
+                    poly[k] = to_pixels(clipped[k], w, h);
+                }
+                n
+            };
+            scratch.coverage.fill_convex(&poly[..n]);
         }
     }
 }
