@@ -21,15 +21,50 @@ pub struct EvaluateError(pub String);
 /// has zero selection weight and is never accepted by a Metropolis test; `+inf` and
 /// `-inf` are ordinary extremes (see the module documentation of
 /// [`optimize`](crate::optimize) for each method's exact treatment).
+///
+/// Optimizers that breed new genomes from a population they have scored (the GA, the
+/// multi-objective GA, RJMCMC) call [`evaluate_bred`](Self::evaluate_bred), which says
+/// which genome each child was bred from, so that an evaluator can score a child from
+/// what it kept of its parent (see [`score::retained`](crate::score::retained)).
 pub trait Evaluator<G: Grammar> {
     /// Writes the fitness of `genomes[i]` to `out[i]` (higher is better). `out` has the
     /// length of `genomes`.
     fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError>;
+
+    /// As [`evaluate`](Self::evaluate), for children bred from `parents`: `genomes[i]`
+    /// was made from `parents[from[i]]` by a few operators (a mutation, or a crossover
+    /// that put another parent's subtree into it), and `parents` is the population the
+    /// optimizer breeds from, which it scored earlier. The fitness must be exactly what
+    /// `evaluate` gives: lineage only lets an evaluator do less work. An evaluator that
+    /// keeps state between calls may drop whatever is of neither `parents` nor
+    /// `genomes`. The default ignores the lineage.
+    ///
+    /// `from` has the length of `genomes`, and each entry indexes `parents`.
+    fn evaluate_bred(
+        &mut self,
+        genomes: &[Genome<G>],
+        parents: &[Genome<G>],
+        from: &[u32],
+        out: &mut [f64],
+    ) -> Result<(), EvaluateError> {
+        let _ = (parents, from);
+        self.evaluate(genomes, out)
+    }
 }
 
 impl<G: Grammar, E: Evaluator<G> + ?Sized> Evaluator<G> for &mut E {
     fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError> {
         (**self).evaluate(genomes, out)
+    }
+
+    fn evaluate_bred(
+        &mut self,
+        genomes: &[Genome<G>],
+        parents: &[Genome<G>],
+        from: &[u32],
+        out: &mut [f64],
+    ) -> Result<(), EvaluateError> {
+        (**self).evaluate_bred(genomes, parents, from, out)
     }
 }
 
@@ -71,6 +106,20 @@ pub trait MultiEvaluator<G: Grammar> {
     /// Writes the `k` raw objective values of `genomes[i]` to `out[i * k..(i + 1) * k]`.
     /// `out` holds `genomes.len() * k` values.
     fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError>;
+
+    /// As [`evaluate`](Self::evaluate), for children bred from `parents`, with the
+    /// lineage and the promises of [`Evaluator::evaluate_bred`]. The default ignores the
+    /// lineage.
+    fn evaluate_bred(
+        &mut self,
+        genomes: &[Genome<G>],
+        parents: &[Genome<G>],
+        from: &[u32],
+        out: &mut [f64],
+    ) -> Result<(), EvaluateError> {
+        let _ = (parents, from);
+        self.evaluate(genomes, out)
+    }
 }
 
 impl<G: Grammar, E: MultiEvaluator<G> + ?Sized> MultiEvaluator<G> for &mut E {
@@ -80,6 +129,16 @@ impl<G: Grammar, E: MultiEvaluator<G> + ?Sized> MultiEvaluator<G> for &mut E {
 
     fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError> {
         (**self).evaluate(genomes, out)
+    }
+
+    fn evaluate_bred(
+        &mut self,
+        genomes: &[Genome<G>],
+        parents: &[Genome<G>],
+        from: &[u32],
+        out: &mut [f64],
+    ) -> Result<(), EvaluateError> {
+        (**self).evaluate_bred(genomes, parents, from, out)
     }
 }
 

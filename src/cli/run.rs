@@ -14,7 +14,7 @@ use shapegen::{Genome, Grammar};
 
 use crate::registry::Entry;
 
-use super::backend::BackendArgs;
+use super::backend::{BackendArgs, Incremental};
 use super::checkpoint::{Checkpoint, Head};
 use super::dispatch::{Generators, Visit};
 use super::files::{atomic_write, csv_bytes, save_png};
@@ -75,6 +75,9 @@ struct Summary<'a> {
     genes: usize,
     instances: usize,
     stopped: &'a str,
+    /// How bred children were counted; absent when every model was counted from nothing.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    incremental: Option<Incremental>,
 }
 
 /// Runs `shapegen run`.
@@ -152,7 +155,8 @@ impl<G: Grammar> MethodJob<G> for Run<'_> {
             goal.method.name(),
             backend.describe()
         );
-        let mut evaluator = SceneEvaluator::new(&backend);
+        let mut evaluator =
+            SceneEvaluator::new(&backend).with_incremental(self.args.backend.incremental());
         let stop = interrupt::flag();
         let outputs = Outputs::new::<G>(self.scene, &scorer)?;
         let mut progress = Progress::new(goal);
@@ -202,7 +206,11 @@ impl<G: Grammar> MethodJob<G> for Run<'_> {
             genes: result.best.len(),
             instances: instances.len(),
             stopped: result.stopped.name(),
+            incremental: evaluator.retention().map(Incremental::from),
         };
+        if let Some(incremental) = &summary.incremental {
+            eprintln!("{incremental}");
+        }
         atomic_write(
             &self.dir.join("summary.json"),
             serde_json::to_string_pretty(&summary)?.as_bytes(),

@@ -12,12 +12,15 @@ use serde::{Serialize, Serializer};
 use shapegen_runtime::geometry::BoundMeshes;
 use shapegen_runtime::gpu::{GpuContext, GpuError, wgpu};
 use shapegen_runtime::optimize::{EvaluateError, Evaluator};
+use shapegen_runtime::score::retained::{
+    CellCounts, Overflow, RetainedScorer, Retention, RetentionStats,
+};
 use shapegen_runtime::score::silhouette::{
     GpuSilhouetteScorer, SilhouetteCounts, SilhouetteScorer,
 };
 use shapegen_runtime::score::volume::{GpuVolumeScorer, VolumeCounts, VolumeScorer};
 use shapegen_runtime::score::{InstanceBatch, LengthPenalty, Scorer, count_batch};
-use shapegen_runtime::{Genome, Grammar};
+use shapegen_runtime::{Genome, Grammar, Instance};
 
 use super::{Scene, SceneError, SilhouetteGoal, VolumeGoal};
 
@@ -84,6 +87,94 @@ macro_rules! scorer_kinds {
             $($kind($gpu<'a>),)*
         }
 
+        /// One scorer's working memory.
+        pub enum AnyScratch {
+            $($(#[doc = $doc])* $kind(<$scorer as Scorer>::Scratch),)*
+        }
+
+        /// What one scorer keeps of one model, for incremental scoring.
+        #[derive(Clone)]
+        pub enum AnyState {
+            $($(#[doc = $doc])* $kind(<$scorer as RetainedScorer>::State),)*
+        }
+
+        impl Scorer for AnyScorer {
+            type Counts = AnyCounts;
+            type Scratch = AnyScratch;
+
+            fn scratch(&self) -> AnyScratch {
+                match self {
+                    $(AnyScorer::$kind(s) => AnyScratch::$kind(s.scratch()),)*
+                }
+            }
+
+            fn count(&self, instances: &[Instance], scratch: &mut AnyScratch) -> AnyCounts {
+                #[allow(unreachable_patterns)]
+                match (self, scratch) {
+                    $((AnyScorer::$kind(s), AnyScratch::$kind(scratch)) => {
+                        AnyCounts::$kind(s.count(instances, scratch))
+                    })*
+                    _ => unreachable!("a scorer's scratch is of its own kind"),
+                }
+            }
+
+            fn fitness(&self, counts: &AnyCounts) -> f64 {
+                AnyScorer::fitness(self, counts)
+            }
+        }
+
+        impl RetainedScorer for AnyScorer {
+            type State = AnyState;
+
+            fn count_retained(
+                &self,
+                instances: &[Instance],
+                scratch: &mut AnyScratch,
+            ) -> Result<AnyState, Overflow> {
+                #[allow(unreachable_patterns)]
+                match (self, scratch) {
+                    $((AnyScorer::$kind(s), AnyScratch::$kind(scratch)) => {
+                        s.count_retained(instances, scratch).map(AnyState::$kind)
+                    })*
+                    _ => unreachable!("a scorer's scratch is of its own kind"),
+                }
+            }
+
+            fn update(
+                &self,
+                state: &mut AnyState,
+                removed: &[Instance],
+                added: &[Instance],
+                scratch: &mut AnyScratch,
+            ) -> Result<(), Overflow> {
+                #[allow(unreachable_patterns)]
+                match (self, state, scratch) {
+                    $((AnyScorer::$kind(s), AnyState::$kind(state), AnyScratch::$kind(scratch)) => {
+                        s.update(state, removed, added, scratch)
+                    })*
+                    _ => unreachable!("a scorer's state and scratch are of its own kind"),
+                }
+            }
+
+            fn state_counts(&self, state: &AnyState) -> AnyCounts {
+                #[allow(unreachable_patterns)]
+                match (self, state) {
+                    $((AnyScorer::$kind(s), AnyState::$kind(state)) => {
+                        AnyCounts::$kind(s.state_counts(state))
+                    })*
+                    _ => unreachable!("a scorer's state is of its own kind"),
+                }
+            }
+
+            fn visit_cells(&self, state: &AnyState, visit: &mut dyn FnMut(&CellCounts)) {
+                #[allow(unreachable_patterns)]
+                match (self, state) {
+                    $((AnyScorer::$kind(s), AnyState::$kind(state)) => s.visit_cells(state, visit),)*
+                    _ => unreachable!("a scorer's state is of its own kind"),
+                }
+            }
+        }
+
         impl ScorerGoal {
             /// Its kind.
             pub fn kind(&self) -> ScorerKind {
@@ -109,6 +200,13 @@ macro_rules! scorer_kinds {
             pub fn kind(&self) -> ScorerKind {
                 match self {
                     $(AnyScorer::$kind(_) => ScorerKind::$kind,)*
+                }
+            }
+
+            /// The counts of a model that covers nothing.
+            fn nothing(&self) -> AnyCounts {
+                match self {
+                    $(AnyScorer::$kind(_) => AnyCounts::$kind($counts::default()),)*
                 }
             }
 
@@ -366,12 +464,17 @@ impl SceneScorer {
     /// The fitness of a model of `genes` genes with these counts: the scorers' parts, less
     /// the genome-length term.
     pub fn fitness(&self, counts: &SceneCounts, genes: usize) -> f64 {
+        self.fitness_of_parts(&counts.parts, genes)
+    }
+
+    /// [`fitness`](Self::fitness) of the counts `parts`, one per scorer in order.
+    fn fitness_of_parts(&self, parts: &[AnyCounts], genes: usize) -> f64 {
         // Every kind adds its part, 0 when the scene lacks it, in the order of the kinds:
         // the same sum, to the bit (signed zeros too), whichever kinds a scene has.
         let part = |kind: &ScorerKind| {
             self.scorers
                 .iter()
-                .zip(&counts.parts)
+                .zip(parts)
                 .find(|(scorer, _)| scorer.kind() == *kind)
                 .map_or(0.0, |(scorer, counts)| scorer.fitness(counts))
         };
@@ -418,35 +521,105 @@ impl Backend<'_> {
 
 /// Scores populations for an optimizer with a scene's scorers on a backend: derives
 /// every genome into one reused batch, counts it, and subtracts the length term.
+///
+/// On the CPU, children bred from a scored population
+/// ([`evaluate_bred`](Evaluator::evaluate_bred)) are counted incrementally, from what was
+/// kept of their parents ([`Retention`]), with exactly the counts of counting them from
+/// nothing; [`with_incremental(false)`](Self::with_incremental) counts every child from
+/// nothing. The GPU counts every model from nothing.
 pub struct SceneEvaluator<'a> {
     backend: &'a Backend<'a>,
     batch: InstanceBatch,
     counts: Vec<SceneCounts>,
+    retention: Option<Retention<AnyScorer>>,
+    parts: Vec<AnyCounts>,
 }
 
 impl<'a> SceneEvaluator<'a> {
-    /// An evaluator counting on `backend`.
+    /// An evaluator counting on `backend`, incrementally where it can.
     pub fn new(backend: &'a Backend<'a>) -> Self {
         SceneEvaluator {
             backend,
             batch: InstanceBatch::new(),
             counts: Vec::new(),
+            retention: backend.gpu.is_empty().then(Retention::new),
+            parts: Vec::new(),
+        }
+    }
+
+    /// Whether bred children are counted from their parents' kept state (the default on
+    /// the CPU; the GPU always counts from nothing).
+    pub fn with_incremental(mut self, incremental: bool) -> Self {
+        self.retention = (incremental && self.backend.gpu.is_empty()).then(Retention::new);
+        self
+    }
+
+    /// Whether bred children are counted incrementally.
+    pub fn incremental(&self) -> bool {
+        self.retention.is_some()
+    }
+
+    /// How the bred children were counted so far, and the bytes of state kept now;
+    /// `None` when not counting incrementally.
+    pub fn retention(&self) -> Option<(RetentionStats, usize)> {
+        let retention = self.retention.as_ref()?;
+        Some((
+            retention.stats(),
+            retention.memory(self.backend.scorer.scorers()),
+        ))
+    }
+
+    /// Derives `genomes` into the batch.
+    fn derive<G: Grammar>(&mut self, genomes: &[Genome<G>]) {
+        self.batch.clear();
+        for genome in genomes {
+            self.batch.push_genome(genome);
         }
     }
 }
 
 impl<G: Grammar> Evaluator<G> for SceneEvaluator<'_> {
     fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError> {
-        self.batch.clear();
-        for genome in genomes {
-            self.batch.push_genome(genome);
-        }
+        self.derive(genomes);
         self.backend
             .count(&self.batch, &mut self.counts)
             .map_err(|err| EvaluateError(err.to_string()))?;
         let scorer = self.backend.scorer();
         for ((slot, counts), genome) in out.iter_mut().zip(&self.counts).zip(genomes) {
             *slot = scorer.fitness(counts, genome.len());
+        }
+        Ok(())
+    }
+
+    fn evaluate_bred(
+        &mut self,
+        genomes: &[Genome<G>],
+        parents: &[Genome<G>],
+        from: &[u32],
+        out: &mut [f64],
+    ) -> Result<(), EvaluateError> {
+        if self.retention.is_none() {
+            return self.evaluate(genomes, out);
+        }
+        self.derive(genomes);
+        let scorer = self.backend.scorer();
+        let scorers = scorer.scorers();
+        let k = scorers.len();
+        self.parts.clear();
+        for _ in genomes {
+            self.parts.extend(scorers.iter().map(AnyScorer::nothing));
+        }
+        let retention = self.retention.as_mut().expect("checked above");
+        retention.count_bred(
+            scorers,
+            genomes,
+            &self.batch,
+            parents,
+            from,
+            &mut self.parts,
+        );
+        for (i, (slot, genome)) in out.iter_mut().zip(genomes).enumerate() {
+            *slot = scorer.fitness_of_parts(&self.parts[i * k..(i + 1) * k], genome.len());
         }
         Ok(())
     }

@@ -278,6 +278,8 @@ pub struct Ga<G> {
     fitness: Vec<f64>,
     next: Vec<Genome<G>>,
     next_fitness: Vec<f64>,
+    /// The parent each child of `next` was bred from, by index into `population`.
+    from: Vec<u32>,
     order: Vec<u32>,
     roulette: Roulette,
 }
@@ -310,6 +312,7 @@ impl<G: Grammar> Optimizer<G> for Ga<G> {
             fitness: vec![f64::NAN; n],
             next: (0..n).map(|_| empty()).collect(),
             next_fitness: vec![f64::NAN; n],
+            from: vec![0; n - settings.elitism as usize],
             order: Vec::with_capacity(n),
             roulette: Roulette::default(),
         })
@@ -388,8 +391,14 @@ impl<G: Grammar> Optimizer<G> for Ga<G> {
             self.progress.seed,
             generation,
             &mut self.next[elite..],
+            &mut self.from,
         )?;
-        evaluator.evaluate(&self.next[elite..], &mut self.next_fitness[elite..])?;
+        evaluator.evaluate_bred(
+            &self.next[elite..],
+            &self.population,
+            &self.from,
+            &mut self.next_fitness[elite..],
+        )?;
         self.progress.evaluations += self.step_cost();
         std::mem::swap(&mut self.population, &mut self.next);
         std::mem::swap(&mut self.fitness, &mut self.next_fitness);
@@ -433,45 +442,55 @@ pub(crate) struct Breed<'a, G> {
 impl<G: Grammar> Breed<'_, G> {
     /// Breeds `children` in parallel, in pairs: pair `p` (children `2p` and `2p + 1`; the
     /// last pair may hold one) draws from stream (seed, `generation`, `p`), so the
-    /// children never depend on the thread count. Fails only with the original's
-    /// breeding, when [`ORIGINAL_BREEDS_PER_PAIR`] breeding events do not fill a pair
-    /// with children within the length window.
+    /// children never depend on the thread count. `from[i]` is set to the index of the
+    /// parent child `i` was made from (the one it is a mutated copy of, or whose tree
+    /// received the other parent's subtree). Fails only with the original's breeding,
+    /// when [`ORIGINAL_BREEDS_PER_PAIR`] breeding events do not fill a pair with children
+    /// within the length window.
     pub(crate) fn children(
         &self,
         ops: &Operators<G>,
         seed: u64,
         generation: u64,
         children: &mut [Genome<G>],
+        from: &mut [u32],
     ) -> Result<(), OptimizeError> {
+        debug_assert_eq!(children.len(), from.len());
         let empty = || Genome::from_parts(Vec::new(), 0);
-        children.par_chunks_mut(2).enumerate().try_for_each_init(
-            || (ops.clone(), [empty(), empty()]),
-            |(ops, spare), (pair, children)| {
-                let rng = &mut stream(seed, generation, pair as u64);
-                if self.settings.operators == OperatorVariant::Original {
-                    return self.original_pair(ops, children, spare, rng);
-                }
-                let (a, b) = match children {
-                    [a, b] => (a, b),
-                    [a] => (a, &mut spare[0]),
-                    _ => unreachable!("chunks hold one or two children"),
-                };
-                self.pair(ops, a, b, rng);
-                Ok(())
-            },
-        )
+        children
+            .par_chunks_mut(2)
+            .zip(from.par_chunks_mut(2))
+            .enumerate()
+            .try_for_each_init(
+                || (ops.clone(), [empty(), empty()]),
+                |(ops, spare), (pair, (children, from))| {
+                    let rng = &mut stream(seed, generation, pair as u64);
+                    if self.settings.operators == OperatorVariant::Original {
+                        return self.original_pair(ops, children, from, spare, rng);
+                    }
+                    let (a, b) = match children {
+                        [a, b] => (a, b),
+                        [a] => (a, &mut spare[0]),
+                        _ => unreachable!("chunks hold one or two children"),
+                    };
+                    let parents = self.pair(ops, a, b, rng);
+                    from.copy_from_slice(&parents[..from.len()]);
+                    Ok(())
+                },
+            )
     }
 
-    /// Breeds two children into `a` and `b`.
+    /// Breeds two children into `a` and `b`, and returns the parents they were made
+    /// from, in that order.
     fn pair(
         &self,
         ops: &mut Operators<G>,
         a: &mut Genome<G>,
         b: &mut Genome<G>,
         rng: &mut impl Rng,
-    ) {
-        let p1 = &self.population[self.tournament(rng)];
-        let p2 = &self.population[self.roulette.spin(rng)];
+    ) -> [u32; 2] {
+        let (i1, i2) = (self.tournament(rng), self.roulette.spin(rng));
+        let (p1, p2) = (&self.population[i1], &self.population[i2]);
         if self.mutates(rng) {
             a.clone_from(p1);
             self.mutate(ops, a, rng);
@@ -481,17 +500,19 @@ impl<G: Grammar> Breed<'_, G> {
             a.clone_from(p1);
             b.clone_from(p2);
         }
+        [i1 as u32, i2 as u32]
     }
 
     /// Fills `slots` (one or two) as the original's `createNewGeneration` fills the
     /// generation: breeds a pair of children into `kids` (none when the crossover
     /// fails), keeps each child with `min_len <= len < max_len` in the next empty slot
     /// (swapping buffers, so nothing is allocated once warmed up), and breeds again until
-    /// the slots are full.
+    /// the slots are full. `from` gets the parent of each slot's child.
     fn original_pair(
         &self,
         ops: &mut Operators<G>,
         slots: &mut [Genome<G>],
+        from: &mut [u32],
         kids: &mut [Genome<G>; 2],
         rng: &mut impl Rng,
     ) -> Result<(), OptimizeError> {
@@ -499,8 +520,8 @@ impl<G: Grammar> Breed<'_, G> {
         let fits = |g: &Genome<G>| (limits.min_len..limits.max_len).contains(&(g.len() as u32));
         let mut filled = 0;
         for _ in 0..ORIGINAL_BREEDS_PER_PAIR {
-            let p1 = &self.population[self.tournament(rng)];
-            let p2 = &self.population[self.roulette.spin(rng)];
+            let (i1, i2) = (self.tournament(rng), self.roulette.spin(rng));
+            let (p1, p2) = (&self.population[i1], &self.population[i2]);
             let [c, d] = kids;
             let bred = if self.mutates(rng) {
                 c.clone_from(p1);
@@ -514,8 +535,12 @@ impl<G: Grammar> Breed<'_, G> {
             if !bred {
                 continue;
             }
-            for kid in kids.iter_mut().filter(|kid| fits(kid)) {
+            for (kid, parent) in kids.iter_mut().zip([i1, i2]) {
+                if !fits(kid) {
+                    continue;
+                }
                 std::mem::swap(kid, &mut slots[filled]);
+                from[filled] = parent as u32;
                 filled += 1;
                 if filled == slots.len() {
                     return Ok(());
@@ -790,7 +815,14 @@ mod tests {
             };
             let mut children: Vec<Genome<Chain>> =
                 (0..200).map(|_| population[0].clone()).collect();
-            breed.children(&ops, 3, 1, &mut children).unwrap();
+            let mut from = vec![u32::MAX; children.len()];
+            breed
+                .children(&ops, 3, 1, &mut children, &mut from)
+                .unwrap();
+            assert!(
+                from.iter().all(|&f| (f as usize) < population.len()),
+                "{from:?}"
+            );
             for pair in children.chunks(2) {
                 let lens = (pair[0].len(), pair[1].len());
                 if p == 0.0 {

@@ -29,6 +29,7 @@
 mod batch;
 mod form;
 pub mod objective;
+pub mod retained;
 pub mod silhouette;
 pub mod volume;
 

@@ -359,6 +359,8 @@ pub struct Mcmc<G> {
     log_priors: Vec<f64>,
     proposals: Vec<Genome<G>>,
     proposal_fitness: Vec<f64>,
+    /// `0..chains`: proposal `i` is bred from chain `i`.
+    own_chain: Vec<u32>,
     rngs: Vec<ChaCha8Rng>,
     /// Tempered variant: what each chain proposed this iteration.
     moves: Vec<tempered::Move>,
@@ -445,6 +447,7 @@ impl<G: Grammar> Optimizer<G> for Mcmc<G> {
             log_priors: if original { vec![1.0; n] } else { Vec::new() },
             proposals: (0..n).map(|_| empty()).collect(),
             proposal_fitness: vec![f64::NAN; n],
+            own_chain: (0..n as u32).collect(),
             rngs: (0..n).map(|i| stream(seed, 0, i as u64)).collect(),
             moves: if original {
                 Vec::new()

@@ -99,7 +99,12 @@ impl<G: Grammar> Mcmc<G> {
                     *m = propose(basic_prob, ops, &chains[i], priors[i] as f32, p, s, rng);
                 },
             );
-        evaluator.evaluate(&self.proposals, &mut self.proposal_fitness)?;
+        evaluator.evaluate_bred(
+            &self.proposals,
+            &self.chains,
+            &self.own_chain,
+            &mut self.proposal_fitness,
+        )?;
         self.progress.evaluations += self.chains.len() as u64;
         for i in 0..self.chains.len() {
             let (m, t) = (self.original_moves[i], self.temperatures[i] as f32);

@@ -75,7 +75,12 @@ impl<G: Grammar> Mcmc<G> {
                 || (ops.clone(), Scratch::default()),
                 |(ops, s), (i, ((p, m), rng))| *m = propose(settings, ops, &chains[i], p, s, rng),
             );
-        evaluator.evaluate(&self.proposals, &mut self.proposal_fitness)?;
+        evaluator.evaluate_bred(
+            &self.proposals,
+            &self.chains,
+            &self.own_chain,
+            &mut self.proposal_fitness,
+        )?;
         self.progress.evaluations += self.chains.len() as u64;
         self.retry.clear();
         for i in 0..self.chains.len() {
@@ -102,7 +107,12 @@ impl<G: Grammar> Mcmc<G> {
                 self.ops.alter(&mut self.proposals[i], &mut self.rngs[i]);
                 self.retry_genomes[k].clone_from(&self.proposals[i]);
             }
-            evaluator.evaluate(&self.retry_genomes[..n], &mut self.retry_fitness[..n])?;
+            evaluator.evaluate_bred(
+                &self.retry_genomes[..n],
+                &self.chains,
+                &self.retry,
+                &mut self.retry_fitness[..n],
+            )?;
             self.progress.evaluations += n as u64;
             let mut kept = 0;
             for k in 0..n {

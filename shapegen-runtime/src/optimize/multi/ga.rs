@@ -325,6 +325,8 @@ pub struct MultiGa<G> {
     values: Vec<f64>,
     next: Vec<Genome<G>>,
     next_values: Vec<f64>,
+    /// The parent each child of `next` was bred from, by index into `population`.
+    from: Vec<u32>,
     fitness: Vec<f64>,
     order: Vec<u32>,
     roulette: Roulette,
@@ -450,6 +452,7 @@ impl<G: Grammar> Optimizer<G> for MultiGa<G> {
             values: Vec::new(),
             next: (0..n).map(|_| empty()).collect(),
             next_values: Vec::new(),
+            from: vec![0; n - settings.ga.elitism as usize],
             fitness: vec![f64::NAN; n],
             order: Vec::with_capacity(n),
             roulette: Roulette::default(),
@@ -591,8 +594,14 @@ impl<G: Grammar> Optimizer<G> for MultiGa<G> {
             worst: *self.order.last().expect("a population of at least 2"),
         };
         let (seed, generation) = (self.progress.seed, self.progress.generation + 1);
-        breed.children(&self.ops, seed, generation, &mut self.next[elite..])?;
-        evaluator.evaluate(&self.next[elite..], &mut self.next_values[elite * k..])?;
+        let children = &mut self.next[elite..];
+        breed.children(&self.ops, seed, generation, children, &mut self.from)?;
+        evaluator.evaluate_bred(
+            &self.next[elite..],
+            &self.population,
+            &self.from,
+            &mut self.next_values[elite * k..],
+        )?;
         self.progress.evaluations += self.step_cost();
         std::mem::swap(&mut self.population, &mut self.next);
         std::mem::swap(&mut self.values, &mut self.next_values);

@@ -50,6 +50,7 @@ mod counts;
 mod gpu;
 mod meshes;
 pub(in crate::score) mod raster;
+mod retained;
 mod scorer;
 mod target;
 #[cfg(test)]
@@ -58,5 +59,6 @@ mod tests;
 pub use camera::{Camera, CameraError, OrbitCamera};
 pub use counts::{MAX_TARGETS, SilhouetteCounts, TargetCounts};
 pub use gpu::GpuSilhouetteScorer;
+pub use retained::SilhouetteState;
 pub use scorer::{SilhouetteError, SilhouetteScorer, SilhouetteScratch};
 pub use target::{ImageTarget, MAX_TARGET_PIXELS, MaskRule, TargetError, TargetKind};

@@ -96,7 +96,7 @@ pub struct SilhouetteScorer {
 /// Working memory of one worker of a [`SilhouetteScorer`].
 #[derive(Clone, Debug, Default)]
 pub struct SilhouetteScratch {
-    coverage: Coverage,
+    pub(super) coverage: Coverage,
     clip: Vec<Vec4>,
     points: Vec<Vec2>,
 }

@@ -18,7 +18,7 @@ pub struct VolumeScratch {
     covered: Vec<u64>,
     twice: Vec<u64>,
     touched: Vec<u32>,
-    voxelizer: Voxelizer,
+    pub(super) voxelizer: Voxelizer,
 }
 
 impl VolumeScratch {
@@ -33,7 +33,19 @@ impl VolumeScratch {
     }
 }
 
-/// The running counts of one model.
+/// Where the lattice points one instance covers go: a model's running counts, in one
+/// form or another.
+pub(super) trait Lattice {
+    /// The instance's span holds `n` voxels outside the grid.
+    fn span(&mut self, n: u64);
+    /// `n` covered lattice points lie outside the grid.
+    fn outside(&mut self, n: u64);
+    /// In-grid voxels `first..=last` (flat indices, [`Grid::index`](super::Grid::index))
+    /// are covered.
+    fn voxels(&mut self, first: usize, last: usize);
+}
+
+/// The running counts of one model, counted from nothing in bitsets.
 struct Tally<'a> {
     scorer: &'a VolumeScorer,
     covered: &'a mut [u64],
@@ -42,39 +54,21 @@ struct Tally<'a> {
     counts: VolumeCounts,
 }
 
-impl Tally<'_> {
-    /// Covers lattice points `(first..=last, j, k)`.
-    #[inline]
-    fn row(&mut self, j: i64, k: i64, first: i64, last: i64) {
-        let len = (last - first + 1) as u64;
-        let [nx, ny, nz] = self.scorer.grid.resolution().map(i64::from);
-        if !(0..ny).contains(&j) || !(0..nz).contains(&k) {
-            self.counts.out_of_grid_hits += len;
-            return;
-        }
-        let (a, b) = (first.max(0), last.min(nx - 1));
-        if a > b {
-            self.counts.out_of_grid_hits += len;
-            return;
-        }
-        self.counts.out_of_grid_hits += len - (b - a + 1) as u64;
-        let base = (j + ny * k) * nx;
-        self.bits((base + a) as usize, (base + b) as usize);
+impl Lattice for Tally<'_> {
+    fn span(&mut self, n: u64) {
+        let c = &mut self.counts;
+        c.span_out_of_grid = c.span_out_of_grid.saturating_add(n);
     }
 
-    /// Covers voxels `first..=last`.
+    fn outside(&mut self, n: u64) {
+        let c = &mut self.counts;
+        c.out_of_grid_hits = c.out_of_grid_hits.saturating_add(n);
+    }
+
     #[inline]
-    fn bits(&mut self, first: usize, last: usize) {
+    fn voxels(&mut self, first: usize, last: usize) {
         let per = self.scorer.class_stride;
-        let (w0, w1) = (first / 64, last / 64);
-        for w in w0..=w1 {
-            let mut mask = !0u64;
-            if w == w0 {
-                mask &= !0 << (first % 64);
-            }
-            if w == w1 {
-                mask &= !0 >> (63 - last % 64);
-            }
+        for (w, mask) in word_masks(first, last) {
             let old = self.covered[w];
             if old == 0 {
                 self.touched.push(w as u32);
@@ -98,15 +92,91 @@ impl Tally<'_> {
             self.counts.classes[per] += rest;
         }
     }
+}
+
+/// The words of voxels `first..=last`, each with the mask of its bits among them.
+#[inline]
+pub(super) fn word_masks(first: usize, last: usize) -> impl Iterator<Item = (usize, u64)> {
+    let (w0, w1) = (first / 64, last / 64);
+    (w0..=w1).map(move |w| {
+        let mut mask = !0u64;
+        if w == w0 {
+            mask &= !0 << (first % 64);
+        }
+        if w == w1 {
+            mask &= !0 >> (63 - last % 64);
+        }
+        (w, mask)
+    })
+}
+
+impl VolumeScorer {
+    /// Hands what `instance` covers to `out`: its span outside the grid, then its covered
+    /// lattice points, row by row. What an instance covers depends on the instance alone.
+    pub(super) fn walk(
+        &self,
+        instance: &Instance,
+        voxelizer: &mut Voxelizer,
+        out: &mut impl Lattice,
+    ) {
+        let Some(part) = self.parts.get(instance.mesh.0 as usize) else {
+            return; // ids the grammar lacks cover nothing
+        };
+        out.span(span_out_of_grid(&self.grid, part, &instance.transform));
+        match part {
+            PartKind::Box => match quantize(&self.grid, &instance.transform) {
+                Placement::Nothing => {}
+                Placement::Oversize(n) => out.outside(n),
+                Placement::Box(q) => self.quant_box(&q, out),
+            },
+            &PartKind::Solid { volume, .. } => {
+                let t = &instance.transform;
+                let Some((m, shift)) = usable_linear(t.matrix3, Vec3::from(t.translation)) else {
+                    return;
+                };
+                let grid = &self.grid;
+                let mesh = &self.meshes[instance.mesh];
+                let place = |p: Vec3| grid.to_lattice(m * p.as_dvec3() + shift);
+                let run = voxelizer.run(mesh, place, Bounds::Lattice, |j, k, a, b| {
+                    self.row(out, j, k, a, b)
+                });
+                if run.is_err() {
+                    out.outside(voxels_of_volume(grid, volume * m.determinant().abs()));
+                }
+            }
+        }
+    }
+
+    /// Covers lattice points `(first..=last, j, k)`.
+    #[inline]
+    fn row(&self, out: &mut impl Lattice, j: i64, k: i64, first: i64, last: i64) {
+        let len = (last - first + 1) as u64;
+        let [nx, ny, nz] = self.grid.resolution().map(i64::from);
+        if !(0..ny).contains(&j) || !(0..nz).contains(&k) {
+            out.outside(len);
+            return;
+        }
+        let (a, b) = (first.max(0), last.min(nx - 1));
+        if a > b {
+            out.outside(len);
+            return;
+        }
+        let outside = len - (b - a + 1) as u64;
+        if outside > 0 {
+            out.outside(outside);
+        }
+        let base = (j + ny * k) * nx;
+        out.voxels((base + a) as usize, (base + b) as usize);
+    }
 
     /// Covers what box `q` covers.
-    fn quant_box(&mut self, q: &QuantBox) {
+    fn quant_box(&self, q: &QuantBox, out: &mut impl Lattice) {
         let [i0, j0, k0, _] = q.corner.map(i64::from);
         for k in 0..q.extent[2] {
             for j in 0..q.extent[1] {
                 if let Some((a, b)) = q.row(j, k) {
                     let (a, b) = (i0 + i64::from(a), i0 + i64::from(b));
-                    self.row(j0 + i64::from(j), k0 + i64::from(k), a, b);
+                    self.row(out, j0 + i64::from(j), k0 + i64::from(k), a, b);
                 }
             }
         }
@@ -136,39 +206,7 @@ impl VolumeScorer {
             counts: VolumeCounts::default(),
         };
         for instance in instances {
-            let Some(part) = self.parts.get(instance.mesh.0 as usize) else {
-                continue; // ids the grammar lacks cover nothing
-            };
-            let span = span_out_of_grid(&self.grid, part, &instance.transform);
-            let c = &mut tally.counts;
-            c.span_out_of_grid = c.span_out_of_grid.saturating_add(span);
-            match part {
-                PartKind::Box => match quantize(&self.grid, &instance.transform) {
-                    Placement::Nothing => {}
-                    Placement::Oversize(n) => {
-                        c.out_of_grid_hits = c.out_of_grid_hits.saturating_add(n)
-                    }
-                    Placement::Box(q) => tally.quant_box(&q),
-                },
-                &PartKind::Solid { volume, .. } => {
-                    let t = &instance.transform;
-                    let Some((m, shift)) = usable_linear(t.matrix3, Vec3::from(t.translation))
-                    else {
-                        continue;
-                    };
-                    let grid = &self.grid;
-                    let mesh = &self.meshes[instance.mesh];
-                    let place = |p: Vec3| grid.to_lattice(m * p.as_dvec3() + shift);
-                    let run = voxelizer.run(mesh, place, Bounds::Lattice, |j, k, a, b| {
-                        tally.row(j, k, a, b)
-                    });
-                    if run.is_err() {
-                        let n = voxels_of_volume(grid, volume * m.determinant().abs());
-                        let c = &mut tally.counts;
-                        c.out_of_grid_hits = c.out_of_grid_hits.saturating_add(n);
-                    }
-                }
-            }
+            self.walk(instance, voxelizer, &mut tally);
         }
         let counts = tally.counts;
         if let Some(out) = keep {

@@ -107,12 +107,14 @@ mod grid;
 mod parity;
 mod parts;
 mod quant;
+mod retained;
 mod span;
 
 pub use classes::{MAX_CLASSES, VoxelClasses};
 pub use count::VolumeScratch;
 pub use gpu::{GpuVolumeScorer, VOLUME_WGSL};
 pub use grid::{Grid, GridError, MAX_VOXELS};
+pub use retained::VolumeState;
 
 use super::{Form, Scorer, smoothstep};
 use crate::geometry::{BoundMeshes, Instance, Mesh, MeshError, MeshId};

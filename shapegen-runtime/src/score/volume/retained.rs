@@ -1,0 +1,157 @@
+//! Incremental volume counting: per-voxel hit counts of one model.
+
+use super::count::{Lattice, VolumeScratch, word_masks};
+use super::{VolumeCounts, VolumeScorer};
+use crate::geometry::Instance;
+use crate::score::retained::{CellCounts, Changed, Overflow, RetainedScorer, TILE_WORDS};
+
+/// What a [`VolumeScorer`] keeps of one model: how many times its instances hit each
+/// in-grid voxel (every hit of every instance, as the overlap counts need), and the
+/// model's counts. Tiles are 8 consecutive words of 64 voxels in [`Grid::index`]
+/// order.
+///
+/// [`Grid::index`]: super::Grid::index
+#[derive(Clone, Debug)]
+pub struct VolumeState {
+    cells: CellCounts,
+    counts: VolumeCounts,
+}
+
+/// One instance's hits going into, or out of, a [`VolumeState`].
+struct Apply<'a> {
+    scorer: &'a VolumeScorer,
+    state: &'a mut VolumeState,
+    remove: bool,
+    overflow: bool,
+}
+
+impl Apply<'_> {
+    /// `total + n`, or `total - n` when removing; marks an overflow.
+    fn sum(total: &mut u64, n: u64, remove: bool, overflow: &mut bool) {
+        if remove {
+            *total -= n;
+        } else {
+            match total.checked_add(n) {
+                Some(t) => *total = t,
+                None => *overflow = true,
+            }
+        }
+    }
+}
+
+impl Lattice for Apply<'_> {
+    fn span(&mut self, n: u64) {
+        let c = &mut self.state.counts;
+        Apply::sum(&mut c.span_out_of_grid, n, self.remove, &mut self.overflow);
+    }
+
+    fn outside(&mut self, n: u64) {
+        let c = &mut self.state.counts;
+        Apply::sum(&mut c.out_of_grid_hits, n, self.remove, &mut self.overflow);
+    }
+
+    #[inline]
+    fn voxels(&mut self, first: usize, last: usize) {
+        let per = self.scorer.class_stride;
+        let VolumeState { cells, counts } = &mut *self.state;
+        for (w, mask) in word_masks(first, last) {
+            let (tile, word) = (w / TILE_WORDS, w % TILE_WORDS);
+            let Changed { first, second } = if self.remove {
+                cells.remove(tile, word, mask)
+            } else {
+                match cells.add(tile, word, mask) {
+                    Ok(changed) => changed,
+                    Err(Overflow) => {
+                        self.overflow = true;
+                        return;
+                    }
+                }
+            };
+            let again = u64::from(mask.count_ones() - first.count_ones());
+            let twice = u64::from(second.count_ones());
+            let masks = &self.scorer.class_bits[w * per..(w + 1) * per];
+            let mut rest = u64::from(first.count_ones());
+            if self.remove {
+                counts.overlap_hits -= again;
+                counts.overlap_voxels -= twice;
+                for (count, &m) in counts.classes.iter_mut().zip(masks) {
+                    let n = u64::from((first & m).count_ones());
+                    *count -= n;
+                    rest -= n;
+                }
+                counts.classes[per] -= rest;
+            } else {
+                counts.overlap_hits += again;
+                counts.overlap_voxels += twice;
+                for (count, &m) in counts.classes.iter_mut().zip(masks) {
+                    let n = u64::from((first & m).count_ones());
+                    *count += n;
+                    rest -= n;
+                }
+                counts.classes[per] += rest;
+            }
+        }
+    }
+}
+
+impl VolumeScorer {
+    /// Adds the hits of `instances` to `state`, or takes them away.
+    fn apply(
+        &self,
+        state: &mut VolumeState,
+        instances: &[Instance],
+        remove: bool,
+        scratch: &mut VolumeScratch,
+    ) -> Result<(), Overflow> {
+        let mut apply = Apply {
+            scorer: self,
+            state,
+            remove,
+            overflow: false,
+        };
+        for instance in instances {
+            self.walk(instance, &mut scratch.voxelizer, &mut apply);
+            if apply.overflow {
+                return Err(Overflow);
+            }
+        }
+        Ok(())
+    }
+}
+
+impl RetainedScorer for VolumeScorer {
+    type State = VolumeState;
+
+    fn count_retained(
+        &self,
+        instances: &[Instance],
+        scratch: &mut VolumeScratch,
+    ) -> Result<VolumeState, Overflow> {
+        let words = self.grid.voxel_count().div_ceil(64) as usize;
+        let mut state = VolumeState {
+            cells: CellCounts::new(words.div_ceil(TILE_WORDS)),
+            counts: VolumeCounts::default(),
+        };
+        self.apply(&mut state, instances, false, scratch)?;
+        Ok(state)
+    }
+
+    fn update(
+        &self,
+        state: &mut VolumeState,
+        removed: &[Instance],
+        added: &[Instance],
+        scratch: &mut VolumeScratch,
+    ) -> Result<(), Overflow> {
+        self.apply(state, removed, true, scratch)?;
+        self.apply(state, added, false, scratch)
+    }
+
+    fn state_counts(&self, state: &VolumeState) -> VolumeCounts {
+        self.with_totals(state.counts)
+    }
+
+    fn visit_cells(&self, state: &VolumeState, visit: &mut dyn FnMut(&CellCounts)) {
+        visit(&state.cells);
+    }
+}
