@@ -172,7 +172,7 @@ fn tree_sketch_with_the_published_meshes() {
         &scorer,
         tree::PAPER_LIMITS,
         250,
-        sequences(25),
+        sequences(150),
         1,
     );
 }
@@ -188,7 +188,7 @@ fn tree_sketch_with_the_built_in_meshes() {
         &scorer,
         tree::PAPER_LIMITS,
         100,
-        sequences(150),
+        sequences(400),
         2,
     );
 }
@@ -200,7 +200,7 @@ fn city_whale_silhouette() {
         &city_whale(),
         city::PAPER_LIMITS,
         50,
-        sequences(250),
+        sequences(600),
         3,
     );
 }
@@ -216,7 +216,7 @@ fn spaceship_volume() {
         &scorer,
         spaceship::PAPER_LIMITS,
         50,
-        sequences(250),
+        sequences(600),
         4,
     );
 }
@@ -229,7 +229,7 @@ fn city_volume_with_overlaps() {
         &scorer,
         city::PAPER_LIMITS,
         50,
-        sequences(150),
+        sequences(400),
         5,
     );
 }
@@ -260,7 +260,7 @@ fn building_volume_and_silhouette() {
         &volume,
         building::LIMITS,
         30,
-        sequences(60),
+        sequences(150),
         6,
     );
     let camera = Camera::Orbit(shapegen_runtime::score::silhouette::OrbitCamera {
@@ -286,7 +286,7 @@ fn building_volume_and_silhouette() {
         &silhouette,
         building::LIMITS,
         30,
-        sequences(60),
+        sequences(150),
         7,
     );
 }

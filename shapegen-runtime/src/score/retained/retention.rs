@@ -45,6 +45,7 @@ pub struct RetentionStats {
 /// use shapegen_runtime::score::volume::{Grid, VolumeScorer, VolumeTarget};
 /// use shapegen_runtime::score::{Form, InstanceBatch, Scorer, count_batch};
 /// use shapegen_runtime::prelude::*;
+/// use shapegen_runtime::{Mesh, MeshLibrary};
 /// use glam::Vec3;
 /// use rand::SeedableRng;
 ///

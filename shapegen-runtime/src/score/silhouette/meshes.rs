@@ -1,5 +1,7 @@
 //! Meshes prepared for rasterization.
 
+use std::collections::HashMap;
+
 use glam::Vec3;
 
 use super::raster::MAX_POLYGON;
@@ -8,9 +10,10 @@ use crate::geometry::{BoundMeshes, Mesh};
 /// One mesh as the rasterizer reads it.
 #[derive(Clone, Debug)]
 pub(super) struct RasterMesh {
-    /// Vertex positions.
+    /// The mesh's distinct vertex positions (equal bit patterns stored once), so that
+    /// each is projected once per instance.
     pub positions: Vec<Vec3>,
-    /// Triangles as vertex index triples.
+    /// Triangles as index triples into `positions`.
     pub triangles: Vec<[u32; 3]>,
     /// For a convex mesh with at most [`MAX_POLYGON`] distinct vertices: those vertices,
     /// whose projected convex hull is the mesh's silhouette when all are in front of the
@@ -25,10 +28,24 @@ const CONVEX_EPS: f32 = 1e-3;
 
 impl RasterMesh {
     fn new(mesh: &Mesh) -> Self {
+        let mut index = HashMap::new();
+        let mut positions = Vec::new();
+        let slot: Vec<u32> = mesh
+            .positions
+            .iter()
+            .map(|p| {
+                *index
+                    .entry(p.to_array().map(f32::to_bits))
+                    .or_insert_with(|| {
+                        positions.push(*p);
+                        positions.len() as u32 - 1
+                    })
+            })
+            .collect();
         let triangles: Vec<[u32; 3]> = mesh
             .indices
             .chunks_exact(3)
-            .map(|t| [t[0], t[1], t[2]])
+            .map(|t| [t[0], t[1], t[2]].map(|i| slot[i as usize]))
             .collect();
         let mut distinct: Vec<Vec3> = Vec::new();
         for &p in &mesh.positions {
@@ -42,7 +59,7 @@ impl RasterMesh {
         let hull =
             (distinct.len() <= MAX_POLYGON && is_convex(mesh, &distinct)).then_some(distinct);
         RasterMesh {
-            positions: mesh.positions.clone(),
+            positions,
             triangles,
             hull,
         }

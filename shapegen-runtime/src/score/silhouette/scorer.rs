@@ -97,7 +97,9 @@ pub struct SilhouetteScorer {
 #[derive(Clone, Debug, Default)]
 pub struct SilhouetteScratch {
     pub(super) coverage: Coverage,
+    /// One instance's mesh positions in clip space.
     clip: Vec<Vec4>,
+    /// The same in pixels (or a convex mesh's projected hull points).
     points: Vec<Vec2>,
 }
 
@@ -238,27 +240,30 @@ impl SilhouetteScorer {
                 return;
             }
         }
+        // Each distinct position projected once; a triangle wholly in front of the near
+        // plane is filled from its corners' pixels, one crossing it is clipped first.
         scratch.clip.clear();
         scratch
             .clip
             .extend(mesh.positions.iter().map(|&p| m * p.extend(1.0)));
+        scratch.points.clear();
+        scratch
+            .points
+            .extend(scratch.clip.iter().map(|&c| to_pixels(c, w, h)));
         for tri in &mesh.triangles {
             let c = tri.map(|i| scratch.clip[i as usize]);
-            let mut poly = [Vec2::ZERO; 5];
-            let n = if c.iter().all(|&v| in_front(v)) {
-                for k in 0..3 {
-                    poly[k] = to_pixels(c[k], w, h);
-                }
-                3
+            if c.iter().all(|&v| in_front(v)) {
+                let corners = tri.map(|i| scratch.points[i as usize]);
+                scratch.coverage.fill_triangle(corners);
             } else {
                 let mut clipped = [Vec4::ZERO; 5];
                 let n = clip_triangle(c, &mut clipped);
+                let mut poly = [Vec2::ZERO; 5];
                 for k in 0..n {
                     poly[k] = to_pixels(clipped[k], w, h);
                 }
-                n
-            };
-            scratch.coverage.fill_convex(&poly[..n]);
+                scratch.coverage.fill_convex(&poly[..n]);
+            }
         }
     }
 }

@@ -163,11 +163,15 @@ fn shared_edge_is_neither_doubled_nor_missed() {
         vec2(4.5, 12.5),
     );
     let fill = |tris: &[[Vec2; 3]]| {
-        let mut cov = Coverage::default();
+        let (mut cov, mut by_triangles) = (Coverage::default(), Coverage::default());
         cov.shape(16, 16);
+        by_triangles.shape(16, 16);
         for t in tris {
             cov.fill_convex(t);
+            by_triangles.fill_triangle(*t);
         }
+        let mut check = cov.clone();
+        assert_eq!(drained(&mut check), drained(&mut by_triangles));
         let mut pixels = Vec::new();
         for y in 0..16 {
             for x in 0..16 {
@@ -199,9 +203,13 @@ fn centres_exactly_on_a_sloped_edge_are_decided_exactly() {
     // (29, 11); in f32, 0.5 + 11 * (58 / 22) is 29.500002.
     let (a, b) = (vec2(0.5, 0.5), vec2(58.5, 22.5));
     let fill = |poly: &[Vec2]| {
-        let mut cov = Coverage::default();
+        let (mut cov, mut by_triangle) = (Coverage::default(), Coverage::default());
         cov.shape(64, 24);
+        by_triangle.shape(64, 24);
         cov.fill_convex(poly);
+        by_triangle.fill_triangle([poly[0], poly[1], poly[2]]);
+        let mut check = cov.clone();
+        assert_eq!(drained(&mut check), drained(&mut by_triangle));
         let mut pixels = Vec::new();
         for y in 0..24 {
             pixels.extend((0..64).filter(|&x| cov.get(x, y)).map(|x| (x, y)));
@@ -216,6 +224,100 @@ fn centres_exactly_on_a_sloped_edge_are_decided_exactly() {
     assert!(below.iter().all(|p| !above.contains(p)));
     // Together they cover the rectangle's centres once each: 58 columns by 22 rows.
     assert_eq!(below.len() + above.len(), 58 * 22);
+}
+
+/// The covered words of `cov`, in order, and the coverage cleared.
+fn drained(cov: &mut Coverage) -> Vec<(usize, u64)> {
+    let mut words = Vec::new();
+    cov.drain(|w, bits| words.push((w, bits)));
+    words.sort_unstable();
+    words
+}
+
+/// `t` snapped to the nearest 1/256 of a pixel, as projected vertices are.
+fn snapped(t: f32) -> f32 {
+    (t * 256.0).round() / 256.0
+}
+
+/// The triangle fill covers exactly what the polygon fill covers, over random triangles
+/// of every kind that decides pixels differently: tiny ones near centres, vertices and
+/// edges on centres (ties), horizontal and vertical edges, slivers and near-collinear
+/// ones, triangles larger than the image, and triangles beyond its exact range (which
+/// it hands to the polygon fill). `SHAPEGEN_PROPERTY_SCALE` multiplies the cases.
+#[test]
+fn the_triangle_fill_covers_what_the_polygon_fill_covers() {
+    let (width, height) = (150, 70);
+    let (mut fast, mut slow) = (Coverage::default(), Coverage::default());
+    fast.shape(width, height);
+    slow.shape(width, height);
+    let mut rng = ChaCha8Rng::seed_from_u64(12);
+    let scale: usize = std::env::var("SHAPEGEN_PROPERTY_SCALE")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1);
+    let cases = scale
+        * if cfg!(debug_assertions) {
+            40_000
+        } else {
+            400_000
+        };
+    let mut covering = 0;
+    for case in 0..cases {
+        let centre = vec2(
+            rng.random_range(-5.0..width as f32 + 5.0),
+            rng.random_range(-5.0..height as f32 + 5.0),
+        );
+        let spread = [3.0f32, 40.0, 400.0, 3000.0, 12.0, 12.0, 12.0][case % 7];
+        let mut tri = [(); 3].map(|_| {
+            vec2(
+                snapped(centre.x + rng.random_range(-spread..spread)),
+                snapped(centre.y + rng.random_range(-spread..spread)),
+            )
+        });
+        match case % 7 {
+            // Vertices on pixel centres or half-way between, or one step off them.
+            4 => {
+                for p in &mut tri {
+                    let step = rng.random_range(-1..=1) as f32 / 256.0;
+                    *p = (*p * 2.0).round() / 2.0 + Vec2::splat(step);
+                    if rng.random::<bool>() {
+                        *p += vec2(0.5, 0.0);
+                    }
+                }
+            }
+            // A horizontal or vertical edge.
+            5 => {
+                if rng.random::<bool>() {
+                    tri[1].y = tri[0].y;
+                } else {
+                    tri[1].x = tri[0].x;
+                }
+            }
+            // Near-collinear: the third vertex on or a few steps off the line of the
+            // other two.
+            6 => {
+                let t = rng.random_range(-1.0f32..2.0);
+                let on = tri[0] + (tri[1] - tri[0]) * t;
+                let off = rng.random_range(-3..=3) as f32 / 256.0;
+                tri[2] = vec2(snapped(on.x) + off, snapped(on.y));
+            }
+            _ => {}
+        }
+        // Each triangle fills over what the last three filled, so that boxes already
+        // covered are met too.
+        if case % 4 == 0 {
+            drained(&mut fast);
+            drained(&mut slow);
+        }
+        let before = drained(&mut slow.clone());
+        fast.fill_triangle(tri);
+        slow.fill_convex(&tri);
+        let (f, s) = (drained(&mut fast.clone()), drained(&mut slow.clone()));
+        assert_eq!(f, s, "case {case}: {tri:?}");
+        covering += usize::from(s != before);
+    }
+    // Most cases add pixels, so the comparison is not of unchanged coverages.
+    assert!(covering > cases / 2, "{covering} of {cases} add a pixel");
 }
 
 #[test]
