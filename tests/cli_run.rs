@@ -221,6 +221,53 @@ fn an_interrupted_run_keeps_what_it_found() {
     ]);
 }
 
+/// Counting children from their parents' kept state is exact: a run without it finds
+/// the same models with the same fitness, generation by generation, and only the summary
+/// of how children were counted differs.
+#[test]
+fn incremental_scoring_changes_nothing_but_the_time() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene(dir.path());
+    let (on, off) = (dir.path().join("on"), dir.path().join("off"));
+    let base = ["run", s(&scene), "--cpu", "--seed", "9", "--out"];
+    ok(&[&base[..], &[s(&on)]].concat());
+    ok(&[&base[..], &[s(&off), "--no-incremental"]].concat());
+    assert_eq!(timeless_summary(&on), timeless_summary(&off));
+    for file in ["best.genome.json", "best.obj"] {
+        assert_eq!(
+            fs::read_to_string(on.join(file)).unwrap(),
+            fs::read_to_string(off.join(file)).unwrap(),
+            "{file}"
+        );
+    }
+    // fitness.csv without its elapsed_s column.
+    let curve = |dir: &Path| -> Vec<String> {
+        fs::read_to_string(dir.join("fitness.csv"))
+            .unwrap()
+            .lines()
+            .map(|l| {
+                let mut cells: Vec<&str> = l.split(',').collect();
+                cells.remove(1);
+                cells.join(",")
+            })
+            .collect()
+    };
+    assert_eq!(curve(&on), curve(&off));
+    let summary = |dir: &Path| -> serde_json::Value {
+        serde_json::from_str(&fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
+    };
+    let counted = &summary(&on)["incremental"];
+    // 8 generations of 20 bred children, each counted one way or the other.
+    let children = counted["children_incremental"].as_u64().unwrap()
+        + counted["children_full"].as_u64().unwrap();
+    assert_eq!(children, 8 * 20, "{counted}");
+    assert!(
+        counted["children_incremental"].as_u64().unwrap() > 80,
+        "{counted}"
+    );
+    assert!(summary(&off).get("incremental").is_none());
+}
+
 #[test]
 fn every_method_runs_and_resumes_exactly() {
     let dir = tempfile::tempdir().unwrap();

@@ -305,3 +305,30 @@ fn the_stop_flag_interrupts_it_and_save_errors_come_back() {
     assert!(matches!(err, SessionError::Save(_)), "{err}");
     assert!(err.to_string().contains("disk full"));
 }
+
+/// Slow saves space out: after a save that took `t`, the next waits at least
+/// `SAVE_SPACING * t`, so saving takes at most 5 % of a run however short the interval.
+#[test]
+fn slow_saves_space_out() {
+    let took = Duration::from_millis(20);
+    let mut during = 0u32;
+    let start = std::time::Instant::now();
+    let result = Session::<Chain, Climb>::start(settings(), limits(), 5, Budget::generations(300))
+        .unwrap()
+        .save_every(Duration::from_nanos(1))
+        .on_save(|s| {
+            during += u32::from(s.stopped.is_none());
+            std::thread::sleep(took);
+            Ok::<_, std::io::Error>(())
+        })
+        .run(&mut fifteen())
+        .unwrap();
+    let elapsed = start.elapsed();
+    assert_eq!(result.generations, 300);
+    // The first generation saves; each save after it came at least 19 x 20 ms later.
+    let bound = 1 + (elapsed.as_secs_f64() / (took * SAVE_SPACING).as_secs_f64()) as u32;
+    assert!(
+        (1..=bound).contains(&during),
+        "{during} saves during a run of {elapsed:?}, at most {bound} allowed"
+    );
+}

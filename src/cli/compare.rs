@@ -216,7 +216,8 @@ impl Visit for Compare<'_> {
             total,
             self.args.seconds
         );
-        let mut evaluator = SceneEvaluator::new(&backend);
+        let mut evaluator =
+            SceneEvaluator::new(&backend).with_incremental(self.args.backend.incremental());
         let stop = interrupt::flag();
         let mut done: Vec<Finished> = Vec::with_capacity(total);
         let outputs = Outputs {

@@ -54,5 +54,5 @@ pub use run::{
     Budget, Control, HistoryEntry, Observer, Progress, RunResult, Silent, Snapshot, StopReason,
     stream,
 };
-pub use session::{Save, Session, SessionError};
+pub use session::{SAVE_SPACING, Save, Session, SessionError};
 pub use smc::{Cursor, Order, Smc, SmcSettings, SmcState, SmcVariant};

@@ -51,7 +51,9 @@ type SaveHook<'s, G, O> =
 /// One optimizer run to its budget: checks a stop flag after every generation, calls a
 /// progress hook after every generation, saves a checkpoint every
 /// [`save_every`](Self::save_every) (1 s by default) and once at the end, whatever
-/// stopped the run. A session built with [`resume`](Self::resume) from a saved state
+/// stopped the run. Where saving is slow (large models written each time), saves space
+/// out so that they take at most 5 % of the run: the next waits at least
+/// [`SAVE_SPACING`] times as long as the last took. A session built with [`resume`](Self::resume) from a saved state
 /// goes on and ends exactly as an uninterrupted run: the same best genome, fitness,
 /// evaluations and history, wall times apart.
 ///
@@ -162,7 +164,9 @@ impl<'s, G: Grammar, O: Optimizer<G>> Session<'s, G, O> {
     }
 
     /// Saves at most this often during the run (after the first generation that ends
-    /// this long after the last save); 1 s by default.
+    /// this long after the last save, or [`SAVE_SPACING`] times as long as the last save
+    /// took, whichever is longer); 1 s by default. Zero saves after every generation,
+    /// however long saving takes.
     pub fn save_every(self, interval: Duration) -> Self {
         Session {
             save_every: interval,
@@ -205,7 +209,8 @@ impl<'s, G: Grammar, O: Optimizer<G>> Session<'s, G, O> {
         evaluator: &mut <O::Record as Record<G>>::Evaluator<'_>,
     ) -> Result<<O::Record as Record<G>>::Result, SessionError> {
         let mut last_save = Instant::now();
-        let (stop, every) = (self.stop, self.save_every);
+        let (stop, base) = (self.stop, self.save_every);
+        let mut every = base;
         let (save, observer, budget) = (&mut self.save, &mut self.observer, &self.budget);
         let stopped = drive(&mut self.optimizer, evaluator, budget, |o: &mut O| {
             let mut control = match observer {
@@ -221,8 +226,12 @@ impl<'s, G: Grammar, O: Optimizer<G>> Session<'s, G, O> {
                 .stop(p.generation, p.evaluations, o.step_cost(), p.elapsed_s)
                 .is_some();
             if control == Control::Continue && !ends && last_save.elapsed() >= every {
+                let start = Instant::now();
                 store(save, o, None)?;
                 last_save = Instant::now();
+                if !base.is_zero() {
+                    every = base.max((last_save - start) * SAVE_SPACING);
+                }
             }
             Ok::<_, SessionError>(control)
         })?;
@@ -230,6 +239,10 @@ impl<'s, G: Grammar, O: Optimizer<G>> Session<'s, G, O> {
         Ok(O::Record::result(self.optimizer.progress(), stopped))
     }
 }
+
+/// How many times as long as the last save took a [`Session`] waits, at least, before
+/// the next save during the run: saving then takes at most `1 / (1 + 19)`, 5 %, of it.
+pub const SAVE_SPACING: u32 = 19;
 
 /// Saves `optimizer` through `save`, if there is a hook.
 fn store<G: Grammar, O: Optimizer<G>>(
