@@ -2,7 +2,9 @@
 //! against from nothing, per operator, on one thread.
 //!
 //! Each row cycles through 64 (parent, child) pairs: parents are random genomes of the
-//! scene's initial length (`optimizer.initial_length`), each child one operator applied to
+//! scene's initial length (`optimizer.initial_length`), or for the tree of 250 genes, the
+//! size its search's trees grow to (its best has 396 genes after the published 1,500
+//! generations), each child one operator applied to
 //! a copy of its parent (the crossover's partner another random genome), with the
 //! original's operators as the paper scenes use them. Both rows start from the child's
 //! derived instances: `full` counts them ([`Scorer::count`] for every scorer of the
@@ -53,11 +55,16 @@ struct Pair {
     child: Vec<Instance>,
 }
 
-fn pairs<G: Grammar>(scene: &Scene, scorers: &[AnyScorer], op: Op) -> Vec<Pair> {
+fn pairs<G: Grammar>(
+    scene: &Scene,
+    scorers: &[AnyScorer],
+    op: Op,
+    length: Option<u32>,
+) -> Vec<Pair> {
     let MethodSettings::Ga(ga) = scene.optimizer.settings else {
         panic!("the paper scenes search with the GA");
     };
-    let initial = ga.initial_length;
+    let initial = length.unwrap_or(ga.initial_length);
     let mut ops = Operators::<G>::new(scene.limits)
         .unwrap()
         .with_variant(OperatorVariant::Original);
@@ -101,7 +108,9 @@ fn pairs<G: Grammar>(scene: &Scene, scorers: &[AnyScorer], op: Op) -> Vec<Pair> 
         .collect()
 }
 
-fn scene_rows<G: Grammar>(c: &mut Criterion, file: &str) {
+/// The rows of one scene, parents of `length` genes (the scene's initial length if
+/// `None`).
+fn scene_rows<G: Grammar>(c: &mut Criterion, file: &str, length: Option<u32>) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(file);
     let scene = Scene::open(&path, &Registry::published(), &Overrides::default()).unwrap();
     let scorer = SceneScorer::new::<G>(&scene).unwrap();
@@ -109,7 +118,7 @@ fn scene_rows<G: Grammar>(c: &mut Criterion, file: &str) {
     let name = path.file_stem().unwrap().to_string_lossy().into_owned();
     let mut group = c.benchmark_group(format!("incremental/{name}"));
     for op in Op::ALL {
-        let pairs = pairs::<G>(&scene, scorers, op);
+        let pairs = pairs::<G>(&scene, scorers, op, length);
         let (changed, instances): (usize, usize) = pairs.iter().fold((0, 0), |(c, n), p| {
             let mut diff = InstanceDiff::default();
             diff.between(&p.parent, &p.child);
@@ -151,9 +160,9 @@ fn scene_rows<G: Grammar>(c: &mut Criterion, file: &str) {
 }
 
 fn incremental(c: &mut Criterion) {
-    scene_rows::<generators::Tree>(c, "scenes/paper/tree_sketch1.toml");
-    scene_rows::<generators::City>(c, "scenes/paper/city_whale.toml");
-    scene_rows::<generators::Spaceship>(c, "scenes/paper/spaceship_volume.toml");
+    scene_rows::<generators::Tree>(c, "scenes/paper/tree_sketch1.toml", Some(250));
+    scene_rows::<generators::City>(c, "scenes/paper/city_whale.toml", None);
+    scene_rows::<generators::Spaceship>(c, "scenes/paper/spaceship_volume.toml", None);
 }
 
 criterion_group!(benches, incremental);

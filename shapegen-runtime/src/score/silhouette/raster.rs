@@ -224,6 +224,10 @@ impl Coverage {
         ) {
             return;
         }
+        let (cols, rows) = (col_hi - col_lo, row1 - row0);
+        if cols <= SMALL_BOX_COLUMNS && cols * rows <= SMALL_BOX_CENTRES {
+            return self.fill_small(&v, exact > 0, [row0, row1], col_lo, cols);
+        }
         let mut left = [FixedEdge::default(); 3];
         let mut right = [FixedEdge::default(); 3];
         let (mut n_left, mut n_right) = (0, 0);
@@ -261,6 +265,77 @@ impl Coverage {
         }
     }
 }
+
+impl Coverage {
+    /// [`Coverage::fill_triangle`] for a small box of pixel centres (`cols` columns from
+    /// `col0`, rows `rows[0]..rows[1]`): every centre tested against every
+    /// non-horizontal edge, the same tests the row walk's columns stand for. `v` are the
+    /// vertices in `1/256` pixel, `ccw` whether their exact signed area is positive.
+    fn fill_small(&mut self, v: &[[i64; 2]; 3], ccw: bool, rows: [i64; 2], col0: i64, cols: i64) {
+        // Per edge, `g = s f - bias` at the box's first centre and its steps, where
+        // `f = (xc - px) dy - (yc - py) dx` (`p` the upper end, `dy > 0`): a centre is
+        // inside a left edge (`s = 1`) when `f >= 0`, a right edge (`s = -1`) when
+        // `f < 0`; so inside every edge when every `g >= 0`. A horizontal edge bounds
+        // nothing here (the rows do): `g = 0` throughout.
+        let mut g = [0i64; 3];
+        let mut per_col = [0i64; 3];
+        let mut per_row = [0i64; 3];
+        let (x0, y0) = (256 * col0 + 128, 256 * rows[0] + 128);
+        for i in 0..3 {
+            let (a, b) = (v[i], v[(i + 1) % 3]);
+            let dy = b[1] - a[1];
+            if dy == 0 {
+                continue;
+            }
+            let (p, q) = if dy > 0 { (a, b) } else { (b, a) };
+            let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+            let right = ccw == (b[1] - a[1] > 0);
+            let (s, bias) = if right { (-1, 1) } else { (1, 0) };
+            g[i] = s * ((x0 - p[0]) * dy - (y0 - p[1]) * dx) - bias;
+            per_col[i] = s * 256 * dy;
+            per_row[i] = -s * 256 * dx;
+        }
+        let (word, shift) = ((col0 / 64) as usize, (col0 % 64) as u32);
+        for row in rows[0]..rows[1] {
+            let mut e = g;
+            let mut bits = 0u64;
+            for c in 0..cols {
+                let inside = (e[0] | e[1] | e[2]) >= 0;
+                bits |= u64::from(inside) << c;
+                for k in 0..3 {
+                    e[k] += per_col[k];
+                }
+            }
+            for k in 0..3 {
+                g[k] += per_row[k];
+            }
+            if bits != 0 {
+                let base = row as usize * self.stride + word;
+                self.or_word(base, bits << shift);
+                if shift > 0 && bits >> (64 - shift) != 0 {
+                    self.or_word(base + 1, bits >> (64 - shift));
+                }
+            }
+        }
+    }
+
+    /// Sets `bits` in word `w`, recording it when it becomes non-zero.
+    #[inline]
+    fn or_word(&mut self, w: usize, bits: u64) {
+        let word = &mut self.words[w];
+        if *word == 0 && bits != 0 {
+            self.touched.push(w as u32);
+        }
+        *word |= bits;
+    }
+}
+
+/// Widest box of pixel centres, in columns, that [`Coverage::fill_triangle`] tests
+/// centre by centre rather than walking edges (its row of tests fits one word).
+const SMALL_BOX_COLUMNS: i64 = 32;
+
+/// Most centres in a box that [`Coverage::fill_triangle`] tests one by one.
+const SMALL_BOX_CENTRES: i64 = 96;
 
 /// How far from the origin, in pixels, [`Coverage::fill_triangle`] takes a triangle's
 /// vertices itself: there every crossing `fill_convex` estimates (from coordinates and
