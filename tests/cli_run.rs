@@ -266,6 +266,36 @@ fn incremental_scoring_changes_nothing_but_the_time() {
         "{counted}"
     );
     assert!(summary(&off).get("incremental").is_none());
+
+    // RJMCMC's proposals are counted from their chains' states.
+    let text = fs::read_to_string(&scene).unwrap();
+    let any = dir.path().join("any.toml");
+    fs::write(&any, text.split("[optimizer]").next().unwrap()).unwrap();
+    let (on, off) = (dir.path().join("mcmc_on"), dir.path().join("mcmc_off"));
+    let base = [
+        "run",
+        s(&any),
+        "--cpu",
+        "--method",
+        "rjmcmc",
+        "--set",
+        "optimizer.chains=6",
+        "--generations",
+        "6",
+        "--out",
+    ];
+    ok(&[&base[..], &[s(&on)]].concat());
+    ok(&[&base[..], &[s(&off), "--no-incremental"]].concat());
+    assert_eq!(timeless_summary(&on), timeless_summary(&off));
+    assert_eq!(
+        fs::read_to_string(on.join("best.genome.json")).unwrap(),
+        fs::read_to_string(off.join("best.genome.json")).unwrap()
+    );
+    let counted = &summary(&on)["incremental"];
+    assert!(
+        counted["children_incremental"].as_u64().unwrap() > 0,
+        "{counted}"
+    );
 }
 
 #[test]
