@@ -231,15 +231,9 @@ impl Coverage {
         let mut left = [FixedEdge::default(); 3];
         let mut right = [FixedEdge::default(); 3];
         let (mut n_left, mut n_right) = (0, 0);
-        for i in 0..3 {
-            let (a, b) = (v[i], v[(i + 1) % 3]);
-            let dy = b[1] - a[1];
-            if dy == 0 {
-                continue;
-            }
-            let (p, q) = if dy > 0 { (a, b) } else { (b, a) };
+        for (p, q, on_right) in sloped_edges(&v, exact > 0).into_iter().flatten() {
             let edge = FixedEdge::new(p, q, row0);
-            if (exact > 0) == (dy > 0) {
+            if on_right {
                 right[n_right] = edge;
                 n_right += 1;
             } else {
@@ -281,16 +275,12 @@ impl Coverage {
         let mut per_col = [0i64; 3];
         let mut per_row = [0i64; 3];
         let (x0, y0) = (256 * col0 + 128, 256 * rows[0] + 128);
-        for i in 0..3 {
-            let (a, b) = (v[i], v[(i + 1) % 3]);
-            let dy = b[1] - a[1];
-            if dy == 0 {
+        for (i, edge) in sloped_edges(v, ccw).into_iter().enumerate() {
+            let Some((p, q, on_right)) = edge else {
                 continue;
-            }
-            let (p, q) = if dy > 0 { (a, b) } else { (b, a) };
+            };
             let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
-            let right = ccw == (b[1] - a[1] > 0);
-            let (s, bias) = if right { (-1, 1) } else { (1, 0) };
+            let (s, bias) = if on_right { (-1, 1) } else { (1, 0) };
             g[i] = s * ((x0 - p[0]) * dy - (y0 - p[1]) * dx) - bias;
             per_col[i] = s * 256 * dy;
             per_row[i] = -s * 256 * dx;
@@ -329,6 +319,28 @@ impl Coverage {
         *word |= bits;
     }
 }
+
+/// The non-horizontal edges of the triangle `v` (in `1/256` pixel; `ccw` whether its
+/// exact signed area is positive), in order: each from its upper end to its lower end,
+/// and whether it bounds the triangle on the right (the triangle lies left of it) rather
+/// than on the left. A horizontal edge is `None`.
+#[inline]
+fn sloped_edges(v: &[[i64; 2]; 3], ccw: bool) -> [Option<SlopedEdge>; 3] {
+    std::array::from_fn(|i| {
+        let (a, b) = (v[i], v[(i + 1) % 3]);
+        let dy = b[1] - a[1];
+        let on_right = ccw == (dy > 0);
+        match dy.cmp(&0) {
+            std::cmp::Ordering::Equal => None,
+            std::cmp::Ordering::Greater => Some((a, b, on_right)),
+            std::cmp::Ordering::Less => Some((b, a, on_right)),
+        }
+    })
+}
+
+/// A non-horizontal edge as [`sloped_edges`] gives it: upper end, lower end, whether it
+/// bounds the triangle on the right.
+type SlopedEdge = ([i64; 2], [i64; 2], bool);
 
 /// Widest box of pixel centres, in columns, that [`Coverage::fill_triangle`] tests
 /// centre by centre rather than walking edges (its row of tests fits one word).
