@@ -410,6 +410,22 @@ impl<G: Grammar> Mcmc<G> {
         self.progress.evaluations += self.chains.len() as u64;
         Ok(())
     }
+
+    /// Evaluates every chain's proposal into `proposal_fitness`, proposal `i` bred from
+    /// chain `i`.
+    fn evaluate_proposals<E: Evaluator<G> + ?Sized>(
+        &mut self,
+        evaluator: &mut E,
+    ) -> Result<(), OptimizeError> {
+        evaluator.evaluate_bred(
+            &self.proposals,
+            &self.chains,
+            &self.own_chain,
+            &mut self.proposal_fitness,
+        )?;
+        self.progress.evaluations += self.chains.len() as u64;
+        Ok(())
+    }
 }
 
 impl<G: Grammar> Optimizer<G> for Mcmc<G> {

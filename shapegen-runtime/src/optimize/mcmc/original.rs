@@ -99,13 +99,7 @@ impl<G: Grammar> Mcmc<G> {
                     *m = propose(basic_prob, ops, &chains[i], priors[i] as f32, p, s, rng);
                 },
             );
-        evaluator.evaluate_bred(
-            &self.proposals,
-            &self.chains,
-            &self.own_chain,
-            &mut self.proposal_fitness,
-        )?;
-        self.progress.evaluations += self.chains.len() as u64;
+        self.evaluate_proposals(evaluator)?;
         for i in 0..self.chains.len() {
             let (m, t) = (self.original_moves[i], self.temperatures[i] as f32);
             let (old, new) = (self.fitness[i], self.proposal_fitness[i]);

@@ -75,13 +75,7 @@ impl<G: Grammar> Mcmc<G> {
                 || (ops.clone(), Scratch::default()),
                 |(ops, s), (i, ((p, m), rng))| *m = propose(settings, ops, &chains[i], p, s, rng),
             );
-        evaluator.evaluate_bred(
-            &self.proposals,
-            &self.chains,
-            &self.own_chain,
-            &mut self.proposal_fitness,
-        )?;
-        self.progress.evaluations += self.chains.len() as u64;
+        self.evaluate_proposals(evaluator)?;
         self.retry.clear();
         for i in 0..self.chains.len() {
             let (m, t) = (self.moves[i], self.temperatures[i]);
