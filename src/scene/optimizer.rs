@@ -6,6 +6,7 @@ use crate::registry::Presets;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use shapegen_runtime::ops::OperatorVariant;
+use shapegen_runtime::optimize::islands::{IslandGaSettings, IslandSettings};
 use shapegen_runtime::optimize::multi::MultiGaSettings;
 use shapegen_runtime::optimize::{
     Budget, GaSettings, McmcSettings, McmcVariant, Order, SettingsError, SmcSettings, SmcVariant,
@@ -44,6 +45,8 @@ impl Method {
 pub enum MethodSettings {
     /// The genetic algorithm.
     Ga(GaSettings),
+    /// The genetic algorithm as an island model (a scene's `[islands]`, `--islands`).
+    Islands(IslandGaSettings),
     /// SMC or SOSMC (its `order` says which).
     Smc(SmcSettings),
     /// Reversible-jump MCMC.
@@ -95,6 +98,7 @@ impl OptimizerGoal {
     pub fn generations(&self) -> u64 {
         match self.settings {
             MethodSettings::Ga(s) => s.generations,
+            MethodSettings::Islands(s) => s.ga.generations,
             MethodSettings::Smc(s) => s.steps,
             MethodSettings::Mcmc(s) => s.iterations,
         }
@@ -104,6 +108,7 @@ impl OptimizerGoal {
     pub fn set_generations(&mut self, n: u64) {
         match &mut self.settings {
             MethodSettings::Ga(s) => s.generations = n,
+            MethodSettings::Islands(s) => s.ga.generations = n,
             MethodSettings::Smc(s) => s.steps = n,
             MethodSettings::Mcmc(s) => s.iterations = n,
         }
@@ -165,8 +170,8 @@ fn merged<T: Serialize + DeserializeOwned>(
 }
 
 /// What the command line sets over a scene: typed flags (`--method`, `--seed`,
-/// `--seconds`, `--evaluations`, `--generations`), which take the place of the
-/// `[optimizer]` keys of the same names, and free `key=value` overrides (`--set`), which
+/// `--seconds`, `--evaluations`, `--generations`, `--islands`), which take the place of
+/// the `[optimizer]` keys of the same names (`islands.count` for `--islands`), and free `key=value` overrides (`--set`), which
 /// are applied to the scene's TOML before it is read, so that they are checked exactly
 /// as the file's own keys are.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -182,6 +187,8 @@ pub struct Overrides {
     pub evaluations: Option<u64>,
     /// Generations, steps or iterations (`optimizer.generations`).
     pub generations: Option<u64>,
+    /// Islands of the GA (`islands.count`).
+    pub islands: Option<u32>,
     /// `key=value` overrides of any scene key, in order.
     pub sets: Vec<String>,
 }
@@ -194,6 +201,7 @@ impl Overrides {
         self.seconds = later.seconds.or(self.seconds);
         self.evaluations = later.evaluations.or(self.evaluations);
         self.generations = later.generations.or(self.generations);
+        self.islands = later.islands.or(self.islands);
         self.sets.extend(later.sets.iter().cloned());
         self
     }
@@ -234,10 +242,12 @@ fn budget_seconds(value: f64) -> Option<f64> {
 }
 
 /// Resolves the `[optimizer]` table over the generator's `presets` for the method, with
-/// the typed `overrides` in place of the keys they name; errors are `(key, reason)`.
+/// the `[islands]` table and the typed `overrides` in place of the keys they name;
+/// errors are `(key, reason)`.
 pub(super) fn resolve(
     presets: &Presets,
     mut table: toml::Table,
+    islands: Option<IslandSettings>,
     overrides: &Overrides,
 ) -> Result<OptimizerGoal, (String, String)> {
     let key = |k: &str| format!("optimizer.{k}");
@@ -254,6 +264,24 @@ pub(super) fn resolve(
         }
     };
     let method = overrides.method.unwrap_or(written);
+    let islands = match (islands, overrides.islands) {
+        (None, None) => None,
+        (written, count) => {
+            let mut islands = written.unwrap_or_default();
+            islands.count = count.unwrap_or(islands.count);
+            Some(islands)
+        }
+    };
+    if islands.is_some() && method != Method::Ga {
+        return Err((
+            "islands".into(),
+            format!(
+                "the island model runs the GA, and the method is \"{}\"; leave out \
+                 [islands] and --islands, or use method \"ga\"",
+                method.name()
+            ),
+        ));
+    }
     let seed = match table.remove("seed") {
         None => 1,
         Some(toml::Value::Integer(s)) if s >= 0 => s as u64,
@@ -311,9 +339,21 @@ pub(super) fn resolve(
         }
     };
     let settings = match preset(method, presets) {
-        MethodSettings::Ga(base) => {
+        MethodSettings::Ga(base) | MethodSettings::Islands(IslandGaSettings { ga: base, .. }) => {
             check_ga_keys(&table)?;
-            MethodSettings::Ga(merged(base, table, GaSettings::validate)?)
+            let ga = merged(base, table, GaSettings::validate)?;
+            match islands {
+                None => MethodSettings::Ga(ga),
+                Some(islands) => {
+                    let settings = IslandGaSettings { ga, islands };
+                    settings.validate().map_err(|err| {
+                        let flag = err.field == "islands.count" && overrides.islands.is_some();
+                        let key = if flag { "--islands" } else { err.field };
+                        (key.to_owned(), err.to_string())
+                    })?;
+                    MethodSettings::Islands(settings)
+                }
+            }
         }
         MethodSettings::Smc(base) => {
             if table.contains_key("order") {
@@ -464,7 +504,7 @@ mod mcmc_tests {
 
     fn mcmc(generator: &str, text: &str) -> Result<McmcSettings, (String, String)> {
         let table: toml::Table = toml::from_str(text).unwrap();
-        match resolve(&presets(generator), table, &Overrides::default())?.settings {
+        match resolve(&presets(generator), table, None, &Overrides::default())?.settings {
             MethodSettings::Mcmc(s) => Ok(s),
             other => panic!("{other:?}"),
         }

@@ -14,7 +14,7 @@ pub struct ExchangeError(pub String);
 /// The runtime holds one implementation, [`Alone`] (one process). The `shapegen`
 /// command-line tool adds one over MPI; tests can run several processes' worth of
 /// islands on threads with channels.
-pub trait Exchange: Send {
+pub trait Exchange {
     /// This process's rank, from 0.
     fn rank(&self) -> usize;
 
