@@ -49,7 +49,7 @@ impl Processes {
             return Ok(());
         }
         match scene.optimizer.settings {
-            MethodSettings::Islands(s) if s.islands.count as usize % n == 0 => Ok(()),
+            MethodSettings::Islands(s) if (s.islands.count as usize).is_multiple_of(n) => Ok(()),
             MethodSettings::Islands(s) => anyhow::bail!(
                 "--islands {}: the {n} processes must share the islands evenly; give a \
                  multiple of {n}",

@@ -549,7 +549,7 @@ mod mcmc_tests {
         let mut root: toml::Table = toml::from_str(text).unwrap();
         apply_overrides(&mut root, &["optimizer.variant=tempered".to_owned()]).unwrap();
         let table = root["optimizer"].as_table().unwrap().clone();
-        let settings = resolve(&presets("spaceship"), table, &Overrides::default())
+        let settings = resolve(&presets("spaceship"), table, None, &Overrides::default())
             .unwrap()
             .settings;
         let MethodSettings::Mcmc(s) = settings else {
@@ -567,14 +567,16 @@ mod mcmc_tests {
             seconds: Some(2.5),
             evaluations: Some(1000),
             generations: Some(7),
+            islands: None,
             sets: Vec::new(),
         };
-        let goal = resolve(&spaceship, toml::Table::new(), &flags).unwrap();
+        let goal = resolve(&spaceship, toml::Table::new(), None, &flags).unwrap();
         let text = "method = \"sosmc\"\nseed = 9\nseconds = 2.5\nevaluations = 1000\n\
                     generations = 7\n";
         let keys = resolve(
             &spaceship,
             toml::from_str(text).unwrap(),
+            None,
             &Overrides::default(),
         );
         assert_eq!(goal, keys.unwrap());
@@ -584,7 +586,7 @@ mod mcmc_tests {
         assert_eq!((s.order, s.steps), (Order::Stochastic, 7));
         // Flags win over the table's keys.
         let table = toml::from_str("method = \"ga\"\nseed = 3\n").unwrap();
-        let goal = resolve(&spaceship, table, &flags).unwrap();
+        let goal = resolve(&spaceship, table, None, &flags).unwrap();
         assert_eq!((goal.method, goal.seed), (Method::Sosmc, 9));
         for (bad, key) in [
             (
@@ -602,7 +604,7 @@ mod mcmc_tests {
                 "--evaluations",
             ),
         ] {
-            let (k, _) = resolve(&spaceship, toml::Table::new(), &bad).unwrap_err();
+            let (k, _) = resolve(&spaceship, toml::Table::new(), None, &bad).unwrap_err();
             assert_eq!(k, key);
         }
     }
@@ -611,8 +613,42 @@ mod mcmc_tests {
     fn a_value_of_the_wrong_type_is_refused_under_its_own_key() {
         let table = toml::from_str("population = \"abc\"\nelitism = 3\n").unwrap();
         let (key, reason) =
-            resolve(&presets("spaceship"), table, &Overrides::default()).unwrap_err();
+            resolve(&presets("spaceship"), table, None, &Overrides::default()).unwrap_err();
         assert_eq!(key, "optimizer.population");
         assert!(reason.contains("abc"), "{reason}");
+    }
+
+    #[test]
+    fn the_islands_flag_sets_the_count_over_the_table() {
+        let spaceship = presets("spaceship");
+        let written = IslandSettings {
+            count: 2,
+            migrants: 3,
+            interval: 5,
+        };
+        let flag = Overrides {
+            islands: Some(6),
+            ..Overrides::default()
+        };
+        for (islands, overrides, count) in [
+            (Some(written), &Overrides::default(), 2),
+            (Some(written), &flag, 6),
+            (None, &flag, 6),
+        ] {
+            let goal = resolve(&spaceship, toml::Table::new(), islands, overrides).unwrap();
+            let MethodSettings::Islands(s) = goal.settings else {
+                panic!("{goal:?}");
+            };
+            assert_eq!(s.islands.count, count);
+            assert_eq!(s.ga, spaceship.ga);
+            let migrants = if islands.is_some() { 3 } else { 2 };
+            assert_eq!(s.islands.migrants, migrants, "the table's, or the default");
+        }
+        let plain = resolve(&spaceship, toml::Table::new(), None, &Overrides::default());
+        assert!(matches!(plain.unwrap().settings, MethodSettings::Ga(_)));
+        let rjmcmc = toml::from_str("method = \"rjmcmc\"\n").unwrap();
+        let (key, reason) = resolve(&spaceship, rjmcmc, None, &flag).unwrap_err();
+        assert_eq!(key, "islands");
+        assert!(reason.contains("runs the GA"), "{reason}");
     }
 }

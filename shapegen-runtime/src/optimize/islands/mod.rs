@@ -258,7 +258,7 @@ impl<G: Grammar> IslandGa<G> {
     ) -> Result<Self, OptimizeError> {
         settings.validate()?;
         let (count, processes) = (settings.islands.count as usize, exchange.size());
-        if processes == 0 || count % processes != 0 {
+        if processes == 0 || !count.is_multiple_of(processes) {
             return Err(SettingsError::new(
                 "islands.count",
                 count,
@@ -643,7 +643,8 @@ impl<G: Grammar> Optimizer<G> for IslandGa<G> {
         std::mem::swap(&mut self.population, &mut self.next);
         std::mem::swap(&mut self.fitness, &mut self.next_fitness);
         let islands = &self.settings.islands;
-        if islands.count > 1 && islands.migrants > 0 && generation % islands.interval == 0 {
+        if islands.count > 1 && islands.migrants > 0 && generation.is_multiple_of(islands.interval)
+        {
             self.migrate()?;
         }
         self.share()
