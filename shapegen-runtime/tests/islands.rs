@@ -46,8 +46,11 @@ fn islands(count: u32, migrants: u32, interval: u64) -> IslandGaSettings {
     }
 }
 
-/// What two runs must share to be the same run.
-fn key(r: &RunResult<City>) -> (Genome<City>, u64, u64, u64, Vec<(u64, u64, u64, u64, u64)>) {
+/// What two runs must share to be the same run: best genome and fitness bits,
+/// evaluations, generations, and the history without its times.
+type Key = (Genome<City>, u64, u64, u64, Vec<(u64, u64, u64, u64, u64)>);
+
+fn key(r: &RunResult<City>) -> Key {
     (
         r.best.clone(),
         r.best_fitness.to_bits(),

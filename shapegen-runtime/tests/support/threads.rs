@@ -7,13 +7,22 @@ use std::sync::mpsc::{Receiver, Sender, channel};
 
 use shapegen_runtime::optimize::islands::{Exchange, ExchangeError};
 
+/// A message and the rank that sent it.
+type Message = (usize, Vec<u8>);
+
+/// A rank's inbox: the channel, and what arrived from each rank but was not taken yet.
+struct Inbox {
+    receiver: Receiver<Message>,
+    pending: Vec<VecDeque<Vec<u8>>>,
+}
+
 /// One rank of a group of threads exchanging through channels. Messages between two
 /// ranks arrive in the order they were sent, so each collective operation takes, from
 /// each sender, the next message it sent.
 pub struct Threads {
     rank: usize,
-    to: Vec<Sender<(usize, Vec<u8>)>>,
-    inbox: Mutex<(Receiver<(usize, Vec<u8>)>, Vec<VecDeque<Vec<u8>>>)>,
+    to: Vec<Sender<Message>>,
+    inbox: Mutex<Inbox>,
 }
 
 impl Threads {
@@ -25,7 +34,10 @@ impl Threads {
             .map(|(rank, receiver)| Threads {
                 rank,
                 to: to.clone(),
-                inbox: Mutex::new((receiver, vec![VecDeque::new(); size])),
+                inbox: Mutex::new(Inbox {
+                    receiver,
+                    pending: vec![VecDeque::new(); size],
+                }),
             })
             .collect()
     }
@@ -37,15 +49,15 @@ impl Threads {
     }
 
     fn receive(&self, from: usize) -> Result<Vec<u8>, ExchangeError> {
-        let mut inbox = self.inbox.lock().unwrap();
-        let (receiver, pending) = &mut *inbox;
-        while pending[from].is_empty() {
-            let (sender, bytes) = receiver
+        let inbox = &mut *self.inbox.lock().unwrap();
+        while inbox.pending[from].is_empty() {
+            let (sender, bytes) = inbox
+                .receiver
                 .recv()
                 .map_err(|_| ExchangeError("every other rank is gone".into()))?;
-            pending[sender].push_back(bytes);
+            inbox.pending[sender].push_back(bytes);
         }
-        Ok(pending[from].pop_front().unwrap())
+        Ok(inbox.pending[from].pop_front().unwrap())
     }
 }
 
