@@ -294,8 +294,9 @@ fn run_local(plan: &Plan, dir: &Path, jobs: usize, tool: &Generators) -> anyhow:
     }
     let jobs = jobs.min(pending.len()).max(1);
     let threads = (rayon::current_num_threads() / jobs).max(1);
-    let gpu = plan.backend.open();
-    if !pending.is_empty() {
+    let gpu = if pending.is_empty() {
+        None
+    } else {
         eprintln!(
             "sweeping {} grid points x {} runs of {} ({} per run): {} cells, {jobs} at a \
              time, worker threads per cell: {threads}",
@@ -305,7 +306,8 @@ fn run_local(plan: &Plan, dir: &Path, jobs: usize, tool: &Generators) -> anyhow:
             plan.budget.describe(),
             pending.len()
         );
-    }
+        plan.backend.open()
+    };
     let stop = interrupt::flag();
     let next = AtomicUsize::new(0);
     let done = Mutex::new(done);
