@@ -324,10 +324,7 @@ fn run_local(plan: &Plan, dir: &Path, jobs: usize, tool: &Generators) -> anyhow:
             let finished = match finished {
                 Ok(Some(finished)) => finished,
                 Ok(None) => break,
-                Err(err) => {
-                    stop.store(true, Ordering::SeqCst);
-                    return Err(err.context(format!("cell {index}")));
-                }
+                Err(err) => return Err(err.context(format!("cell {index}"))),
             };
             let mut done = done
                 .lock()
@@ -347,7 +344,10 @@ fn run_local(plan: &Plan, dir: &Path, jobs: usize, tool: &Generators) -> anyhow:
         Ok(())
     };
     let outcomes: Vec<anyhow::Result<()>> = std::thread::scope(|scope| {
-        let handles: Vec<_> = (0..jobs).map(|_| scope.spawn(worker)).collect();
+        // A failing worker stops the others: their running cells are interrupted.
+        let handles: Vec<_> = (0..jobs)
+            .map(|_| scope.spawn(|| worker().inspect_err(|_| stop.store(true, Ordering::SeqCst))))
+            .collect();
         handles
             .into_iter()
             .map(|h| {
