@@ -5,6 +5,7 @@ use std::sync::atomic::AtomicBool;
 
 use shapegen::Grammar;
 use shapegen::genome::Limits;
+use shapegen::optimize::islands::IslandGa;
 use shapegen::optimize::{Best, Budget, Ga, Mcmc, Optimizer, RunResult, Session, Smc};
 use shapegen::scene::{MethodSettings, OptimizerGoal, SceneEvaluator};
 
@@ -20,6 +21,7 @@ pub trait MethodJob<G: Grammar> {
 pub fn with_method<G: Grammar, J: MethodJob<G>>(goal: &OptimizerGoal, job: J) -> J::Output {
     match goal.settings {
         MethodSettings::Ga(s) => job.run::<Ga<G>>(s),
+        MethodSettings::Islands(s) => job.run::<IslandGa<G>>(s),
         MethodSettings::Smc(s) => job.run::<Smc<G>>(s),
         MethodSettings::Mcmc(s) => job.run::<Mcmc<G>>(s),
     }

@@ -344,6 +344,7 @@ impl Plan {
             evaluations,
             generations,
             sets: self.sets.iter().cloned().chain(grid).collect(),
+            ..Overrides::default()
         }
     }
 
