@@ -10,7 +10,7 @@ use shapegen_runtime::generator;
 use shapegen_runtime::genome::Limits;
 use shapegen_runtime::ops::OperatorVariant;
 use shapegen_runtime::optimize::{
-    GaSettings, McmcSettings, McmcVariant, Order, SmcSettings, SmcVariant,
+    GaSettings, McmcSettings, McmcVariant, Order, ParentSelection, SmcSettings, SmcVariant,
 };
 use shapegen_runtime::prelude::*;
 
@@ -141,7 +141,8 @@ pub const PAPER_LIMITS: Limits = Limits {
 /// The original's GA settings for the paper's spaceship-volume scene, as its
 /// `run/experiments/spaceship_volume/ga.cfg` sets them: population 150, elitism 30,
 /// initial length 50, 130 generations, mutation (`basic_prob`) 30% split grow / cut /
-/// alter (`permutate`) 45 / 45 / 10, tournament of 10, the original's operators.
+/// alter (`permutate`) 45 / 45 / 10, parents by 10-tournament and roulette, the original's
+/// operators.
 pub fn paper_ga() -> GaSettings {
     GaSettings {
         population: 150,
@@ -153,6 +154,7 @@ pub fn paper_ga() -> GaSettings {
         cut_weight: 45.0,
         alter_weight: 10.0,
         tournament: 10,
+        selection: ParentSelection::TournamentRoulette,
         operators: OperatorVariant::Original,
         cross_array_index: false,
     }

@@ -1,13 +1,14 @@
 //! `--cpu` / `--gpu`: which backend counts, and opening the GPU when it may be used.
 
 use clap::Args;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use shapegen::gpu::GpuContext;
 use shapegen::scene::BackendChoice;
 use shapegen::score::retained::RetentionStats;
 
-/// The backend flags of the scoring commands.
-#[derive(Debug, Args)]
+/// The backend flags of the scoring commands; a sweep's plan saves them.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Args, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct BackendArgs {
     /// Count on the CPU (all worker threads).
     #[arg(long, conflicts_with = "gpu")]

@@ -20,7 +20,6 @@
 //! machine's load hit every method alike.
 
 use std::path::{Path, PathBuf};
-use std::sync::atomic::AtomicBool;
 use std::time::Duration;
 
 use anyhow::Context;
@@ -28,8 +27,7 @@ use clap::Args;
 use image::Rgb;
 use serde::Serialize;
 use shapegen::Grammar;
-use shapegen::genome::Limits;
-use shapegen::optimize::{Best, Budget, HistoryEntry, Optimizer, RunResult, Session, StopReason};
+use shapegen::optimize::{Budget, HistoryEntry, StopReason};
 use shapegen::scene::{Method, OptimizerGoal, Overrides, Scene, SceneEvaluator, SceneScorer};
 
 use super::backend::BackendArgs;
@@ -37,7 +35,8 @@ use super::dispatch::{Generators, Visit};
 use super::files::{atomic_write, csv_bytes, save_png};
 use super::interrupt;
 use super::plot::{self, Band};
-use super::search::{MethodJob, with_method};
+use super::search::{SessionRun, with_method};
+use super::stats::{curve, mean_std};
 use crate::registry::Entry;
 
 /// Points of the common time grid the curves are sampled on.
@@ -239,8 +238,8 @@ impl Visit for Compare<'_> {
                 };
                 let result = with_method::<G, _>(
                     &goal,
-                    OneRun {
-                        goal: &goal,
+                    SessionRun {
+                        seed: goal.seed,
                         limits: self.scene.limits,
                         budget,
                         stop: &stop,
@@ -292,24 +291,6 @@ impl Visit for Compare<'_> {
             self.args.out.display()
         );
         Ok(())
-    }
-}
-
-/// One run of one method in a comparison.
-struct OneRun<'a, 'b> {
-    goal: &'a OptimizerGoal,
-    limits: Limits,
-    budget: Budget,
-    stop: &'a AtomicBool,
-    evaluator: &'a mut SceneEvaluator<'b>,
-}
-
-impl<G: Grammar> MethodJob<G> for OneRun<'_, '_> {
-    type Output = anyhow::Result<RunResult<G>>;
-
-    fn run<O: Optimizer<G, Record = Best<G>>>(self, settings: O::Settings) -> Self::Output {
-        let session = Session::<G, O>::start(settings, self.limits, self.goal.seed, self.budget)?;
-        Ok(session.stop_flag(self.stop).run(self.evaluator)?)
     }
 }
 
@@ -398,7 +379,7 @@ impl Outputs<'_> {
                     .filter(|f| f.method == m)
                     .map(|f| f.history.as_slice())
                     .collect();
-                let (mean, std) = curve(&runs, self.args.seconds, GRID_POINTS);
+                let (mean, std) = curve(&runs, |h| h.elapsed_s, self.args.seconds, GRID_POINTS);
                 (m, mean, std)
             })
             .collect();
@@ -444,51 +425,6 @@ fn summarize(method: Method, done: &[Finished]) -> MethodSummary {
     }
 }
 
-/// Mean and sample standard deviation (0 for one value) of `values`; NaN for none.
-fn mean_std(values: &[f64]) -> (f64, f64) {
-    let n = values.len() as f64;
-    if values.is_empty() {
-        return (f64::NAN, f64::NAN);
-    }
-    let mean = values.iter().sum::<f64>() / n;
-    if values.len() == 1 {
-        return (mean, 0.0);
-    }
-    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
-    (mean, var.sqrt())
-}
-
-/// The mean and standard deviation over `runs` of the best fitness so far, at `points`
-/// times evenly spaced over `0..=seconds`. A run's best at time t is that of its last
-/// history entry by t (a step function), and its last value once it has ended; a point
-/// before every run has its first entry is NaN (a gap in the plot).
-fn curve(runs: &[&[HistoryEntry]], seconds: f64, points: usize) -> (Vec<f64>, Vec<f64>) {
-    let mut next = vec![0usize; runs.len()];
-    let mut values = Vec::with_capacity(runs.len());
-    let mut mean = Vec::with_capacity(points);
-    let mut std = Vec::with_capacity(points);
-    for k in 0..points {
-        let t = seconds * k as f64 / (points - 1) as f64;
-        values.clear();
-        for (history, i) in runs.iter().zip(&mut next) {
-            while *i < history.len() && history[*i].elapsed_s <= t {
-                *i += 1;
-            }
-            if *i > 0 {
-                values.push(history[*i - 1].best);
-            }
-        }
-        let (m, s) = if values.len() == runs.len() {
-            mean_std(&values)
-        } else {
-            (f64::NAN, f64::NAN)
-        };
-        mean.push(m);
-        std.push(s);
-    }
-    (mean, std)
-}
-
 /// Each method's colour in the pictures, the same in every comparison.
 fn colour(method: Method) -> Rgb<u8> {
     match method {
@@ -502,37 +438,6 @@ fn colour(method: Method) -> Rgb<u8> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn entry(elapsed_s: f64, best: f64) -> HistoryEntry {
-        HistoryEntry {
-            generation: 0,
-            elapsed_s,
-            evaluations: 0,
-            best,
-            mean: best,
-            std: 0.0,
-        }
-    }
-
-    #[test]
-    fn curves_are_step_functions_held_to_the_end() {
-        let a = [entry(0.5, 1.0), entry(1.5, 3.0)];
-        let b = [entry(0.2, 2.0), entry(0.9, 5.0)];
-        let (mean, std) = curve(&[&a, &b], 2.0, 5);
-        // t = 0: no run has its first entry yet.
-        assert!(mean[0].is_nan() && std[0].is_nan());
-        // t = 0.5: a = 1, b = 2; t = 1: 1 and 5; t = 1.5: 3 and 5; t = 2: held.
-        assert_eq!(&mean[1..], &[1.5, 3.0, 4.0, 4.0]);
-        assert_eq!(std[1], 0.5f64.sqrt());
-        assert_eq!(std[2], 8f64.sqrt());
-    }
-
-    #[test]
-    fn spread_is_the_sample_standard_deviation() {
-        assert_eq!(mean_std(&[2.0]), (2.0, 0.0));
-        assert_eq!(mean_std(&[1.0, 3.0]), (2.0, 2f64.sqrt()));
-        assert!(mean_std(&[]).0.is_nan());
-    }
 
     #[test]
     fn methods_keep_their_order_and_mistakes_are_named() {

@@ -3,7 +3,7 @@
 //! [`Cli`] gathers the generators the tool knows and runs the command its arguments
 //! give. The `shapegen` binary is `Cli::new().published().run()`; a crate with its own
 //! generators gets every subcommand (`sample`, `score`, `target`, `run`, `compare`,
-//! `render`, `export`, `genome`) for them with a `main` like this, and its scenes name
+//! `sweep`, `render`, `export`, `genome`) for them with a `main` like this, and its scenes name
 //! them as `generator = "tower"`:
 //!
 //! ```no_run
@@ -49,6 +49,8 @@ mod run;
 mod sample;
 mod score;
 mod search;
+mod stats;
+mod sweep;
 mod target;
 mod voxels;
 
@@ -159,6 +161,7 @@ impl Cli {
             Command::Render(args) => render::run(&args, tool),
             Command::Run(args) => run::run(&args, tool),
             Command::Compare(args) => compare::run(&args, tool),
+            Command::Sweep(args) => sweep::run(&args, tool),
             Command::Export(args) => export::run(&args, tool),
             Command::Genome(args) => genome::run(&args, tool),
         })
@@ -207,6 +210,29 @@ enum Command {
     /// Run several methods on one scene, each several times on the same seeds with the
     /// same wall-time budget, and write their curves and a summary side by side.
     Compare(compare::CompareArgs),
+    /// Run a parameter study: every combination of the --grid values, each --runs
+    /// times, in parallel here or as a Slurm job array; write each run's result and the
+    /// study's tables and plots.
+    ///
+    /// Each grid point runs on seeds seed + r (r = 0 .. runs - 1) with the one budget
+    /// given. Budgets by --evaluations or --generations make the results independent of
+    /// the machine's speed and of --jobs (and of --threads, as always); a --seconds budget
+    /// does not.
+    ///
+    /// DIR gets plan.json, cells/NNNN/ per finished run (result.json, fitness.csv,
+    /// best.genome.json), and, rewritten after each: sweep.csv (one row per run: the swept
+    /// values, seed, final best, evaluations, generations, seconds, and
+    /// evaluations_to_50/90/99: the evaluations a run took to reach 50, 90 and 99 % of
+    /// the way from the sweep's lowest initial best, the lowest best of any run's first
+    /// population, to its highest final best, empty if it never did), summary.md (mean
+    /// +- std and median of the final best per grid point, the best marked),
+    /// final-KEY.png per swept key (final best against the key's values with error bars,
+    /// one line per value of a second key) and curves.png (the mean curves of the best
+    /// and the worst grid points against evaluations).
+    ///
+    /// Run the same command again to go on after an interruption; --plan-only writes a
+    /// Slurm job array instead (`sbatch DIR/sweep.sbatch` runs it and collects it).
+    Sweep(sweep::SweepArgs),
     /// Write shaded previews of saved genomes and, for image targets, overlays.
     Render(render::RenderArgs),
     /// Write the model a saved genome derives as OBJ (with its MTL) or binary glTF.

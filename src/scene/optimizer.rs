@@ -65,6 +65,8 @@ pub enum MethodSettings {
 ///                        # then the method's own settings: for the GA population,
 /// population = 100       # elitism, initial_length, generations, mutation_probability,
 ///                        # grow_weight, cut_weight, alter_weight, tournament,
+///                        # selection ("tournament_roulette", "tournament",
+///                        # "roulette" or "random"),
 ///                        # operators ("original" or "weighted"), cross_array_index
 ///                        # (true or false); for SMC and SOSMC particles, steps,
 ///                        # variant ("original" or "generative"),

@@ -4,7 +4,7 @@
 #![allow(dead_code)]
 
 use std::fs;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// Runs `shapegen` with `args`.
@@ -99,7 +99,7 @@ pub fn score(scene: &Path, genomes: &Path, backend: &str) -> Vec<serde_json::Val
         .collect()
 }
 
-pub fn sample(generator: &str, seed: &str, dir: &Path) -> std::path::PathBuf {
+pub fn sample(generator: &str, seed: &str, dir: &Path) -> PathBuf {
     ok(&[
         "sample",
         "-g",
@@ -134,8 +134,37 @@ mesh = "TARGET"
 /// A unit cube centred at the origin, as OBJ.
 pub const UNIT_CUBE_OBJ: &str = "v -0.5 -0.5 -0.5\nv 0.5 -0.5 -0.5\nv 0.5 0.5 -0.5\nv -0.5 0.5 -0.5\nv -0.5 -0.5 0.5\nv 0.5 -0.5 0.5\nv 0.5 0.5 0.5\nv -0.5 0.5 0.5\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 3 4 8 7\nf 2 3 7 6\nf 1 5 8 4\n";
 
+/// Writes [`SHIP_SCENE`] with a unit cube as its target into `dir`: a spaceship scene
+/// whose runs are quick. Returns the scene's path.
+pub fn cube_ship_scene(dir: &Path) -> PathBuf {
+    fs::write(dir.join("cube.obj"), UNIT_CUBE_OBJ).unwrap();
+    let path = dir.join("ship.toml");
+    fs::write(&path, SHIP_SCENE.replace("TARGET", "cube.obj")).unwrap();
+    path
+}
+
+/// A sweep's `sweep.csv` in `dir` without its `seconds` column (wall time differs
+/// between runs), as rows of fields, the header first.
+pub fn sweep_rows_without_seconds(dir: &Path) -> Vec<Vec<String>> {
+    let csv = fs::read_to_string(dir.join("sweep.csv")).expect("sweep.csv");
+    let rows: Vec<Vec<String>> = csv
+        .lines()
+        .map(|l| l.split(',').map(str::to_owned).collect())
+        .collect();
+    let seconds = rows[0]
+        .iter()
+        .position(|c| c == "seconds")
+        .expect("a seconds column");
+    rows.into_iter()
+        .map(|mut r| {
+            r.remove(seconds);
+            r
+        })
+        .collect()
+}
+
 /// A small city scene (24 cities, 8 generations) at 160 x 90 whose target is the silhouette of a sampled city.
-pub fn skyline_scene(dir: &Path) -> std::path::PathBuf {
+pub fn skyline_scene(dir: &Path) -> PathBuf {
     let text = r#"
 generator = "city"
 [limits]

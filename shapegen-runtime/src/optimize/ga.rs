@@ -59,8 +59,13 @@ pub struct GaSettings {
     /// Relative weight of alter among mutations; finite and not negative. The three
     /// weights must not all be 0.
     pub alter_weight: f64,
-    /// Size of the tournament choosing the first parent; at least 1.
+    /// Size of the tournaments that choose parents (see
+    /// [`selection`](Self::selection)); at least 1.
     pub tournament: u32,
+    /// How the two parents of a pair are chosen (scene key `selection`:
+    /// `"tournament_roulette"`, the default and the paper's, `"tournament"`,
+    /// `"roulette"` or `"random"`); see [`ParentSelection`].
+    pub selection: ParentSelection,
     /// The rules of the operators and of the breeding around them (scene key
     /// `operators`: `"weighted"`, the default, or `"original"`); see
     /// [`OperatorVariant`] and [`Ga`].
@@ -84,10 +89,41 @@ impl Default for GaSettings {
             cut_weight: 1.0,
             alter_weight: 1.0,
             tournament: 10,
+            selection: ParentSelection::TournamentRoulette,
             operators: OperatorVariant::Weighted,
             cross_array_index: false,
         }
     }
+}
+
+/// How the [`Ga`] chooses the two parents of each pair it breeds. Tournaments are of
+/// [`GaSettings::tournament`] entrants; the roulette wheel weighs each individual by its
+/// fitness above the population's worst (see [`Ga`] for NaN and infinities).
+///
+/// The CESCG study compared these schemes (ALGORITHMS.md, section 4); the paper's GA and
+/// the original implementation use the first.
+///
+/// ```
+/// use shapegen_runtime::optimize::{GaSettings, ParentSelection};
+///
+/// let s: GaSettings = serde_json::from_str(r#"{"selection": "roulette"}"#)?;
+/// assert_eq!(s.selection, ParentSelection::Roulette);
+/// assert_eq!(GaSettings::default().selection, ParentSelection::TournamentRoulette);
+/// # Ok::<(), serde_json::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ParentSelection {
+    /// Parent 1 by tournament, parent 2 by roulette (`"tournament_roulette"`): the
+    /// paper's Algorithm 1 and the original's `createNewGeneration`.
+    #[default]
+    TournamentRoulette,
+    /// Both parents by tournament (`"tournament"`).
+    Tournament,
+    /// Both parents by roulette (`"roulette"`).
+    Roulette,
+    /// Both parents drawn uniformly from the population, ignoring fitness (`"random"`).
+    Random,
 }
 
 impl GaSettings {
@@ -207,7 +243,8 @@ grammar_struct_traits!(GaState {
 
 /// The genetic algorithm (ALGORITHMS.md, section 4): each generation keeps the
 /// `elitism` best unchanged, with their cached fitness, and fills the rest in pairs:
-/// parent 1 by k-tournament, parent 2 by roulette on shifted fitness (see below); with
+/// parent 1 by k-tournament, parent 2 by roulette on shifted fitness (see below), or as
+/// another [`ParentSelection`] says; with
 /// the mutation probability both are copied and mutated once each (grow, cut or alter
 /// by their weights), otherwise they are crossed over. Only the new children are
 /// evaluated.
@@ -536,7 +573,7 @@ impl<G: Grammar> Breed<'_, G> {
         b: &mut Genome<G>,
         rng: &mut impl Rng,
     ) -> [u32; 2] {
-        let (i1, i2) = (self.tournament(rng), self.roulette.spin(rng));
+        let (i1, i2) = self.parents(rng);
         let (p1, p2) = (&self.population[i1], &self.population[i2]);
         if self.mutates(rng) {
             a.clone_from(p1);
@@ -567,7 +604,7 @@ impl<G: Grammar> Breed<'_, G> {
         let fits = |g: &Genome<G>| (limits.min_len..limits.max_len).contains(&(g.len() as u32));
         let mut filled = 0;
         for _ in 0..ORIGINAL_BREEDS_PER_PAIR {
-            let (i1, i2) = (self.tournament(rng), self.roulette.spin(rng));
+            let (i1, i2) = self.parents(rng);
             let (p1, p2) = (&self.population[i1], &self.population[i2]);
             let [c, d] = kids;
             let bred = if self.mutates(rng) {
@@ -601,6 +638,19 @@ impl<G: Grammar> Breed<'_, G> {
              breedings did not fill one pair of slots",
         )
         .into())
+    }
+
+    /// The two parents of a pair, chosen as [`GaSettings::selection`] says.
+    fn parents(&self, rng: &mut impl Rng) -> (usize, usize) {
+        match self.settings.selection {
+            ParentSelection::TournamentRoulette => (self.tournament(rng), self.roulette.spin(rng)),
+            ParentSelection::Tournament => (self.tournament(rng), self.tournament(rng)),
+            ParentSelection::Roulette => (self.roulette.spin(rng), self.roulette.spin(rng)),
+            ParentSelection::Random => {
+                let n = self.population.len();
+                (rng.random_range(0..n), rng.random_range(0..n))
+            }
+        }
     }
 
     /// Best of `tournament` individuals drawn uniformly with replacement (the first drawn
@@ -803,6 +853,57 @@ mod tests {
                 assert_eq!(got, 0.0, "index {i}");
             }
         }
+    }
+
+    #[test]
+    fn each_selection_scheme_draws_both_parents_at_its_rates() {
+        // Five distinct values; rank r (0: best) wins a 2-tournament with probability
+        // ((5 - r)^2 - (4 - r)^2) / 25; roulette weights f - f_min are 0, 4, 1, 3, 2 of 10.
+        let fitness = [1.0, 5.0, 2.0, 4.0, 3.0];
+        let rank_of = [4, 0, 3, 1, 2];
+        let tournament = rank_of.map(|r: i32| f64::from((5 - r).pow(2) - (4 - r).pow(2)) / 25.0);
+        let roulette = [0.0, 0.4, 0.1, 0.3, 0.2];
+        let uniform = [0.2; 5];
+        for (selection, want) in [
+            (ParentSelection::TournamentRoulette, [tournament, roulette]),
+            (ParentSelection::Tournament, [tournament, tournament]),
+            (ParentSelection::Roulette, [roulette, roulette]),
+            (ParentSelection::Random, [uniform, uniform]),
+        ] {
+            let settings = GaSettings {
+                tournament: 2,
+                selection,
+                ..GaSettings::default()
+            };
+            check(settings, &fitness, |breed| {
+                for (parent, want) in want.iter().enumerate() {
+                    let freq = frequencies(5, |rng| {
+                        let (a, b) = breed.parents(rng);
+                        [a, b][parent]
+                    });
+                    for (i, (&got, &want)) in freq.iter().zip(want).enumerate() {
+                        // The standard deviation of an estimate is at most 0.0016.
+                        assert!(
+                            (got - want).abs() < 0.008,
+                            "{selection:?}, parent {parent}, index {i}: {got} vs {want}"
+                        );
+                    }
+                }
+            });
+        }
+        // The default draws exactly as the paper's breeding always has: a tournament,
+        // then a spin of the wheel, from the same stream.
+        check(GaSettings::default(), &fitness, |breed| {
+            let rng = &mut stream(9, 3, 0);
+            for _ in 0..1_000 {
+                let mut replay = rng.clone();
+                let want = (
+                    breed.tournament(&mut replay),
+                    breed.roulette.spin(&mut replay),
+                );
+                assert_eq!(breed.parents(rng), want);
+            }
+        });
     }
 
     #[test]

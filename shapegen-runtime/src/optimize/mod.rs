@@ -51,7 +51,7 @@ pub use crate::evaluate::{EvaluateError, Evaluator, FnEvaluator, MultiEvaluator,
 pub use best::Best;
 pub use driver::{Agreement, Optimizer, Record, drive};
 pub use error::{OptimizeError, SettingsError};
-pub use ga::{Ga, GaSettings, GaState};
+pub use ga::{Ga, GaSettings, GaState, ParentSelection};
 pub use mcmc::{Mcmc, McmcSettings, McmcState, McmcVariant};
 pub use run::{
     Budget, Control, HistoryEntry, Observer, Progress, RunResult, Silent, Snapshot, StopReason,

@@ -1,0 +1,372 @@
+//! One cell of a study (run `r` of one grid point), run exactly as its plan says,
+//! wherever it runs: in a local sweep, or alone as `shapegen sweep --cell DIR I` in a
+//! cluster's job. Its folder, `DIR/cells/NNNN/` (the cell's index), holds
+//! - `result.json`: its row (grid values, run, seed, final best, evaluations,
+//!   generations, seconds, why it stopped);
+//! - `fitness.csv`: its history, one row per generation (`generation`, `elapsed_s`,
+//!   `evaluations`, `best`, `mean`, `std`; every number as it round-trips exactly);
+//! - `best.genome.json`: the best genome found.
+//!
+//! The folder is written as `cells/.NNNN.partial-PID` and renamed into place once
+//! complete, so a cell's folder exists only whole: a study killed at any moment loses the
+//! cells that were running, and nothing else.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::AtomicBool;
+
+use anyhow::Context;
+use serde::{Deserialize, Deserializer, Serialize};
+use shapegen::Grammar;
+use shapegen::gpu::GpuContext;
+use shapegen::optimize::{HistoryEntry, StopReason};
+use shapegen::scene::{Scene, SceneEvaluator, SceneScorer};
+
+use super::super::dispatch::{Generators, Visit};
+use super::super::files::{csv_bytes, read};
+use super::super::search::{SessionRun, with_method};
+use super::plan::Plan;
+use crate::registry::Entry;
+
+/// The files of a cell's folder.
+const RESULT: &str = "result.json";
+const HISTORY: &str = "fitness.csv";
+const GENOME: &str = "best.genome.json";
+/// The columns of `fitness.csv`.
+const HISTORY_COLUMNS: [&str; 6] = [
+    "generation",
+    "elapsed_s",
+    "evaluations",
+    "best",
+    "mean",
+    "std",
+];
+
+/// A cell's `result.json`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Record {
+    /// The cell's index in its plan.
+    pub index: u64,
+    /// Its grid point: each swept key's value.
+    pub point: BTreeMap<String, String>,
+    /// Its run, from 0.
+    pub run: u64,
+    /// Its seed.
+    pub seed: u64,
+    /// The best fitness found (NaN, written `null`, when no model had a fitness).
+    #[serde(deserialize_with = "nan_for_null")]
+    pub best: f64,
+    /// Fitness evaluations done.
+    pub evaluations: u64,
+    /// Generations (steps, iterations) done after the initial population.
+    pub generations: u64,
+    /// Wall time of the run, in seconds.
+    pub seconds: f64,
+    /// Why it stopped: "evaluations", "generations" or "time".
+    pub stopped: String,
+}
+
+/// Reads a number, or `null` (how JSON writes NaN) as NaN.
+fn nan_for_null<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
+}
+
+/// A finished cell: its row and its history.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Finished {
+    /// Its row.
+    pub record: Record,
+    /// Its history, one entry per generation.
+    pub history: Vec<HistoryEntry>,
+}
+
+/// Cell `index`'s folder in study folder `dir`.
+pub fn folder(plan: &Plan, dir: &Path, index: u64) -> PathBuf {
+    dir.join("cells").join(name(plan, index))
+}
+
+/// Cell `index`'s folder name: its index with at least four digits, all cells of a plan
+/// with as many.
+fn name(plan: &Plan, index: u64) -> String {
+    let width = (plan.cells().saturating_sub(1)).to_string().len().max(4);
+    format!("{index:0width$}")
+}
+
+/// Runs cell `index` of `plan` (counting on `gpu` where the plan's backend may) and
+/// writes its folder into `dir`. `None` when `stop` interrupted it: nothing is written.
+pub fn run(
+    plan: &Plan,
+    dir: &Path,
+    index: u64,
+    tool: &Generators,
+    gpu: Option<&GpuContext>,
+    stop: &AtomicBool,
+) -> anyhow::Result<Option<Finished>> {
+    let cell = plan.cell(index);
+    let scene = Scene::open(&plan.scene, tool.registry(), &plan.overrides(cell))?;
+    let mut outcome = None;
+    tool.visit(
+        &scene.generator,
+        CellRun {
+            plan,
+            scene: &scene,
+            gpu,
+            stop,
+            outcome: &mut outcome,
+        },
+    )?;
+    let outcome = outcome.expect("a cell's run leaves its outcome");
+    if outcome.stopped == StopReason::Observer {
+        return Ok(None);
+    }
+    let finished = Finished {
+        record: Record {
+            index,
+            point: plan
+                .grid
+                .iter()
+                .zip(plan.values(cell.point))
+                .map(|(axis, v)| (axis.key.clone(), v.to_owned()))
+                .collect(),
+            run: cell.run,
+            seed: cell.seed,
+            best: outcome.best,
+            evaluations: outcome.evaluations,
+            generations: outcome.generations,
+            seconds: outcome.history.last().map_or(0.0, |h| h.elapsed_s),
+            stopped: outcome.stopped.name().to_owned(),
+        },
+        history: outcome.history,
+    };
+    write(plan, dir, &finished, &outcome.genome)?;
+    Ok(Some(finished))
+}
+
+/// Writes `finished`'s folder: into a partial folder first, renamed into place when
+/// whole. A folder already there (the same cell, finished by another process) is kept.
+fn write(plan: &Plan, dir: &Path, finished: &Finished, genome: &str) -> anyhow::Result<()> {
+    let index = finished.record.index;
+    let cells = dir.join("cells");
+    let name = name(plan, index);
+    // Partial folders of this cell left by killed processes.
+    let prefix = format!(".{name}.partial-");
+    if let Ok(entries) = std::fs::read_dir(&cells) {
+        for entry in entries.flatten() {
+            if entry.file_name().to_string_lossy().starts_with(&prefix) {
+                let _ = std::fs::remove_dir_all(entry.path());
+            }
+        }
+    }
+    let partial = cells.join(format!("{prefix}{}", std::process::id()));
+    std::fs::create_dir_all(&partial)
+        .with_context(|| format!("cannot create `{}`", partial.display()))?;
+    let write = |file: &str, bytes: &[u8]| {
+        let path = partial.join(file);
+        std::fs::write(&path, bytes).with_context(|| format!("cannot write `{}`", path.display()))
+    };
+    write(
+        RESULT,
+        serde_json::to_string_pretty(&finished.record)?.as_bytes(),
+    )?;
+    write(HISTORY, &history_csv(&finished.history)?)?;
+    write(GENOME, genome.as_bytes())?;
+    let done = cells.join(&name);
+    if let Err(err) = std::fs::rename(&partial, &done) {
+        let _ = std::fs::remove_dir_all(&partial);
+        anyhow::ensure!(
+            done.join(RESULT).exists(),
+            "cannot move cell {index} into `{}`: {err}",
+            done.display()
+        );
+    }
+    Ok(())
+}
+
+/// `fitness.csv`'s bytes.
+fn history_csv(history: &[HistoryEntry]) -> anyhow::Result<Vec<u8>> {
+    let rows = history.iter().map(|h| {
+        [
+            h.generation.to_string(),
+            h.elapsed_s.to_string(),
+            h.evaluations.to_string(),
+            h.best.to_string(),
+            h.mean.to_string(),
+            h.std.to_string(),
+        ]
+        .to_vec()
+    });
+    csv_bytes(&HISTORY_COLUMNS.map(str::to_owned), rows)
+}
+
+/// Cell `index` of `plan` as its folder in `dir` holds it; `None` when it is not done.
+pub fn load(plan: &Plan, dir: &Path, index: u64) -> anyhow::Result<Option<Finished>> {
+    let folder = folder(plan, dir, index);
+    let path = folder.join(RESULT);
+    if !path.exists() {
+        return Ok(None);
+    }
+    let record: Record = serde_json::from_str(&read(&path)?)
+        .with_context(|| format!("`{}` is not a cell's result", path.display()))?;
+    let cell = plan.cell(index);
+    anyhow::ensure!(
+        (record.index, record.run, record.seed) == (index, cell.run, cell.seed),
+        "`{}` holds cell {} (run {}, seed {}), not cell {index} of this plan (run {}, seed {})",
+        path.display(),
+        record.index,
+        record.run,
+        record.seed,
+        cell.run,
+        cell.seed
+    );
+    let history = read_history(&folder.join(HISTORY))?;
+    Ok(Some(Finished { record, history }))
+}
+
+/// Every finished cell of `plan` in `dir`, by index.
+pub fn load_all(plan: &Plan, dir: &Path) -> anyhow::Result<BTreeMap<u64, Finished>> {
+    let mut done = BTreeMap::new();
+    for index in 0..plan.cells() {
+        if let Some(finished) = load(plan, dir, index)? {
+            done.insert(index, finished);
+        }
+    }
+    Ok(done)
+}
+
+/// Reads a cell's `fitness.csv`.
+fn read_history(path: &Path) -> anyhow::Result<Vec<HistoryEntry>> {
+    let bad = |what: String| anyhow::anyhow!("`{}`: {what}", path.display());
+    let text = read(path)?;
+    let mut reader = csv::Reader::from_reader(text.as_bytes());
+    let header: Vec<String> = reader.headers()?.iter().map(str::to_owned).collect();
+    if header != HISTORY_COLUMNS {
+        return Err(bad(format!(
+            "the columns are {header:?}, not {HISTORY_COLUMNS:?}"
+        )));
+    }
+    reader
+        .records()
+        .enumerate()
+        .map(|(row, record)| {
+            let record = record?;
+            let field = |i: usize| -> anyhow::Result<f64> {
+                record[i]
+                    .parse()
+                    .map_err(|_| bad(format!("row {}: `{}` is not a number", row + 1, &record[i])))
+            };
+            let count = |i: usize| -> anyhow::Result<u64> {
+                record[i].parse().map_err(|_| {
+                    bad(format!(
+                        "row {}: `{}` is not a whole number",
+                        row + 1,
+                        &record[i]
+                    ))
+                })
+            };
+            Ok(HistoryEntry {
+                generation: count(0)?,
+                elapsed_s: field(1)?,
+                evaluations: count(2)?,
+                best: field(3)?,
+                mean: field(4)?,
+                std: field(5)?,
+            })
+        })
+        .collect()
+}
+
+/// What a cell's run ended with, whatever its grammar.
+struct Outcome {
+    best: f64,
+    evaluations: u64,
+    generations: u64,
+    history: Vec<HistoryEntry>,
+    stopped: StopReason,
+    /// The best genome, as JSON.
+    genome: String,
+}
+
+/// The run of one cell, generic over the grammar of its scene's generator.
+pub struct CellRun<'a> {
+    plan: &'a Plan,
+    scene: &'a Scene,
+    gpu: Option<&'a GpuContext>,
+    stop: &'a AtomicBool,
+    outcome: &'a mut Option<Outcome>,
+}
+
+impl Visit for CellRun<'_> {
+    fn visit<G: Grammar>(self, _: &Entry) -> anyhow::Result<()> {
+        let scorer = SceneScorer::new::<G>(self.scene)?;
+        let backend = scorer.on(self.plan.backend.choice(), self.gpu)?;
+        let mut evaluator =
+            SceneEvaluator::new(&backend).with_incremental(self.plan.backend.incremental());
+        let goal = &self.scene.optimizer;
+        let result = with_method::<G, _>(
+            goal,
+            SessionRun {
+                seed: goal.seed,
+                limits: self.scene.limits,
+                budget: self.plan.budget.budget(),
+                stop: self.stop,
+                evaluator: &mut evaluator,
+            },
+        )?;
+        *self.outcome = Some(Outcome {
+            best: result.best_fitness,
+            evaluations: result.evaluations,
+            generations: result.generations,
+            history: result.history,
+            stopped: result.stopped,
+            genome: result.best.to_json(),
+        });
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn histories_round_trip_to_the_bit() {
+        let history = [
+            HistoryEntry {
+                generation: 0,
+                elapsed_s: 0.012_345_678_9,
+                evaluations: 150,
+                best: 0.1 + 0.2,
+                mean: -1.0 / 3.0,
+                std: f64::NAN,
+            },
+            HistoryEntry {
+                generation: 1,
+                elapsed_s: 1e-9,
+                evaluations: 270,
+                best: f64::INFINITY,
+                mean: 5e-324,
+                std: 0.0,
+            },
+        ];
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join(HISTORY);
+        std::fs::write(&path, history_csv(&history).unwrap()).unwrap();
+        let back = read_history(&path).unwrap();
+        let bits = |h: &[HistoryEntry]| -> Vec<[u64; 6]> {
+            h.iter()
+                .map(|h| {
+                    [
+                        h.generation,
+                        h.elapsed_s.to_bits(),
+                        h.evaluations,
+                        h.best.to_bits(),
+                        h.mean.to_bits(),
+                        h.std.to_bits(),
+                    ]
+                })
+                .collect()
+        };
+        assert_eq!(bits(&back), bits(&history));
+    }
+}

@@ -1,0 +1,168 @@
+//! A study's plots, made from its finished cells alone:
+//! - `final-KEY.png` for each swept key: final best fitness against the key's values
+//!   (placed by value when all are numbers, in the order given otherwise), mean +- std
+//!   over runs as error bars, one line per value of a second swept key when there is one
+//!   (the first other key; further keys pooled);
+//! - `curves.png`: best fitness so far against evaluations, mean +- std over runs, of
+//!   the grid points with the highest and the lowest mean final best.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use image::RgbImage;
+
+use super::super::files::save_png;
+use super::super::plot::{self, Band, XValues};
+use super::super::stats::{curve, mean_std};
+use super::cell::Finished;
+use super::plan::Plan;
+use super::tables::{best_and_worst, summarize};
+
+/// Size of every plot.
+const SIZE: (u32, u32) = (800, 500);
+/// Points of the evaluation grid the mean curves are sampled on.
+const CURVE_POINTS: usize = 400;
+
+/// Writes every plot of the study for the finished cells `done`.
+pub fn write(plan: &Plan, dir: &Path, done: &BTreeMap<u64, Finished>) -> anyhow::Result<()> {
+    for (k, axis) in plan.grid.iter().enumerate() {
+        save_png(
+            &dir.join(final_file(&axis.key)),
+            &finals_against(plan, done, k),
+        )?;
+    }
+    save_png(&dir.join("curves.png"), &curves(plan, done))
+}
+
+/// The file of the plot against `key`: `final-KEY.png`, with any character of the key
+/// but letters, digits, `.`, `-` and `_` written `_`.
+pub fn final_file(key: &str) -> String {
+    let safe: String = key
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || matches!(c, '.' | '-' | '_') {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    format!("final-{safe}.png")
+}
+
+/// Final best fitness against the values of swept key `k`.
+fn finals_against(plan: &Plan, done: &BTreeMap<u64, Finished>, k: usize) -> RgbImage {
+    let axis = &plan.grid[k];
+    let lines = (0..plan.grid.len()).find(|&j| j != k);
+    let line_count = lines.map_or(1, |j| plan.grid[j].values.len());
+    // finals[line][value of k]
+    let mut finals = vec![vec![Vec::new(); axis.values.len()]; line_count];
+    for (&index, f) in done {
+        let at = plan.coordinates(plan.cell(index).point);
+        finals[lines.map_or(0, |j| at[j])][at[k]].push(f.record.best);
+    }
+    let stats: Vec<(Vec<f64>, Vec<f64>)> = finals
+        .iter()
+        .map(|line| line.iter().map(|values| mean_std(values)).unzip())
+        .collect();
+    let names: Vec<String> = (0..line_count)
+        .map(|i| {
+            lines.map_or_else(String::new, |j| {
+                format!("{}={}", plan.grid[j].key, plan.grid[j].values[i])
+            })
+        })
+        .collect();
+    let bands: Vec<Band<'_>> = stats
+        .iter()
+        .zip(&names)
+        .enumerate()
+        .map(|(i, ((mean, std), name))| Band {
+            name,
+            colour: plot::palette(i),
+            mean,
+            std,
+        })
+        .collect();
+    let numbers: Option<Vec<f64>> = axis
+        .values
+        .iter()
+        .map(|v| v.parse::<f64>().ok().filter(|x| x.is_finite()))
+        .collect();
+    let x = match &numbers {
+        Some(numbers) => XValues::Numbers(numbers),
+        None => XValues::Names(&axis.values),
+    };
+    let y = if plan.grid.len() > 2 {
+        "final best fitness (mean +- std over runs; other keys pooled)"
+    } else {
+        "final best fitness (mean +- std over runs)"
+    };
+    plot::error_bars(SIZE.0, SIZE.1, (&axis.key, y), &x, &bands)
+}
+
+/// The mean curves of the best and the worst grid points.
+fn curves(plan: &Plan, done: &BTreeMap<u64, Finished>) -> RgbImage {
+    let points = summarize(plan, done);
+    let shown: Vec<(&str, u64)> = match best_and_worst(&points) {
+        None => Vec::new(),
+        Some((best, worst)) if best == worst => vec![("best", best)],
+        Some((best, worst)) => vec![("best", best), ("worst", worst)],
+    };
+    let histories = |point: u64| -> Vec<&[shapegen::optimize::HistoryEntry]> {
+        (0..plan.runs)
+            .filter_map(|run| done.get(&(point * plan.runs + run)))
+            .map(|f| f.history.as_slice())
+            .collect()
+    };
+    let x_max = shown
+        .iter()
+        .flat_map(|&(_, point)| histories(point))
+        .filter_map(|h| h.last().map(|h| h.evaluations as f64))
+        .fold(0.0, f64::max);
+    let lines: Vec<(String, Vec<f64>, Vec<f64>)> = shown
+        .iter()
+        .map(|&(which, point)| {
+            let (mean, std) = curve(
+                &histories(point),
+                |h| h.evaluations as f64,
+                x_max,
+                CURVE_POINTS,
+            );
+            (format!("{which}: {}", plan.describe(point)), mean, std)
+        })
+        .collect();
+    let bands: Vec<Band<'_>> = lines
+        .iter()
+        .enumerate()
+        .map(|(i, (name, mean, std))| Band {
+            name,
+            colour: plot::palette(i),
+            mean,
+            std,
+        })
+        .collect();
+    plot::bands(
+        SIZE.0,
+        SIZE.1,
+        x_max,
+        ("evaluations", "best fitness so far (mean +- std over runs)"),
+        &bands,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn plot_files_are_named_for_their_keys() {
+        assert_eq!(
+            final_file("optimizer.population"),
+            "final-optimizer.population.png"
+        );
+        assert_eq!(
+            final_file("silhouette.target[0].kind"),
+            "final-silhouette.target_0_.kind.png"
+        );
+    }
+}
