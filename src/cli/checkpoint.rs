@@ -6,7 +6,7 @@ use anyhow::Context;
 use serde::{Deserialize, Serialize};
 use shapegen::scene::Overrides;
 
-use super::files::{atomic_write, read};
+use super::files::{Files, read};
 
 /// What `checkpoint.json` holds: the scene and overrides a run started with, and the
 /// state `S` of its optimizer.
@@ -44,9 +44,9 @@ impl Head {
 }
 
 impl<S: Serialize> Checkpoint<S> {
-    /// Writes `checkpoint.json` into `dir`, atomically.
-    pub fn save(&self, dir: &Path) -> anyhow::Result<()> {
-        atomic_write(&path(dir), serde_json::to_string(self)?.as_bytes())
+    /// Writes `checkpoint.json` into `dir` with `files`, landing when they are committed.
+    pub fn write(&self, files: &mut Files, dir: &Path) -> anyhow::Result<()> {
+        files.write(&path(dir), serde_json::to_string(self)?.as_bytes())
     }
 }
 

@@ -33,6 +33,7 @@ use shapegen::scene::{Method, OptimizerGoal, Overrides, Scene, SceneEvaluator, S
 use super::backend::BackendArgs;
 use super::dispatch::{Generators, Visit};
 use super::files::{atomic_write, csv_bytes, save_png};
+use super::folder::{Existing, Folder, Kind};
 use super::interrupt;
 use super::plot::{self, Band};
 use super::search::{SessionRun, with_method};
@@ -67,9 +68,14 @@ pub struct CompareArgs {
     sets: Vec<String>,
     #[command(flatten)]
     backend: BackendArgs,
-    /// Folder to write into; created if missing.
+    /// Folder to write into; created if missing. One that holds the outputs of another
+    /// comparison, run or study is refused unless --force is given.
     #[arg(long)]
     out: PathBuf,
+    /// Replace the outputs already in the --out folder: they are removed, and listed,
+    /// before the comparison starts.
+    #[arg(long)]
+    force: bool,
 }
 
 /// Runs `shapegen compare`.
@@ -127,8 +133,11 @@ pub fn run(args: &CompareArgs, tool: &Generators) -> anyhow::Result<()> {
                 u64::MAX
             )
         })?;
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("cannot create `{}`", args.out.display()))?;
+    let _folder = Folder::claim(
+        &args.out,
+        Kind::Compare,
+        Existing::from_flags(args.force, false),
+    )?;
     tool.visit(
         &scene.generator,
         Compare {

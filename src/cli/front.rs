@@ -19,7 +19,7 @@ use shapegen::score::objective::{ObjectiveSet, Surface};
 use shapegen::{BoundMeshes, Grammar, Instance};
 
 use super::checkpoint::Checkpoint;
-use super::files::{atomic_write, csv_bytes, save_png};
+use super::files::{Files, atomic_write, csv_bytes, save_png};
 use super::interrupt;
 use super::overlay::{projection_overlay, projections};
 use super::plot;
@@ -116,13 +116,16 @@ impl FrontRun<'_> {
             .stop_flag(&stop)
             .on_progress(&mut show)
             .on_save(|save| {
-                outputs.table(self.dir, &save.result())?;
+                // The front's tables and the checkpoint land together or not at all.
+                let mut files = Files::new();
+                outputs.table(&mut files, self.dir, &save.result())?;
                 Checkpoint {
                     scene: self.scene_path.to_owned(),
                     overrides: self.overrides.clone(),
                     search: save.state,
                 }
-                .save(self.dir)
+                .write(&mut files, self.dir)?;
+                files.commit()
             })
             .run(&mut evaluator)?;
         line.finish();
@@ -237,7 +240,12 @@ struct Outputs<'a> {
 impl Outputs<'_> {
     /// `front.csv`, `front.genomes.json` and `history.csv`: cheap enough to keep current
     /// while the run goes on, so that an interrupted run keeps its front.
-    fn table<G: Grammar>(&self, dir: &Path, result: &MultiResult<G>) -> anyhow::Result<()> {
+    fn table<G: Grammar>(
+        &self,
+        files: &mut Files,
+        dir: &Path,
+        result: &MultiResult<G>,
+    ) -> anyhow::Result<()> {
         let front = sorted(&result.front, self.set.senses());
         let names: Vec<&str> = self.set.names().collect();
         let header: Vec<String> = ["model", "genes"]
@@ -251,9 +259,9 @@ impl Outputs<'_> {
                 .chain(member.values.iter().map(f64::to_string))
                 .collect::<Vec<_>>()
         });
-        atomic_write(&dir.join("front.csv"), &csv_bytes(&header, rows)?)?;
+        files.write(&dir.join("front.csv"), &csv_bytes(&header, rows)?)?;
         let genomes = GenomeSet::new(front.iter().map(|m| m.genome.clone()).collect());
-        atomic_write(
+        files.write(
             &dir.join("front.genomes.json"),
             genomes.to_json().as_bytes(),
         )?;
@@ -273,7 +281,7 @@ impl Outputs<'_> {
             .chain(h.best.iter().map(f64::to_string))
             .collect::<Vec<_>>()
         });
-        atomic_write(&dir.join("history.csv"), &csv_bytes(&header, rows)?)
+        files.write(&dir.join("history.csv"), &csv_bytes(&header, rows)?)
     }
 
     /// `front/model_NNN.glb`, numbered as in `front.csv`; models of an earlier, larger

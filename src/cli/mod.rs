@@ -34,6 +34,7 @@ mod compare;
 mod dispatch;
 mod export;
 mod files;
+mod folder;
 mod front;
 mod genome;
 mod genomes;

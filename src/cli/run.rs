@@ -18,7 +18,8 @@ use crate::registry::Entry;
 use super::backend::{BackendArgs, Incremental};
 use super::checkpoint::{Checkpoint, Head};
 use super::dispatch::{Generators, Visit};
-use super::files::{atomic_write, csv_bytes, save_png};
+use super::files::{Files, atomic_write, csv_bytes};
+use super::folder::{Existing, Folder, Kind};
 use super::front::FrontRun;
 use super::interrupt;
 use super::overlay::overlay;
@@ -63,13 +64,18 @@ pub struct RunArgs {
     sets: Vec<String>,
     #[command(flatten)]
     backend: BackendArgs,
-    /// Folder to write into; created if missing.
+    /// Folder to write into; created if missing. One that holds another run's outputs
+    /// is refused: give `--resume DIR` to go on with that run, or `--force` to replace it.
     #[arg(long, required_unless_present = "resume")]
     out: Option<PathBuf>,
     /// Continue the run saved in this folder (its `checkpoint.json`) to its budget, and
     /// write there; ends with the same result as a run that was never interrupted.
     #[arg(long, value_name = "DIR", conflicts_with = "out")]
     resume: Option<PathBuf>,
+    /// Replace the outputs of another run (or comparison, or study) in the --out folder:
+    /// they are removed, and listed, before this run starts.
+    #[arg(long, conflicts_with = "resume")]
+    force: bool,
 }
 
 /// `summary.json`.
@@ -121,10 +127,11 @@ pub fn run(args: &RunArgs, tool: &Generators) -> anyhow::Result<()> {
         };
         let scene = Scene::open(&scene_path, tool.registry(), &overrides)?;
         processes.check(&scene)?;
-        if processes.writes() {
-            std::fs::create_dir_all(&dir)
-                .with_context(|| format!("cannot create `{}`", dir.display()))?;
-        }
+        let existing = Existing::from_flags(args.force, args.resume.is_some());
+        let _folder = processes
+            .writes()
+            .then(|| Folder::claim(&dir, Kind::Run, existing))
+            .transpose()?;
         tool.visit(
             &scene.generator,
             Run {
@@ -241,18 +248,26 @@ impl Run<'_> {
                 if !writes {
                     return Ok(());
                 }
+                // One save lands whole or not at all: the best model, the curves and
+                // the checkpoint always describe the same moment of the run.
+                let mut files = Files::new();
                 let result = save.result();
-                if best_written.to_bits() != result.best_fitness.to_bits() {
-                    outputs.best(self.dir, &result.best)?;
-                    best_written = result.best_fitness;
+                let new_best = best_written.to_bits() != result.best_fitness.to_bits();
+                if new_best {
+                    outputs.best(&mut files, self.dir, &result.best)?;
                 }
-                outputs.curves(self.dir, &result)?;
+                outputs.curves(&mut files, self.dir, &result)?;
                 Checkpoint {
                     scene: self.scene_path.to_owned(),
                     overrides: self.overrides.clone(),
                     search: save.state,
                 }
-                .save(self.dir)
+                .write(&mut files, self.dir)?;
+                files.commit()?;
+                if new_best {
+                    best_written = result.best_fitness;
+                }
+                Ok::<(), anyhow::Error>(())
             })
             .run(&mut evaluator)?;
         if !writes {
@@ -326,7 +341,12 @@ impl<'a> Outputs<'a> {
     }
 
     /// The best model: OBJ with its MTL, GLB, a shaded picture, the overlay and the genome.
-    fn best<G: Grammar>(&self, dir: &Path, best: &Genome<G>) -> anyhow::Result<()> {
+    fn best<G: Grammar>(
+        &self,
+        files: &mut Files,
+        dir: &Path,
+        best: &Genome<G>,
+    ) -> anyhow::Result<()> {
         let mut instances = Vec::new();
         best.derive_into(&mut instances);
         let (mut obj, mut mtl) = (Vec::new(), Vec::new());
@@ -338,13 +358,13 @@ impl<'a> Outputs<'a> {
             &self.palette,
         )?;
         write_mtl(&mut mtl, &instances, &self.meshes, &self.palette)?;
-        atomic_write(&dir.join("best.mtl"), &mtl)?;
-        atomic_write(&dir.join("best.obj"), &obj)?;
-        atomic_write(
+        files.write(&dir.join("best.mtl"), &mtl)?;
+        files.write(&dir.join("best.obj"), &obj)?;
+        files.write(
             &dir.join("best.glb"),
             &glb_bytes(&instances, &self.meshes, &self.palette)?,
         )?;
-        atomic_write(&dir.join("best.genome.json"), best.to_json().as_bytes())?;
+        files.write(&dir.join("best.genome.json"), best.to_json().as_bytes())?;
         let target = self.scorer.silhouette().map(|s| (s, &s.targets()[0]));
         let preview = match target {
             Some((_, t)) => Preview {
@@ -354,7 +374,7 @@ impl<'a> Outputs<'a> {
             },
             None => Preview::framing(&instances, &self.meshes, 800, 600),
         };
-        save_png(
+        files.png(
             &dir.join("best.png"),
             &preview.render(&instances, &self.meshes, &self.palette)?,
         )?;
@@ -363,13 +383,18 @@ impl<'a> Outputs<'a> {
             let mut mask = vec![false; w as usize * h as usize];
             silhouette.coverage_mask(0, &instances, &mut mask)?;
             let overlay = overlay(t, &mask);
-            save_png(&dir.join("overlay.png"), &overlay)?;
+            files.png(&dir.join("overlay.png"), &overlay)?;
         }
         Ok(())
     }
 
     /// `fitness.csv` and `fitness.png` (best in dark blue, mean in orange).
-    fn curves<G>(&self, dir: &Path, result: &RunResult<G>) -> anyhow::Result<()> {
+    fn curves<G>(
+        &self,
+        files: &mut Files,
+        dir: &Path,
+        result: &RunResult<G>,
+    ) -> anyhow::Result<()> {
         let header = [
             "generation",
             "elapsed_s",
@@ -389,7 +414,7 @@ impl<'a> Outputs<'a> {
                 h.std.to_string(),
             ]
         });
-        atomic_write(&dir.join("fitness.csv"), &csv_bytes(&header, rows)?)?;
+        files.write(&dir.join("fitness.csv"), &csv_bytes(&header, rows)?)?;
         let best: Vec<f64> = result.history.iter().map(|h| h.best).collect();
         let mean: Vec<f64> = result.history.iter().map(|h| h.mean).collect();
         let picture = plot::curves(
@@ -397,7 +422,7 @@ impl<'a> Outputs<'a> {
             400,
             &[(Rgb([230, 140, 40]), &mean), (Rgb([30, 60, 140]), &best)],
         );
-        save_png(&dir.join("fitness.png"), &picture)
+        files.png(&dir.join("fitness.png"), &picture)
     }
 }
 

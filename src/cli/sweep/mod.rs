@@ -26,6 +26,7 @@ use shapegen::scene::Method;
 
 use super::backend::BackendArgs;
 use super::dispatch::Generators;
+use super::folder::{Existing, Folder, Kind};
 use super::interrupt;
 use cell::Finished;
 use plan::{Axis, Plan, StudyBudget};
@@ -75,6 +76,10 @@ pub struct SweepArgs {
     /// study in it (finished cells are kept); another study there is refused.
     #[arg(long, required_unless_present_any = ["cell", "collect"])]
     out: Option<PathBuf>,
+    /// Start the study in --out afresh: the outputs there (this study's cells, another
+    /// study, a run's or a comparison's) are removed, and listed, first.
+    #[arg(long)]
+    force: bool,
     /// Cells run at once (default: one per core); the worker threads (--threads) are
     /// shared among them.
     #[arg(long, value_name = "J")]
@@ -137,7 +142,8 @@ pub fn run(args: &SweepArgs, tool: &Generators) -> anyhow::Result<()> {
         backend: args.backend.clone(),
     }
     .checked(args.seed, tool.registry())?;
-    std::fs::create_dir_all(out).with_context(|| format!("cannot create `{}`", out.display()))?;
+    // A study goes on with the cells of its own plan; save_or_match refuses another plan.
+    let _folder = Folder::claim(out, Kind::Sweep, Existing::from_flags(args.force, true))?;
     plan.save_or_match(out)?;
     if args.plan_only {
         return plan_only(&plan, out, &args.slurm);
@@ -169,6 +175,7 @@ fn refuse_study_flags(args: &SweepArgs, mode: &str) -> anyhow::Result<()> {
         ("--out", args.out.is_some()),
         ("--jobs", args.jobs.is_some()),
         ("--plan-only", args.plan_only),
+        ("--force", args.force),
     ];
     if let Some((flag, _)) = given.iter().find(|(_, given)| *given) {
         anyhow::bail!(

@@ -360,7 +360,7 @@ impl Plan {
         anyhow::ensure!(
             differences.is_empty(),
             "`{}` holds another study: {}. Rerun that study's own command to go on with it, \
-             or give this one a new --out",
+             give --force to replace it with this one, or give this one a new --out",
             dir.display(),
             differences.join("; ")
         );
