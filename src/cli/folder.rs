@@ -44,12 +44,13 @@ pub enum Kind {
 impl Kind {
     const ALL: [Kind; 3] = [Kind::Run, Kind::Compare, Kind::Sweep];
 
-    /// The files whose presence means the folder holds this command's outputs.
-    fn markers(self) -> &'static [&'static str] {
+    /// The file whose presence means the folder holds this command's outputs: the
+    /// first it writes.
+    fn marker(self) -> &'static str {
         match self {
-            Kind::Run => &["checkpoint.json", "summary.json"],
-            Kind::Compare => &["summary.json", "compare.csv"],
-            Kind::Sweep => &["plan.json"],
+            Kind::Run => "checkpoint.json",
+            Kind::Compare => "compare.csv",
+            Kind::Sweep => "plan.json",
         }
     }
 
@@ -98,6 +99,45 @@ impl Kind {
         }
     }
 }
+
+/// The outputs a folder holds: whose, by the files that mark them.
+struct Found {
+    /// The commands whose marker is there, or, when only a `summary.json` is, those
+    /// that write one.
+    kinds: Vec<Kind>,
+    /// The marker files there.
+    markers: Vec<&'static str>,
+}
+
+impl Found {
+    /// What `dir` holds.
+    fn in_folder(dir: &Path) -> Found {
+        let mut kinds: Vec<Kind> = Kind::ALL
+            .into_iter()
+            .filter(|k| dir.join(k.marker()).exists())
+            .collect();
+        let mut markers: Vec<&str> = kinds.iter().map(|k| k.marker()).collect();
+        if dir.join(SUMMARY).exists() {
+            markers.push(SUMMARY);
+            if kinds.is_empty() {
+                kinds = vec![Kind::Run, Kind::Compare];
+            }
+        }
+        Found { kinds, markers }
+    }
+
+    /// Whose outputs, in words: "a run", "a run and a study", "a run or a comparison".
+    fn what(&self) -> String {
+        let whats: Vec<&str> = self.kinds.iter().map(|k| k.what()).collect();
+        match self.kinds.as_slice() {
+            [Kind::Run, Kind::Compare] if self.markers == [SUMMARY] => whats.join(" or "),
+            _ => whats.join(" and "),
+        }
+    }
+}
+
+/// The summary a run and a comparison both write last.
+const SUMMARY: &str = "summary.json";
 
 /// What a command does with outputs already in its folder.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -181,41 +221,31 @@ impl Folder {
             .with_context(|| format!("cannot create `{}`", dir.display()))?;
         let folder = Folder::lock(dir)?;
         remove_leftovers(dir)?;
-        let found: Vec<Kind> = Kind::ALL
-            .into_iter()
-            .filter(|o| o.markers().iter().any(|m| dir.join(m).exists()))
-            .collect();
+        let found = Found::in_folder(dir);
         match existing {
-            _ if found.is_empty() => {}
-            Existing::GoOn if found.contains(&outputs) => {}
+            _ if found.markers.is_empty() => {}
+            Existing::GoOn if found.kinds == [outputs] => {}
             Existing::Replace => {
                 let removed = remove_outputs(dir)?;
                 eprintln!(
                     "--force: replacing {} in `{}`: removed {}",
-                    found[0].what(),
+                    found.what(),
                     dir.display(),
                     removed.join(", ")
                 );
             }
             Existing::GoOn | Existing::Refuse => {
-                let markers: Vec<&str> = found
-                    .iter()
-                    .flat_map(|o| o.markers())
-                    .filter(|m| dir.join(m).exists())
-                    .copied()
-                    .collect();
-                let go_on = match outputs {
-                    Kind::Run if found.contains(&Kind::Run) => {
-                        format!("--resume {} to go on with it, ", dir.display())
-                    }
-                    _ => String::new(),
+                let go_on = if outputs == Kind::Run && found.kinds == [Kind::Run] {
+                    format!("--resume {} to go on with it, ", dir.display())
+                } else {
+                    String::new()
                 };
                 anyhow::bail!(
                     "`{}` holds the outputs of {} ({}): give {go_on}--force to replace them, \
                      or another folder",
                     dir.display(),
-                    found[0].what(),
-                    markers.join(", ")
+                    found.what(),
+                    found.markers.join(", ")
                 );
             }
         }

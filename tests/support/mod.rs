@@ -42,12 +42,30 @@ pub fn s(p: &Path) -> &str {
 /// `meanwhile` while the process still runs, sends it SIGINT (as Ctrl-C does) and returns
 /// what the process left: its status and its error output.
 pub fn interrupt_when(args: &[&str], file: &Path, meanwhile: impl FnOnce()) -> Output {
-    let child = Command::new(env!("CARGO_BIN_EXE_shapegen"))
+    signal_when("INT", args, file, meanwhile)
+}
+
+/// As [`interrupt_when`], with signal `signal` (`INT`, `TERM`, `HUP`, `KILL`, ..).
+pub fn signal_when(signal: &str, args: &[&str], file: &Path, meanwhile: impl FnOnce()) -> Output {
+    let child = start(args);
+    wait_for(file);
+    meanwhile();
+    send(signal, &child);
+    child.wait_with_output().expect("the process ends")
+}
+
+/// Starts `shapegen` with `args` in the background, its error output piped.
+pub fn start(args: &[&str]) -> std::process::Child {
+    Command::new(env!("CARGO_BIN_EXE_shapegen"))
         .args(args)
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::piped())
         .spawn()
-        .expect("the shapegen binary runs");
+        .expect("the shapegen binary runs")
+}
+
+/// Waits until `file` exists, at most a minute.
+pub fn wait_for(file: &Path) {
     let start = std::time::Instant::now();
     while !file.exists() {
         assert!(
@@ -57,13 +75,15 @@ pub fn interrupt_when(args: &[&str], file: &Path, meanwhile: impl FnOnce()) -> O
         );
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
-    meanwhile();
+}
+
+/// Sends `signal` to `child`.
+pub fn send(signal: &str, child: &std::process::Child) {
     let kill = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
+        .args([&format!("-{signal}"), &child.id().to_string()])
         .status()
         .expect("kill runs");
     assert!(kill.success());
-    child.wait_with_output().expect("the process ends")
 }
 
 /// A run's `summary.json` without its wall time, which differs between runs.

@@ -165,12 +165,19 @@ fn write(plan: &Plan, dir: &Path, finished: &Finished, genome: &str) -> anyhow::
         let path = partial.join(file);
         std::fs::write(&path, bytes).with_context(|| format!("cannot write `{}`", path.display()))
     };
-    write(
-        RESULT,
-        serde_json::to_string_pretty(&finished.record)?.as_bytes(),
-    )?;
-    write(HISTORY, &history_csv(&finished.history)?)?;
-    write(GENOME, genome.as_bytes())?;
+    let written = (|| {
+        write(
+            RESULT,
+            serde_json::to_string_pretty(&finished.record)?.as_bytes(),
+        )?;
+        write(HISTORY, &history_csv(&finished.history)?)?;
+        write(GENOME, genome.as_bytes())
+    })();
+    if let Err(err) = written {
+        // A full disk or a file-size limit: no partial folder is left behind.
+        let _ = std::fs::remove_dir_all(&partial);
+        return Err(err);
+    }
     let done = cells.join(&name);
     if let Err(err) = std::fs::rename(&partial, &done) {
         let _ = std::fs::remove_dir_all(&partial);
