@@ -3,6 +3,8 @@
 // Each test file uses the helpers it needs.
 #![allow(dead_code)]
 
+pub mod slurm;
+
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
