@@ -104,9 +104,23 @@ impl ObjectiveSet {
         out: &mut [f64],
     ) {
         assert_eq!(out.len(), self.len(), "one value slot per objective");
+        self.measure_which(surface, scratch, out, |_| true);
+    }
+
+    /// Writes the values for `surface` of the objectives `which` accepts to their
+    /// slots of `out`.
+    fn measure_which(
+        &self,
+        surface: &Surface,
+        scratch: &mut ObjectiveScratch,
+        out: &mut [f64],
+        which: impl Fn(&Objective) -> bool,
+    ) {
         scratch.forget();
         for ((_, objective), slot) in self.entries.iter().zip(out) {
-            *slot = objective.measure_same(surface, scratch);
+            if which(objective) {
+                *slot = objective.measure_same(surface, scratch);
+            }
         }
     }
 
@@ -132,8 +146,27 @@ impl ObjectiveSet {
     /// # Panics
     /// If `out.len() != batch.len() * self.len()`.
     pub fn measure_batch(&self, batch: &InstanceBatch, meshes: &BoundMeshes, out: &mut [f64]) {
+        self.measure_rows(batch, meshes, out, |_| true);
+    }
+
+    /// [`measure_batch`](Self::measure_batch) for the objectives `which` accepts only:
+    /// their slots of `out` are written, the others' left as they are, and nothing is
+    /// done when it accepts none.
+    ///
+    /// # Panics
+    /// If `out.len() != batch.len() * self.len()`.
+    pub(super) fn measure_rows(
+        &self,
+        batch: &InstanceBatch,
+        meshes: &BoundMeshes,
+        out: &mut [f64],
+        which: impl Fn(&Objective) -> bool + Sync,
+    ) {
         let k = self.len();
         assert_eq!(out.len(), batch.len() * k, "one row of values per model");
+        if !self.entries.iter().any(|(_, o)| which(o)) {
+            return;
+        }
         let chunks = 4 * rayon::current_num_threads();
         let chunk = batch.len().div_ceil(chunks).max(1);
         out.par_chunks_mut(chunk * k)
@@ -143,7 +176,7 @@ impl ObjectiveSet {
                 let mut scratch = ObjectiveScratch::default();
                 for (i, row) in rows.chunks_exact_mut(k).enumerate() {
                     surface.fill(batch.model(c * chunk + i), meshes);
-                    self.measure_surface(&surface, &mut scratch, row);
+                    self.measure_which(&surface, &mut scratch, row, &which);
                 }
             });
     }
