@@ -3,6 +3,7 @@
 use rayon::prelude::*;
 
 use super::ObjectiveError;
+use super::bred::BredObjectives;
 use super::kind::{Objective, ObjectiveScratch};
 use super::surface::Surface;
 use crate::evaluate::{EvaluateError, Evaluator, Sense};
@@ -228,7 +229,10 @@ impl ObjectiveSet {
 
 /// An [`Evaluator`] whose fitness is an [`ObjectiveSet`]'s [weighted](ObjectiveSet::weighted)
 /// sum: drives a single-objective search (the GA, SMC, MCMC) with one objective or a
-/// weighted combination. Its buffers are kept between populations.
+/// weighted combination. Its buffers are kept between populations, and children bred
+/// from a scored population ([`evaluate_bred`](Evaluator::evaluate_bred)) have their
+/// projection objectives counted from their parents' kept state ([`BredObjectives`]),
+/// unless [`with_incremental(false)`](Self::with_incremental).
 ///
 /// ```
 /// use shapegen_runtime::evaluate::Evaluator;
@@ -250,13 +254,14 @@ impl ObjectiveSet {
 /// assert_eq!(fitness, [-1.0]); // the block's top is at 0.5, 1 below the target
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct WeightedObjectives {
     set: ObjectiveSet,
     weights: Vec<f64>,
     meshes: BoundMeshes,
     batch: InstanceBatch,
     values: Vec<f64>,
+    bred: Option<BredObjectives>,
 }
 
 impl WeightedObjectives {
@@ -269,6 +274,7 @@ impl WeightedObjectives {
     ) -> Result<WeightedObjectives, ObjectiveError> {
         set.check_weights(&weights)?;
         Ok(WeightedObjectives {
+            bred: BredObjectives::new(&set, &meshes),
             set,
             weights,
             meshes,
@@ -289,19 +295,50 @@ impl WeightedObjectives {
     }
 }
 
-impl<G: Grammar> Evaluator<G> for WeightedObjectives {
-    fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError> {
+impl WeightedObjectives {
+    /// Writes the fitness of `genomes` to `out`, counting their projections from their
+    /// parents' kept state when `lineage` (`parents`, `from`) is given and incremental
+    /// counting is on.
+    fn score<G: Grammar>(
+        &mut self,
+        genomes: &[Genome<G>],
+        lineage: Option<(&[Genome<G>], &[u32])>,
+        out: &mut [f64],
+    ) {
         self.batch.clear();
         for genome in genomes {
             self.batch.push_genome(genome);
         }
         let k = self.set.len();
         self.values.resize(genomes.len() * k, 0.0);
-        self.set
-            .measure_batch(&self.batch, &self.meshes, &mut self.values);
+        match (&mut self.bred, lineage) {
+            (Some(bred), Some((parents, from))) => {
+                bred.measure_bred(genomes, &self.batch, parents, from, &mut self.values)
+            }
+            _ => self
+                .set
+                .measure_batch(&self.batch, &self.meshes, &mut self.values),
+        }
         for (slot, row) in out.iter_mut().zip(self.values.chunks_exact(k)) {
             *slot = self.set.weighted_unchecked(row, &self.weights);
         }
+    }
+}
+
+impl<G: Grammar> Evaluator<G> for WeightedObjectives {
+    fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError> {
+        self.score(genomes, None, out);
+        Ok(())
+    }
+
+    fn evaluate_bred(
+        &mut self,
+        genomes: &[Genome<G>],
+        parents: &[Genome<G>],
+        from: &[u32],
+        out: &mut [f64],
+    ) -> Result<(), EvaluateError> {
+        self.score(genomes, Some((parents, from)), out);
         Ok(())
     }
 }
