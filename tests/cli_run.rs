@@ -6,56 +6,9 @@ mod support;
 use std::fs;
 use std::path::Path;
 
-use support::{interrupt_when, ok, s, shapegen, timeless_summary};
-
-/// A city scene at 160 x 120 whose target is the silhouette of a sampled city.
-fn scene(dir: &Path) -> std::path::PathBuf {
-    let text = r#"
-generator = "city"
-[limits]
-min_len = 4
-optimal_len = 100
-max_len = 201
-max_depth = 8
-[fitness]
-length = 0.02
-[silhouette]
-[[silhouette.target]]
-image = "skyline.png"
-camera = { phi = -1.5708, theta = 0.06, radius = 25, lookat = [0, 4.2, 0], fov = 45, near = 0.1, far = 200, width = 160, height = 90 }
-[optimizer]
-population = 24
-elitism = 4
-initial_length = 40
-generations = 8
-"#;
-    let path = dir.join("skyline.toml");
-    fs::write(&path, text).unwrap();
-    image::GrayImage::from_pixel(160, 90, image::Luma([255]))
-        .save(dir.join("skyline.png"))
-        .unwrap();
-    ok(&[
-        "sample",
-        "-g",
-        "city",
-        "-n",
-        "1",
-        "-s",
-        "3",
-        "-o",
-        s(&dir.join("c")),
-    ]);
-    let genomes = dir.join("c/genomes.json");
-    ok(&[
-        "target",
-        s(&path),
-        "--genome",
-        s(&genomes),
-        "--out",
-        s(&dir.join("skyline.png")),
-    ]);
-    path
-}
+use support::{
+    interrupt_when, ok, s, shapegen, skyline_scene as scene, timeless_curve, timeless_summary,
+};
 
 #[test]
 fn a_run_writes_everything_and_does_not_depend_on_threads() {
@@ -240,19 +193,7 @@ fn incremental_scoring_changes_nothing_but_the_time() {
             "{file}"
         );
     }
-    // fitness.csv without its elapsed_s column.
-    let curve = |dir: &Path| -> Vec<String> {
-        fs::read_to_string(dir.join("fitness.csv"))
-            .unwrap()
-            .lines()
-            .map(|l| {
-                let mut cells: Vec<&str> = l.split(',').collect();
-                cells.remove(1);
-                cells.join(",")
-            })
-            .collect()
-    };
-    assert_eq!(curve(&on), curve(&off));
+    assert_eq!(timeless_curve(&on), timeless_curve(&off));
     let summary = |dir: &Path| -> serde_json::Value {
         serde_json::from_str(&fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
     };

@@ -38,8 +38,11 @@ mod front;
 mod genome;
 mod genomes;
 mod interrupt;
+#[cfg(feature = "mpi")]
+mod mpi;
 mod overlay;
 mod plot;
+mod processes;
 mod progress;
 mod render;
 mod run;

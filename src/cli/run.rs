@@ -8,8 +8,9 @@ use clap::Args;
 use image::Rgb;
 use serde::Serialize;
 use shapegen::export::{Palette, Preview, glb_bytes, write_mtl, write_obj};
+use shapegen::optimize::islands::{IslandGa, IslandSettings};
 use shapegen::optimize::{Best, Control, Optimizer, RunResult, Session, Snapshot};
-use shapegen::scene::{Method, Overrides, Scene, SceneEvaluator, SceneScorer};
+use shapegen::scene::{Method, MethodSettings, Overrides, Scene, SceneEvaluator, SceneScorer};
 use shapegen::{Genome, Grammar};
 
 use crate::registry::Entry;
@@ -22,6 +23,7 @@ use super::front::FrontRun;
 use super::interrupt;
 use super::overlay::overlay;
 use super::plot;
+use super::processes::Processes;
 use super::progress::ProgressLine;
 use super::search::{MethodJob, with_method};
 
@@ -48,6 +50,14 @@ pub struct RunArgs {
     /// RJMCMC's iterations (overrides `optimizer.generations`).
     #[arg(long)]
     generations: Option<u64>,
+    /// Runs the GA as an island model of this many populations, each of the scene's
+    /// settings (overrides `islands.count`; `--set islands.migrants=M` and
+    /// `islands.interval=G` say how many of each island's best go to the next on the
+    /// ring, and how often). Under `mpirun` (a build with the `mpi` feature) the islands
+    /// are spread over the processes, with the same result for any number of processes
+    /// that divides them.
+    #[arg(long, value_name = "K")]
+    islands: Option<u32>,
     /// Overrides any scene value, e.g. `--set optimizer.population=200`; repeatable.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     sets: Vec<String>,
@@ -71,6 +81,11 @@ struct Summary<'a> {
     elapsed_s: f64,
     seed: u64,
     method: &'a str,
+    /// The island model's settings, when the GA ran as one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    islands: Option<IslandSettings>,
+    /// The processes the run was spread over (MPI ranks).
+    processes: usize,
     backend: &'a str,
     genes: usize,
     instances: usize,
@@ -88,31 +103,41 @@ pub fn run(args: &RunArgs, tool: &Generators) -> anyhow::Result<()> {
         seconds: args.seconds,
         evaluations: args.evaluations,
         generations: args.generations,
+        islands: args.islands,
         sets: args.sets.clone(),
     };
-    let (dir, scene_path, overrides) = match &args.resume {
-        Some(dir) => {
-            let head = Head::load(dir)?;
-            (dir.clone(), head.scene, head.overrides.then(&given))
+    let processes = Processes::start()?;
+    let outcome = (|| {
+        let (dir, scene_path, overrides) = match &args.resume {
+            Some(dir) => {
+                let head = Head::load(dir)?;
+                (dir.clone(), head.scene, head.overrides.then(&given))
+            }
+            None => (
+                args.out.clone().context("--out is required")?,
+                args.scene.clone().context("the scene is required")?,
+                given,
+            ),
+        };
+        let scene = Scene::open(&scene_path, tool.registry(), &overrides)?;
+        processes.check(&scene)?;
+        if processes.writes() {
+            std::fs::create_dir_all(&dir)
+                .with_context(|| format!("cannot create `{}`", dir.display()))?;
         }
-        None => (
-            args.out.clone().context("--out is required")?,
-            args.scene.clone().context("the scene is required")?,
-            given,
-        ),
-    };
-    let scene = Scene::open(&scene_path, tool.registry(), &overrides)?;
-    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create `{}`", dir.display()))?;
-    tool.visit(
-        &scene.generator,
-        Run {
-            args,
-            scene: &scene,
-            scene_path: &scene_path,
-            overrides: &overrides,
-            dir: &dir,
-        },
-    )
+        tool.visit(
+            &scene.generator,
+            Run {
+                args,
+                scene: &scene,
+                scene_path: &scene_path,
+                overrides: &overrides,
+                dir: &dir,
+                processes: &processes,
+            },
+        )
+    })();
+    processes.end(outcome)
 }
 
 /// The body of `shapegen run`.
@@ -122,6 +147,7 @@ pub struct Run<'a> {
     scene_path: &'a Path,
     overrides: &'a Overrides,
     dir: &'a Path,
+    processes: &'a Processes,
 }
 
 impl Visit for Run<'_> {
@@ -137,6 +163,18 @@ impl Visit for Run<'_> {
             }
             .run::<G>();
         }
+        if let MethodSettings::Islands(settings) = self.scene.optimizer.settings
+            && let Some(exchange) = self.processes.exchange()
+        {
+            let islands = match self.resumed::<IslandGa<G>>()? {
+                Some(state) => IslandGa::resume_on(state, exchange)?,
+                None => {
+                    let seed = self.scene.optimizer.seed;
+                    IslandGa::new_on(settings, self.scene.limits, seed, exchange)?
+                }
+            };
+            return self.drive(islands);
+        }
         with_method::<G, _>(&self.scene.optimizer, self)
     }
 }
@@ -145,39 +183,65 @@ impl<G: Grammar> MethodJob<G> for Run<'_> {
     type Output = anyhow::Result<()>;
 
     fn run<O: Optimizer<G, Record = Best<G>>>(self, settings: O::Settings) -> anyhow::Result<()> {
+        let optimizer = match self.resumed::<O>()? {
+            Some(state) => O::resume(state)?,
+            None => O::new(settings, self.scene.limits, self.scene.optimizer.seed)?,
+        };
+        self.drive(optimizer)
+    }
+}
+
+impl Run<'_> {
+    /// The checkpoint of the run to resume, if it is one.
+    fn resumed<O: Optimizer<impl Grammar>>(&self) -> anyhow::Result<Option<O::State>> {
+        let Some(dir) = &self.args.resume else {
+            return Ok(None);
+        };
+        let method = self.scene.optimizer.method.name();
+        let checkpoint: Checkpoint<O::State> =
+            Checkpoint::load(dir, &format!("a {method} run of this scene"))?;
+        Ok(Some(checkpoint.search))
+    }
+
+    /// Runs `optimizer` to the scene's budget, writing the outputs as it goes (on rank 0
+    /// only, when the run is spread over several processes).
+    fn drive<G: Grammar, O: Optimizer<G, Record = Best<G>>>(
+        self,
+        optimizer: O,
+    ) -> anyhow::Result<()> {
         let goal = &self.scene.optimizer;
-        let budget = goal.budget();
+        let writes = self.processes.writes();
         let scorer = SceneScorer::new::<G>(self.scene)?;
         let gpu = self.args.backend.open();
         let backend = scorer.on(self.args.backend.choice(), gpu.as_ref())?;
-        eprintln!(
-            "evolving {} with {} on {}",
-            self.scene.generator,
-            goal.method.name(),
-            backend.describe()
-        );
+        if writes {
+            eprintln!(
+                "evolving {} with {}{} on {}",
+                self.scene.generator,
+                goal.method.name(),
+                self.processes.describe(&goal.settings),
+                backend.describe()
+            );
+        }
         let mut evaluator =
             SceneEvaluator::new(&backend).with_incremental(self.args.backend.incremental());
         let stop = interrupt::flag();
         let outputs = Outputs::new::<G>(self.scene, &scorer)?;
         let mut progress = Progress::new(goal);
         let mut show = |s: &Snapshot<'_, G>| {
-            progress.show(s);
+            if writes {
+                progress.show(s);
+            }
             Control::Continue
         };
         let mut best_written = f64::NAN;
-        let session = match &self.args.resume {
-            Some(dir) => {
-                let checkpoint: Checkpoint<O::State> =
-                    Checkpoint::load(dir, &format!("a {} run of this scene", goal.method.name()))?;
-                Session::<G, O>::resume(checkpoint.search, budget)?
-            }
-            None => Session::<G, O>::start(settings, self.scene.limits, goal.seed, budget)?,
-        };
-        let result = session
+        let result = Session::new(optimizer, goal.budget())
             .stop_flag(&stop)
             .on_progress(&mut show)
             .on_save(|save| {
+                if !writes {
+                    return Ok(());
+                }
                 let result = save.result();
                 if best_written.to_bits() != result.best_fitness.to_bits() {
                     outputs.best(self.dir, &result.best)?;
@@ -192,6 +256,9 @@ impl<G: Grammar> MethodJob<G> for Run<'_> {
                 .save(self.dir)
             })
             .run(&mut evaluator)?;
+        if !writes {
+            return Ok(());
+        }
         progress.finish();
 
         let mut instances = Vec::new();
@@ -203,6 +270,11 @@ impl<G: Grammar> MethodJob<G> for Run<'_> {
             elapsed_s: result.history.last().map_or(0.0, |h| h.elapsed_s),
             seed: goal.seed,
             method: goal.method.name(),
+            islands: match goal.settings {
+                MethodSettings::Islands(s) => Some(s.islands),
+                _ => None,
+            },
+            processes: self.processes.count(),
             backend: backend.describe(),
             genes: result.best.len(),
             instances: instances.len(),

@@ -2,6 +2,7 @@
 //! behind one generic call, so that the commands are written once for all of them.
 
 use shapegen::Grammar;
+use shapegen::optimize::islands::IslandGa;
 use shapegen::optimize::{Best, Ga, Mcmc, Optimizer, Smc};
 use shapegen::scene::{MethodSettings, OptimizerGoal};
 
@@ -17,6 +18,7 @@ pub trait MethodJob<G: Grammar> {
 pub fn with_method<G: Grammar, J: MethodJob<G>>(goal: &OptimizerGoal, job: J) -> J::Output {
     match goal.settings {
         MethodSettings::Ga(s) => job.run::<Ga<G>>(s),
+        MethodSettings::Islands(s) => job.run::<IslandGa<G>>(s),
         MethodSettings::Smc(s) => job.run::<Smc<G>>(s),
         MethodSettings::Mcmc(s) => job.run::<Mcmc<G>>(s),
     }

@@ -24,6 +24,8 @@ pub(super) struct SceneFile {
     /// `[optimizer]`: kept as a table, checked against the optimizer's own settings.
     #[serde(default)]
     pub optimizer: toml::Table,
+    /// `[islands]`: the GA as an island model.
+    pub islands: Option<shapegen_runtime::optimize::islands::IslandSettings>,
 }
 
 /// An entry of `[meshes]`: a path, or a path with whether to normalize the part.

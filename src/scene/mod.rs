@@ -52,6 +52,11 @@
 //! seconds = 60                       # budgets: time, evaluations, generations
 //! generations = 100
 //! population = 100                   # and any other field of the GA's settings
+//!
+//! [islands]                          # optional, the GA only: an island model
+//! count = 4                          # populations of the [optimizer] settings
+//! migrants = 2                       # best sent to the next island on the ring,
+//! interval = 10                      #   every this many generations
 //! ```
 //!
 //! A scene may instead aim at several objectives at once, measured on the derived
@@ -103,6 +108,7 @@ use std::path::{Path, PathBuf};
 use crate::registry::{Presets, Registry};
 use shapegen_runtime::genome::Limits;
 use shapegen_runtime::geometry::MeshLibrary;
+use shapegen_runtime::optimize::islands::IslandSettings;
 use shapegen_runtime::optimize::multi::{MultiGaSettings, Selection};
 use shapegen_runtime::score::objective::ObjectiveSet;
 use shapegen_runtime::score::silhouette::ImageTarget;
@@ -144,6 +150,8 @@ pub struct Scene {
     pub optimizer: OptimizerGoal,
     /// The `[optimizer]` table as written and overridden, for the goals of other methods.
     optimizer_table: toml::Table,
+    /// The `[islands]` table as written and overridden, likewise.
+    islands: Option<IslandSettings>,
     /// The generator's presets.
     presets: Presets,
     /// The overrides the scene was read with.
@@ -244,8 +252,13 @@ impl Scene {
             method: Some(method),
             ..self.overrides.clone()
         };
-        optimizer::resolve(&self.presets, self.optimizer_table.clone(), &overrides)
-            .map_err(|(key, reason)| self.invalid(&key, reason))
+        optimizer::resolve(
+            &self.presets,
+            self.optimizer_table.clone(),
+            self.islands,
+            &overrides,
+        )
+        .map_err(|(key, reason)| self.invalid(&key, reason))
     }
 
     /// The multi-objective GA's settings of a scene with objectives: the `[optimizer]`

@@ -6,6 +6,7 @@ use crate::registry::Presets;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use shapegen_runtime::ops::OperatorVariant;
+use shapegen_runtime::optimize::islands::{IslandGaSettings, IslandSettings};
 use shapegen_runtime::optimize::multi::MultiGaSettings;
 use shapegen_runtime::optimize::{
     Budget, GaSettings, McmcSettings, McmcVariant, Order, SettingsError, SmcSettings, SmcVariant,
@@ -44,6 +45,8 @@ impl Method {
 pub enum MethodSettings {
     /// The genetic algorithm.
     Ga(GaSettings),
+    /// The genetic algorithm as an island model (a scene's `[islands]`, `--islands`).
+    Islands(IslandGaSettings),
     /// SMC or SOSMC (its `order` says which).
     Smc(SmcSettings),
     /// Reversible-jump MCMC.
@@ -95,6 +98,7 @@ impl OptimizerGoal {
     pub fn generations(&self) -> u64 {
         match self.settings {
             MethodSettings::Ga(s) => s.generations,
+            MethodSettings::Islands(s) => s.ga.generations,
             MethodSettings::Smc(s) => s.steps,
             MethodSettings::Mcmc(s) => s.iterations,
         }
@@ -104,6 +108,7 @@ impl OptimizerGoal {
     pub fn set_generations(&mut self, n: u64) {
         match &mut self.settings {
             MethodSettings::Ga(s) => s.generations = n,
+            MethodSettings::Islands(s) => s.ga.generations = n,
             MethodSettings::Smc(s) => s.steps = n,
             MethodSettings::Mcmc(s) => s.iterations = n,
         }
@@ -165,8 +170,8 @@ fn merged<T: Serialize + DeserializeOwned>(
 }
 
 /// What the command line sets over a scene: typed flags (`--method`, `--seed`,
-/// `--seconds`, `--evaluations`, `--generations`), which take the place of the
-/// `[optimizer]` keys of the same names, and free `key=value` overrides (`--set`), which
+/// `--seconds`, `--evaluations`, `--generations`, `--islands`), which take the place of
+/// the `[optimizer]` keys of the same names (`islands.count` for `--islands`), and free `key=value` overrides (`--set`), which
 /// are applied to the scene's TOML before it is read, so that they are checked exactly
 /// as the file's own keys are.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -182,6 +187,8 @@ pub struct Overrides {
     pub evaluations: Option<u64>,
     /// Generations, steps or iterations (`optimizer.generations`).
     pub generations: Option<u64>,
+    /// Islands of the GA (`islands.count`).
+    pub islands: Option<u32>,
     /// `key=value` overrides of any scene key, in order.
     pub sets: Vec<String>,
 }
@@ -194,6 +201,7 @@ impl Overrides {
         self.seconds = later.seconds.or(self.seconds);
         self.evaluations = later.evaluations.or(self.evaluations);
         self.generations = later.generations.or(self.generations);
+        self.islands = later.islands.or(self.islands);
         self.sets.extend(later.sets.iter().cloned());
         self
     }
@@ -234,10 +242,12 @@ fn budget_seconds(value: f64) -> Option<f64> {
 }
 
 /// Resolves the `[optimizer]` table over the generator's `presets` for the method, with
-/// the typed `overrides` in place of the keys they name; errors are `(key, reason)`.
+/// the `[islands]` table and the typed `overrides` in place of the keys they name;
+/// errors are `(key, reason)`.
 pub(super) fn resolve(
     presets: &Presets,
     mut table: toml::Table,
+    islands: Option<IslandSettings>,
     overrides: &Overrides,
 ) -> Result<OptimizerGoal, (String, String)> {
     let key = |k: &str| format!("optimizer.{k}");
@@ -254,6 +264,24 @@ pub(super) fn resolve(
         }
     };
     let method = overrides.method.unwrap_or(written);
+    let islands = match (islands, overrides.islands) {
+        (None, None) => None,
+        (written, count) => {
+            let mut islands = written.unwrap_or_default();
+            islands.count = count.unwrap_or(islands.count);
+            Some(islands)
+        }
+    };
+    if islands.is_some() && method != Method::Ga {
+        return Err((
+            "islands".into(),
+            format!(
+                "the island model runs the GA, and the method is \"{}\"; leave out \
+                 [islands] and --islands, or use method \"ga\"",
+                method.name()
+            ),
+        ));
+    }
     let seed = match table.remove("seed") {
         None => 1,
         Some(toml::Value::Integer(s)) if s >= 0 => s as u64,
@@ -311,9 +339,21 @@ pub(super) fn resolve(
         }
     };
     let settings = match preset(method, presets) {
-        MethodSettings::Ga(base) => {
+        MethodSettings::Ga(base) | MethodSettings::Islands(IslandGaSettings { ga: base, .. }) => {
             check_ga_keys(&table)?;
-            MethodSettings::Ga(merged(base, table, GaSettings::validate)?)
+            let ga = merged(base, table, GaSettings::validate)?;
+            match islands {
+                None => MethodSettings::Ga(ga),
+                Some(islands) => {
+                    let settings = IslandGaSettings { ga, islands };
+                    settings.validate().map_err(|err| {
+                        let flag = err.field == "islands.count" && overrides.islands.is_some();
+                        let key = if flag { "--islands" } else { err.field };
+                        (key.to_owned(), err.to_string())
+                    })?;
+                    MethodSettings::Islands(settings)
+                }
+            }
         }
         MethodSettings::Smc(base) => {
             if table.contains_key("order") {
@@ -464,7 +504,7 @@ mod mcmc_tests {
 
     fn mcmc(generator: &str, text: &str) -> Result<McmcSettings, (String, String)> {
         let table: toml::Table = toml::from_str(text).unwrap();
-        match resolve(&presets(generator), table, &Overrides::default())?.settings {
+        match resolve(&presets(generator), table, None, &Overrides::default())?.settings {
             MethodSettings::Mcmc(s) => Ok(s),
             other => panic!("{other:?}"),
         }
@@ -509,7 +549,7 @@ mod mcmc_tests {
         let mut root: toml::Table = toml::from_str(text).unwrap();
         apply_overrides(&mut root, &["optimizer.variant=tempered".to_owned()]).unwrap();
         let table = root["optimizer"].as_table().unwrap().clone();
-        let settings = resolve(&presets("spaceship"), table, &Overrides::default())
+        let settings = resolve(&presets("spaceship"), table, None, &Overrides::default())
             .unwrap()
             .settings;
         let MethodSettings::Mcmc(s) = settings else {
@@ -527,14 +567,16 @@ mod mcmc_tests {
             seconds: Some(2.5),
             evaluations: Some(1000),
             generations: Some(7),
+            islands: None,
             sets: Vec::new(),
         };
-        let goal = resolve(&spaceship, toml::Table::new(), &flags).unwrap();
+        let goal = resolve(&spaceship, toml::Table::new(), None, &flags).unwrap();
         let text = "method = \"sosmc\"\nseed = 9\nseconds = 2.5\nevaluations = 1000\n\
                     generations = 7\n";
         let keys = resolve(
             &spaceship,
             toml::from_str(text).unwrap(),
+            None,
             &Overrides::default(),
         );
         assert_eq!(goal, keys.unwrap());
@@ -544,7 +586,7 @@ mod mcmc_tests {
         assert_eq!((s.order, s.steps), (Order::Stochastic, 7));
         // Flags win over the table's keys.
         let table = toml::from_str("method = \"ga\"\nseed = 3\n").unwrap();
-        let goal = resolve(&spaceship, table, &flags).unwrap();
+        let goal = resolve(&spaceship, table, None, &flags).unwrap();
         assert_eq!((goal.method, goal.seed), (Method::Sosmc, 9));
         for (bad, key) in [
             (
@@ -562,7 +604,7 @@ mod mcmc_tests {
                 "--evaluations",
             ),
         ] {
-            let (k, _) = resolve(&spaceship, toml::Table::new(), &bad).unwrap_err();
+            let (k, _) = resolve(&spaceship, toml::Table::new(), None, &bad).unwrap_err();
             assert_eq!(k, key);
         }
     }
@@ -571,8 +613,42 @@ mod mcmc_tests {
     fn a_value_of_the_wrong_type_is_refused_under_its_own_key() {
         let table = toml::from_str("population = \"abc\"\nelitism = 3\n").unwrap();
         let (key, reason) =
-            resolve(&presets("spaceship"), table, &Overrides::default()).unwrap_err();
+            resolve(&presets("spaceship"), table, None, &Overrides::default()).unwrap_err();
         assert_eq!(key, "optimizer.population");
         assert!(reason.contains("abc"), "{reason}");
+    }
+
+    #[test]
+    fn the_islands_flag_sets_the_count_over_the_table() {
+        let spaceship = presets("spaceship");
+        let written = IslandSettings {
+            count: 2,
+            migrants: 3,
+            interval: 5,
+        };
+        let flag = Overrides {
+            islands: Some(6),
+            ..Overrides::default()
+        };
+        for (islands, overrides, count) in [
+            (Some(written), &Overrides::default(), 2),
+            (Some(written), &flag, 6),
+            (None, &flag, 6),
+        ] {
+            let goal = resolve(&spaceship, toml::Table::new(), islands, overrides).unwrap();
+            let MethodSettings::Islands(s) = goal.settings else {
+                panic!("{goal:?}");
+            };
+            assert_eq!(s.islands.count, count);
+            assert_eq!(s.ga, spaceship.ga);
+            let migrants = if islands.is_some() { 3 } else { 2 };
+            assert_eq!(s.islands.migrants, migrants, "the table's, or the default");
+        }
+        let plain = resolve(&spaceship, toml::Table::new(), None, &Overrides::default());
+        assert!(matches!(plain.unwrap().settings, MethodSettings::Ga(_)));
+        let rjmcmc = toml::from_str("method = \"rjmcmc\"\n").unwrap();
+        let (key, reason) = resolve(&spaceship, rjmcmc, None, &flag).unwrap_err();
+        assert_eq!(key, "islands");
+        assert!(reason.contains("runs the GA"), "{reason}");
     }
 }

@@ -15,7 +15,8 @@ use super::file::{
     SilhouetteFile, VolumeFile,
 };
 use super::{
-    Method, ObjectiveGoal, Overrides, Scene, SceneError, ScorerGoal, SilhouetteGoal, VolumeGoal,
+    Method, MethodSettings, ObjectiveGoal, Overrides, Scene, SceneError, ScorerGoal,
+    SilhouetteGoal, VolumeGoal,
 };
 use crate::registry::Registry;
 
@@ -177,8 +178,15 @@ impl<'a> Resolver<'a> {
             })
         };
 
-        let optimizer = super::optimizer::resolve(&presets, table.clone(), overrides)
+        let optimizer = super::optimizer::resolve(&presets, table.clone(), file.islands, overrides)
             .map_err(|(key, reason)| self.invalid(key, reason))?;
+        if objectives.is_some() && matches!(optimizer.settings, MethodSettings::Islands(_)) {
+            return Err(self.invalid(
+                "islands",
+                "scenes with [[objective]] tables are searched by the multi-objective GA, \
+                 which has no island model; leave out [islands] and --islands",
+            ));
+        }
         if objectives.is_some() && optimizer.method != Method::Ga {
             return Err(self.invalid(
                 "optimizer.method",
@@ -193,6 +201,7 @@ impl<'a> Resolver<'a> {
         Ok(Scene {
             optimizer,
             optimizer_table: table,
+            islands: file.islands,
             presets,
             overrides: overrides.clone(),
             path: self.path.to_owned(),

@@ -3,6 +3,7 @@
 // Each test file uses the helpers it needs.
 #![allow(dead_code)]
 
+use std::fs;
 use std::path::Path;
 use std::process::{Command, Output};
 
@@ -67,7 +68,7 @@ pub fn interrupt_when(args: &[&str], file: &Path, meanwhile: impl FnOnce()) -> O
 
 /// A run's `summary.json` without its wall time, which differs between runs.
 pub fn timeless_summary(dir: &Path) -> serde_json::Value {
-    let text = std::fs::read_to_string(dir.join("summary.json")).expect("summary.json");
+    let text = fs::read_to_string(dir.join("summary.json")).expect("summary.json");
     let mut summary: serde_json::Value = serde_json::from_str(&text).expect("JSON");
     let object = summary.as_object_mut().expect("an object");
     object.remove("elapsed_s");
@@ -75,6 +76,19 @@ pub fn timeless_summary(dir: &Path) -> serde_json::Value {
     // run was resumed, never what they were counted to.
     object.remove("incremental");
     summary
+}
+
+/// A run's `fitness.csv` without its `elapsed_s` column, which differs between runs.
+pub fn timeless_curve(dir: &Path) -> Vec<String> {
+    fs::read_to_string(dir.join("fitness.csv"))
+        .expect("fitness.csv")
+        .lines()
+        .map(|l| {
+            let mut cells: Vec<&str> = l.split(',').collect();
+            cells.remove(1);
+            cells.join(",")
+        })
+        .collect()
 }
 
 /// The JSON lines `shapegen score` prints.
@@ -119,3 +133,52 @@ mesh = "TARGET"
 
 /// A unit cube centred at the origin, as OBJ.
 pub const UNIT_CUBE_OBJ: &str = "v -0.5 -0.5 -0.5\nv 0.5 -0.5 -0.5\nv 0.5 0.5 -0.5\nv -0.5 0.5 -0.5\nv -0.5 -0.5 0.5\nv 0.5 -0.5 0.5\nv 0.5 0.5 0.5\nv -0.5 0.5 0.5\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 3 4 8 7\nf 2 3 7 6\nf 1 5 8 4\n";
+
+/// A small city scene (24 cities, 8 generations) at 160 x 90 whose target is the silhouette of a sampled city.
+pub fn skyline_scene(dir: &Path) -> std::path::PathBuf {
+    let text = r#"
+generator = "city"
+[limits]
+min_len = 4
+optimal_len = 100
+max_len = 201
+max_depth = 8
+[fitness]
+length = 0.02
+[silhouette]
+[[silhouette.target]]
+image = "skyline.png"
+camera = { phi = -1.5708, theta = 0.06, radius = 25, lookat = [0, 4.2, 0], fov = 45, near = 0.1, far = 200, width = 160, height = 90 }
+[optimizer]
+population = 24
+elitism = 4
+initial_length = 40
+generations = 8
+"#;
+    let path = dir.join("skyline.toml");
+    fs::write(&path, text).unwrap();
+    image::GrayImage::from_pixel(160, 90, image::Luma([255]))
+        .save(dir.join("skyline.png"))
+        .unwrap();
+    ok(&[
+        "sample",
+        "-g",
+        "city",
+        "-n",
+        "1",
+        "-s",
+        "3",
+        "-o",
+        s(&dir.join("c")),
+    ]);
+    let genomes = dir.join("c/genomes.json");
+    ok(&[
+        "target",
+        s(&path),
+        "--genome",
+        s(&genomes),
+        "--out",
+        s(&dir.join("skyline.png")),
+    ]);
+    path
+}

@@ -28,7 +28,7 @@ mod display;
 mod error;
 mod json;
 mod limits;
-mod validate;
+pub(crate) mod validate;
 
 pub use error::{GeneAt, GenomeError, SlotAt};
 pub use json::{GenomeSet, JsonError, JsonLayout};

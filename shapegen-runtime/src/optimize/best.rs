@@ -44,6 +44,37 @@ impl<G> Default for Best<G> {
     }
 }
 
+impl<G: Grammar> Best<G> {
+    /// Records a generation whose fitness values are `fitness` and whose best individual
+    /// (the first of equals) is `best`: takes it if it beats the best so far, and appends
+    /// the generation's best, mean and standard deviation to the history.
+    pub(crate) fn record_generation(
+        progress: &mut Progress<Self>,
+        best: Option<(&Genome<G>, f64)>,
+        fitness: &[f64],
+    ) {
+        let r = &mut progress.record;
+        if let Some((genome, f)) = best
+            && (r.best.is_none() || compare(f, r.best_fitness).is_gt())
+        {
+            match &mut r.best {
+                Some(b) => b.clone_from(genome),
+                None => r.best = Some(genome.clone()),
+            }
+            r.best_fitness = f;
+        }
+        let (mean, std) = fitness::mean_std(fitness);
+        r.history.push(HistoryEntry {
+            generation: progress.generation,
+            elapsed_s: progress.elapsed_s,
+            evaluations: progress.evaluations,
+            best: r.best_fitness,
+            mean,
+            std,
+        });
+    }
+}
+
 impl<G: Grammar> Record<G> for Best<G> {
     type Evaluator<'e> = dyn Evaluator<G> + 'e;
     type Observer<'o> = dyn Observer<G> + 'o;
@@ -56,25 +87,8 @@ impl<G: Grammar> Record<G> for Best<G> {
     /// Takes the best of `fitness` if it beats the best so far, and appends the
     /// generation's best, mean and standard deviation to the history.
     fn record(progress: &mut Progress<Self>, genomes: &[Genome<G>], fitness: &[f64]) {
-        let r = &mut progress.record;
-        if let Some(i) = fitness::best_index(fitness)
-            && (r.best.is_none() || compare(fitness[i], r.best_fitness).is_gt())
-        {
-            match &mut r.best {
-                Some(b) => b.clone_from(&genomes[i]),
-                None => r.best = Some(genomes[i].clone()),
-            }
-            r.best_fitness = fitness[i];
-        }
-        let (mean, std) = fitness::mean_std(fitness);
-        r.history.push(HistoryEntry {
-            generation: progress.generation,
-            elapsed_s: progress.elapsed_s,
-            evaluations: progress.evaluations,
-            best: r.best_fitness,
-            mean,
-            std,
-        });
+        let best = fitness::best_index(fitness).map(|i| (&genomes[i], fitness[i]));
+        Best::record_generation(progress, best, fitness);
     }
 
     fn observe(progress: &Progress<Self>, observer: &mut Self::Observer<'_>) -> Control {

@@ -145,6 +145,24 @@ pub trait Optimizer<G: Grammar>: Sized {
     /// Evaluations the next [`step`](Self::step) may use at most.
     fn step_cost(&self) -> u64;
 
+    /// Records the generation just run (the initial population's included) in the
+    /// progress, whose counters and elapsed time the driver has updated. By default the
+    /// record takes in the population and scores of [`parts`](Self::parts); an optimizer
+    /// spread over several processes records what they hold together.
+    fn record(&mut self) {
+        let (progress, population, scores) = self.parts();
+        Self::Record::record(progress, population, scores);
+    }
+
+    /// Agrees with the other processes of a run spread over several on what happens
+    /// before the next generation: whether the run stops, and why, and whether it saves
+    /// a checkpoint. Every process calls it at the same points with what it would decide
+    /// alone (`local`) and gets the decision all of them take. By default a run is one
+    /// process, and the decision its own.
+    fn agree(&mut self, local: Agreement) -> Result<Agreement, OptimizeError> {
+        Ok(local)
+    }
+
     /// Checks that `evaluator` fits this run, before every run (e.g. the objectives of
     /// a resumed multi-objective run); by default, any does.
     fn check(
@@ -179,10 +197,28 @@ pub trait Optimizer<G: Grammar>: Sized {
         observer: &mut <Self::Record as Record<G>>::Observer<'_>,
     ) -> Result<<Self::Record as Record<G>>::Result, OptimizeError> {
         let stopped = drive(self, evaluator, budget, |o: &mut Self| {
-            Ok::<_, OptimizeError>(Self::Record::observe(o.progress(), observer))
+            let control = Self::Record::observe(o.progress(), observer);
+            let agreed = o.agree(Agreement {
+                stop: (control == Control::Stop).then_some(StopReason::Observer),
+                save: false,
+            })?;
+            Ok::<_, OptimizeError>(match agreed.stop {
+                Some(_) => Control::Stop,
+                None => Control::Continue,
+            })
         })?;
         Ok(Self::Record::result(self.progress(), stopped))
     }
+}
+
+/// A decision the processes of a run take together between generations
+/// ([`Optimizer::agree`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Agreement {
+    /// Whether the run stops before the next generation, and why.
+    pub stop: Option<StopReason>,
+    /// Whether a checkpoint is saved now.
+    pub save: bool,
 }
 
 /// The run loop every optimizer shares: checks the evaluator, starts the optimizer if it
@@ -194,7 +230,9 @@ pub trait Optimizer<G: Grammar>: Sized {
 ///
 /// Before each generation the budget is checked with the optimizer's
 /// [`step_cost`](Optimizer::step_cost): a generation that could take the evaluation
-/// count past the budget is not run.
+/// count past the budget is not run. That decision goes through
+/// [`Optimizer::agree`], so that the processes of a run spread over several stop
+/// together.
 pub fn drive<G, O, E>(
     optimizer: &mut O,
     evaluator: &mut <O::Record as Record<G>>::Evaluator<'_>,
@@ -211,9 +249,8 @@ where
     let base = optimizer.progress().elapsed_s;
     let elapsed = || base + t0.elapsed().as_secs_f64();
     let mut record = |optimizer: &mut O| {
-        let (progress, population, scores) = optimizer.parts();
-        progress.elapsed_s = elapsed();
-        O::Record::record(progress, population, scores);
+        optimizer.parts().0.elapsed_s = elapsed();
+        optimizer.record();
         after(optimizer)
     };
     if !optimizer.progress().record.started() {
@@ -225,7 +262,11 @@ where
     loop {
         let cost = optimizer.step_cost();
         let p = optimizer.progress();
-        if let Some(reason) = budget.stop(p.generation, p.evaluations, cost, elapsed()) {
+        let local = Agreement {
+            stop: budget.stop(p.generation, p.evaluations, cost, elapsed()),
+            save: false,
+        };
+        if let Some(reason) = optimizer.agree(local)?.stop {
             optimizer.parts().0.elapsed_s = elapsed();
             return Ok(reason);
         }

@@ -58,6 +58,9 @@ pub enum OptimizeError {
     /// A checkpoint does not fit its settings (population size, fitness count, ...).
     #[error("checkpoint: {0}")]
     Checkpoint(String),
+    /// The processes a run is spread over could not exchange what it needs.
+    #[error(transparent)]
+    Exchange(#[from] super::islands::ExchangeError),
 }
 
 /// Checks the buffers of a started checkpoint against the run it must fit: each

@@ -372,26 +372,22 @@ impl<G: Grammar> Optimizer<G> for Ga<G> {
 
     fn step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
         let elite = self.settings.elitism as usize;
-        rank(&self.fitness, &mut self.order);
-        self.roulette.build(&self.fitness);
-        for (k, &i) in self.order[..elite].iter().enumerate() {
-            self.next[k].clone_from(&self.population[i as usize]);
-            self.next_fitness[k] = self.fitness[i as usize];
-        }
-        let breed = Breed {
+        let (elites, children) = self.next.split_at_mut(elite);
+        Generation {
             settings: &self.settings,
-            population: &self.population,
-            fitness: &self.fitness,
-            roulette: &self.roulette,
-            worst: *self.order.last().expect("a population of at least 2"),
-        };
-        let generation = self.progress.generation + 1;
-        breed.children(
-            &self.ops,
-            self.progress.seed,
-            generation,
-            &mut self.next[elite..],
-            &mut self.from,
+            ops: &self.ops,
+            seed: self.progress.seed,
+            generation: self.progress.generation + 1,
+        }
+        .breed(
+            Parents {
+                population: &self.population,
+                fitness: &self.fitness,
+            },
+            &mut self.order,
+            &mut self.roulette,
+            (elites, &mut self.next_fitness[..elite]),
+            (children, &mut self.from),
         )?;
         evaluator.evaluate_bred(
             &self.next[elite..],
@@ -403,6 +399,57 @@ impl<G: Grammar> Optimizer<G> for Ga<G> {
         std::mem::swap(&mut self.population, &mut self.next);
         std::mem::swap(&mut self.fitness, &mut self.next_fitness);
         Ok(())
+    }
+}
+
+/// One population and its fitness, as a generation is bred from them.
+pub(crate) struct Parents<'a, G> {
+    /// The population.
+    pub(crate) population: &'a [Genome<G>],
+    /// Its fitness, one value per genome.
+    pub(crate) fitness: &'a [f64],
+}
+
+/// What breeding one generation of a GA population needs besides the population: the
+/// settings and operators, and the seed and number of the generation being bred. The
+/// [`Ga`] breeds its one population with it, the island model each of its islands.
+pub(crate) struct Generation<'a, G> {
+    /// The GA's settings.
+    pub(crate) settings: &'a GaSettings,
+    /// The operators, keeping to the limits.
+    pub(crate) ops: &'a Operators<G>,
+    /// The seed of the population's random streams.
+    pub(crate) seed: u64,
+    /// The number of the generation being bred (the first bred is 1).
+    pub(crate) generation: u64,
+}
+
+impl<G: Grammar> Generation<'_, G> {
+    /// Breeds the next generation of `parents`: copies its `elitism` best, with their
+    /// fitness, into `elites`, and breeds `children` (see [`Breed::children`]), each
+    /// child's parent index into `from`. `order` and `roulette` are scratch.
+    pub(crate) fn breed(
+        &self,
+        parents: Parents<'_, G>,
+        order: &mut Vec<u32>,
+        roulette: &mut Roulette,
+        (elites, elite_fitness): (&mut [Genome<G>], &mut [f64]),
+        (children, from): (&mut [Genome<G>], &mut [u32]),
+    ) -> Result<(), OptimizeError> {
+        rank(parents.fitness, order);
+        roulette.build(parents.fitness);
+        for ((elite, f), &i) in elites.iter_mut().zip(elite_fitness).zip(order.iter()) {
+            elite.clone_from(&parents.population[i as usize]);
+            *f = parents.fitness[i as usize];
+        }
+        Breed {
+            settings: self.settings,
+            population: parents.population,
+            fitness: parents.fitness,
+            roulette,
+            worst: *order.last().expect("a population of at least 2"),
+        }
+        .children(self.ops, self.seed, self.generation, children, from)
     }
 }
 

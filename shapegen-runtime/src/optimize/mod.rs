@@ -22,6 +22,8 @@
 //! - checkpoints ([`GaState`], [`SmcState`], [`McmcState`], [`multi::MultiGaState`];
 //!   serde) from which a resumed run ends exactly as an uninterrupted one, with the
 //!   shared counters in [`Progress`];
+//! - the island model ([`islands::IslandGa`]): GA populations on a ring, on one
+//!   process or spread over several;
 //! - a [`Session`] running one optimizer to its budget with a stop flag, a progress hook
 //!   and checkpoints saved every few seconds and at the end, ending with a
 //!   [`StopReason`].
@@ -38,6 +40,7 @@ mod error;
 mod fitness;
 mod ga;
 mod grow;
+pub mod islands;
 mod mcmc;
 pub mod multi;
 mod run;
@@ -46,7 +49,7 @@ mod smc;
 
 pub use crate::evaluate::{EvaluateError, Evaluator, FnEvaluator, MultiEvaluator, Sense};
 pub use best::Best;
-pub use driver::{Optimizer, Record, drive};
+pub use driver::{Agreement, Optimizer, Record, drive};
 pub use error::{OptimizeError, SettingsError};
 pub use ga::{Ga, GaSettings, GaState};
 pub use mcmc::{Mcmc, McmcSettings, McmcState, McmcVariant};

@@ -184,6 +184,14 @@ pub enum StopReason {
 }
 
 impl StopReason {
+    /// Every reason.
+    pub const ALL: [StopReason; 4] = [
+        StopReason::Generations,
+        StopReason::Evaluations,
+        StopReason::WallTime,
+        StopReason::Observer,
+    ];
+
     /// Its name in summaries: `"generations"`, `"evaluations"`, `"time"` or
     /// `"interrupted"`.
     pub const fn name(self) -> &'static str {

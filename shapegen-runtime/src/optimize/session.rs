@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use super::OptimizeError;
-use super::driver::{Optimizer, Record, drive};
+use super::driver::{Agreement, Optimizer, Record, drive};
 use super::run::{Budget, Control, Progress, StopReason};
 use crate::derive::Grammar;
 use crate::genome::Limits;
@@ -225,7 +225,11 @@ impl<'s, G: Grammar, O: Optimizer<G>> Session<'s, G, O> {
             let ends = budget
                 .stop(p.generation, p.evaluations, o.step_cost(), p.elapsed_s)
                 .is_some();
-            if control == Control::Continue && !ends && last_save.elapsed() >= every {
+            let agreed = o.agree(Agreement {
+                stop: (control == Control::Stop).then_some(StopReason::Observer),
+                save: control == Control::Continue && !ends && last_save.elapsed() >= every,
+            })?;
+            if agreed.save {
                 let start = Instant::now();
                 store(save, o, None)?;
                 last_save = Instant::now();
@@ -233,7 +237,10 @@ impl<'s, G: Grammar, O: Optimizer<G>> Session<'s, G, O> {
                     every = base.max((last_save - start) * SAVE_SPACING);
                 }
             }
-            Ok::<_, SessionError>(control)
+            Ok::<_, SessionError>(match agreed.stop {
+                Some(_) => Control::Stop,
+                None => Control::Continue,
+            })
         })?;
         store(&mut self.save, &self.optimizer, Some(stopped))?;
         Ok(O::Record::result(self.optimizer.progress(), stopped))

@@ -1,0 +1,652 @@
+//! The island model: several GA populations ("islands") evolving side by side, the best
+//! few of each sent along a ring to the next every few generations ([`IslandGa`]), on
+//! one process or spread over several ([`Exchange`]).
+//!
+//! # Design
+//!
+//! Island `k` of `K` is the paper's GA ([`Ga`](super::Ga)) with the run's settings,
+//! drawing from its own random streams (the run's seed for island 0, a seed derived
+//! from it and `k` for the others). All islands of a process breed their children, then
+//! the children of all of them are evaluated in one call, so that incremental scoring
+//! keeps every island's models and the threads share the work. After every `interval`
+//! generations each island sends copies of its `migrants` best individuals, with their
+//! fitness, to the next island on the ring (the last to the first), where they replace
+//! the worst.
+//!
+//! Spread over `P` processes (`K` a multiple of `P`), process `r` holds islands
+//! `r K / P ..` of them, and the processes exchange, through an [`Exchange`]:
+//! - every generation, each island's fitness values and (when it beats the best so
+//!   far) the process's best model, so that every process records the same history
+//!   and best as one process holding all the islands would;
+//! - at a migration, the migrants of each process's last island, to the next process;
+//! - before every generation, the decisions to stop or save ([`Optimizer::agree`]): a
+//!   stop flag set on any process stops all of them, and rank 0's clock decides saves
+//!   and wall-time budgets;
+//! - at a checkpoint, every island's population, gathered at rank 0.
+//!
+//! Every random choice depends only on the seed, the island and the generation, and
+//! every record is computed over all islands in island order, so a run gives the same
+//! result on any number of processes that divides `K`, and at any thread count.
+
+mod exchange;
+mod wire;
+
+use std::fmt;
+
+use serde::{Deserialize, Serialize};
+
+pub use exchange::{Alone, Exchange, ExchangeError};
+
+use super::best::Best;
+use super::error::check_sizes;
+use super::fitness::{Roulette, bits_vec, compare, rank};
+use super::ga::{Generation, Parents, random_population};
+use super::run::{Progress, StopReason, grammar_struct_traits};
+use super::{Agreement, Evaluator, GaSettings, OptimizeError, Optimizer, Record, SettingsError};
+use crate::derive::Grammar;
+use crate::genome::{Genome, Limits};
+use crate::ops::Operators;
+use wire::{Reader, Writer};
+
+/// How many islands, and how they migrate: the scene's `[islands]` table. Missing
+/// fields take the [`Default`] values, unknown fields are errors.
+///
+/// ```
+/// use shapegen_runtime::optimize::islands::IslandSettings;
+///
+/// let s: IslandSettings = serde_json::from_str(r#"{"count": 8, "migrants": 3}"#)?;
+/// assert_eq!((s.count, s.migrants, s.interval), (8, 3, 10));
+/// # Ok::<(), serde_json::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct IslandSettings {
+    /// Islands, each a population of the GA's size; at least 1. One island is the GA.
+    pub count: u32,
+    /// Individuals each island sends to the next at each migration; less than the
+    /// population. 0 keeps the islands apart.
+    pub migrants: u32,
+    /// Generations between migrations; at least 1.
+    pub interval: u64,
+}
+
+impl Default for IslandSettings {
+    fn default() -> Self {
+        IslandSettings {
+            count: 4,
+            migrants: 2,
+            interval: 10,
+        }
+    }
+}
+
+/// Settings of the [`IslandGa`]: every island's GA settings, and the islands'.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IslandGaSettings {
+    /// Each island's GA.
+    pub ga: GaSettings,
+    /// How many islands, and how they migrate.
+    pub islands: IslandSettings,
+}
+
+impl IslandGaSettings {
+    /// Checks every field; the error names the first one out of range (the islands'
+    /// under `islands.`).
+    ///
+    /// ```
+    /// use shapegen_runtime::optimize::GaSettings;
+    /// use shapegen_runtime::optimize::islands::{IslandGaSettings, IslandSettings};
+    ///
+    /// let ga = GaSettings { population: 50, elitism: 10, ..GaSettings::default() };
+    /// let islands = IslandSettings { migrants: 50, ..IslandSettings::default() };
+    /// let err = IslandGaSettings { ga, islands }.validate().unwrap_err();
+    /// assert_eq!(err.field, "islands.migrants");
+    /// ```
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        self.ga.validate()?;
+        let islands = &self.islands;
+        if islands.count == 0 {
+            return Err(SettingsError::new("islands.count", 0, "at least 1"));
+        }
+        if islands.migrants >= self.ga.population {
+            return Err(SettingsError::new(
+                "islands.migrants",
+                islands.migrants,
+                "less than the population",
+            ));
+        }
+        if islands.interval == 0 {
+            return Err(SettingsError::new("islands.interval", 0, "at least 1"));
+        }
+        Ok(())
+    }
+}
+
+/// One island's population and its fitness, as checkpoints hold it.
+#[derive(Serialize, Deserialize)]
+#[serde(
+    deny_unknown_fields,
+    bound(serialize = "G: Grammar", deserialize = "G: Grammar")
+)]
+pub struct Island<G> {
+    /// The population, best first after the first generation.
+    pub population: Vec<Genome<G>>,
+    /// Its cached fitness.
+    #[serde(with = "bits_vec")]
+    pub fitness: Vec<f64>,
+}
+
+grammar_struct_traits!(Island {
+    population,
+    fitness
+});
+
+/// A checkpoint of an [`IslandGa`]: serialize it and give it to [`IslandGa::resume`]
+/// (or [`IslandGa::resume_on`], on any number of processes that divides the islands) to
+/// go on exactly as an uninterrupted run would.
+#[derive(Serialize, Deserialize)]
+#[serde(
+    deny_unknown_fields,
+    bound(serialize = "G: Grammar", deserialize = "G: Grammar")
+)]
+pub struct IslandGaState<G> {
+    /// The settings.
+    pub settings: IslandGaSettings,
+    /// The genome limits.
+    pub limits: Limits,
+    /// Generation, evaluations, best so far, history (over all islands).
+    pub progress: Progress<Best<G>>,
+    /// Every island, in order; empty before the first generation. On processes other
+    /// than rank 0 of a run spread over several, only this process's islands.
+    pub islands: Vec<Island<G>>,
+}
+
+grammar_struct_traits!(IslandGaState {
+    settings,
+    limits,
+    progress,
+    islands
+});
+
+/// The island model (see the [module documentation](self)): `K` GA populations on a
+/// ring, migrating their best every few generations.
+///
+/// Evaluations count every island's, on every process: a generation costs
+/// `K (population - elitism)` evaluations, the initial one `K population`. With one
+/// island it is the [`Ga`](super::Ga), to the bit.
+///
+/// ```
+/// use shapegen_runtime::optimize::islands::{IslandGa, IslandGaSettings, IslandSettings};
+/// use shapegen_runtime::optimize::{Budget, FnEvaluator, GaSettings, Optimizer, Silent};
+/// use shapegen_runtime::prelude::*;
+///
+/// generator! {
+///     /// A chain of blocks.
+///     pub Chain {
+///         axiom Seg;
+///         node Seg {
+///             children { next: Seg = 0.5 }
+///             derive(s) {
+///                 s.emit(CUBE);
+///                 if let Some(next) = next { s.translate(vec3(0.0, 1.0, 0.0)).derive(next); }
+///             }
+///         }
+///     }
+/// }
+///
+/// // Four islands of 20 chains, two migrants every 5 generations: look for 12 blocks.
+/// let ga = GaSettings { population: 20, elitism: 4, initial_length: 4, ..GaSettings::default() };
+/// let islands = IslandSettings { count: 4, migrants: 2, interval: 5 };
+/// let mut run = IslandGa::<Chain>::new(IslandGaSettings { ga, islands }, Limits::new(1, 30, 30)?, 7)?;
+/// let mut eval = FnEvaluator(|g: &Genome<Chain>| -(g.len() as f64 - 12.0).abs());
+/// let result = run.run(&mut eval, &Budget::generations(30), &mut Silent)?;
+/// assert_eq!(result.best.len(), 12);
+/// assert_eq!(result.evaluations, 4 * 20 + 30 * 4 * 16);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub struct IslandGa<G> {
+    settings: IslandGaSettings,
+    ops: Operators<G>,
+    progress: Progress<Best<G>>,
+    exchange: Box<dyn Exchange>,
+    /// The first island this process holds.
+    first: usize,
+    /// This process's islands, one after the other, and their fitness.
+    population: Vec<Genome<G>>,
+    fitness: Vec<f64>,
+    next: Vec<Genome<G>>,
+    next_fitness: Vec<f64>,
+    /// This process's children of a generation, island after island, their fitness and
+    /// the index of each one's parent in `population`.
+    children: Vec<Genome<G>>,
+    child_fitness: Vec<f64>,
+    from: Vec<u32>,
+    order: Vec<u32>,
+    roulette: Roulette,
+    /// What the last generation was over all islands, as every process records it.
+    whole: Whole<G>,
+}
+
+/// The last generation over all islands: every island's fitness, in island order, and
+/// the best model of it when it beats the best so far (the first of equals).
+struct Whole<G> {
+    fitness: Vec<f64>,
+    best: Option<(Genome<G>, f64)>,
+}
+
+impl<G: Grammar> fmt::Debug for IslandGa<G> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("IslandGa")
+            .field("settings", &self.settings)
+            .field("rank", &self.exchange.rank())
+            .field("processes", &self.exchange.size())
+            .field("progress", &self.progress)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<G: Grammar> IslandGa<G> {
+    /// An island model whose islands are spread over the processes of `exchange`; fails
+    /// if the settings are out of range, do not fit the limits, or the islands are not
+    /// a multiple of the processes.
+    pub fn new_on(
+        settings: IslandGaSettings,
+        limits: Limits,
+        seed: u64,
+        exchange: Box<dyn Exchange>,
+    ) -> Result<Self, OptimizeError> {
+        settings.validate()?;
+        let (count, processes) = (settings.islands.count as usize, exchange.size());
+        if processes == 0 || !count.is_multiple_of(processes) {
+            return Err(SettingsError::new(
+                "islands.count",
+                count,
+                "a multiple of the number of processes the run is spread over",
+            )
+            .into());
+        }
+        let local = count / processes;
+        let n = settings.ga.population as usize;
+        let children = n - settings.ga.elitism as usize;
+        let empty = |k| (0..k).map(|_| Genome::from_parts(Vec::new(), 0)).collect();
+        Ok(IslandGa {
+            ops: settings.ga.build_operators(limits)?,
+            progress: Progress::new(seed),
+            first: exchange.rank() * local,
+            exchange,
+            population: empty(local * n),
+            fitness: vec![f64::NAN; local * n],
+            next: empty(local * n),
+            next_fitness: vec![f64::NAN; local * n],
+            children: empty(local * children),
+            child_fitness: vec![f64::NAN; local * children],
+            from: vec![0; local * children],
+            order: Vec::with_capacity(n),
+            roulette: Roulette::default(),
+            whole: Whole {
+                fitness: Vec::new(),
+                best: None,
+            },
+            settings,
+        })
+    }
+
+    /// Resumes from a checkpoint holding every island, on the processes of `exchange`
+    /// (any number that divides the islands, whatever number saved it).
+    pub fn resume_on(
+        state: IslandGaState<G>,
+        exchange: Box<dyn Exchange>,
+    ) -> Result<Self, OptimizeError> {
+        let mut run =
+            IslandGa::new_on(state.settings, state.limits, state.progress.seed, exchange)?;
+        if state.progress.record.started() {
+            let count = run.settings.islands.count as usize;
+            let n = run.settings.ga.population as usize;
+            check_sizes(
+                &[(state.islands.len(), count, "islands")],
+                format_args!("a run of {count} islands"),
+            )?;
+            for (k, island) in state.islands.iter().enumerate() {
+                check_sizes(
+                    &[
+                        (island.population.len(), n, "genomes"),
+                        (island.fitness.len(), n, "fitness values"),
+                    ],
+                    format_args!("island {k}, a population of {n}"),
+                )?;
+            }
+            let mine = &state.islands[run.first..run.first + run.islands()];
+            run.population = mine.iter().flat_map(|i| i.population.clone()).collect();
+            run.fitness = mine.iter().flat_map(|i| i.fitness.clone()).collect();
+        }
+        run.progress = state.progress;
+        Ok(run)
+    }
+
+    /// The number of islands this process holds.
+    fn islands(&self) -> usize {
+        self.settings.islands.count as usize / self.exchange.size()
+    }
+
+    /// The seed of island `k`'s random streams: the run's seed for island 0.
+    fn island_seed(&self, k: usize) -> u64 {
+        const GOLDEN: u64 = 0x9e37_79b9_7f4a_7c15;
+        self.progress
+            .seed
+            .wrapping_add(GOLDEN.wrapping_mul(k as u64))
+    }
+
+    /// Island `k` of this process (from 0): its genomes and their fitness.
+    fn island(&self, k: usize) -> Parents<'_, G> {
+        let n = self.settings.ga.population as usize;
+        Parents {
+            population: &self.population[k * n..(k + 1) * n],
+            fitness: &self.fitness[k * n..(k + 1) * n],
+        }
+    }
+
+    /// Sends every island's `migrants` best, with their fitness, to the next island on
+    /// the ring, where they replace the worst; the last island of this process sends to
+    /// the first of the next process.
+    fn migrate(&mut self) -> Result<(), OptimizeError> {
+        let (m, n) = (
+            self.settings.islands.migrants as usize,
+            self.settings.ga.population as usize,
+        );
+        let local = self.islands();
+        // Each island's ranking, best first, before any migrant lands.
+        let ranked: Vec<Vec<u32>> = (0..local)
+            .map(|k| {
+                let mut order = Vec::with_capacity(n);
+                rank(self.island(k).fitness, &mut order);
+                order
+            })
+            .collect();
+        let emigrants = |k: usize| -> Vec<(Genome<G>, f64)> {
+            let island = self.island(k);
+            ranked[k][..m]
+                .iter()
+                .map(|&i| {
+                    (
+                        island.population[i as usize].clone(),
+                        island.fitness[i as usize],
+                    )
+                })
+                .collect()
+        };
+        let leaving = emigrants(local - 1);
+        let mut message = Writer::default();
+        message.genomes(leaving.iter().map(|(g, _)| g));
+        message.f64s(&leaving.iter().map(|&(_, f)| f).collect::<Vec<_>>());
+        let bytes = self.exchange.shift(message.finish())?;
+        let mut reader = Reader::new(&bytes);
+        let (genomes, fitness) = (reader.genomes::<G>()?, reader.f64s()?);
+        reader.end()?;
+        check_sizes(
+            &[
+                (genomes.len(), m, "migrants"),
+                (fitness.len(), m, "fitness values"),
+            ],
+            "a migration",
+        )?;
+        let mut arriving: Vec<Vec<(Genome<G>, f64)>> = Vec::with_capacity(local);
+        arriving.push(genomes.into_iter().zip(fitness).collect());
+        arriving.extend((0..local - 1).map(emigrants));
+        for (k, (migrants, order)) in arriving.into_iter().zip(&ranked).enumerate() {
+            for ((genome, f), &i) in migrants.into_iter().zip(&order[n - m..]) {
+                self.population[k * n + i as usize] = genome;
+                self.fitness[k * n + i as usize] = f;
+            }
+        }
+        Ok(())
+    }
+
+    /// Gathers the generation over all islands from every process into `whole`.
+    fn share(&mut self) -> Result<(), OptimizeError> {
+        let record = &self.progress.record;
+        let local_best = super::fitness::best_index(&self.fitness).filter(|&i| {
+            record.best.is_none() || compare(self.fitness[i], record.best_fitness).is_gt()
+        });
+        let mut message = Writer::default();
+        message.f64s(&self.fitness);
+        message.genomes(local_best.map(|i| &self.population[i]).into_iter());
+        let gathered = self.exchange.all_gather(message.finish())?;
+        self.whole.fitness.clear();
+        self.whole.best = None;
+        for bytes in &gathered {
+            let mut reader = Reader::new(bytes);
+            let fitness = reader.f64s()?;
+            let best = reader.genomes::<G>()?;
+            reader.end()?;
+            if let Some(genome) = best.into_iter().next() {
+                let f = super::fitness::best_index(&fitness)
+                    .map(|i| fitness[i])
+                    .ok_or_else(|| ExchangeError("a best model without fitness values".into()))?;
+                if self
+                    .whole
+                    .best
+                    .as_ref()
+                    .is_none_or(|(_, best)| compare(f, *best).is_gt())
+                {
+                    self.whole.best = Some((genome, f));
+                }
+            }
+            self.whole.fitness.extend(fitness);
+        }
+        check_sizes(
+            &[(
+                self.whole.fitness.len(),
+                self.settings.islands.count as usize * self.settings.ga.population as usize,
+                "fitness values",
+            )],
+            "all islands",
+        )
+    }
+
+    /// This process's islands, as a checkpoint holds them.
+    fn own_islands(&self) -> Vec<Island<G>> {
+        (0..self.islands())
+            .map(|k| {
+                let island = self.island(k);
+                Island {
+                    population: island.population.to_vec(),
+                    fitness: island.fitness.to_vec(),
+                }
+            })
+            .collect()
+    }
+
+    /// Every island, gathered at rank 0 (only this process's elsewhere).
+    fn gather_islands(&self) -> Result<Vec<Island<G>>, ExchangeError> {
+        let own = self.own_islands();
+        if self.exchange.size() == 1 {
+            return Ok(own);
+        }
+        let mut message = Writer::default();
+        for island in &own {
+            message
+                .genomes(island.population.iter())
+                .f64s(&island.fitness);
+        }
+        let Some(all) = self.exchange.gather(message.finish())? else {
+            return Ok(own);
+        };
+        let mut islands = Vec::with_capacity(self.settings.islands.count as usize);
+        for bytes in &all {
+            let mut reader = Reader::new(bytes);
+            for _ in 0..self.islands() {
+                islands.push(Island {
+                    population: reader.genomes()?,
+                    fitness: reader.f64s()?,
+                });
+            }
+            reader.end()?;
+        }
+        Ok(islands)
+    }
+}
+
+impl<G: Grammar> Optimizer<G> for IslandGa<G> {
+    type Settings = IslandGaSettings;
+    type State = IslandGaState<G>;
+    type Record = Best<G>;
+
+    /// An island model on one process.
+    fn new(settings: IslandGaSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {
+        IslandGa::new_on(settings, limits, seed, Box::new(Alone))
+    }
+
+    fn resume(state: IslandGaState<G>) -> Result<Self, OptimizeError> {
+        IslandGa::resume_on(state, Box::new(Alone))
+    }
+
+    /// The state to resume from: every island at rank 0 (see [`IslandGaState`]).
+    ///
+    /// On a run spread over several processes this gathers the islands, so every
+    /// process must call it at the same point, as a [`Session`](super::Session) does.
+    ///
+    /// # Panics
+    /// If the exchange fails while gathering (an MPI error ends the processes anyway).
+    fn checkpoint(&self) -> IslandGaState<G> {
+        let started = self.progress.record.started();
+        let islands = if started {
+            self.gather_islands()
+                .unwrap_or_else(|err| panic!("gathering the islands for a checkpoint: {err}"))
+        } else {
+            Vec::new()
+        };
+        IslandGaState {
+            settings: self.settings,
+            limits: *self.ops.limits(),
+            progress: self.progress.clone(),
+            islands,
+        }
+    }
+
+    fn settings(&self) -> &IslandGaSettings {
+        &self.settings
+    }
+
+    fn progress(&self) -> &Progress<Best<G>> {
+        &self.progress
+    }
+
+    /// The progress, with this process's islands and their fitness.
+    fn parts(&mut self) -> (&mut Progress<Best<G>>, &[Genome<G>], &[f64]) {
+        (&mut self.progress, &self.population, &self.fitness)
+    }
+
+    fn step_cost(&self) -> u64 {
+        let ga = &self.settings.ga;
+        u64::from(self.settings.islands.count) * u64::from(ga.population - ga.elitism)
+    }
+
+    /// Records the generation over all islands, as gathered after it.
+    fn record(&mut self) {
+        let best = self.whole.best.as_ref().map(|(g, f)| (g, *f));
+        Best::record_generation(&mut self.progress, best, &self.whole.fitness);
+    }
+
+    /// Stops if any process stops (the first reason by rank); saves when rank 0 saves
+    /// and the run goes on (a run that stops saves at its end).
+    fn agree(&mut self, local: Agreement) -> Result<Agreement, OptimizeError> {
+        if self.exchange.size() == 1 {
+            return Ok(local);
+        }
+        let code = local.stop.map_or(0, |reason| {
+            1 + StopReason::ALL
+                .iter()
+                .position(|&r| r == reason)
+                .expect("listed") as u64
+        });
+        let gathered = self
+            .exchange
+            .all_gather(Writer::default().u64(code).u64(local.save.into()).finish())?;
+        let mut agreed = Agreement::default();
+        for (r, bytes) in gathered.iter().enumerate() {
+            let mut reader = Reader::new(bytes);
+            let (code, save) = (reader.u64()?, reader.u64()?);
+            reader.end()?;
+            if agreed.stop.is_none() && code > 0 {
+                agreed.stop = Some(
+                    *StopReason::ALL
+                        .get(code as usize - 1)
+                        .ok_or_else(|| ExchangeError(format!("stop code {code}")))?,
+                );
+            }
+            if r == 0 {
+                agreed.save = save == 1;
+            }
+        }
+        // A run that stops saves at its end.
+        agreed.save &= agreed.stop.is_none();
+        Ok(agreed)
+    }
+
+    fn start(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
+        let n = self.settings.ga.population as usize;
+        for k in 0..self.islands() {
+            let seed = self.island_seed(self.first + k);
+            let island = &mut self.population[k * n..(k + 1) * n];
+            random_population(&self.ops, &self.settings.ga, seed, island);
+        }
+        evaluator.evaluate(&self.population, &mut self.fitness)?;
+        self.progress.evaluations += u64::from(self.settings.islands.count) * n as u64;
+        self.share()
+    }
+
+    fn step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
+        let ga = self.settings.ga;
+        let (n, e) = (ga.population as usize, ga.elitism as usize);
+        let c = n - e;
+        let generation = self.progress.generation + 1;
+        for k in 0..self.islands() {
+            let seed = self.island_seed(self.first + k);
+            let (elites, _) = self.next[k * n..(k + 1) * n].split_at_mut(e);
+            let from = &mut self.from[k * c..(k + 1) * c];
+            Generation {
+                settings: &ga,
+                ops: &self.ops,
+                seed,
+                generation,
+            }
+            .breed(
+                Parents {
+                    population: &self.population[k * n..(k + 1) * n],
+                    fitness: &self.fitness[k * n..(k + 1) * n],
+                },
+                &mut self.order,
+                &mut self.roulette,
+                (elites, &mut self.next_fitness[k * n..k * n + e]),
+                (&mut self.children[k * c..(k + 1) * c], from),
+            )?;
+            from.iter_mut().for_each(|f| *f += (k * n) as u32);
+        }
+        evaluator.evaluate_bred(
+            &self.children,
+            &self.population,
+            &self.from,
+            &mut self.child_fitness,
+        )?;
+        for (i, (child, f)) in self
+            .children
+            .iter_mut()
+            .zip(&self.child_fitness)
+            .enumerate()
+        {
+            let at = (i / c) * n + e + i % c;
+            std::mem::swap(&mut self.next[at], child);
+            self.next_fitness[at] = *f;
+        }
+        self.progress.evaluations += self.step_cost();
+        std::mem::swap(&mut self.population, &mut self.next);
+        std::mem::swap(&mut self.fitness, &mut self.next_fitness);
+        let islands = &self.settings.islands;
+        if islands.count > 1 && islands.migrants > 0 && generation.is_multiple_of(islands.interval)
+        {
+            self.migrate()?;
+        }
+        self.share()
+    }
+}
