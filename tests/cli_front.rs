@@ -7,7 +7,7 @@ mod support;
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use support::{fails, interrupt_when, ok, s, shapegen, timeless_summary};
+use support::{fails, interrupt_when, ok, s, shapegen, timeless_summary, timeless_table};
 
 /// A tiny multi-objective building scene: a 16 x 16 footprint target (the lot's left
 /// half), distinct normals and a height of 20; population 16 for 5 generations.
@@ -179,19 +179,9 @@ fn a_front_run_ends_the_same_with_and_without_incremental_scoring() {
     for file in ["front.csv", "front.genomes.json"] {
         assert_eq!(read(&on, file), read(&off, file), "{file}");
     }
-    assert!(read(&on, "history.csv").starts_with("generation,elapsed_s,"));
-    let timeless_history = |dir: &Path| -> Vec<String> {
-        read(dir, "history.csv")
-            .lines()
-            .map(|l| {
-                let mut cells: Vec<&str> = l.split(',').collect();
-                cells.remove(1);
-                cells.join(",")
-            })
-            .collect()
-    };
-    assert_eq!(timeless_history(&on), timeless_history(&off));
-    assert_eq!(timeless_history(&on).len(), 1 + 13);
+    let history = timeless_table(&on, "history.csv");
+    assert_eq!(history, timeless_table(&off, "history.csv"));
+    assert_eq!(history.len(), 1 + 13);
 
     let summary = |dir: &Path| -> serde_json::Value {
         serde_json::from_str(&read(dir, "summary.json")).unwrap()
