@@ -21,8 +21,15 @@ const SLACK: f64 = 1e-9;
 /// Most cells of a grid along one axis.
 const MAX_CELLS_PER_AXIS: usize = 1024;
 
-/// Up to this many distinct normals, [`spread`] compares every pair.
-const SPREAD_BRUTE_FORCE: usize = 32;
+/// [`cluster`] compares each normal with every representative until it has found this
+/// many, then goes through the grid: below about this many the comparisons cost less
+/// than the grid (measured on `benches/objective.rs`'s synthetic buildings, 58 distinct
+/// normals on average, and on building programs, some 1,700).
+const CLUSTER_LINEAR: usize = 64;
+
+/// Up to this many distinct normals, [`spread`] compares every pair (as cheap as the grid
+/// there).
+const SPREAD_BRUTE_FORCE: usize = 64;
 
 /// Rings of cells [`spread`] searches around a normal before comparing it with all.
 const SPREAD_MAX_RING: usize = 3;
@@ -215,14 +222,29 @@ pub(super) fn cluster(
     grid: &mut NormalGrid,
 ) {
     reps.clear();
-    if normals.is_empty() {
+    let cos = f64::from(tolerance_deg).to_radians().cos();
+    // While there are few representatives, comparing with each is cheapest.
+    let mut rest = normals;
+    while let Some((&n, tail)) = rest.split_first() {
+        if reps.len() == CLUSTER_LINEAR {
+            break;
+        }
+        if !reps.iter().any(|&r| dot(n, r) >= cos) {
+            reps.push(n);
+        }
+        rest = tail;
+    }
+    if rest.is_empty() {
         return;
     }
-    let cos = f64::from(tolerance_deg).to_radians().cos();
+    // Then through the grid, which holds the representatives found so far.
     let (lo, hi, norm2) = bounds(normals);
     let reach = (2.0 * norm2 - 2.0 * cos + SLACK).max(0.0).sqrt() + SLACK;
     grid.shape(lo, hi, 2.0 * reach, normals.len());
-    for &n in normals {
+    for &r in reps.iter() {
+        grid.insert(coords(r));
+    }
+    for &n in rest {
         let p = coords(n);
         let (from, to) = grid.cells_around(p, reach);
         let own = grid.cell_of(p);
