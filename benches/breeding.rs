@@ -8,15 +8,21 @@ use shapegen::{Genome, Grammar};
 /// One of the four operators.
 #[derive(Clone, Copy)]
 pub enum Op {
+    /// `Operators::grow`.
     Grow,
+    /// `Operators::cut`.
     Cut,
+    /// `Operators::alter`.
     Alter,
+    /// `Operators::crossover`.
     Crossover,
 }
 
 impl Op {
+    /// The four, in this order.
     pub const ALL: [Op; 4] = [Op::Grow, Op::Cut, Op::Alter, Op::Crossover];
 
+    /// The operator's name, for a benchmark's id.
     pub fn name(self) -> &'static str {
         match self {
             Op::Grow => "grow",

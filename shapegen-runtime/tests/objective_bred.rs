@@ -3,7 +3,8 @@
 //! objective, over random operator sequences on the building generator, at 1 and 2
 //! threads; and the distinct-normals objectives equal their definitions (every normal
 //! compared with every distinct normal) to the bit, on random buildings and on triangle
-//! soups made to sit on the tolerance.
+//! soups made to sit on the tolerance. The weighted objectives of single-objective
+//! searches count bred children the same way.
 //!
 //! The number of sequences scales with `SHAPEGEN_PROPERTY_SCALE` (default 1; the debug
 //! build runs a fifth of the release build's).
@@ -17,11 +18,12 @@ use generators::building::{self, Building};
 use glam::{Affine3A, Quat, Vec2, Vec3};
 use rand::{Rng, RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use shapegen_runtime::evaluate::Evaluator;
 use shapegen_runtime::geometry::{BoundMeshes, Mesh, MeshId, MeshLibrary};
 use shapegen_runtime::ops::{OperatorVariant, Operators};
 use shapegen_runtime::score::InstanceBatch;
 use shapegen_runtime::score::objective::{
-    BredObjectives, Objective, ObjectiveScratch, ObjectiveSet, Surface,
+    BredObjectives, Objective, ObjectiveScratch, ObjectiveSet, Surface, WeightedObjectives,
 };
 use shapegen_runtime::{Genome, Grammar, Instance};
 use support::breeding::{bred, sequences};
@@ -244,6 +246,42 @@ fn unrelated_parents_still_give_exact_values() {
     assert_eq!(values, full);
 }
 
+/// The weighted objectives of a single-objective search count bred children the same
+/// way: their fitness from the parents equals their fitness in full.
+#[test]
+fn weighted_objectives_score_bred_children_as_in_full() {
+    let set = every_kind(1.0);
+    let weights = vec![1.0, 0.5, 0.01, 2.0, 0.1, 1.0];
+    let mut bred_fitness =
+        WeightedObjectives::new(set.clone(), weights.clone(), building_meshes()).unwrap();
+    let mut full_fitness = WeightedObjectives::new(set, weights, building_meshes())
+        .unwrap()
+        .with_incremental(false);
+    assert!(bred_fitness.bred().is_some() && full_fitness.bred().is_none());
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let mut ops = Operators::<Building>::new(building::LIMITS).unwrap();
+    let n = sequences(40);
+    let mut population: Vec<Genome<Building>> = (0..n).map(|_| ops.random(30, &mut rng)).collect();
+    for _ in 0..4 {
+        let from: Vec<u32> = (0..n).map(|_| rng.random_range(0..n as u32)).collect();
+        let children: Vec<Genome<Building>> = from
+            .iter()
+            .map(|&p| bred(&mut ops, &population[p as usize], 30, &mut rng))
+            .collect();
+        let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
+        bred_fitness
+            .evaluate_bred(&children, &population, &from, &mut a)
+            .unwrap();
+        full_fitness
+            .evaluate_bred(&children, &population, &from, &mut b)
+            .unwrap();
+        assert_eq!(a, b);
+        population = children;
+    }
+    let stats = bred_fitness.bred().unwrap().stats();
+    assert!(stats.incremental > stats.full, "{stats:?}");
+}
+
 /// A set without projections has nothing to count from parents.
 #[test]
 fn only_projections_are_counted_from_parents() {
@@ -328,7 +366,7 @@ fn soup(case: usize, tolerance_deg: f32, rng: &mut impl Rng) -> Vec<Instance> {
             facing(normal, rng)
         })
         .collect();
-    if case % 11 == 0 {
+    if case.is_multiple_of(11) {
         let again: Vec<Instance> = out.iter().rev().copied().collect();
         out.extend(again);
     }

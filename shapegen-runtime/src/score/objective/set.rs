@@ -288,14 +288,27 @@ impl WeightedObjectives {
         &self.set
     }
 
+    /// Whether bred children's projection objectives are counted from their parents'
+    /// kept state (the default).
+    pub fn with_incremental(mut self, incremental: bool) -> Self {
+        self.bred = incremental
+            .then(|| BredObjectives::new(&self.set, &self.meshes))
+            .flatten();
+        self
+    }
+
+    /// What counts bred children incrementally: `None` when that is off or the set has
+    /// no projection objective.
+    pub fn bred(&self) -> Option<&BredObjectives> {
+        self.bred.as_ref()
+    }
+
     /// The raw values of the last population evaluated, row by row (one row of
     /// [`len`](ObjectiveSet::len) values per genome).
     pub fn values(&self) -> &[f64] {
         &self.values
     }
-}
 
-impl WeightedObjectives {
     /// Writes the fitness of `genomes` to `out`, counting their projections from their
     /// parents' kept state when `lineage` (`parents`, `from`) is given and incremental
     /// counting is on.
