@@ -2,9 +2,10 @@
 //! distinct normals are.
 //!
 //! Both are defined by comparing normals with every distinct normal found (see
-//! [`cluster`] and [`spread`]); both are computed here through a [`NormalGrid`] of cubic
-//! cells, so that a normal is compared only with the distinct normals of the cells that
-//! can hold one close enough to matter. Whether a normal joins a representative, and
+//! [`cluster`] and [`spread`]). Once there are more than a few dozen distinct normals,
+//! both go through a [`NormalGrid`] of cubic cells instead, so that a normal is compared
+//! only with the distinct normals of the cells that can hold one close enough to
+//! matter. Whether a normal joins a representative, and
 //! which representative is nearest, do not depend on the order the candidates are
 //! visited in, and every cell that could hold a deciding candidate is visited (the
 //! bounds below include the rounding of the `f64` dot products and cell indices), so
