@@ -11,6 +11,8 @@
 //! scene), `incremental` clones the parent's state, diffs the two instance lists and
 //! updates the state ([`RetainedScorer`]), as the search does.
 
+mod breeding;
+
 use std::hint::black_box;
 use std::path::Path;
 
@@ -24,29 +26,9 @@ use shapegen::score::Scorer;
 use shapegen::score::retained::{InstanceDiff, RetainedScorer};
 use shapegen::{Genome, Grammar, Instance};
 
+use breeding::Op;
+
 const PAIRS: usize = 64;
-
-/// The four operators.
-#[derive(Clone, Copy)]
-enum Op {
-    Grow,
-    Cut,
-    Alter,
-    Crossover,
-}
-
-impl Op {
-    const ALL: [Op; 4] = [Op::Grow, Op::Cut, Op::Alter, Op::Crossover];
-
-    fn name(self) -> &'static str {
-        match self {
-            Op::Grow => "grow",
-            Op::Cut => "cut",
-            Op::Alter => "alter",
-            Op::Crossover => "crossover",
-        }
-    }
-}
 
 /// A parent's instances and kept states, and its child's instances.
 struct Pair {
@@ -73,24 +55,7 @@ fn pairs<G: Grammar>(
     (0..PAIRS)
         .map(|_| {
             let parent: Genome<G> = ops.random(initial, &mut rng);
-            let mut child = parent.clone();
-            match op {
-                Op::Grow => {
-                    ops.grow(&mut child, &mut rng);
-                }
-                Op::Cut => {
-                    ops.cut(&mut child, &mut rng);
-                }
-                Op::Alter => {
-                    ops.alter(&mut child, &mut rng);
-                }
-                Op::Crossover => {
-                    let other = ops.random(initial, &mut rng);
-                    if let Some((a, _)) = ops.crossover(&parent, &other, &mut rng) {
-                        child = a;
-                    }
-                }
-            }
+            let child = op.child(&mut ops, &parent, initial, &mut rng);
             let (mut p, mut c) = (Vec::new(), Vec::new());
             parent.derive_into(&mut p);
             child.derive_into(&mut c);

@@ -2,16 +2,37 @@
 //! boxes each, some turned, and a low-poly dome) measured against all six objective kinds
 //! (128 x 128 projection images), on one thread and on all threads; and each objective
 //! alone on one thread.
+//!
+//! Then the building scene's (`scenes/building.toml`) generator, on one thread: the
+//! distinct-normals objectives alone on 64 random building programs of [`GENES`] genes;
+//! and bred children, per operator, measured against the scene's objectives (its top and
+//! front projections and distinct normals): each row measures 64 children, each one
+//! operator applied to one of those programs (the crossover's partner another random
+//! genome), with the scene's operators.
+//! `full` measures them as the first generation is ([`ObjectiveSet::measure_batch`]),
+//! `incremental` as the multi-objective GA does, the projections from the parents' kept
+//! states ([`BredObjectives::measure_bred`], the parents' states counted before the
+//! timing); both start from the children's derived instances.
+
+mod breeding;
 
 use std::f32::consts::{FRAC_PI_4, PI, TAU};
+use std::path::Path;
 
-use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use generators::Building;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use shapegen::ops::{OperatorVariant, Operators};
+use shapegen::registry::Registry;
+use shapegen::scene::{Overrides, Scene};
+use shapegen::{Genome, Grammar};
 use shapegen_runtime::geometry::{BoundMeshes, Mesh, MeshId, MeshLibrary};
 use shapegen_runtime::prelude::{Affine3A, Quat, Vec2, Vec3};
 use shapegen_runtime::score::InstanceBatch;
-use shapegen_runtime::score::objective::{Objective, ObjectiveSet, ProjectionMatch, View};
+use shapegen_runtime::score::objective::{
+    BredObjectives, Objective, ObjectiveSet, ProjectionMatch, View,
+};
 use shapegen_runtime::{CUBE, Instance};
 
 const POPULATION: usize = 300;
@@ -209,5 +230,122 @@ fn objective(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, objective);
+/// Genes of the building programs of the rows below: the size the building scene's
+/// search grows its models to (its front after 60 generations holds models of 49 to 288
+/// genes).
+const GENES: u32 = 150;
+
+/// Models per row.
+const MODELS: usize = 64;
+
+/// The building scene, its meshes and the operators of its GA.
+fn building_scene() -> (Scene, BoundMeshes, OperatorVariant) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/building.toml");
+    let scene = Scene::open(&path, &Registry::published(), &Overrides::default())
+        .expect("the building scene loads");
+    let meshes = scene.meshes.bind(Building::GRAPH).expect("its meshes bind");
+    let operators = scene
+        .multi_settings()
+        .expect("it is a GA scene")
+        .ga
+        .operators;
+    (scene, meshes, operators)
+}
+
+/// [`MODELS`] random building programs of [`GENES`] genes, and the operators that made
+/// them, ready to breed.
+fn building_programs(
+    scene: &Scene,
+    operators: OperatorVariant,
+) -> (Vec<Genome<Building>>, Operators<Building>, ChaCha8Rng) {
+    let mut rng = ChaCha8Rng::seed_from_u64(23);
+    let mut ops = Operators::<Building>::new(scene.limits)
+        .expect("the scene's limits are valid")
+        .with_variant(operators);
+    let programs = (0..MODELS).map(|_| ops.random(GENES, &mut rng)).collect();
+    (programs, ops, rng)
+}
+
+fn batch_of(genomes: &[Genome<Building>]) -> InstanceBatch {
+    let mut batch = InstanceBatch::new();
+    for genome in genomes {
+        batch.push_genome(genome);
+    }
+    batch
+}
+
+fn one_thread() -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("a thread pool")
+}
+
+/// The distinct-normals objectives on building programs, whose turned and twisted parts
+/// and spheres have thousands of distinct normals (unlike the synthetic buildings
+/// above), on one thread.
+fn building_normals(c: &mut Criterion) {
+    let (scene, meshes, operators) = building_scene();
+    let (programs, _, _) = building_programs(&scene, operators);
+    let batch = batch_of(&programs);
+    let single = one_thread();
+    let mut group = c.benchmark_group("objective/building-models");
+    group.throughput(Throughput::Elements(MODELS as u64));
+    for tolerance_deg in [1.0, 5.0] {
+        for objective in [
+            Objective::UniqueNormals { tolerance_deg },
+            Objective::NormalSpread { tolerance_deg },
+        ] {
+            let name = format!("{}-{tolerance_deg}-degrees", objective.name());
+            let alone =
+                ObjectiveSet::new(vec![(name.clone(), objective)]).expect("the objective is valid");
+            let mut out = vec![0.0; MODELS];
+            group.bench_function(name, |b| {
+                b.iter(|| single.install(|| alone.measure_batch(&batch, &meshes, &mut out)))
+            });
+        }
+    }
+    group.finish();
+}
+
+/// Bred children of the building scene, measured in full and from their parents.
+fn bred_children(c: &mut Criterion) {
+    let (scene, meshes, operators) = building_scene();
+    let set = &scene.objectives.as_ref().expect("it has objectives").set;
+    let single = one_thread();
+    let mut group = c.benchmark_group("objective/building-children");
+    group.throughput(Throughput::Elements(MODELS as u64));
+    for op in breeding::Op::ALL {
+        let (parents, mut ops, mut rng) = building_programs(&scene, operators);
+        let children: Vec<_> = parents
+            .iter()
+            .map(|p| op.child(&mut ops, p, GENES, &mut rng))
+            .collect();
+        let batch = batch_of(&children);
+        let from: Vec<u32> = (0..MODELS as u32).collect();
+        let mut out = vec![0.0; MODELS * set.len()];
+        group.bench_function(BenchmarkId::new("full", op.name()), |b| {
+            b.iter(|| single.install(|| set.measure_batch(&batch, &meshes, &mut out)))
+        });
+        let mut bred = BredObjectives::new(set, &meshes).expect("the scene has projections");
+        single.install(|| bred.measure_bred(&children, &batch, &parents, &from, &mut out));
+        group.bench_function(BenchmarkId::new("incremental", op.name()), |b| {
+            b.iter(|| {
+                single.install(|| bred.measure_bred(&children, &batch, &parents, &from, &mut out))
+            })
+        });
+        let stats = bred.stats();
+        eprintln!(
+            "objective/building-children/{}: {:.1} % of the children's instances changed, \
+             {} of {} children counted from their parents",
+            op.name(),
+            100.0 * stats.changed_instances as f64 / stats.child_instances.max(1) as f64,
+            stats.incremental,
+            stats.incremental + stats.full
+        );
+    }
+    group.finish();
+}
+
+criterion_group!(benches, objective, building_normals, bred_children);
 criterion_main!(benches);

@@ -7,7 +7,7 @@ mod support;
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use support::{fails, interrupt_when, ok, s, timeless_summary};
+use support::{fails, interrupt_when, ok, s, shapegen, timeless_summary, timeless_table};
 
 /// A tiny multi-objective building scene: a 16 x 16 footprint target (the lot's left
 /// half), distinct normals and a height of 20; population 16 for 5 generations.
@@ -156,6 +156,47 @@ fn a_resumed_front_run_ends_as_an_uninterrupted_one() {
         read(&parts, "front.genomes.json"),
         read(&whole, "front.genomes.json")
     );
+}
+
+/// Counting bred children's projections from their parents' kept state changes nothing
+/// but the time: the same front, genomes and history (its elapsed_s column aside) as
+/// measuring every child in full.
+#[test]
+fn a_front_run_ends_the_same_with_and_without_incremental_scoring() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene(dir.path());
+    let (on, off) = (dir.path().join("on"), dir.path().join("off"));
+    let base = ["run", s(&scene), "--generations", "12", "--out"];
+    let run = shapegen(&[&base[..], &[s(&on)]].concat());
+    assert!(run.status.success());
+    let printed = String::from_utf8(run.stderr).unwrap();
+    assert!(
+        printed.contains("incremental scoring: ") && printed.contains("projection objectives"),
+        "{printed}"
+    );
+    ok(&[&base[..], &[s(&off), "--no-incremental"]].concat());
+    assert_eq!(timeless_summary(&on), timeless_summary(&off));
+    for file in ["front.csv", "front.genomes.json"] {
+        assert_eq!(read(&on, file), read(&off, file), "{file}");
+    }
+    let history = timeless_table(&on, "history.csv");
+    assert_eq!(history, timeless_table(&off, "history.csv"));
+    assert_eq!(history.len(), 1 + 13);
+
+    let summary = |dir: &Path| -> serde_json::Value {
+        serde_json::from_str(&read(dir, "summary.json")).unwrap()
+    };
+    let counted = &summary(&on)["incremental"];
+    // 12 generations of 14 bred children, each counted one way or the other.
+    let children = counted["children_incremental"].as_u64().unwrap()
+        + counted["children_full"].as_u64().unwrap();
+    assert_eq!(children, 12 * 14, "{counted}");
+    assert!(
+        counted["children_incremental"].as_u64().unwrap() > 84,
+        "{counted}"
+    );
+    assert!(counted["kept_bytes"].as_u64().unwrap() > 0, "{counted}");
+    assert!(summary(&off).get("incremental").is_none());
 }
 
 #[test]

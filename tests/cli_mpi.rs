@@ -12,51 +12,91 @@ use std::process::{Command, ExitCode, Output, Stdio};
 use std::time::{Duration, Instant};
 
 use libtest_mimic::{Arguments, Failed, Trial};
+use support::slurm::{PATIENCE, output_in, probe, read_logs, wait_for};
 use support::{ok, s, skyline_scene, timeless_curve, timeless_summary};
 
-/// The tests of this file: name and body, which panics when the test fails.
-const TESTS: &[(&str, fn())] = &[
+/// What a test needs that a machine may lack.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Needs {
+    /// The `mpi` feature and `mpirun`.
+    Mpi,
+    /// Those and a Slurm cluster.
+    MpiAndSlurm,
+}
+
+/// The tests of this file: name, needs and body, which panics when the test fails.
+const TESTS: &[(&str, Needs, fn())] = &[
     (
         "island_runs_are_the_same_on_one_two_and_four_processes",
+        Needs::Mpi,
         island_runs_are_the_same_on_one_two_and_four_processes,
     ),
     (
         "a_stop_on_one_rank_stops_every_rank_and_the_run_resumes_on_others",
+        Needs::Mpi,
         a_stop_on_one_rank_stops_every_rank_and_the_run_resumes_on_others,
     ),
     (
         "islands_the_processes_cannot_share_are_refused",
+        Needs::Mpi,
         islands_the_processes_cannot_share_are_refused,
+    ),
+    (
+        "island_runs_under_slurm_equal_one_process",
+        Needs::MpiAndSlurm,
+        island_runs_under_slurm_equal_one_process,
     ),
 ];
 
+/// Why MPI runs cannot be tested here, if they cannot.
+fn mpi_missing() -> Option<String> {
+    if !cfg!(feature = "mpi") {
+        return Some(
+            "the binary is built without the `mpi` feature (cargo test --features mpi)".into(),
+        );
+    }
+    Command::new("mpirun")
+        .arg("--version")
+        .output()
+        .err()
+        .map(|err| format!("`mpirun` does not run ({err}); install openmpi-bin"))
+}
+
 fn main() -> ExitCode {
     let args = Arguments::from_args();
-    let required = std::env::var("SHAPEGEN_REQUIRE_MPI").as_deref() == Ok("1");
-    let missing = if !cfg!(feature = "mpi") {
-        Some("the binary is built without the `mpi` feature (cargo test --features mpi)".into())
-    } else {
-        Command::new("mpirun")
-            .arg("--version")
-            .output()
-            .err()
-            .map(|err| format!("`mpirun` does not run ({err}); install openmpi-bin"))
-    };
-    match &missing {
-        None => {}
-        Some(why) if required => eprintln!("{why}; SHAPEGEN_REQUIRE_MPI=1, so the MPI tests fail"),
-        Some(why) => eprintln!("{why}; the MPI tests are ignored"),
+    let require = |var: &str| std::env::var(var).as_deref() == Ok("1");
+    // Each missing piece, whether a variable makes it a failure, and that variable.
+    let mpi =
+        mpi_missing().map(|why| (why, require("SHAPEGEN_REQUIRE_MPI"), "SHAPEGEN_REQUIRE_MPI"));
+    let slurm = probe().err().map(|why| {
+        (
+            why,
+            require("SHAPEGEN_REQUIRE_SLURM"),
+            "SHAPEGEN_REQUIRE_SLURM",
+        )
+    });
+    for (why, required, var) in mpi.iter().chain(&slurm) {
+        match required {
+            true => eprintln!("{why}; {var}=1, so the tests that need it fail"),
+            false => eprintln!("{why}; the tests that need it are ignored"),
+        }
     }
     let trials = TESTS
         .iter()
-        .map(|&(name, test)| match &missing {
-            None => Trial::test(name, move || {
-                test();
-                Ok(())
-            }),
-            Some(why) => {
-                let why = why.clone();
-                Trial::test(name, move || Err(Failed::from(why))).with_ignored_flag(!required)
+        .map(|&(name, needs, test)| {
+            let missing = match needs {
+                Needs::Mpi => mpi.as_ref(),
+                Needs::MpiAndSlurm => mpi.as_ref().or(slurm.as_ref()),
+            };
+            match missing {
+                None => Trial::test(name, move || {
+                    test();
+                    Ok(())
+                }),
+                Some((why, required, _)) => {
+                    let why = why.clone();
+                    Trial::test(name, move || Err(Failed::from(why))).with_ignored_flag(!required)
+                }
             }
         })
         .collect();
@@ -227,5 +267,57 @@ fn islands_the_processes_cannot_share_are_refused() {
         assert!(!run.status.success(), "{args:?} succeeded");
         let err = String::from_utf8_lossy(&run.stderr);
         assert!(err.contains(expected), "{args:?}: {err}");
+    }
+}
+
+fn island_runs_under_slurm_equal_one_process() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = std::fs::canonicalize(dir.path()).unwrap();
+    let scene = skyline_scene(&dir);
+    let run = [
+        "run",
+        s(&scene),
+        "--cpu",
+        "--islands",
+        "4",
+        "--set",
+        "islands.interval=3",
+    ];
+    let alone = dir.join("alone");
+    ok(&[&run[..], &["--out", s(&alone)]].concat());
+    let bin = env!("CARGO_BIN_EXE_shapegen");
+    let logs = dir.join("logs");
+    std::fs::create_dir_all(&logs).unwrap();
+    let deadline = Instant::now() + PATIENCE;
+    let launchers = [
+        ("mpirun", "mpirun --allow-run-as-root -n 2"),
+        ("srun", "srun --mpi=pmix"),
+    ];
+    let mut jobs = Vec::new();
+    for (name, launcher) in launchers {
+        let out = dir.join(name);
+        let command = format!(
+            "{launcher} {bin} --threads 1 {} --out {}",
+            run.join(" "),
+            s(&out)
+        );
+        let log = format!("--output={}", s(&logs.join(format!("{name}.log"))));
+        let id = output_in(
+            &dir,
+            "sbatch",
+            &["--parsable", "-n", "2", &log, "--wrap", &command],
+        )
+        .unwrap_or_else(|err| panic!("{err}"));
+        jobs.push((name, id.trim().to_owned(), out));
+    }
+    for (name, id, out) in jobs {
+        wait_for(&id, deadline, &logs).unwrap_or_else(|err| panic!("{err}"));
+        assert!(
+            out.join("summary.json").exists(),
+            "the {name} job wrote no summary:\n{}",
+            read_logs(&logs)
+        );
+        assert_eq!(processes(&out), 2, "{name}");
+        assert_eq!(outcome(&out), outcome(&alone), "{name}");
     }
 }

@@ -6,7 +6,9 @@
 //! build of the tests runs a fifth of the release build's sequences).
 
 mod support {
+    pub mod breeding;
     pub mod city_expanded;
+    pub mod objective_scenes;
     pub mod scenes;
     pub mod silhouette_scenes;
     pub mod volume_scenes;
@@ -14,69 +16,27 @@ mod support {
 
 use generators::{building, city, spaceship, tree};
 use glam::Vec3;
-use rand::{Rng, RngExt, SeedableRng};
+use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use shapegen_runtime::ops::{OperatorVariant, Operators};
+use shapegen_runtime::score::objective::ProjectionScorer;
 use shapegen_runtime::score::retained::{InstanceDiff, RetainedScorer, Retention};
 use shapegen_runtime::score::silhouette::{Camera, ImageTarget, SilhouetteScorer};
 use shapegen_runtime::score::volume::VolumeScorer;
 use shapegen_runtime::score::{InstanceBatch, Scorer, count_batch};
 use shapegen_runtime::{BoundMeshes, Genome, Grammar, Instance, Limits, MeshLibrary};
+use support::breeding::{bred, sequences};
 use support::scenes::scenes;
 use support::silhouette_scenes::{SMOOTH, city_camera, tree_camera};
 use support::volume_scenes::{
     aabb, block, city_tower_scorer, paper_grid, paper_ship_scorer, target, turned_box,
 };
 
-/// How many sequences each case runs: `release` in a release build, a fifth in debug,
-/// times `SHAPEGEN_PROPERTY_SCALE`.
-fn sequences(release: usize) -> usize {
-    let scale: usize = std::env::var("SHAPEGEN_PROPERTY_SCALE")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(1);
-    let base = if cfg!(debug_assertions) {
-        release.div_ceil(5)
-    } else {
-        release
-    };
-    base * scale
-}
-
 /// Operators applied per sequence, each to the previous child.
 const STEPS: usize = 12;
 
 fn derive<G: Grammar>(g: &Genome<G>, out: &mut Vec<Instance>) {
     g.derive_into(out);
-}
-
-/// One random operator on `g` (grow, cut, alter, or a crossover with a fresh random
-/// genome), with the weighted or the original rules.
-fn bred<G: Grammar>(
-    ops: &mut Operators<G>,
-    g: &Genome<G>,
-    initial: u32,
-    rng: &mut impl Rng,
-) -> Genome<G> {
-    let mut child = g.clone();
-    match rng.random_range(0..4) {
-        0 => {
-            ops.grow(&mut child, rng);
-        }
-        1 => {
-            ops.cut(&mut child, rng);
-        }
-        2 => {
-            ops.alter(&mut child, rng);
-        }
-        _ => {
-            let other = ops.random(initial, rng);
-            if let Some((a, b)) = ops.crossover(g, &other, rng) {
-                child = if rng.random::<bool>() { a } else { b };
-            }
-        }
-    }
-    child
 }
 
 /// Runs random operator sequences from random genomes: every child's counts from its
@@ -289,6 +249,27 @@ fn building_volume_and_silhouette() {
         sequences(150),
         7,
     );
+}
+
+/// The projection objectives of the building scene, from above and from the front: a
+/// model's projection counted instance by instance from its parent's kept counts equals
+/// the whole model rasterized at once.
+#[test]
+fn building_projections() {
+    let meshes = generators::default_meshes()
+        .bind(building::Building::GRAPH)
+        .unwrap();
+    let [top, front] = support::objective_scenes::building_projections();
+    for (name, projection, seed) in [("top", top, 8), ("front", front, 9)] {
+        check_sequences::<building::Building, _>(
+            &format!("building {name} projection"),
+            &ProjectionScorer::new(projection, meshes.clone()),
+            building::LIMITS,
+            30,
+            sequences(200),
+            seed,
+        );
+    }
 }
 
 /// Breeds `generations` generations of a small GA-like population (children from

@@ -18,6 +18,7 @@ use shapegen::scene::{ObjectiveEvaluator, Overrides, Scene};
 use shapegen::score::objective::{ObjectiveSet, Surface};
 use shapegen::{BoundMeshes, Grammar, Instance};
 
+use super::backend::Incremental;
 use super::checkpoint::Checkpoint;
 use super::files::{Files, atomic_write, csv_bytes, save_png};
 use super::interrupt;
@@ -54,6 +55,10 @@ struct Summary<'a> {
     ranking: &'a str,
     objectives: Vec<ObjectiveSummary<'a>>,
     stopped: &'a str,
+    /// How bred children's projection objectives were counted; absent when every
+    /// objective of every model was measured in full.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    incremental: Option<Incremental>,
 }
 
 /// Where a multi-objective run comes from and goes to.
@@ -68,6 +73,8 @@ pub struct FrontRun<'a> {
     pub dir: &'a Path,
     /// The folder of the run to resume, if any.
     pub resume: Option<&'a Path>,
+    /// Whether bred children may be counted from their parents' kept state.
+    pub incremental: bool,
 }
 
 impl FrontRun<'_> {
@@ -88,7 +95,8 @@ impl FrontRun<'_> {
             None => MultiGa::<G>::new(settings, self.scene.limits, goal.seed)?,
         };
         let ranking = ranking_name(&ga.settings().selection.ranking);
-        let mut evaluator = ObjectiveEvaluator::new::<G>(self.scene)?;
+        let mut evaluator =
+            ObjectiveEvaluator::new::<G>(self.scene)?.with_incremental(self.incremental);
         let set = evaluator.set();
         let names: Vec<&str> = set.names().collect();
         eprintln!(
@@ -158,11 +166,15 @@ impl FrontRun<'_> {
             ranking,
             objectives,
             stopped,
+            incremental: evaluator.retention().map(Incremental::from),
         };
         atomic_write(
             &self.dir.join("summary.json"),
             serde_json::to_string_pretty(&summary)?.as_bytes(),
         )?;
+        if let Some(incremental) = &summary.incremental {
+            eprintln!("{incremental} (the projection objectives; the others measured in full)");
+        }
         println!(
             "{} non-dominated models after {} generations and {} evaluations ({stopped}); wrote \
              front/ (one .glb each), front.csv, front.genomes.json, contact_sheet.png, \

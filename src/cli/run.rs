@@ -166,6 +166,7 @@ impl Visit for Run<'_> {
                 overrides: self.overrides,
                 dir: self.dir,
                 resume: self.args.resume.as_deref(),
+                incremental: self.args.backend.incremental(),
             }
             .run::<G>();
         }

@@ -6,7 +6,10 @@ use shapegen_runtime::geometry::BoundMeshes;
 use shapegen_runtime::optimize::multi::MultiEvaluator;
 use shapegen_runtime::optimize::{EvaluateError, Sense};
 use shapegen_runtime::score::InstanceBatch;
-use shapegen_runtime::score::objective::{Objective, ObjectiveSet, ProjectionMatch, View};
+use shapegen_runtime::score::objective::{
+    BredObjectives, Objective, ObjectiveSet, ProjectionMatch, View,
+};
+use shapegen_runtime::score::retained::RetentionStats;
 use shapegen_runtime::{Genome, Grammar};
 
 use super::file::{ObjectiveFile, ProjectionFile};
@@ -99,15 +102,23 @@ impl Resolver<'_> {
 /// Measures a multi-objective scene's objectives on whole populations of grammar `G`:
 /// derives the genomes into one batch and measures it on the rayon pool. Its buffers are
 /// kept between populations.
+///
+/// Children bred from a measured population
+/// ([`evaluate_bred`](MultiEvaluator::evaluate_bred)) have their projection objectives
+/// counted from what was kept of their parents ([`BredObjectives`]), with exactly the
+/// values of measuring them in full; [`with_incremental(false)`](Self::with_incremental)
+/// measures every child in full.
 #[derive(Debug)]
 pub struct ObjectiveEvaluator<'a> {
     set: &'a ObjectiveSet,
     meshes: BoundMeshes,
     batch: InstanceBatch,
+    bred: Option<BredObjectives>,
 }
 
 impl<'a> ObjectiveEvaluator<'a> {
-    /// The evaluator of `scene`'s objectives for grammar `G`, the scene's generator.
+    /// The evaluator of `scene`'s objectives for grammar `G`, the scene's generator,
+    /// counting bred children incrementally where it can.
     ///
     /// # Errors
     /// [`SceneError::Invalid`] when the scene has no objectives or its meshes lack one
@@ -125,9 +136,32 @@ impl<'a> ObjectiveEvaluator<'a> {
             .map_err(|err| scene.invalid("meshes", shapegen_runtime::error_chain(&err)))?;
         Ok(ObjectiveEvaluator {
             set: &goal.set,
+            bred: BredObjectives::new(&goal.set, &meshes),
             meshes,
             batch: InstanceBatch::new(),
         })
+    }
+
+    /// Whether bred children's projection objectives are counted from their parents'
+    /// kept state (the default).
+    pub fn with_incremental(mut self, incremental: bool) -> Self {
+        self.bred = incremental
+            .then(|| BredObjectives::new(self.set, &self.meshes))
+            .flatten();
+        self
+    }
+
+    /// Whether some objective of bred children is counted incrementally: incremental
+    /// counting is on and the scene has a projection objective.
+    pub fn incremental(&self) -> bool {
+        self.bred.is_some()
+    }
+
+    /// How the bred children's projection objectives were counted so far, and the bytes
+    /// of state kept now; `None` when nothing is counted incrementally.
+    pub fn retention(&self) -> Option<(RetentionStats, usize)> {
+        let bred = self.bred.as_ref()?;
+        Some((bred.stats(), bred.memory()))
     }
 
     /// The objectives measured.
@@ -139,6 +173,14 @@ impl<'a> ObjectiveEvaluator<'a> {
     pub fn meshes(&self) -> &BoundMeshes {
         &self.meshes
     }
+
+    /// Derives `genomes` into the batch.
+    fn derive<G: Grammar>(&mut self, genomes: &[Genome<G>]) {
+        self.batch.clear();
+        for genome in genomes {
+            self.batch.push_genome(genome);
+        }
+    }
 }
 
 impl<G: Grammar> MultiEvaluator<G> for ObjectiveEvaluator<'_> {
@@ -147,11 +189,23 @@ impl<G: Grammar> MultiEvaluator<G> for ObjectiveEvaluator<'_> {
     }
 
     fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError> {
-        self.batch.clear();
-        for genome in genomes {
-            self.batch.push_genome(genome);
-        }
+        self.derive(genomes);
         self.set.measure_batch(&self.batch, &self.meshes, out);
+        Ok(())
+    }
+
+    fn evaluate_bred(
+        &mut self,
+        genomes: &[Genome<G>],
+        parents: &[Genome<G>],
+        from: &[u32],
+        out: &mut [f64],
+    ) -> Result<(), EvaluateError> {
+        self.derive(genomes);
+        match &mut self.bred {
+            Some(bred) => bred.measure_bred(genomes, &self.batch, parents, from, out),
+            None => self.set.measure_batch(&self.batch, &self.meshes, out),
+        }
         Ok(())
     }
 }

@@ -3,6 +3,8 @@
 // Each test file uses the helpers it needs.
 #![allow(dead_code)]
 
+pub mod slurm;
+
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -100,9 +102,15 @@ pub fn timeless_summary(dir: &Path) -> serde_json::Value {
 
 /// A run's `fitness.csv` without its `elapsed_s` column, which differs between runs.
 pub fn timeless_curve(dir: &Path) -> Vec<String> {
-    fs::read_to_string(dir.join("fitness.csv"))
-        .expect("fitness.csv")
-        .lines()
+    timeless_table(dir, "fitness.csv")
+}
+
+/// A run's table `file` (`fitness.csv`, `history.csv`) without its second column,
+/// `elapsed_s`, which differs between runs.
+pub fn timeless_table(dir: &Path, file: &str) -> Vec<String> {
+    let text = fs::read_to_string(dir.join(file)).expect(file);
+    assert!(text.starts_with("generation,elapsed_s,"), "{file}: {text}");
+    text.lines()
         .map(|l| {
             let mut cells: Vec<&str> = l.split(',').collect();
             cells.remove(1);

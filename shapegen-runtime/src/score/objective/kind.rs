@@ -3,7 +3,7 @@
 use glam::{Vec2, Vec3};
 
 use super::ObjectiveError;
-use super::normals::{cluster, spread};
+use super::normals::{NormalGrid, cluster, spread};
 use super::projection::{ProjectionMatch, View};
 use super::surface::Surface;
 use crate::evaluate::Sense;
@@ -80,6 +80,7 @@ pub struct ObjectiveScratch {
     distinct: Vec<Vec3>,
     /// The tolerance `distinct` was clustered with, for the surface being measured.
     distinct_for: Option<f32>,
+    grid: NormalGrid,
 }
 
 impl ObjectiveScratch {
@@ -88,14 +89,18 @@ impl ObjectiveScratch {
         self.distinct_for = None;
     }
 
-    /// The distinct normals of `surface` at `tolerance_deg`, reused when the last ones
-    /// were clustered for the same surface at the same tolerance.
-    fn distinct(&mut self, surface: &Surface, tolerance_deg: f32) -> &[Vec3] {
+    /// Clusters the normals of `surface` at `tolerance_deg` into `distinct`, unless the
+    /// last ones were clustered for the same surface at the same tolerance.
+    fn cluster(&mut self, surface: &Surface, tolerance_deg: f32) {
         if self.distinct_for != Some(tolerance_deg) {
-            cluster(surface.normals(), tolerance_deg, &mut self.distinct);
+            cluster(
+                surface.normals(),
+                tolerance_deg,
+                &mut self.distinct,
+                &mut self.grid,
+            );
             self.distinct_for = Some(tolerance_deg);
         }
-        &self.distinct
     }
 }
 
@@ -170,10 +175,12 @@ impl Objective {
                 (f64::from(top) - f64::from(*target)).abs()
             }
             Objective::UniqueNormals { tolerance_deg } => {
-                scratch.distinct(surface, *tolerance_deg).len() as f64
+                scratch.cluster(surface, *tolerance_deg);
+                scratch.distinct.len() as f64
             }
             Objective::NormalSpread { tolerance_deg } => {
-                spread(scratch.distinct(surface, *tolerance_deg))
+                scratch.cluster(surface, *tolerance_deg);
+                spread(&scratch.distinct, &mut scratch.grid)
             }
             Objective::FootprintExcess { min, max } => surface.bounds().map_or(0.0, |(lo, hi)| {
                 let (lo, hi) = (Vec2::new(lo.x, lo.z), Vec2::new(hi.x, hi.z));

@@ -32,14 +32,18 @@
 //! # Ok::<(), shapegen_runtime::MeshError>(())
 //! ```
 
+mod bred;
 mod kind;
 mod normals;
 mod projection;
+mod retained;
 mod set;
 mod surface;
 
+pub use bred::BredObjectives;
 pub use kind::{Objective, ObjectiveScratch};
 pub use projection::{ProjectionMatch, View};
+pub use retained::{ProjectionCounts, ProjectionScorer, ProjectionScratch, ProjectionState};
 pub use set::{ObjectiveSet, WeightedObjectives};
 pub use surface::Surface;
 

@@ -221,16 +221,33 @@ impl ProjectionMatch {
 
     /// [`score`](Self::score) with a reusable coverage buffer.
     pub(super) fn score_with(&self, surface: &Surface, coverage: &mut Coverage) -> f64 {
-        let total = u64::from(self.width) * u64::from(self.height);
+        self.value(self.mismatched(surface, coverage))
+    }
+
+    /// The number of pixels whose coverage by `surface` differs from the mask, with a
+    /// reusable coverage buffer.
+    pub(super) fn mismatched(&self, surface: &Surface, coverage: &mut Coverage) -> u64 {
         coverage.shape(self.width, self.height);
         self.rasterize(surface, coverage);
         // Untouched words are uncovered: they mismatch exactly where the mask is set.
         let mut mismatched = self.mask_pixels;
-        coverage.drain(|w, bits| {
-            let mask = self.words[w];
-            mismatched =
-                mismatched - u64::from(mask.count_ones()) + u64::from((bits ^ mask).count_ones());
-        });
+        coverage.drain(|w, bits| mismatched = self.remismatched(mismatched, w, 0, bits));
+        mismatched
+    }
+
+    /// `mismatched` once the covered pixels of coverage word `w` change from `before` to
+    /// `after` (both bits of pixels of that word).
+    #[inline]
+    pub(super) fn remismatched(&self, mismatched: u64, w: usize, before: u64, after: u64) -> u64 {
+        let mask = self.words[w];
+        let wrong = |bits: u64| u64::from((bits ^ mask).count_ones());
+        mismatched + wrong(after) - wrong(before)
+    }
+
+    /// The score of a model whose coverage differs from the mask at `mismatched`
+    /// pixels.
+    pub(super) fn value(&self, mismatched: u64) -> f64 {
+        let total = u64::from(self.width) * u64::from(self.height);
         (total - mismatched) as f64 / total as f64
     }
 
@@ -249,7 +266,7 @@ impl ProjectionMatch {
     }
 
     /// Fills every triangle's projection into `coverage` (already shaped).
-    fn rasterize(&self, surface: &Surface, coverage: &mut Coverage) {
+    pub(super) fn rasterize(&self, surface: &Surface, coverage: &mut Coverage) {
         let scale =
             Vec2::new(self.width as f32, self.height as f32) / (self.area_max - self.area_min);
         let (min, max) = (self.area_min, self.area_max);

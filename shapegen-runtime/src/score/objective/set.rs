@@ -3,6 +3,7 @@
 use rayon::prelude::*;
 
 use super::ObjectiveError;
+use super::bred::BredObjectives;
 use super::kind::{Objective, ObjectiveScratch};
 use super::surface::Surface;
 use crate::evaluate::{EvaluateError, Evaluator, Sense};
@@ -104,9 +105,23 @@ impl ObjectiveSet {
         out: &mut [f64],
     ) {
         assert_eq!(out.len(), self.len(), "one value slot per objective");
+        self.measure_which(surface, scratch, out, |_| true);
+    }
+
+    /// Writes the values for `surface` of the objectives `which` accepts to their
+    /// slots of `out`.
+    fn measure_which(
+        &self,
+        surface: &Surface,
+        scratch: &mut ObjectiveScratch,
+        out: &mut [f64],
+        which: impl Fn(&Objective) -> bool,
+    ) {
         scratch.forget();
         for ((_, objective), slot) in self.entries.iter().zip(out) {
-            *slot = objective.measure_same(surface, scratch);
+            if which(objective) {
+                *slot = objective.measure_same(surface, scratch);
+            }
         }
     }
 
@@ -132,8 +147,27 @@ impl ObjectiveSet {
     /// # Panics
     /// If `out.len() != batch.len() * self.len()`.
     pub fn measure_batch(&self, batch: &InstanceBatch, meshes: &BoundMeshes, out: &mut [f64]) {
+        self.measure_rows(batch, meshes, out, |_| true);
+    }
+
+    /// [`measure_batch`](Self::measure_batch) for the objectives `which` accepts only:
+    /// their slots of `out` are written, the others' left as they are, and nothing is
+    /// done when it accepts none.
+    ///
+    /// # Panics
+    /// If `out.len() != batch.len() * self.len()`.
+    pub(super) fn measure_rows(
+        &self,
+        batch: &InstanceBatch,
+        meshes: &BoundMeshes,
+        out: &mut [f64],
+        which: impl Fn(&Objective) -> bool + Sync,
+    ) {
         let k = self.len();
         assert_eq!(out.len(), batch.len() * k, "one row of values per model");
+        if !self.entries.iter().any(|(_, o)| which(o)) {
+            return;
+        }
         let chunks = 4 * rayon::current_num_threads();
         let chunk = batch.len().div_ceil(chunks).max(1);
         out.par_chunks_mut(chunk * k)
@@ -143,7 +177,7 @@ impl ObjectiveSet {
                 let mut scratch = ObjectiveScratch::default();
                 for (i, row) in rows.chunks_exact_mut(k).enumerate() {
                     surface.fill(batch.model(c * chunk + i), meshes);
-                    self.measure_surface(&surface, &mut scratch, row);
+                    self.measure_which(&surface, &mut scratch, row, &which);
                 }
             });
     }
@@ -195,7 +229,10 @@ impl ObjectiveSet {
 
 /// An [`Evaluator`] whose fitness is an [`ObjectiveSet`]'s [weighted](ObjectiveSet::weighted)
 /// sum: drives a single-objective search (the GA, SMC, MCMC) with one objective or a
-/// weighted combination. Its buffers are kept between populations.
+/// weighted combination. Its buffers are kept between populations, and children bred
+/// from a scored population ([`evaluate_bred`](Evaluator::evaluate_bred)) have their
+/// projection objectives counted from their parents' kept state ([`BredObjectives`]),
+/// unless [`with_incremental(false)`](Self::with_incremental).
 ///
 /// ```
 /// use shapegen_runtime::evaluate::Evaluator;
@@ -217,13 +254,14 @@ impl ObjectiveSet {
 /// assert_eq!(fitness, [-1.0]); // the block's top is at 0.5, 1 below the target
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct WeightedObjectives {
     set: ObjectiveSet,
     weights: Vec<f64>,
     meshes: BoundMeshes,
     batch: InstanceBatch,
     values: Vec<f64>,
+    bred: Option<BredObjectives>,
 }
 
 impl WeightedObjectives {
@@ -236,6 +274,7 @@ impl WeightedObjectives {
     ) -> Result<WeightedObjectives, ObjectiveError> {
         set.check_weights(&weights)?;
         Ok(WeightedObjectives {
+            bred: BredObjectives::new(&set, &meshes),
             set,
             weights,
             meshes,
@@ -249,26 +288,70 @@ impl WeightedObjectives {
         &self.set
     }
 
+    /// Whether bred children's projection objectives are counted from their parents'
+    /// kept state (the default).
+    pub fn with_incremental(mut self, incremental: bool) -> Self {
+        self.bred = incremental
+            .then(|| BredObjectives::new(&self.set, &self.meshes))
+            .flatten();
+        self
+    }
+
+    /// What counts bred children incrementally: `None` when that is off or the set has
+    /// no projection objective.
+    pub fn bred(&self) -> Option<&BredObjectives> {
+        self.bred.as_ref()
+    }
+
     /// The raw values of the last population evaluated, row by row (one row of
     /// [`len`](ObjectiveSet::len) values per genome).
     pub fn values(&self) -> &[f64] {
         &self.values
     }
-}
 
-impl<G: Grammar> Evaluator<G> for WeightedObjectives {
-    fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError> {
+    /// Writes the fitness of `genomes` to `out`, counting their projections from their
+    /// parents' kept state when `lineage` (`parents`, `from`) is given and incremental
+    /// counting is on.
+    fn score<G: Grammar>(
+        &mut self,
+        genomes: &[Genome<G>],
+        lineage: Option<(&[Genome<G>], &[u32])>,
+        out: &mut [f64],
+    ) {
         self.batch.clear();
         for genome in genomes {
             self.batch.push_genome(genome);
         }
         let k = self.set.len();
         self.values.resize(genomes.len() * k, 0.0);
-        self.set
-            .measure_batch(&self.batch, &self.meshes, &mut self.values);
+        match (&mut self.bred, lineage) {
+            (Some(bred), Some((parents, from))) => {
+                bred.measure_bred(genomes, &self.batch, parents, from, &mut self.values)
+            }
+            _ => self
+                .set
+                .measure_batch(&self.batch, &self.meshes, &mut self.values),
+        }
         for (slot, row) in out.iter_mut().zip(self.values.chunks_exact(k)) {
             *slot = self.set.weighted_unchecked(row, &self.weights);
         }
+    }
+}
+
+impl<G: Grammar> Evaluator<G> for WeightedObjectives {
+    fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError> {
+        self.score(genomes, None, out);
+        Ok(())
+    }
+
+    fn evaluate_bred(
+        &mut self,
+        genomes: &[Genome<G>],
+        parents: &[Genome<G>],
+        from: &[u32],
+        out: &mut [f64],
+    ) -> Result<(), EvaluateError> {
+        self.score(genomes, Some((parents, from)), out);
         Ok(())
     }
 }

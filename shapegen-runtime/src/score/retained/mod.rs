@@ -54,10 +54,12 @@
 
 mod cells;
 mod diff;
+mod pixels;
 mod retention;
 
 pub use cells::{CellCounts, Changed, Overflow, TILE_BYTES, TILE_WORDS};
 pub use diff::InstanceDiff;
+pub use pixels::{Hit, PixelCounts};
 pub use retention::{Retention, RetentionStats};
 
 use super::Scorer;

@@ -1,11 +1,10 @@
 //! Incremental silhouette counting: per-pixel instance counts of one model.
 
 use super::counts::{SilhouetteCounts, TargetCounts};
-use super::raster::row_words;
 use super::scorer::{SilhouetteScorer, SilhouetteScratch};
 use super::target::ImageTarget;
 use crate::geometry::Instance;
-use crate::score::retained::{CellCounts, Overflow, RetainedScorer, TILE_WORDS};
+use crate::score::retained::{CellCounts, Hit, Overflow, PixelCounts, RetainedScorer};
 
 /// What a [`SilhouetteScorer`] keeps of one model: per target, how many of the model's
 /// instances cover each pixel, and the model's counts.
@@ -22,23 +21,14 @@ pub struct SilhouetteState {
 /// One target's part of a [`SilhouetteState`].
 #[derive(Clone, Debug)]
 struct TargetState {
-    cells: CellCounts,
+    pixels: PixelCounts,
     counts: TargetCounts,
-}
-
-/// Which way an instance's pixels go.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Hit {
-    Add,
-    Remove,
 }
 
 impl TargetState {
     fn new(target: &ImageTarget) -> TargetState {
-        let stride = row_words(target.width());
-        let bands = (target.height() as usize).div_ceil(TILE_WORDS);
         TargetState {
-            cells: CellCounts::new(bands * stride),
+            pixels: PixelCounts::new(target.width(), target.height()),
             counts: TargetCounts::default(),
         }
     }
@@ -56,26 +46,16 @@ impl SilhouetteScorer {
         scratch: &mut SilhouetteScratch,
     ) -> Result<(), Overflow> {
         let vp = t.view_projection();
-        let stride = row_words(t.width());
         let mut result = Ok(());
         for instance in instances {
             scratch.coverage.shape(t.width(), t.height());
             self.rasterize_instance(t, vp, instance, scratch);
-            let TargetState { cells, counts } = state;
+            let TargetState { pixels, counts } = state;
             scratch.coverage.drain(|w, bits| {
-                let (row, col) = (w / stride, w % stride);
-                let tile = row / TILE_WORDS * stride + col;
-                let word = row % TILE_WORDS;
-                let first = match hit {
-                    Hit::Add => match cells.add(tile, word, bits) {
-                        Ok(changed) => changed.first,
-                        Err(overflow) => {
-                            result = Err(overflow);
-                            0
-                        }
-                    },
-                    Hit::Remove => cells.remove(tile, word, bits).first,
-                };
+                let first = pixels.apply(hit, w, bits).unwrap_or_else(|overflow| {
+                    result = Err(overflow);
+                    0
+                });
                 if first == 0 {
                     return;
                 }
@@ -144,7 +124,7 @@ impl RetainedScorer for SilhouetteScorer {
 
     fn visit_cells(&self, state: &SilhouetteState, visit: &mut dyn FnMut(&CellCounts)) {
         for part in &state.targets {
-            visit(&part.cells);
+            visit(part.pixels.cells());
         }
     }
 }
