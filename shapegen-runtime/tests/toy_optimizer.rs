@@ -76,6 +76,16 @@ impl Optimizer<Chain> for Climb {
     type State = ClimbState;
     type Record = Best<Chain>;
 
+    /// The parent and its children; a checkpoint saves the parent.
+    fn genomes_held(settings: &ClimbSettings) -> Vec<Held> {
+        vec![Held {
+            genomes: u64::from(settings.lambda) + 1,
+            saved: 1,
+            setting: "lambda",
+            value: settings.lambda.into(),
+        }]
+    }
+
     fn new(settings: ClimbSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {
         let n = settings.lambda as usize + 1;
         let mut rng = stream(seed, 0, 0);

@@ -33,6 +33,11 @@ impl BackendArgs {
         }
     }
 
+    /// Whether models may be counted on a GPU: unless `--cpu` is given.
+    pub fn may_use_gpu(&self) -> bool {
+        self.choice() != BackendChoice::Cpu
+    }
+
     /// Whether bred children may be counted from their parents' kept state.
     pub fn incremental(&self) -> bool {
         !self.no_incremental
@@ -42,7 +47,7 @@ impl BackendArgs {
     /// reason is printed when `--gpu` is not given: the scorer then says it counts on the
     /// CPU).
     pub fn open(&self) -> Option<GpuContext> {
-        if self.choice() == BackendChoice::Cpu {
+        if !self.may_use_gpu() {
             return None;
         }
         match GpuContext::new() {

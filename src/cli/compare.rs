@@ -35,6 +35,7 @@ use super::dispatch::{Generators, Visit};
 use super::files::{atomic_write, csv_bytes, save_png};
 use super::folder::{Existing, Folder, Kind};
 use super::interrupt;
+use super::memory::{MemoryArgs, MemoryCheck};
 use super::plot::{self, Band};
 use super::search::{SessionRun, with_method};
 use super::stats::{curve, mean_std};
@@ -76,6 +77,8 @@ pub struct CompareArgs {
     /// before the comparison starts.
     #[arg(long)]
     force: bool,
+    #[command(flatten)]
+    memory: MemoryArgs,
 }
 
 /// Runs `shapegen compare`.
@@ -133,6 +136,18 @@ pub fn run(args: &CompareArgs, tool: &Generators) -> anyhow::Result<()> {
                 u64::MAX
             )
         })?;
+    tool.visit(
+        &scene.generator,
+        MemoryCheck {
+            scene: &scene,
+            goals: &goals,
+            threads: rayon::current_num_threads(),
+            jobs: 1,
+            incremental: args.backend.incremental(),
+            gpu: args.backend.may_use_gpu(),
+            limit: args.memory,
+        },
+    )?;
     let _folder = Folder::claim(
         &args.out,
         Kind::Compare,

@@ -7,7 +7,7 @@ use std::marker::PhantomData;
 
 use shapegen_runtime::Grammar;
 
-use super::{compare, export, genome, render, run, sample, score, sweep, target};
+use super::{compare, export, genome, memory, render, run, sample, score, sweep, target};
 use crate::registry::{Defaults, Entry, Registry, RegistryError};
 
 /// A command's body, generic over the grammar of the generator it works on.
@@ -54,6 +54,7 @@ jobs! {
     Run(run::Run<'a>),
     Compare(compare::Compare<'a>),
     Cell(sweep::cell::CellRun<'a>),
+    Memory(memory::MemoryCheck<'a>),
     Export(export::Export<'a>),
     Convert(genome::Convert<'a>),
 }

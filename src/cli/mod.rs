@@ -39,6 +39,7 @@ mod front;
 mod genome;
 mod genomes;
 mod interrupt;
+mod memory;
 #[cfg(feature = "mpi")]
 mod mpi;
 mod overlay;

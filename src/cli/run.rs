@@ -22,6 +22,7 @@ use super::files::{Files, atomic_write, csv_bytes};
 use super::folder::{Existing, Folder, Kind};
 use super::front::FrontRun;
 use super::interrupt;
+use super::memory::{MemoryArgs, MemoryCheck};
 use super::overlay::overlay;
 use super::plot;
 use super::processes::Processes;
@@ -76,6 +77,8 @@ pub struct RunArgs {
     /// they are removed, and listed, before this run starts.
     #[arg(long, conflicts_with = "resume")]
     force: bool,
+    #[command(flatten)]
+    memory: MemoryArgs,
 }
 
 /// `summary.json`.
@@ -127,6 +130,18 @@ pub fn run(args: &RunArgs, tool: &Generators) -> anyhow::Result<()> {
         };
         let scene = Scene::open(&scene_path, tool.registry(), &overrides)?;
         processes.check(&scene)?;
+        tool.visit(
+            &scene.generator,
+            MemoryCheck {
+                scene: &scene,
+                goals: std::slice::from_ref(&scene.optimizer),
+                threads: rayon::current_num_threads(),
+                jobs: 1,
+                incremental: args.backend.incremental(),
+                gpu: args.backend.may_use_gpu(),
+                limit: args.memory,
+            },
+        )?;
         let existing = Existing::from_flags(args.force, args.resume.is_some());
         let _folder = processes
             .writes()

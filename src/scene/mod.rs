@@ -99,6 +99,7 @@
 mod error;
 mod evaluate;
 mod file;
+mod memory;
 mod objective;
 mod optimizer;
 mod resolve;
@@ -120,6 +121,7 @@ pub use evaluate::{
     AnyCounts, AnyScorer, Backend, BackendChoice, SceneCounts, SceneEvaluator, SceneScorer,
     ScorerGoal, ScorerKind,
 };
+pub use memory::{JSON_BYTES_PER_WORD, MemoryEstimate, MemoryPart, RunShape, bytes};
 pub use objective::ObjectiveEvaluator;
 pub use optimizer::{Method, MethodSettings, OptimizerGoal, Overrides, UnknownMethod};
 

@@ -69,6 +69,35 @@ pub trait Record<G: Grammar>: Default + Sized {
     fn result(progress: &Progress<Self>, stopped: StopReason) -> Self::Result;
 }
 
+/// Genomes a run holds at once, and the setting whose value makes their number
+/// ([`Optimizer::genomes_held`]).
+///
+/// ```
+/// use shapegen_runtime::optimize::{Ga, GaSettings, Held, Optimizer};
+/// use shapegen_runtime::prelude::*;
+///
+/// generator! {
+///     /// One block.
+///     pub Chain { axiom Seg; node Seg { derive(s) { s.emit(CUBE); } } }
+/// }
+///
+/// let settings = GaSettings { population: 100, ..GaSettings::default() };
+/// let held = Ga::<Chain>::genomes_held(&settings);
+/// assert_eq!(held[0].genomes, 300); // the population, the next generation, a checkpoint's copy
+/// assert_eq!((held[0].saved, held[0].setting), (100, "optimizer.population"));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Held {
+    /// How many genomes.
+    pub genomes: u64,
+    /// How many of them a checkpoint saves.
+    pub saved: u64,
+    /// The scene key that sets their number, e.g. `optimizer.population`.
+    pub setting: &'static str,
+    /// Its value.
+    pub value: u64,
+}
+
 /// A search method, as the driver ([`drive`], [`Session`](super::Session)) runs it.
 ///
 /// Implementations keep a [`Progress`] of their [`Record`]: the driver advances the
@@ -120,6 +149,13 @@ pub trait Optimizer<G: Grammar>: Sized {
     type State: Serialize + DeserializeOwned;
     /// What the run records: [`Best`](super::Best) or [`Front`](super::multi::Front).
     type Record: Record<G>;
+
+    /// The genomes a run with `settings` holds at once, at most, by the setting that
+    /// sets their number: populations and their next generations, chains and their
+    /// proposals, archives, and the copies a checkpoint takes. With the genome limits
+    /// they bound the run's memory before it allocates anything (see
+    /// `shapegen::scene::MemoryEstimate`).
+    fn genomes_held(settings: &Self::Settings) -> Vec<Held>;
 
     /// An optimizer with these settings, keeping genomes within `limits`, seeded with
     /// `seed`; fails if the settings are out of range or do not fit the limits.

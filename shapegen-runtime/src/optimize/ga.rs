@@ -8,7 +8,7 @@ use super::best::Best;
 use super::error::{check_range, check_sizes};
 use super::fitness::{Roulette, bits_vec, compare, rank};
 use super::run::{Progress, grammar_struct_traits, stream};
-use super::{Budget, Evaluator, OptimizeError, Optimizer, Record, SettingsError};
+use super::{Budget, Evaluator, Held, OptimizeError, Optimizer, Record, SettingsError};
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
 use crate::ops::{OperatorVariant, Operators};
@@ -178,6 +178,17 @@ impl GaSettings {
         Ok(())
     }
 
+    /// The genomes `populations` GAs of these settings hold: each its population, the
+    /// next generation and a checkpoint's copy.
+    pub(crate) fn held(&self, populations: u64) -> Held {
+        Held {
+            genomes: 3 * u64::from(self.population) * populations,
+            saved: u64::from(self.population) * populations,
+            setting: "optimizer.population",
+            value: self.population.into(),
+        }
+    }
+
     /// A budget of [`generations`](Self::generations) generations.
     pub fn budget(&self) -> Budget {
         Budget::generations(self.generations)
@@ -334,6 +345,11 @@ impl<G: Grammar> Optimizer<G> for Ga<G> {
     type Settings = GaSettings;
     type State = GaState<G>;
     type Record = Best<G>;
+
+    /// The population, the next generation bred beside it, and the checkpoint's copy.
+    fn genomes_held(settings: &GaSettings) -> Vec<Held> {
+        vec![settings.held(1)]
+    }
 
     /// A GA with these settings, keeping genomes within `limits` (the weighted operators)
     /// or its children within `[min_len, max_len)` (the original's), seeded with `seed`.

@@ -49,7 +49,7 @@ mod smc;
 
 pub use crate::evaluate::{EvaluateError, Evaluator, FnEvaluator, MultiEvaluator, Sense};
 pub use best::Best;
-pub use driver::{Agreement, Optimizer, Record, drive};
+pub use driver::{Agreement, Held, Optimizer, Record, drive};
 pub use error::{OptimizeError, SettingsError};
 pub use ga::{Ga, GaSettings, GaState, ParentSelection};
 pub use mcmc::{Mcmc, McmcSettings, McmcState, McmcVariant};

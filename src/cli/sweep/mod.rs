@@ -22,12 +22,13 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use anyhow::Context;
 use clap::Args;
-use shapegen::scene::Method;
+use shapegen::scene::{Method, Scene};
 
 use super::backend::BackendArgs;
 use super::dispatch::Generators;
 use super::folder::{Existing, Folder, Kind};
 use super::interrupt;
+use super::memory::{MemoryArgs, MemoryCheck};
 use cell::Finished;
 use plan::{Axis, Plan, StudyBudget};
 use slurm::SlurmArgs;
@@ -84,6 +85,8 @@ pub struct SweepArgs {
     /// shared among them.
     #[arg(long, value_name = "J")]
     jobs: Option<usize>,
+    #[command(flatten)]
+    memory: MemoryArgs,
     /// Write the plan and `DIR/sweep.sbatch`, a Slurm job array of one task per cell, and
     /// run nothing; submit it with `sbatch DIR/sweep.sbatch`.
     #[arg(long)]
@@ -109,7 +112,7 @@ pub fn run(args: &SweepArgs, tool: &Generators) -> anyhow::Result<()> {
         let index: u64 = cell[1].parse().with_context(|| {
             format!("--cell {} {}: the cell is a whole number", cell[0], cell[1])
         })?;
-        return run_cell(dir, index, tool);
+        return run_cell(dir, index, tool, args.memory);
     }
     if let Some(dir) = &args.collect {
         refuse_study_flags(args, "--collect")?;
@@ -142,18 +145,55 @@ pub fn run(args: &SweepArgs, tool: &Generators) -> anyhow::Result<()> {
         backend: args.backend.clone(),
     }
     .checked(args.seed, tool.registry())?;
+    let jobs = match args.jobs {
+        Some(0) => anyhow::bail!("--jobs 0: give at least 1"),
+        Some(j) => j,
+        None => std::thread::available_parallelism().map_or(1, usize::from),
+    };
+    if !args.plan_only {
+        let jobs = jobs.min(usize::try_from(plan.cells()).unwrap_or(usize::MAX));
+        check_memory(&plan, tool, jobs, args.memory)?;
+    }
     // A study goes on with the cells of its own plan; save_or_match refuses another plan.
     let _folder = Folder::claim(out, Kind::Sweep, Existing::from_flags(args.force, true))?;
     plan.save_or_match(out)?;
     if args.plan_only {
         return plan_only(&plan, out, &args.slurm);
     }
-    let jobs = match args.jobs {
-        Some(0) => anyhow::bail!("--jobs 0: give at least 1"),
-        Some(j) => j,
-        None => std::thread::available_parallelism().map_or(1, usize::from),
-    };
     run_local(&plan, out, jobs, tool)
+}
+
+/// Refuses a study whose cells, `jobs` at a time, each with its share of the worker
+/// threads, would not fit in memory: each grid point's, as if all `jobs` cells at once
+/// were of that point.
+fn check_memory(
+    plan: &Plan,
+    tool: &Generators,
+    jobs: usize,
+    limit: MemoryArgs,
+) -> anyhow::Result<()> {
+    let jobs = jobs.max(1);
+    for point in 0..plan.points() {
+        let scene = Scene::open(
+            &plan.scene,
+            tool.registry(),
+            &plan.overrides_at(point, None),
+        )?;
+        tool.visit(
+            &scene.generator,
+            MemoryCheck {
+                scene: &scene,
+                goals: std::slice::from_ref(&scene.optimizer),
+                threads: (rayon::current_num_threads() / jobs).max(1),
+                jobs,
+                incremental: plan.backend.incremental(),
+                gpu: plan.backend.may_use_gpu(),
+                limit,
+            },
+        )
+        .with_context(|| format!("grid point {}", plan.describe(point)))?;
+    }
+    Ok(())
 }
 
 /// Refuses the flags that make a study when `mode` (`--cell`, `--collect`) works on a
@@ -208,7 +248,7 @@ fn plan_only(plan: &Plan, dir: &Path, slurm: &SlurmArgs) -> anyhow::Result<()> {
 }
 
 /// `--cell DIR I`: runs cell `index` of the study in `dir`, unless it is done.
-fn run_cell(dir: &Path, index: u64, tool: &Generators) -> anyhow::Result<()> {
+fn run_cell(dir: &Path, index: u64, tool: &Generators, limit: MemoryArgs) -> anyhow::Result<()> {
     let plan = Plan::load(dir)?;
     anyhow::ensure!(
         index < plan.cells(),
@@ -221,9 +261,22 @@ fn run_cell(dir: &Path, index: u64, tool: &Generators) -> anyhow::Result<()> {
         println!("cell {index} is done already: {}", folder.display());
         return Ok(());
     }
+    let cell = plan.cell(index);
+    let scene = Scene::open(&plan.scene, tool.registry(), &plan.overrides(cell))?;
+    tool.visit(
+        &scene.generator,
+        MemoryCheck {
+            scene: &scene,
+            goals: std::slice::from_ref(&scene.optimizer),
+            threads: rayon::current_num_threads(),
+            jobs: 1,
+            incremental: plan.backend.incremental(),
+            gpu: plan.backend.may_use_gpu(),
+            limit,
+        },
+    )?;
     let stop = interrupt::flag();
     let gpu = plan.backend.open();
-    let cell = plan.cell(index);
     eprintln!(
         "cell {index} of {}: {}, run {} (seed {})",
         plan.cells(),

@@ -325,7 +325,8 @@ impl Plan {
         self.overrides_at(cell.point, Some(cell.seed))
     }
 
-    fn overrides_at(&self, point: u64, seed: Option<u64>) -> Overrides {
+    /// What the cells of grid point `point` run with, seed aside (`seed`: the cell's).
+    pub fn overrides_at(&self, point: u64, seed: Option<u64>) -> Overrides {
         let (mut seconds, mut evaluations, mut generations) = (None, None, None);
         match self.budget {
             StudyBudget::Seconds(s) => seconds = Some(s),

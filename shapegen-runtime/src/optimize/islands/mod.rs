@@ -42,7 +42,9 @@ use super::error::check_sizes;
 use super::fitness::{Roulette, bits_vec, compare, rank};
 use super::ga::{Generation, Parents, random_population};
 use super::run::{Progress, StopReason, grammar_struct_traits};
-use super::{Agreement, Evaluator, GaSettings, OptimizeError, Optimizer, Record, SettingsError};
+use super::{
+    Agreement, Evaluator, GaSettings, Held, OptimizeError, Optimizer, Record, SettingsError,
+};
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
 use crate::ops::Operators;
@@ -491,6 +493,11 @@ impl<G: Grammar> Optimizer<G> for IslandGa<G> {
     type Settings = IslandGaSettings;
     type State = IslandGaState<G>;
     type Record = Best<G>;
+
+    /// Every island's GA (all of them, as one process runs them).
+    fn genomes_held(settings: &IslandGaSettings) -> Vec<Held> {
+        vec![settings.ga.held(settings.islands.count.into())]
+    }
 
     /// An island model on one process.
     fn new(settings: IslandGaSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {

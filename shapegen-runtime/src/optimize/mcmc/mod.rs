@@ -16,7 +16,7 @@ use super::driver::Record;
 use super::error::{check_range, check_sizes};
 use super::fitness::bits_vec;
 use super::run::{Progress, grammar_struct_traits, stream};
-use super::{Budget, Evaluator, OptimizeError, Optimizer, SettingsError};
+use super::{Budget, Evaluator, Held, OptimizeError, Optimizer, SettingsError};
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
 use crate::ops::{OperatorVariant, Operators};
@@ -432,6 +432,17 @@ impl<G: Grammar> Optimizer<G> for Mcmc<G> {
     type Settings = McmcSettings;
     type State = McmcState<G>;
     type Record = Best<G>;
+
+    /// The chains, their proposals, delayed-rejection retries and the checkpoint's
+    /// copy.
+    fn genomes_held(settings: &McmcSettings) -> Vec<Held> {
+        vec![Held {
+            genomes: 4 * u64::from(settings.chains),
+            saved: settings.chains.into(),
+            setting: "optimizer.chains",
+            value: settings.chains.into(),
+        }]
+    }
 
     /// An MCMC run with these settings and limits, seeded with `seed`.
     fn new(settings: McmcSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {

@@ -15,8 +15,8 @@ use crate::optimize::fitness::{Roulette, bits_vec, rank};
 use crate::optimize::ga::{Breed, random_population};
 use crate::optimize::run::grammar_struct_traits;
 use crate::optimize::{
-    Control, EvaluateError, MultiEvaluator, OptimizeError, Optimizer, Progress, Record, Sense,
-    Silent, StopReason,
+    Control, EvaluateError, Held, MultiEvaluator, OptimizeError, Optimizer, Progress, Record,
+    Sense, Silent, StopReason,
 };
 
 /// A model of the archive: its genome and its raw objective values.
@@ -438,6 +438,20 @@ impl<G: Grammar> Optimizer<G> for MultiGa<G> {
     type Settings = MultiGaSettings;
     type State = MultiGaState<G>;
     type Record = Front<G>;
+
+    /// The GA's population, next generation and checkpoint copy, and the archive with
+    /// its checkpoint copy.
+    fn genomes_held(settings: &MultiGaSettings) -> Vec<Held> {
+        vec![
+            settings.ga.held(1),
+            Held {
+                genomes: 2 * u64::from(settings.archive),
+                saved: settings.archive.into(),
+                setting: "optimizer.archive",
+                value: settings.archive.into(),
+            },
+        ]
+    }
 
     /// A multi-objective GA with these settings, keeping genomes within `limits`, seeded
     /// with `seed`.

@@ -16,7 +16,7 @@ use super::driver::Record;
 use super::error::{check_range, check_sizes};
 use super::fitness::{Roulette, bits_vec};
 use super::run::{Progress, grammar_struct_traits, stream};
-use super::{Budget, Evaluator, OptimizeError, Optimizer, SettingsError};
+use super::{Budget, Evaluator, Held, OptimizeError, Optimizer, SettingsError};
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
 
@@ -365,6 +365,17 @@ impl<G: Grammar> Optimizer<G> for Smc<G> {
     type Settings = SmcSettings;
     type State = SmcState<G>;
     type Record = Best<G>;
+
+    /// The particles, the next generation resampled beside them, and the checkpoint's
+    /// copy.
+    fn genomes_held(settings: &SmcSettings) -> Vec<Held> {
+        vec![Held {
+            genomes: 3 * u64::from(settings.particles),
+            saved: settings.particles.into(),
+            setting: "optimizer.particles",
+            value: settings.particles.into(),
+        }]
+    }
 
     /// An SMC run with these settings and limits, seeded with `seed`.
     fn new(settings: SmcSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {

@@ -60,7 +60,7 @@ mod retention;
 pub use cells::{CellCounts, Changed, Overflow, TILE_BYTES, TILE_WORDS};
 pub use diff::InstanceDiff;
 pub use pixels::{Hit, PixelCounts};
-pub use retention::{Retention, RetentionStats};
+pub use retention::{DEFAULT_MAX_BYTES, Retention, RetentionStats};
 
 use super::Scorer;
 use crate::geometry::Instance;

@@ -18,7 +18,7 @@ struct Kept<S: RetainedScorer> {
 }
 
 /// The default of [`Retention::with_max_bytes`]: 1 GiB.
-const DEFAULT_MAX_BYTES: usize = 1 << 30;
+pub const DEFAULT_MAX_BYTES: usize = 1 << 30;
 
 /// How the children of the calls so far were counted.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -1,0 +1,222 @@
+//! `--max-memory SIZE`: a run's memory, estimated before it allocates anything
+//! ([`Scene::memory_estimate`]), checked against the limit given or, without one, against
+//! the memory available now: `MemAvailable` of `/proc/meminfo`, or less where the
+//! process's cgroup has a memory limit. A run over it is refused with the estimate, its
+//! parts and the setting that drives it, rather than growing until the kernel kills it.
+
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+use shapegen::Grammar;
+use shapegen::scene::{OptimizerGoal, Scene};
+
+use super::dispatch::Visit;
+use crate::registry::Entry;
+
+/// The `--max-memory` flag of the commands that search.
+#[derive(Clone, Copy, Debug, Default, Args)]
+pub struct MemoryArgs {
+    /// The most memory a run may take, e.g. 512M, 4G or 1.5T (K, M, G, T are powers of
+    /// 1024; a plain number is bytes). A run whose estimate is larger is refused before
+    /// it starts. Default: the memory available now (MemAvailable, or what the process's
+    /// cgroup limit leaves, whichever is less).
+    #[arg(long, value_name = "SIZE", value_parser = parse_size)]
+    max_memory: Option<u64>,
+}
+
+impl MemoryArgs {
+    /// The limit in bytes, with what sets it in words (`None` when neither the flag nor
+    /// the system says).
+    pub fn limit(&self) -> Option<(u64, String)> {
+        match self.max_memory {
+            Some(n) => Some((n, "that --max-memory allows".to_owned())),
+            None => available(),
+        }
+    }
+}
+
+/// Refuses a search of `scene` that would not fit in memory: each of `goals` (a
+/// comparison's methods) run `jobs` at a time (a sweep's cells side by side), each on
+/// `threads` worker threads.
+pub struct MemoryCheck<'a> {
+    /// The scene searched.
+    pub scene: &'a Scene,
+    /// The goals run, one at a time.
+    pub goals: &'a [OptimizerGoal],
+    /// Worker threads of each run.
+    pub threads: usize,
+    /// Runs at once.
+    pub jobs: usize,
+    /// Whether bred children are counted incrementally.
+    pub incremental: bool,
+    /// Whether models may be counted on a GPU.
+    pub gpu: bool,
+    /// The limit given.
+    pub limit: MemoryArgs,
+}
+
+impl Visit for MemoryCheck<'_> {
+    fn visit<G: Grammar>(self, _: &Entry) -> anyhow::Result<()> {
+        let Some((limit, source)) = self.limit.limit() else {
+            return Ok(());
+        };
+        for goal in self.goals {
+            let shape = self
+                .scene
+                .run_shape::<G>(goal, self.threads, self.incremental, self.gpu);
+            let estimate = self.scene.memory_estimate(&shape).times(self.jobs);
+            estimate.check(limit, &source).map_err(anyhow::Error::msg)?;
+        }
+        Ok(())
+    }
+}
+
+/// A size as `--max-memory` takes it: a number (a fraction allowed) and a unit K, M, G
+/// or T (powers of 1024, optionally followed by `B` or `iB`, any case), or bytes.
+///
+/// # Errors
+/// A message saying what is valid, for anything else or a size of 0.
+pub fn parse_size(text: &str) -> Result<u64, String> {
+    let invalid = || {
+        format!(
+            "`{text}` is not a size: give a number of bytes or a number with K, M, G or T \
+             (powers of 1024), e.g. 512M or 4G"
+        )
+    };
+    let t = text.trim();
+    let lower = t.to_ascii_lowercase();
+    let digits = lower.trim_end_matches(|c: char| c.is_ascii_alphabetic());
+    let unit = &lower[digits.len()..];
+    let shift = match unit.trim_end_matches("ib").trim_end_matches('b') {
+        "" if unit.is_empty() || unit == "b" => 0,
+        "k" => 10,
+        "m" => 20,
+        "g" => 30,
+        "t" => 40,
+        _ => return Err(invalid()),
+    };
+    let number: f64 = digits.trim().parse().map_err(|_| invalid())?;
+    let size = number * (1u64 << shift) as f64;
+    if !size.is_finite() || size < 1.0 || size >= u64::MAX as f64 {
+        return Err(format!(
+            "`{text}`: give a size of at least one byte, e.g. 512M or 4G"
+        ));
+    }
+    Ok(size as u64)
+}
+
+/// The memory available now, with where the figure comes from: `MemAvailable`, or what
+/// the process's cgroup limit leaves when that is less.
+fn available() -> Option<(u64, String)> {
+    let meminfo = std::fs::read_to_string("/proc/meminfo").ok();
+    let mem_available = meminfo.as_deref().and_then(|text| {
+        let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+        let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+        Some((
+            kib * 1024,
+            "available (MemAvailable in /proc/meminfo)".to_owned(),
+        ))
+    });
+    let cgroup = cgroup_left().map(|(left, dir)| {
+        (
+            left,
+            format!("left under the memory limit of cgroup {}", dir.display()),
+        )
+    });
+    match (mem_available, cgroup) {
+        (Some(a), Some(c)) => Some(if c.0 < a.0 { c } else { a }),
+        (a, c) => a.or(c),
+    }
+}
+
+/// The least memory left under a limit of the process's cgroup or one above it, and
+/// that cgroup's folder: the limit less what is charged, page cache aside (the kernel
+/// reclaims it before it refuses memory).
+fn cgroup_left() -> Option<(u64, PathBuf)> {
+    let read =
+        |path: &Path| -> Option<u64> { std::fs::read_to_string(path).ok()?.trim().parse().ok() };
+    let file_cache = |stat: &Path, key: &str| -> u64 {
+        std::fs::read_to_string(stat)
+            .ok()
+            .and_then(|text| {
+                let line = text
+                    .lines()
+                    .find(|l| l.split_whitespace().next() == Some(key))?;
+                line.split_whitespace().nth(1)?.parse().ok()
+            })
+            .unwrap_or(0)
+    };
+    let mut least: Option<(u64, PathBuf)> = None;
+    let mut consider = |left: u64, dir: PathBuf| {
+        if least.as_ref().is_none_or(|(l, _)| left < *l) {
+            least = Some((left, dir));
+        }
+    };
+    let own = std::fs::read_to_string("/proc/self/cgroup").unwrap_or_default();
+    // cgroup v2: one line `0::/path`; the limits of every cgroup above apply too.
+    if let Some(path) = own.lines().find_map(|l| l.strip_prefix("0::")) {
+        let root = Path::new("/sys/fs/cgroup");
+        let mut dir = root.join(path.trim_start_matches('/'));
+        while dir.starts_with(root) {
+            if let (Some(max), Some(current)) = (
+                read(&dir.join("memory.max")),
+                read(&dir.join("memory.current")),
+            ) {
+                let cache = file_cache(&dir.join("memory.stat"), "file");
+                consider(
+                    max.saturating_sub(current.saturating_sub(cache)),
+                    dir.clone(),
+                );
+            }
+            if !dir.pop() {
+                break;
+            }
+        }
+    }
+    // cgroup v1: the memory controller's own hierarchy.
+    let v1 = Path::new("/sys/fs/cgroup/memory");
+    if let (Some(max), Some(used)) = (
+        read(&v1.join("memory.limit_in_bytes")),
+        read(&v1.join("memory.usage_in_bytes")),
+    ) {
+        let cache = file_cache(&v1.join("memory.stat"), "cache");
+        consider(
+            max.saturating_sub(used.saturating_sub(cache)),
+            v1.to_owned(),
+        );
+    }
+    least
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{available, parse_size};
+
+    #[test]
+    fn sizes_take_binary_units_in_any_case() {
+        assert_eq!(parse_size("512M"), Ok(512 << 20));
+        assert_eq!(parse_size("4G"), Ok(4 << 30));
+        assert_eq!(parse_size("4gib"), Ok(4 << 30));
+        assert_eq!(parse_size("4GB"), Ok(4 << 30));
+        assert_eq!(parse_size("1.5K"), Ok(1536));
+        assert_eq!(parse_size("2T"), Ok(2 << 40));
+        assert_eq!(parse_size("1000"), Ok(1000));
+        assert_eq!(parse_size("1000B"), Ok(1000));
+    }
+
+    #[test]
+    fn sizes_that_are_not_refused_with_what_is_valid() {
+        for bad in ["", "G", "4X", "four G", "-1G", "1e400", "0", "0.1"] {
+            let err = parse_size(bad).unwrap_err();
+            assert!(err.contains("512M"), "{bad}: {err}");
+        }
+    }
+
+    #[test]
+    fn the_memory_available_is_read_on_linux() {
+        if cfg!(target_os = "linux") {
+            let (n, source) = available().expect("/proc/meminfo is readable");
+            assert!(n > 0, "{source}");
+        }
+    }
+}
