@@ -10,17 +10,23 @@ use std::process::ExitCode;
 
 use libtest_mimic::{Arguments, Failed, Trial};
 use shapegen::gpu::GpuContext;
-use support::{SHIP_SCENE, UNIT_CUBE_OBJ, s, sample, score, shapegen};
+use support::{SHIP_SCENE, UNIT_CUBE_OBJ, fails, s, sample, score, shapegen};
 
 /// A test that runs the binary on the GPU: its name and its body, which panics when the
 /// test fails.
 type GpuTest = (&'static str, fn());
 
 /// The tests of this file.
-const TESTS: &[GpuTest] = &[(
-    "the_gpu_counts_as_the_cpu_does",
-    the_gpu_counts_as_the_cpu_does,
-)];
+const TESTS: &[GpuTest] = &[
+    (
+        "the_gpu_counts_as_the_cpu_does",
+        the_gpu_counts_as_the_cpu_does,
+    ),
+    (
+        "a_population_beyond_the_gpus_bindings_is_refused_before_it_runs",
+        a_population_beyond_the_gpus_bindings_is_refused_before_it_runs,
+    ),
+];
 
 fn main() -> ExitCode {
     let args = Arguments::from_args();
@@ -72,4 +78,33 @@ fn the_gpu_counts_as_the_cpu_does() {
         .map(|l| serde_json::from_str(l).unwrap())
         .collect();
     assert_eq!(cpu, gpu, "exact voxel counts and equal fitness");
+}
+
+/// A million models' volume counters take more than the 128 MiB a storage binding is
+/// kept to (`shapegen::gpu::MAX_BINDING`): the run is refused when the backend is opened,
+/// before the first generation, naming the setting.
+fn a_population_beyond_the_gpus_bindings_is_refused_before_it_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let cube = dir.path().join("cube.obj");
+    fs::write(&cube, UNIT_CUBE_OBJ).unwrap();
+    let scene = dir.path().join("ship.toml");
+    fs::write(&scene, SHIP_SCENE.replace("TARGET", "cube.obj")).unwrap();
+    let out = dir.path().join("out");
+    let err = fails(&[
+        "run",
+        s(&scene),
+        "--gpu",
+        "--max-memory",
+        "1T",
+        "--set",
+        "optimizer.population=1000000",
+        "--out",
+        s(&out),
+    ]);
+    assert!(
+        err.contains("optimizer.population = 1000000 has the GPU count 1000000 models at once"),
+        "{err}"
+    );
+    assert!(err.contains("count on the CPU (--cpu)"), "{err}");
+    assert!(!out.join("checkpoint.json").exists());
 }

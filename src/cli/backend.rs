@@ -3,7 +3,8 @@
 use clap::Args;
 use serde::{Deserialize, Serialize};
 use shapegen::gpu::GpuContext;
-use shapegen::scene::BackendChoice;
+use shapegen::optimize::Held;
+use shapegen::scene::{Backend, BackendChoice};
 use shapegen::score::retained::RetentionStats;
 
 /// The backend flags of the scoring commands; a sweep's plan saves them.
@@ -58,6 +59,16 @@ impl BackendArgs {
             }
         }
     }
+}
+
+/// Refuses a run whose batches `backend` cannot count: on a GPU, the most models the
+/// method scores at once (`held`) must fit its storage bindings
+/// ([`Backend::check_batch`]).
+pub fn check_batches(backend: &Backend<'_>, held: &[Held]) -> anyhow::Result<()> {
+    for h in held {
+        backend.check_batch(h.saved, &format!("{} = {}", h.setting, h.value))?;
+    }
+    Ok(())
 }
 
 /// How a run's bred children were counted, for its summary.

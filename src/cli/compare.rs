@@ -30,7 +30,7 @@ use shapegen::Grammar;
 use shapegen::optimize::{Budget, HistoryEntry, StopReason};
 use shapegen::scene::{Method, OptimizerGoal, Overrides, Scene, SceneEvaluator, SceneScorer};
 
-use super::backend::BackendArgs;
+use super::backend::{BackendArgs, check_batches};
 use super::dispatch::{Generators, Visit};
 use super::files::{atomic_write, csv_bytes, save_png};
 use super::folder::{Existing, Folder, Kind};
@@ -227,6 +227,9 @@ impl Visit for Compare<'_> {
         let scorer = SceneScorer::new::<G>(self.scene)?;
         let gpu = self.args.backend.open();
         let backend = scorer.on(self.args.backend.choice(), gpu.as_ref())?;
+        for goal in self.goals {
+            check_batches(&backend, &self.scene.genomes_held::<G>(goal))?;
+        }
         let total = self.seeds.len() * self.methods.len();
         eprintln!(
             "comparing {} on {}: {} runs of {} s",

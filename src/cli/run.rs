@@ -15,7 +15,7 @@ use shapegen::{Genome, Grammar};
 
 use crate::registry::Entry;
 
-use super::backend::{BackendArgs, Incremental};
+use super::backend::{BackendArgs, Incremental, check_batches};
 use super::checkpoint::{Checkpoint, Head};
 use super::dispatch::{Generators, Visit};
 use super::files::{Files, atomic_write, csv_bytes};
@@ -236,6 +236,7 @@ impl Run<'_> {
         let scorer = SceneScorer::new::<G>(self.scene)?;
         let gpu = self.args.backend.open();
         let backend = scorer.on(self.args.backend.choice(), gpu.as_ref())?;
+        check_batches(&backend, &O::genomes_held(optimizer.settings()))?;
         if writes {
             eprintln!(
                 "evolving {} with {}{} on {}",

@@ -227,6 +227,13 @@ macro_rules! scorer_kinds {
                 })
             }
 
+            /// The most models one batch may hold on `gpu`.
+            fn max_batch(gpu: &AnyGpuScorer<'_>) -> usize {
+                match gpu {
+                    $(AnyGpuScorer::$kind(g) => GpuCount::max_batch(g),)*
+                }
+            }
+
             /// Counts every model of `batch`, on `gpu` when given, and appends each
             /// model's counts to its slot of `out`.
             fn count(
@@ -268,6 +275,10 @@ macro_rules! scorer_kinds {
                 ) -> Result<(), GpuError> {
                     $gpu::count_batch(self, batch, out)
                 }
+
+                fn max_batch(&self) -> usize {
+                    $gpu::max_batch(self)
+                }
             }
 
             impl SceneScorer {
@@ -300,6 +311,9 @@ trait GpuCount {
 
     /// Counts every model of `batch` into `out`, one slot per model.
     fn count_batch(&self, batch: &InstanceBatch, out: &mut [Self::Counts]) -> Result<(), GpuError>;
+
+    /// The most models one batch may hold.
+    fn max_batch(&self) -> usize;
 }
 
 /// Counts every model of `batch` with `scorer`, on `gpu` when given, and appends each
@@ -501,6 +515,24 @@ impl Backend<'_> {
     /// The scorers.
     pub fn scorer(&self) -> &SceneScorer {
         self.scorer
+    }
+
+    /// Checks, before a run allocates its populations, that the GPU can count `models`
+    /// models at once, the most a batch of the run holds; `setting` names what sets their
+    /// number, as `key = value`. Always passes on the CPU.
+    ///
+    /// # Errors
+    /// [`SceneError::Backend`] naming the setting, the number and the device's bound.
+    pub fn check_batch(&self, models: u64, setting: &str) -> Result<(), SceneError> {
+        let max = self.gpu.iter().map(AnyScorer::max_batch).min();
+        match max {
+            Some(max) if models > max as u64 => Err(SceneError::Backend(format!(
+                "{setting} has the GPU count {models} models at once, but the counts of at most \
+                 {max} fit the storage bindings of {}: lower it, or count on the CPU (--cpu)",
+                self.description
+            ))),
+            _ => Ok(()),
+        }
     }
 
     /// Counts every model of `batch` into `out`, resized to the batch.

@@ -149,9 +149,21 @@ pub fn bytes(n: u64) -> String {
 }
 
 impl Scene {
+    /// The genomes a run of `goal` on this scene holds, of grammar `G` (the scene's
+    /// generator): those of `goal`'s method, or the multi-objective GA's for a scene
+    /// with objectives ([`Optimizer::genomes_held`]).
+    pub fn genomes_held<G: Grammar>(&self, goal: &OptimizerGoal) -> Vec<Held> {
+        match (self.multi_settings(), goal.settings) {
+            (Some(multi), _) => MultiGa::<G>::genomes_held(&multi),
+            (None, MethodSettings::Ga(s)) => Ga::<G>::genomes_held(&s),
+            (None, MethodSettings::Islands(s)) => IslandGa::<G>::genomes_held(&s),
+            (None, MethodSettings::Smc(s)) => Smc::<G>::genomes_held(&s),
+            (None, MethodSettings::Mcmc(s)) => Mcmc::<G>::genomes_held(&s),
+        }
+    }
+
     /// The shape of a run of `goal` on this scene, of grammar `G` (the scene's generator),
-    /// on `threads` worker threads: the genomes `goal`'s method holds, or the
-    /// multi-objective GA's for a scene with objectives.
+    /// on `threads` worker threads ([`genomes_held`](Self::genomes_held)).
     pub fn run_shape<G: Grammar>(
         &self,
         goal: &OptimizerGoal,
@@ -159,16 +171,9 @@ impl Scene {
         incremental: bool,
         gpu: bool,
     ) -> RunShape {
-        let held = match (self.multi_settings(), goal.settings) {
-            (Some(multi), _) => MultiGa::<G>::genomes_held(&multi),
-            (None, MethodSettings::Ga(s)) => Ga::<G>::genomes_held(&s),
-            (None, MethodSettings::Islands(s)) => IslandGa::<G>::genomes_held(&s),
-            (None, MethodSettings::Smc(s)) => Smc::<G>::genomes_held(&s),
-            (None, MethodSettings::Mcmc(s)) => Mcmc::<G>::genomes_held(&s),
-        };
         RunShape {
             graph: G::GRAPH,
-            held,
+            held: self.genomes_held::<G>(goal),
             threads,
             incremental,
             gpu,

@@ -99,6 +99,7 @@
 mod error;
 mod evaluate;
 mod file;
+mod image;
 mod memory;
 mod objective;
 mod optimizer;
@@ -121,6 +122,7 @@ pub use evaluate::{
     AnyCounts, AnyScorer, Backend, BackendChoice, SceneCounts, SceneEvaluator, SceneScorer,
     ScorerGoal, ScorerKind,
 };
+pub use image::{decode_image, read_image};
 pub use memory::{JSON_BYTES_PER_WORD, MemoryEstimate, MemoryPart, RunShape, bytes};
 pub use objective::ObjectiveEvaluator;
 pub use optimizer::{Method, MethodSettings, OptimizerGoal, Overrides, UnknownMethod};

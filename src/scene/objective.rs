@@ -13,6 +13,7 @@ use shapegen_runtime::score::retained::RetentionStats;
 use shapegen_runtime::{Genome, Grammar};
 
 use super::file::{ObjectiveFile, ProjectionFile};
+use super::image::read_image;
 use super::resolve::Resolver;
 use super::{Scene, SceneError};
 
@@ -89,8 +90,8 @@ impl Resolver<'_> {
         p: &ProjectionFile,
     ) -> Result<Objective, SceneError> {
         let path = self.file(key, &p.image)?;
-        let image = image::open(&path)
-            .map_err(|err| self.invalid(key, format!("`{}`: {err}", path.display())))?
+        let image = read_image(&path)
+            .map_err(|err| self.invalid(key, err))?
             .into_luma8();
         let (min, max) = (Vec2::from(p.min), Vec2::from(p.max));
         let projection = ProjectionMatch::from_image(view, min, max, &image)

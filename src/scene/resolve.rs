@@ -14,6 +14,7 @@ use super::file::{
     CameraFile, FormName, ImageKind, ImageTargetFile, LengthFrom, LimitsFile, MeshFile, SceneFile,
     SilhouetteFile, VolumeFile,
 };
+use super::image::read_image;
 use super::{
     Method, MethodSettings, ObjectiveGoal, Overrides, Scene, SceneError, ScorerGoal,
     SilhouetteGoal, VolumeGoal,
@@ -323,12 +324,7 @@ impl<'a> Resolver<'a> {
         let camera = self.camera(&format!("{key}.camera"), &t.camera)?;
         let image_key = format!("{key}.image");
         let path = self.file(&image_key, &t.image)?;
-        let image = image::open(&path).map_err(|err| {
-            self.invalid(
-                &image_key,
-                format!("cannot read `{}`: {err}", path.display()),
-            )
-        })?;
+        let image = read_image(&path).map_err(|err| self.invalid(&image_key, err))?;
         let (width, height) = (image.width(), image.height());
         if (width, height) != (t.camera.width, t.camera.height) {
             return Err(self.invalid(

@@ -22,6 +22,7 @@ use shapegen::gpu::GpuContext;
 use shapegen::optimize::{HistoryEntry, StopReason};
 use shapegen::scene::{Scene, SceneEvaluator, SceneScorer};
 
+use super::super::backend::check_batches;
 use super::super::dispatch::{Generators, Visit};
 use super::super::files::{csv_bytes, read};
 use super::super::search::{SessionRun, with_method};
@@ -307,6 +308,10 @@ impl Visit for CellRun<'_> {
     fn visit<G: Grammar>(self, _: &Entry) -> anyhow::Result<()> {
         let scorer = SceneScorer::new::<G>(self.scene)?;
         let backend = scorer.on(self.plan.backend.choice(), self.gpu)?;
+        check_batches(
+            &backend,
+            &self.scene.genomes_held::<G>(&self.scene.optimizer),
+        )?;
         let mut evaluator =
             SceneEvaluator::new(&backend).with_incremental(self.plan.backend.incremental());
         let goal = &self.scene.optimizer;

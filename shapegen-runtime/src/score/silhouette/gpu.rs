@@ -246,17 +246,18 @@ impl<'a> GpuSilhouetteScorer<'a> {
             )));
         }
         let targets = self.targets.len();
-        let count_bytes = (batch.len() * targets * COUNT_WORDS * 4) as u64;
-        if count_bytes > self.gpu.max_binding() {
+        if batch.len() > self.max_batch() {
             return Err(GpuError::Unsupported(format!(
-                "the counts of {} models take {count_bytes} bytes; this device binds at most {}",
+                "the counts of {} models exceed the largest storage binding, which holds those \
+                 of {}; count fewer at once",
                 batch.len(),
-                self.gpu.max_binding()
+                self.max_batch()
             )));
         }
         if batch.is_empty() {
             return Ok(());
         }
+        let count_bytes = (batch.len() * targets * COUNT_WORDS * 4) as u64;
         let (instances, mesh_ranges) = self.sort_instances(batch);
         let counts = self
             .gpu
@@ -419,6 +420,13 @@ impl<'a> GpuSilhouetteScorer<'a> {
         let lo = of_mesh.partition_point(|i| (i.model as usize) < chunk.start);
         let hi = of_mesh.partition_point(|i| (i.model as usize) < chunk.end);
         range.start + lo as u32..range.start + hi as u32
+    }
+
+    /// The most models one batch may hold: as many as the largest storage binding holds
+    /// counts of, for every target.
+    pub fn max_batch(&self) -> usize {
+        let per_model = (self.targets.len().max(1) * COUNT_WORDS * 4) as u64;
+        (self.gpu.max_binding() / per_model) as usize
     }
 
     /// Models per chunk: how many share one coverage buffer.

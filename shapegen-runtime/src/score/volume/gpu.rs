@@ -189,6 +189,12 @@ impl<'a> GpuVolumeScorer<'a> {
         self.models_per_pass
     }
 
+    /// The most models one batch may hold: as many as the largest storage binding holds
+    /// counters of.
+    pub fn max_batch(&self) -> usize {
+        (self.ctx.max_binding() / (COUNTERS * 4) as u64) as usize
+    }
+
     /// Puts at most `models` (at least 1) models in one pass, for smaller bitset
     /// buffers.
     pub fn limit_models_per_pass(&mut self, models: usize) {
@@ -199,8 +205,9 @@ impl<'a> GpuVolumeScorer<'a> {
     /// what [`VolumeScorer`] counts on the CPU.
     ///
     /// # Errors
-    /// [`GpuError::Unsupported`] when one model's boxes or rows exceed what one pass
-    /// holds; [`GpuError::Device`] when the device fails.
+    /// [`GpuError::Unsupported`] when the batch has more than [`max_batch`](Self::max_batch)
+    /// models, or one model's boxes or rows exceed what one pass holds;
+    /// [`GpuError::Device`] when the device fails.
     ///
     /// # Panics
     /// If `out.len() != batch.len()`.
@@ -213,14 +220,16 @@ impl<'a> GpuVolumeScorer<'a> {
         if batch.is_empty() {
             return Ok(());
         }
-        let (passes, beyond) = self.plan(batch)?;
-        let counter_bytes = (batch.len() * COUNTERS * 4) as u64;
-        if counter_bytes > self.ctx.max_binding() {
+        if batch.len() > self.max_batch() {
             return Err(GpuError::Unsupported(format!(
-                "{} models' counters exceed the largest storage binding; count fewer at once",
-                batch.len()
+                "{} models' counters exceed the largest storage binding, which holds {}; \
+                 count fewer at once",
+                batch.len(),
+                self.max_batch()
             )));
         }
+        let (passes, beyond) = self.plan(batch)?;
+        let counter_bytes = (batch.len() * COUNTERS * 4) as u64;
         let bitset_bytes = self.words_per_model * 4;
         let widest = passes.iter().map(|p| p.models).max().unwrap_or(0) as u64;
         let device = &self.ctx.device;
