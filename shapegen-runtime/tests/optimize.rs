@@ -942,3 +942,39 @@ fn mcmc_survives_nan_fitness_and_honours_budgets() {
     }
     assert!(serde_json::from_str::<McmcSettings>(r#"{"chain": 3}"#).is_err());
 }
+
+/// The checkpoint of `optimizer` after one generation, with its settings' `key` (the
+/// number of genomes it holds) set to `u32::MAX`, as a hand-edited or damaged file might.
+fn inflated<O: Optimizer<City, Record = Best<City>>>(mut optimizer: O, key: &str) -> O::State
+where
+    O::State: serde::Serialize + serde::de::DeserializeOwned,
+{
+    optimizer
+        .run(&mut Skyline::new(), &Budget::generations(1), &mut Silent)
+        .unwrap();
+    let mut json = serde_json::to_value(optimizer.checkpoint()).unwrap();
+    json["settings"][key] = u32::MAX.into();
+    serde_json::from_value(json).unwrap()
+}
+
+/// Found with the checkpoint fuzz target (`fuzz/fuzz_targets/checkpoint.rs`) on a
+/// hand-made input: the state's settings made the optimizer before its genomes were
+/// counted against them, so a checkpoint whose settings claim four billion genomes
+/// allocated for them (the process aborted) instead of being refused.
+#[test]
+fn a_checkpoint_whose_settings_disagree_with_its_genomes_is_refused_before_allocating() {
+    let ga = Ga::<City>::new(small_ga(), city::PAPER_LIMITS, 1).unwrap();
+    let err = Ga::resume(inflated(ga, "population")).err().unwrap();
+    assert!(err.to_string().contains("genomes"), "{err}");
+
+    let smc = small_smcs().next().unwrap();
+    let smc = Smc::<City>::new(smc, city::PAPER_LIMITS, 1).unwrap();
+    let err = Smc::resume(inflated(smc, "particles")).err().unwrap();
+    assert!(err.to_string().contains("particles"), "{err}");
+
+    let mcmc = Mcmc::<City>::new(small_mcmc(McmcVariant::Original), city::PAPER_LIMITS, 1);
+    let err = Mcmc::resume(inflated(mcmc.unwrap(), "chains"))
+        .err()
+        .unwrap();
+    assert!(err.to_string().contains("chains"), "{err}");
+}

@@ -372,9 +372,10 @@ impl<G: Grammar> Optimizer<G> for Ga<G> {
     }
 
     fn resume(state: GaState<G>) -> Result<Self, OptimizeError> {
-        let mut ga = Ga::new(state.settings, state.limits, state.progress.seed)?;
+        // The sizes are checked before the GA is made, so that settings disagreeing with
+        // the checkpoint's population cannot make it allocate more than that holds.
         if state.progress.record.started() {
-            let n = ga.population.len();
+            let n = state.settings.population as usize;
             check_sizes(
                 &[
                     (state.population.len(), n, "genomes"),
@@ -382,6 +383,9 @@ impl<G: Grammar> Optimizer<G> for Ga<G> {
                 ],
                 format_args!("a population of {n}"),
             )?;
+        }
+        let mut ga = Ga::new(state.settings, state.limits, state.progress.seed)?;
+        if state.progress.record.started() {
             ga.population = state.population;
             ga.fitness = state.fitness;
         }

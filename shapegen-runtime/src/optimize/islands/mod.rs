@@ -300,11 +300,11 @@ impl<G: Grammar> IslandGa<G> {
         state: IslandGaState<G>,
         exchange: Box<dyn Exchange>,
     ) -> Result<Self, OptimizeError> {
-        let mut run =
-            IslandGa::new_on(state.settings, state.limits, state.progress.seed, exchange)?;
+        // The sizes are checked before the run is made, so that settings disagreeing with
+        // the checkpoint's islands cannot make it allocate more than they hold.
         if state.progress.record.started() {
-            let count = run.settings.islands.count as usize;
-            let n = run.settings.ga.population as usize;
+            let count = state.settings.islands.count as usize;
+            let n = state.settings.ga.population as usize;
             check_sizes(
                 &[(state.islands.len(), count, "islands")],
                 format_args!("a run of {count} islands"),
@@ -318,6 +318,10 @@ impl<G: Grammar> IslandGa<G> {
                     format_args!("island {k}, a population of {n}"),
                 )?;
             }
+        }
+        let mut run =
+            IslandGa::new_on(state.settings, state.limits, state.progress.seed, exchange)?;
+        if state.progress.record.started() {
             let mine = &state.islands[run.first..run.first + run.islands()];
             run.population = mine.iter().flat_map(|i| i.population.clone()).collect();
             run.fitness = mine.iter().flat_map(|i| i.fitness.clone()).collect();

@@ -493,6 +493,15 @@ impl<G: Grammar> Optimizer<G> for Mcmc<G> {
     }
 
     fn resume(state: McmcState<G>) -> Result<Self, OptimizeError> {
+        // The chains are counted before the run is made, so that settings disagreeing
+        // with the checkpoint cannot make it allocate more than that holds.
+        if state.progress.record.started() {
+            let n = state.settings.chains as usize;
+            check_sizes(
+                &[(state.chains.len(), n, "chains")],
+                format_args!("{n} chains"),
+            )?;
+        }
         let mut mcmc = Mcmc::new(state.settings, state.limits, state.progress.seed)?;
         if state.progress.record.started() {
             let (n, priors) = (mcmc.chains.len(), mcmc.log_priors.len());

@@ -477,6 +477,15 @@ impl<G: Grammar> Optimizer<G> for MultiGa<G> {
     }
 
     fn resume(state: MultiGaState<G>) -> Result<Self, OptimizeError> {
+        // The population is counted before the GA is made, so that settings disagreeing
+        // with the checkpoint cannot make it allocate more than that holds.
+        if !state.history.is_empty() {
+            let n = state.settings.ga.population as usize;
+            check_sizes(
+                &[(state.population.len(), n, "genomes")],
+                format_args!("a population of {n}"),
+            )?;
+        }
         let mut ga = MultiGa::new(state.settings, state.limits, state.seed)?;
         let record = Front {
             senses: state.senses,

@@ -400,6 +400,15 @@ impl<G: Grammar> Optimizer<G> for Smc<G> {
     }
 
     fn resume(state: SmcState<G>) -> Result<Self, OptimizeError> {
+        // The particles are counted before the run is made, so that settings disagreeing
+        // with the checkpoint cannot make it allocate more than that holds.
+        if state.progress.record.started() {
+            let n = state.settings.particles as usize;
+            check_sizes(
+                &[(state.particles.len(), n, "particles")],
+                format_args!("{n} particles"),
+            )?;
+        }
         let mut smc = Smc::new(state.settings, state.limits, state.progress.seed)?;
         if state.progress.record.started() {
             let (n, cursors) = (smc.particles.len(), smc.cursors.len());
