@@ -187,3 +187,30 @@ fn a_size_that_is_not_one_is_refused_with_what_is_valid() {
     assert!(err.contains("`4X` is not a size"), "{err}");
     assert!(err.contains("512M or 4G"), "{err}");
 }
+
+#[test]
+fn a_resumed_checkpoint_is_checked_by_its_own_settings() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene(dir.path());
+    let out = dir.path().join("out");
+    ok(&[
+        "run",
+        s(&scene),
+        "--cpu",
+        "--generations",
+        "1",
+        "--out",
+        s(&out),
+    ]);
+    // A checkpoint edited by hand (or damaged) to hold a hundred million genomes.
+    let path = out.join("checkpoint.json");
+    let mut checkpoint: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    checkpoint["search"]["settings"]["population"] = 100_000_000.into();
+    std::fs::write(&path, checkpoint.to_string()).unwrap();
+    let err = fails(&["run", "--resume", s(&out), "--cpu", "--generations", "2"]);
+    assert!(
+        err.contains("comes from optimizer.population = 100000000"),
+        "{err}"
+    );
+}

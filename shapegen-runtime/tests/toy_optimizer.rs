@@ -121,6 +121,10 @@ impl Optimizer<Chain> for Climb {
         &self.settings
     }
 
+    fn state_settings(state: &ClimbState) -> &ClimbSettings {
+        &state.settings
+    }
+
     fn progress(&self) -> &Progress<Best<Chain>> {
         &self.progress
     }

@@ -22,6 +22,7 @@ use super::backend::Incremental;
 use super::checkpoint::Checkpoint;
 use super::files::{Files, atomic_write, csv_bytes, save_png};
 use super::interrupt;
+use super::memory::{MemoryArgs, check_resumed};
 use super::overlay::{projection_overlay, projections};
 use super::plot;
 use super::progress::ProgressLine;
@@ -75,6 +76,8 @@ pub struct FrontRun<'a> {
     pub resume: Option<&'a Path>,
     /// Whether bred children may be counted from their parents' kept state.
     pub incremental: bool,
+    /// The memory a resumed run's checkpoint may take.
+    pub memory: MemoryArgs,
 }
 
 impl FrontRun<'_> {
@@ -90,6 +93,14 @@ impl FrontRun<'_> {
             Some(dir) => {
                 let checkpoint: Checkpoint<MultiGaState<G>> =
                     Checkpoint::load(dir, "a multi-objective run of this scene")?;
+                let state = &checkpoint.search;
+                check_resumed::<G, MultiGa<G>>(
+                    self.scene,
+                    state,
+                    self.incremental,
+                    false,
+                    self.memory,
+                )?;
                 MultiGa::resume(checkpoint.search)?
             }
             None => MultiGa::<G>::new(settings, self.scene.limits, goal.seed)?,

@@ -8,7 +8,8 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use shapegen::Grammar;
-use shapegen::scene::{OptimizerGoal, Scene};
+use shapegen::optimize::Optimizer;
+use shapegen::scene::{OptimizerGoal, RunShape, Scene};
 
 use super::dispatch::Visit;
 use crate::registry::Entry;
@@ -57,18 +58,42 @@ pub struct MemoryCheck<'a> {
 
 impl Visit for MemoryCheck<'_> {
     fn visit<G: Grammar>(self, _: &Entry) -> anyhow::Result<()> {
-        let Some((limit, source)) = self.limit.limit() else {
-            return Ok(());
-        };
         for goal in self.goals {
             let shape = self
                 .scene
                 .run_shape::<G>(goal, self.threads, self.incremental, self.gpu);
-            let estimate = self.scene.memory_estimate(&shape).times(self.jobs);
-            estimate.check(limit, &source).map_err(anyhow::Error::msg)?;
+            check(self.scene, &shape, self.jobs, self.limit)?;
         }
         Ok(())
     }
+}
+
+/// Refuses to resume a run of `scene` from `state`, a checkpoint of `O`, that would not
+/// fit in memory: what the checkpoint's own settings hold, which may not be the scene's.
+pub fn check_resumed<G: Grammar, O: Optimizer<G>>(
+    scene: &Scene,
+    state: &O::State,
+    incremental: bool,
+    gpu: bool,
+    limit: MemoryArgs,
+) -> anyhow::Result<()> {
+    let shape = RunShape {
+        graph: G::GRAPH,
+        held: O::genomes_held(O::state_settings(state)),
+        threads: rayon::current_num_threads(),
+        incremental,
+        gpu,
+    };
+    check(scene, &shape, 1, limit)
+}
+
+/// Refuses `jobs` runs of `scene` shaped as `shape` at once over `limit`.
+fn check(scene: &Scene, shape: &RunShape, jobs: usize, limit: MemoryArgs) -> anyhow::Result<()> {
+    let Some((limit, source)) = limit.limit() else {
+        return Ok(());
+    };
+    let estimate = scene.memory_estimate(shape).times(jobs);
+    estimate.check(limit, &source).map_err(anyhow::Error::msg)
 }
 
 /// A size as `--max-memory` takes it: a number (a fraction allowed) and a unit K, M, G

@@ -22,7 +22,7 @@ use super::files::{Files, atomic_write, csv_bytes};
 use super::folder::{Existing, Folder, Kind};
 use super::front::FrontRun;
 use super::interrupt;
-use super::memory::{MemoryArgs, MemoryCheck};
+use super::memory::{MemoryArgs, MemoryCheck, check_resumed};
 use super::overlay::overlay;
 use super::plot;
 use super::processes::Processes;
@@ -182,13 +182,14 @@ impl Visit for Run<'_> {
                 dir: self.dir,
                 resume: self.args.resume.as_deref(),
                 incremental: self.args.backend.incremental(),
+                memory: self.args.memory,
             }
             .run::<G>();
         }
         if let MethodSettings::Islands(settings) = self.scene.optimizer.settings
             && let Some(exchange) = self.processes.exchange()
         {
-            let islands = match self.resumed::<IslandGa<G>>()? {
+            let islands = match self.resumed::<G, IslandGa<G>>()? {
                 Some(state) => IslandGa::resume_on(state, exchange)?,
                 None => {
                     let seed = self.scene.optimizer.seed;
@@ -205,7 +206,7 @@ impl<G: Grammar> MethodJob<G> for Run<'_> {
     type Output = anyhow::Result<()>;
 
     fn run<O: Optimizer<G, Record = Best<G>>>(self, settings: O::Settings) -> anyhow::Result<()> {
-        let optimizer = match self.resumed::<O>()? {
+        let optimizer = match self.resumed::<G, O>()? {
             Some(state) => O::resume(state)?,
             None => O::new(settings, self.scene.limits, self.scene.optimizer.seed)?,
         };
@@ -215,13 +216,22 @@ impl<G: Grammar> MethodJob<G> for Run<'_> {
 
 impl Run<'_> {
     /// The checkpoint of the run to resume, if it is one.
-    fn resumed<O: Optimizer<impl Grammar>>(&self) -> anyhow::Result<Option<O::State>> {
+    /// The checkpoint's settings are checked against the memory before it is resumed.
+    fn resumed<G: Grammar, O: Optimizer<G>>(&self) -> anyhow::Result<Option<O::State>> {
         let Some(dir) = &self.args.resume else {
             return Ok(None);
         };
         let method = self.scene.optimizer.method.name();
         let checkpoint: Checkpoint<O::State> =
             Checkpoint::load(dir, &format!("a {method} run of this scene"))?;
+        let backend = &self.args.backend;
+        check_resumed::<G, O>(
+            self.scene,
+            &checkpoint.search,
+            backend.incremental(),
+            backend.may_use_gpu(),
+            self.args.memory,
+        )?;
         Ok(Some(checkpoint.search))
     }
 

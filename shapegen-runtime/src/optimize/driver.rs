@@ -170,6 +170,11 @@ pub trait Optimizer<G: Grammar>: Sized {
     /// The settings.
     fn settings(&self) -> &Self::Settings;
 
+    /// The settings a checkpoint `state` was saved with: with
+    /// [`genomes_held`](Self::genomes_held), what resuming it will hold, known before
+    /// [`resume`](Self::resume) allocates anything.
+    fn state_settings(state: &Self::State) -> &Self::Settings;
+
     /// The counters and the record.
     fn progress(&self) -> &Progress<Self::Record>;
 

@@ -407,6 +407,10 @@ impl<G: Grammar> Optimizer<G> for Ga<G> {
         &self.settings
     }
 
+    fn state_settings(state: &GaState<G>) -> &GaSettings {
+        &state.settings
+    }
+
     fn progress(&self) -> &Progress<Best<G>> {
         &self.progress
     }

@@ -539,6 +539,10 @@ impl<G: Grammar> Optimizer<G> for IslandGa<G> {
         &self.settings
     }
 
+    fn state_settings(state: &IslandGaState<G>) -> &IslandGaSettings {
+        &state.settings
+    }
+
     fn progress(&self) -> &Progress<Best<G>> {
         &self.progress
     }

@@ -542,6 +542,10 @@ impl<G: Grammar> Optimizer<G> for Mcmc<G> {
         &self.settings
     }
 
+    fn state_settings(state: &McmcState<G>) -> &McmcSettings {
+        &state.settings
+    }
+
     fn progress(&self) -> &Progress<Best<G>> {
         &self.progress
     }

@@ -541,6 +541,10 @@ impl<G: Grammar> Optimizer<G> for MultiGa<G> {
         &self.settings
     }
 
+    fn state_settings(state: &MultiGaState<G>) -> &MultiGaSettings {
+        &state.settings
+    }
+
     fn progress(&self) -> &Progress<Front<G>> {
         &self.progress
     }

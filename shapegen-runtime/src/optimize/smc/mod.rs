@@ -446,6 +446,10 @@ impl<G: Grammar> Optimizer<G> for Smc<G> {
         &self.settings
     }
 
+    fn state_settings(state: &SmcState<G>) -> &SmcSettings {
+        &state.settings
+    }
+
     fn progress(&self) -> &Progress<Best<G>> {
         &self.progress
     }
