@@ -1,0 +1,34 @@
+//! Target images as a scene reads them: decoded with the size checked first, then made
+//! a silhouette target (a mask by both rules, a weight map) and a projection objective's
+//! image.
+
+#![no_main]
+
+use glam::{Mat4, Vec2};
+use libfuzzer_sys::fuzz_target;
+use shapegen::scene::decode_image;
+use shapegen_runtime::score::objective::{ProjectionMatch, View};
+use shapegen_runtime::score::silhouette::{Camera, ImageTarget, MaskRule};
+
+fuzz_target!(|data: &[u8]| {
+    let Ok(image) = decode_image(data) else {
+        return;
+    };
+    let camera = || Camera::Matrices {
+        view: Mat4::IDENTITY,
+        projection: Mat4::IDENTITY,
+    };
+    let name = || "fuzz.png".to_owned();
+    let _ = ImageTarget::from_mask_by(name(), &image, camera(), 1.0, -1.0, MaskRule::RedZero);
+    let _ = ImageTarget::from_mask_by(
+        name(),
+        &image,
+        camera(),
+        1.0,
+        -1.0,
+        MaskRule::DarkerThan(128),
+    );
+    let _ = ImageTarget::from_weight_map(name(), &image, camera(), 1.0, -1.0);
+    let gray = image.into_luma8();
+    let _ = ProjectionMatch::from_image(View::Top, Vec2::splat(-1.0), Vec2::splat(1.0), &gray);
+});
