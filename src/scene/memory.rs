@@ -1,33 +1,6 @@
 //! How much memory a search of a scene takes, estimated before anything is allocated, so
 //! that a run too large for the machine is refused at once, naming the setting that
-//! makes it so, rather than growing until the kernel kills it.
-//!
-//! The estimate is an upper bound of what grows with the settings: every genome at the
-//! scene's `limits.max_len` genes of the grammar's largest gene; the checkpoint's text
-//! (about [`JSON_BYTES_PER_WORD`] per genome word); the instances of a whole population
-//! derived for scoring (one per gene); the scorers' grids and images, and their scratch
-//! buffers per worker thread; and, when children are counted incrementally, the state
-//! kept of the models, up to its bound
-//! ([`DEFAULT_MAX_BYTES`](shapegen_runtime::score::retained::DEFAULT_MAX_BYTES)).
-//! On a GPU, the instances of a batch are copied once more, sorted for the upload; the
-//! device's own memory is bounded by its bindings, which the scorers check. Fixed costs
-//! (the program, meshes, the GPU driver) are not in the estimate.
-//!
-//! ```
-//! use generators::Spaceship;
-//! use shapegen::scene::{Overrides, Scene};
-//! use shapegen::registry::Registry;
-//!
-//! let sets = vec!["optimizer.population=100000000".to_owned()];
-//! let overrides = Overrides { sets, ..Overrides::default() };
-//! let scene = Scene::open("scenes/paper/spaceship_volume.toml", &Registry::published(), &overrides)?;
-//! let shape = scene.run_shape::<Spaceship>(&scene.optimizer, 2, true, false);
-//! let estimate = scene.memory_estimate(&shape);
-//! assert!(estimate.total() > 100 << 30);
-//! let refused = estimate.check(16 << 30, "that --max-memory allows").unwrap_err();
-//! assert!(refused.contains("optimizer.population = 100000000"), "{refused}");
-//! # Ok::<(), Box<dyn std::error::Error>>(())
-//! ```
+//! makes it so, rather than growing until the kernel kills it ([`MemoryEstimate`]).
 
 use std::mem::size_of;
 
@@ -75,6 +48,33 @@ pub struct MemoryPart {
 }
 
 /// A run's memory, estimated by part ([`Scene::memory_estimate`]).
+///
+/// The estimate is an upper bound of what grows with the settings: every genome at the
+/// scene's `limits.max_len` genes of the grammar's largest gene; the checkpoint's text
+/// (about [`JSON_BYTES_PER_WORD`] per genome word); the instances of a whole population
+/// derived for scoring (one per gene); the scorers' grids and images, and their scratch
+/// buffers per worker thread; and, when children are counted incrementally, the state
+/// kept of the models, up to its bound
+/// ([`DEFAULT_MAX_BYTES`](shapegen_runtime::score::retained::DEFAULT_MAX_BYTES)).
+/// On a GPU, the instances of a batch are copied once more, sorted for the upload; the
+/// device's own memory is bounded by its bindings, which the scorers check. Fixed costs
+/// (the program, meshes, the GPU driver) are not in the estimate.
+///
+/// ```
+/// use generators::Spaceship;
+/// use shapegen::scene::{Overrides, Scene};
+/// use shapegen::registry::Registry;
+///
+/// let sets = vec!["optimizer.population=100000000".to_owned()];
+/// let overrides = Overrides { sets, ..Overrides::default() };
+/// let scene = Scene::open("scenes/paper/spaceship_volume.toml", &Registry::published(), &overrides)?;
+/// let shape = scene.run_shape::<Spaceship>(&scene.optimizer, 2, true, false);
+/// let estimate = scene.memory_estimate(&shape);
+/// assert!(estimate.total() > 100 << 30);
+/// let refused = estimate.check(16 << 30, "that --max-memory allows").unwrap_err();
+/// assert!(refused.contains("optimizer.population = 100000000"), "{refused}");
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct MemoryEstimate {
     parts: Vec<MemoryPart>,
@@ -181,7 +181,7 @@ impl Scene {
     }
 
     /// The estimated memory of a run of this scene shaped as `shape` (see the
-    /// [module documentation](self)).
+    /// [`MemoryEstimate`]).
     pub fn memory_estimate(&self, shape: &RunShape) -> MemoryEstimate {
         let max_len = u64::from(self.limits.max_len);
         let gene_words = shape
