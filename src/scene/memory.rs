@@ -133,7 +133,7 @@ impl MemoryEstimate {
 }
 
 /// `n` bytes in words: `512 B`, `3.4 MiB`, `1.2 GiB`, ...
-pub fn bytes(n: u64) -> String {
+fn bytes(n: u64) -> String {
     const UNITS: [&str; 6] = ["B", "KiB", "MiB", "GiB", "TiB", "PiB"];
     let mut value = n as f64;
     let mut unit = 0;

@@ -123,7 +123,7 @@ pub use evaluate::{
     ScorerGoal, ScorerKind,
 };
 pub use image::{decode_image, read_image};
-pub use memory::{JSON_BYTES_PER_WORD, MemoryEstimate, MemoryPart, RunShape, bytes};
+pub use memory::{JSON_BYTES_PER_WORD, MemoryEstimate, MemoryPart, RunShape};
 pub use objective::ObjectiveEvaluator;
 pub use optimizer::{Method, MethodSettings, OptimizerGoal, Overrides, UnknownMethod};
 
