@@ -2,8 +2,8 @@
 //! models against the paper's city whale and tree sketch targets (800 x 600), on one CPU
 //! thread, on all CPU threads, and on the GPU when there is one; one city of 100
 //! buildings on one thread; and one full evaluation of single 250-gene trees on one
-//! thread, with the published meshes and with the built-in ones. On the GPU also a
-//! generation of 200 bred trees counted from nothing and from their parents' kept slots.
+//! thread, with the published meshes and with the built-in ones. On the GPU also 200
+//! bred trees per operator, counted from nothing and from their parents' kept slots.
 
 mod breeding;
 
@@ -242,10 +242,9 @@ fn tree_single(c: &mut Criterion) {
     group.finish();
 }
 
-/// One generation of the tree search on the GPU: 200 children of 200 random 250-gene
-/// trees, each operator making a quarter of them, counted from nothing
-/// (`count_batch`) and from their parents' kept slots (`GpuRetention::count_bred`, the
-/// parents' slots counted once before timing).
+/// Bred trees on the GPU, per operator: 200 children of 200 random 250-gene trees, all
+/// by one operator, counted from nothing (`count_batch`) and from their parents' kept
+/// slots (`GpuRetention::count_bred`, the parents' slots counted once before timing).
 fn gpu_bred(c: &mut Criterion) {
     let Ok(gpu) = GpuContext::new() else {
         eprintln!("no GPU: no benchmark of bred children on the GPU");
@@ -257,40 +256,41 @@ fn gpu_bred(c: &mut Criterion) {
     };
     let mut rng = ChaCha8Rng::seed_from_u64(12);
     let mut ops = Operators::<tree::Tree>::new(tree::PAPER_LIMITS).unwrap();
-    let parents: Vec<Genome<tree::Tree>> =
-        (0..POPULATION).map(|_| ops.random(250, &mut rng)).collect();
-    let children: Vec<Genome<tree::Tree>> = parents
-        .iter()
-        .zip(breeding::Op::ALL.iter().cycle())
-        .map(|(parent, op)| op.child(&mut ops, parent, 250, &mut rng))
+    let parents: Vec<Genome<tree::Tree>> = (0..POPULATION)
+        .map(|_| ops.random(250, &mut rng))
         .collect();
     let from: Vec<u32> = (0..POPULATION as u32).collect();
-    let mut batch = InstanceBatch::new();
-    for child in &children {
-        batch.push_genome(child);
-    }
-    let mut retention = GpuRetention::new(&scorer).unwrap();
-    let mut kept = vec![SilhouetteCounts::default(); POPULATION];
-    retention
-        .count_bred(&scorer, &children, &batch, &parents, &from, &mut kept)
-        .unwrap();
-    let mut full = vec![SilhouetteCounts::default(); POPULATION];
-    scorer.count_batch(&batch, &mut full).unwrap();
-    assert_eq!(kept, full, "the kept slots count as from nothing");
     let mut group = c.benchmark_group("silhouette/tree_sketch1/bred 200");
     group.throughput(Throughput::Elements(POPULATION as u64));
     group.sample_size(10);
-    let name = gpu.info.name.as_str();
-    group.bench_function(BenchmarkId::new("gpu, from nothing", name), |b| {
-        b.iter(|| scorer.count_batch(&batch, &mut full).unwrap())
-    });
-    group.bench_function(BenchmarkId::new("gpu, from parents", name), |b| {
-        b.iter(|| {
-            retention
-                .count_bred(&scorer, &children, &batch, &parents, &from, &mut kept)
-                .unwrap()
-        })
-    });
+    for op in breeding::Op::ALL {
+        let children: Vec<Genome<tree::Tree>> = parents
+            .iter()
+            .map(|parent| op.child(&mut ops, parent, 250, &mut rng))
+            .collect();
+        let mut batch = InstanceBatch::new();
+        for child in &children {
+            batch.push_genome(child);
+        }
+        let mut retention = GpuRetention::new(&scorer).unwrap();
+        let mut kept = vec![SilhouetteCounts::default(); POPULATION];
+        retention
+            .count_bred(&scorer, &children, &batch, &parents, &from, &mut kept)
+            .unwrap();
+        let mut full = vec![SilhouetteCounts::default(); POPULATION];
+        scorer.count_batch(&batch, &mut full).unwrap();
+        assert_eq!(kept, full, "the kept slots count as from nothing");
+        group.bench_function(BenchmarkId::new("gpu, from nothing", op.name()), |b| {
+            b.iter(|| scorer.count_batch(&batch, &mut full).unwrap())
+        });
+        group.bench_function(BenchmarkId::new("gpu, from parents", op.name()), |b| {
+            b.iter(|| {
+                retention
+                    .count_bred(&scorer, &children, &batch, &parents, &from, &mut kept)
+                    .unwrap()
+            })
+        });
+    }
     group.finish();
 }
 
