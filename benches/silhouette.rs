@@ -256,9 +256,8 @@ fn gpu_bred(c: &mut Criterion) {
     };
     let mut rng = ChaCha8Rng::seed_from_u64(12);
     let mut ops = Operators::<tree::Tree>::new(tree::PAPER_LIMITS).unwrap();
-    let parents: Vec<Genome<tree::Tree>> = (0..POPULATION)
-        .map(|_| ops.random(250, &mut rng))
-        .collect();
+    let parents: Vec<Genome<tree::Tree>> =
+        (0..POPULATION).map(|_| ops.random(250, &mut rng)).collect();
     let from: Vec<u32> = (0..POPULATION as u32).collect();
     let mut group = c.benchmark_group("silhouette/tree_sketch1/bred 200");
     group.throughput(Throughput::Elements(POPULATION as u64));
