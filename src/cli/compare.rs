@@ -50,8 +50,12 @@ pub struct CompareArgs {
     /// The scene file (TOML).
     scene: PathBuf,
     /// The methods to compare, comma-separated, in the order they run and are listed:
-    /// any of ga, smc, sosmc and rjmcmc.
-    #[arg(long, value_delimiter = ',', default_value = "ga,smc,sosmc,rjmcmc")]
+    /// any of ga, smc, sosmc, rjmcmc and hybrid.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "ga,smc,sosmc,rjmcmc,hybrid"
+    )]
     methods: Vec<String>,
     /// Runs of each method (at least 1).
     #[arg(long, default_value_t = 3)]
@@ -432,6 +436,7 @@ fn colour(method: Method) -> Rgb<u8> {
         Method::Smc => Rgb([230, 120, 20]),
         Method::Sosmc => Rgb([30, 150, 60]),
         Method::Rjmcmc => Rgb([200, 30, 40]),
+        Method::Hybrid => Rgb([130, 60, 170]),
     }
 }
 
@@ -450,7 +455,7 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(
-            err.contains("`pso`") && err.contains("ga, smc, sosmc, rjmcmc"),
+            err.contains("`pso`") && err.contains("ga, smc, sosmc, rjmcmc, hybrid"),
             "{err}"
         );
         assert!(
