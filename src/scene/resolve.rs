@@ -125,6 +125,18 @@ impl<'a> Resolver<'a> {
             to: f64::from(limits.max_len),
         };
         let form = file.fitness.form;
+        let optimum = match file.fitness.optimum {
+            Some(v) if !(v.is_finite() && v > 0.0) => {
+                return Err(self.invalid(
+                    "fitness.optimum",
+                    format!(
+                        "{v} must be a finite number > 0: the best fitness the scene can \
+                         reach, whose fractions compare and sweep time"
+                    ),
+                ));
+            }
+            v => v,
+        };
 
         // One arm per kind of scorer, in the order of `ScorerKind::ALL`.
         let scorers: Vec<ScorerGoal> = [
@@ -210,6 +222,7 @@ impl<'a> Resolver<'a> {
             limits,
             optimal_len,
             length,
+            optimum,
             scorers,
             objectives,
         })

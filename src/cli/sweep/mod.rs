@@ -135,6 +135,7 @@ pub fn run(args: &SweepArgs, tool: &Generators) -> anyhow::Result<()> {
         method: args.method,
         sets: args.sets.clone(),
         backend: args.backend.clone(),
+        optimum: None,
     }
     .checked(args.seed, tool.registry())?;
     std::fs::create_dir_all(out).with_context(|| format!("cannot create `{}`", out.display()))?;
