@@ -247,10 +247,8 @@ fn every_method_runs_and_resumes_exactly() {
     let text = fs::read_to_string(&ga_scene).unwrap();
     let scene = dir.path().join("any.toml");
     fs::write(&scene, text.split("[optimizer]").next().unwrap()).unwrap();
-    // The hybrid with every addition on: it restarts (the second time seeding by SOSMC
-    // over two generations) within the six, so the resume lands inside them.
-    let hybrid =
-        "population=16,elitism=4,refine=3,acceptance=0.3,cooling=0.9,stagnation=1,seed_steps=2";
+    // The hybrid with both additions on: the resume lands just after its seeding.
+    let hybrid = "population=16,elitism=4,refine=3,seed_steps=2";
     for (method, sets) in [
         ("smc", "particles=16"),
         ("sosmc", "particles=16"),

@@ -1,6 +1,6 @@
 //! The hybrid method: the GA to the bit with its additions off; deterministic at any
-//! thread count; resumable anywhere, also while a population is being seeded and across
-//! restarts; safe with NaN fitness; its settings checked field by field.
+//! thread count; resumable anywhere, also while its first population is being seeded;
+//! safe with NaN fitness; its settings checked field by field.
 
 mod support {
     pub mod evaluators;
@@ -22,17 +22,14 @@ fn small_ga() -> GaSettings {
     }
 }
 
-/// Every addition on: refinement with cooling, restarts and seeding.
+/// Every addition on: seeding and refinement.
 fn full() -> HybridSettings {
     HybridSettings {
         ga: small_ga(),
+        seed_steps: 2,
         refine: 4,
         refine_moves: 3,
         jump_probability: 0.5,
-        acceptance: 0.3,
-        cooling: 0.9,
-        stagnation: 2,
-        seed_steps: 2,
     }
 }
 
@@ -40,16 +37,15 @@ fn full() -> HybridSettings {
 fn none() -> HybridSettings {
     HybridSettings {
         ga: small_ga(),
+        seed_steps: 0,
         refine: 0,
         refine_moves: 0,
-        stagnation: 0,
-        seed_steps: 0,
         ..HybridSettings::default()
     }
 }
 
-/// [`full`] with each addition on alone.
-fn variants() -> [HybridSettings; 5] {
+/// [`full`] and each addition on alone.
+fn variants() -> [HybridSettings; 3] {
     [
         full(),
         HybridSettings {
@@ -58,19 +54,7 @@ fn variants() -> [HybridSettings; 5] {
             ..none()
         },
         HybridSettings {
-            refine: 4,
-            refine_moves: 2,
-            acceptance: 0.5,
-            cooling: 0.8,
-            ..none()
-        },
-        HybridSettings {
-            stagnation: 2,
-            ..none()
-        },
-        HybridSettings {
             seed_steps: 3,
-            stagnation: 2,
             ..none()
         },
     ]
@@ -92,7 +76,7 @@ fn threads<T: Send>(n: usize, f: impl FnOnce() -> T + Send) -> T {
         .install(f)
 }
 
-/// [`Skyline`] capped at 3: populations reach the cap and stagnate.
+/// [`Skyline`] capped at 3: many individuals tie at the cap.
 struct Capped(Skyline);
 
 impl Evaluator<City> for Capped {
@@ -161,7 +145,7 @@ fn hybrid_improves_and_counts_every_evaluation() {
 
 #[test]
 fn hybrid_refinement_keeps_or_betters_its_elites_when_it_hill_climbs() {
-    // At acceptance 0 a refined individual only ever moves to an equal or better one, so
+    // A refined individual only ever moves to an equal or better one, so
     // with the GA's elitism the best never falls from one generation to the next.
     let s = HybridSettings {
         refine: 6,
@@ -177,36 +161,30 @@ fn hybrid_refinement_keeps_or_betters_its_elites_when_it_hill_climbs() {
 }
 
 #[test]
-fn hybrid_restarts_a_stagnant_population() {
+fn hybrid_seeds_its_first_population_by_sosmc() {
     let s = HybridSettings {
-        stagnation: 3,
-        ..none()
-    };
-    let mut hybrid = Hybrid::<City>::new(s, city::PAPER_LIMITS, 1).unwrap();
-    let mut flat = FnEvaluator(|_: &Genome<City>| 1.0);
-    hybrid
-        .run(&mut flat, &Budget::generations(3), &mut Silent)
-        .unwrap();
-    assert_eq!(hybrid.epoch().number, 0);
-    // Generation 4 is a new population (40 evaluations, not 32), in place at its end.
-    let r = hybrid
-        .run(&mut flat, &Budget::generations(4), &mut Silent)
-        .unwrap();
-    let e = hybrid.epoch();
-    assert_eq!((e.number, e.start, e.improved_at), (1, 4, 4));
-    assert_eq!(r.evaluations, 40 + 3 * 32 + 40);
-    // With SOSMC seeding, a new population takes its steps first.
-    let s = HybridSettings {
-        stagnation: 3,
         seed_steps: 2,
         ..none()
     };
     let mut hybrid = Hybrid::<City>::new(s, city::PAPER_LIMITS, 1).unwrap();
+    let mut eval = Skyline::new();
+    // The axiom's particles, then two SOSMC steps of 40 each.
     let r = hybrid
-        .run(&mut flat, &Budget::generations(2), &mut Silent)
+        .run(&mut eval, &Budget::generations(1), &mut Silent)
+        .unwrap();
+    assert_eq!(r.evaluations, 2 * 40);
+    let state = hybrid.checkpoint();
+    assert!(state.seeding.is_some() && state.population.is_empty());
+    let r = hybrid
+        .run(&mut eval, &Budget::generations(2), &mut Silent)
         .unwrap();
     assert_eq!(r.evaluations, 3 * 40);
-    assert_eq!(hybrid.epoch().start, 2);
+    let state = hybrid.checkpoint();
+    assert!(state.seeding.is_none() && state.population.len() == 40);
+    let r = hybrid
+        .run(&mut eval, &Budget::generations(3), &mut Silent)
+        .unwrap();
+    assert_eq!(r.evaluations, 3 * 40 + 32);
 }
 
 #[test]
@@ -243,10 +221,7 @@ fn hybrid_resume_equals_uninterrupted() {
         let full = whole
             .run(&mut Capped(Skyline::new()), &end, &mut Silent)
             .unwrap();
-        if s.stagnation > 0 {
-            assert!(whole.epoch().number > 0, "variant {k} never restarted");
-        }
-        // Stopped at every generation: before, during and after seeding and restarts.
+        // Stopped before, during and after seeding.
         for stop in [0, 1, 2, 3, 5, 8] {
             let mut first = Hybrid::<City>::new(s, city::PAPER_LIMITS, 4).unwrap();
             first
@@ -268,7 +243,6 @@ fn hybrid_resume_equals_uninterrupted() {
                 resumed.checkpoint().population,
                 "variant {k}, stopped after {stop}"
             );
-            assert_eq!(whole.epoch(), resumed.epoch(), "variant {k}, {stop}");
         }
     }
 }
@@ -335,12 +309,6 @@ fn hybrid_settings_are_validated() {
             },
             "jump_probability",
         );
-    }
-    for a in [-0.1, 1.0, f64::NAN] {
-        check(HybridSettings { acceptance: a, ..d }, "acceptance");
-    }
-    for c in [0.0, 1.01, f64::NAN] {
-        check(HybridSettings { cooling: c, ..d }, "cooling");
     }
     check(
         HybridSettings {

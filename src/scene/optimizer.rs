@@ -24,7 +24,8 @@ pub enum Method {
     Sosmc,
     /// Reversible-jump MCMC with parallel tempering.
     Rjmcmc,
-    /// The GA with refinement by short RJMCMC chains and restarts.
+    /// The GA with its first population seeded by SOSMC and its best refined by short
+    /// RJMCMC chains.
     Hybrid,
 }
 
@@ -417,7 +418,7 @@ pub(super) fn resolve(
 }
 
 /// The hybrid's settings: `base` with the keys of `table` over it, its own keys
-/// (`refine`, `stagnation`, ...) read as its own and every other key as its GA's;
+/// (`seed_steps`, `refine`, ...) read as its own and every other key as its GA's;
 /// errors are `(key, reason)`.
 fn hybrid(
     base: HybridSettings,
@@ -730,8 +731,9 @@ mod hybrid_tests {
                 ..HybridSettings::default()
             }
         );
-        let s = hybrid("refine = 2\ncooling = 0.5\nacceptance = 0.2\npopulation = 60\n").unwrap();
-        assert_eq!((s.refine, s.cooling, s.acceptance), (2, 0.5, 0.2));
+        let s = hybrid("refine = 2\nseed_steps = 5\njump_probability = 0.2\npopulation = 60\n")
+            .unwrap();
+        assert_eq!((s.refine, s.seed_steps, s.jump_probability), (2, 5, 0.2));
         assert_eq!(
             s.ga,
             GaSettings {
@@ -740,8 +742,8 @@ mod hybrid_tests {
             }
         );
         for (text, key) in [
-            ("cooling = 2.0", "optimizer.cooling"),
-            ("acceptance = 1.0", "optimizer.acceptance"),
+            ("jump_probability = 2.0", "optimizer.jump_probability"),
+            ("seed_steps = -1", "optimizer.seed_steps"),
             ("refine = -1", "optimizer.refine"),
             ("refine = 500", "optimizer.refine"),
             ("jump_probability = \"x\"", "optimizer.jump_probability"),

@@ -1,6 +1,6 @@
-//! The hybrid method: the paper's GA, with its best individuals refined by short
-//! RJMCMC chains every generation, restarts when the population stagnates, and
-//! optionally SOSMC to seed each population ([`Hybrid`]).
+//! The hybrid method: the paper's GA, its first population grown by a few steps of
+//! SOSMC and its best individuals refined by short RJMCMC chains every generation
+//! ([`Hybrid`]).
 
 mod refine;
 
@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use super::best::Best;
 use super::error::{check_range, check_sizes};
-use super::fitness::{Roulette, bits, bits_vec, compare, mean_std};
+use super::fitness::{Roulette, bits_vec};
 use super::ga::{Generation, Parents, random_population};
 use super::run::{Progress, derived_seed, grammar_struct_traits};
 use super::{
@@ -19,14 +19,17 @@ use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
 use crate::ops::Operators;
 
-/// Settings of the [`Hybrid`]: the GA's, and those of its refinement, restarts and
-/// seeding. Loads from scene files with serde; missing fields take the [`Default`]
-/// values, unknown fields are errors.
+/// Settings of the [`Hybrid`]: the GA's, and those of its seeding and its refinement.
+/// Loads from scene files with serde; missing fields take the [`Default`] values,
+/// unknown fields are errors.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct HybridSettings {
     /// The GA that breeds every generation.
     pub ga: GaSettings,
+    /// SOSMC steps that grow the first population from the axiom before the GA breeds
+    /// it; 0 starts from random genomes, as the GA does.
+    pub seed_steps: u32,
     /// How many of the best individuals a short chain refines each generation; at most
     /// the population. 0 refines none.
     pub refine: u32,
@@ -35,32 +38,16 @@ pub struct HybridSettings {
     /// Chance that a refinement move is a jump (a subtree redrawn from the grammar)
     /// rather than a diffusion (one gene's parameters redrawn); in `[0, 1]`.
     pub jump_probability: f64,
-    /// Chance, at the start of a population, that a refinement move losing one standard
-    /// deviation of the population's fitness is accepted; in `[0, 1)`. 0 accepts no
-    /// loss at all (a hill climb that takes equal moves).
-    pub acceptance: f64,
-    /// The refinement temperature is multiplied by this every generation; in `(0, 1]`.
-    pub cooling: f64,
-    /// A population whose best has not improved for this many generations, and for at
-    /// least as long as it took to reach that best, is replaced by a new one (the best
-    /// so far stays recorded); 0 never restarts.
-    pub stagnation: u64,
-    /// SOSMC steps that grow each new population from the axiom before the GA breeds
-    /// it; 0 starts from random genomes, as the GA does.
-    pub seed_steps: u32,
 }
 
 impl Default for HybridSettings {
     fn default() -> Self {
         HybridSettings {
             ga: GaSettings::default(),
+            seed_steps: 3,
             refine: 4,
             refine_moves: 2,
             jump_probability: 0.5,
-            acceptance: 0.0,
-            cooling: 1.0,
-            stagnation: 0,
-            seed_steps: 0,
         }
     }
 }
@@ -82,25 +69,10 @@ impl HybridSettings {
             0.0,
             1.0,
             "between 0 and 1",
-        )?;
-        if !(self.acceptance >= 0.0 && self.acceptance < 1.0) {
-            return Err(SettingsError::new(
-                "acceptance",
-                self.acceptance,
-                "at least 0 and below 1",
-            ));
-        }
-        if !(self.cooling > 0.0 && self.cooling <= 1.0) {
-            return Err(SettingsError::new(
-                "cooling",
-                self.cooling,
-                "above 0 and at most 1",
-            ));
-        }
-        Ok(())
+        )
     }
 
-    /// The SOSMC that seeds a population.
+    /// The SOSMC that seeds the first population.
     fn seeding(&self) -> SmcSettings {
         SmcSettings {
             particles: self.ga.population,
@@ -110,48 +82,6 @@ impl HybridSettings {
             ..SmcSettings::default()
         }
     }
-}
-
-/// Where the current population stands: when it began, its best and when it last
-/// improved, and the scale of its refinement temperature.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Epoch {
-    /// How many populations came before this one.
-    pub number: u64,
-    /// The generation at whose end the population was in place.
-    pub start: u64,
-    /// The generation of its last improvement.
-    pub improved_at: u64,
-    /// Its best fitness.
-    #[serde(with = "bits")]
-    pub best: f64,
-    /// The standard deviation of its first fitness values (1 when 0 or not finite).
-    #[serde(with = "bits")]
-    pub scale: f64,
-}
-
-impl Epoch {
-    /// The epoch `number` of a population in place at the end of `generation`, with
-    /// these fitness values.
-    fn begin(number: u64, generation: u64, fitness: &[f64]) -> Epoch {
-        let (_, s) = mean_std(fitness);
-        Epoch {
-            number,
-            start: generation,
-            improved_at: generation,
-            best: best_of(fitness),
-            scale: if s > 0.0 && s.is_finite() { s } else { 1.0 },
-        }
-    }
-}
-
-/// The best of `fitness` (NaN when empty or all NaN).
-fn best_of(fitness: &[f64]) -> f64 {
-    fitness
-        .iter()
-        .copied()
-        .fold(f64::NAN, |a, b| if compare(b, a).is_gt() { b } else { a })
 }
 
 /// A checkpoint of a [`Hybrid`], resumed by [`Hybrid::resume`].
@@ -167,14 +97,12 @@ pub struct HybridState<G> {
     pub limits: Limits,
     /// Generation, evaluations, best so far, history.
     pub progress: Progress<Best<G>>,
-    /// The current population (empty while one is being seeded).
+    /// The population (empty while it is being seeded).
     pub population: Vec<Genome<G>>,
     /// Its fitness.
     #[serde(with = "bits_vec")]
     pub fitness: Vec<f64>,
-    /// The current population's epoch.
-    pub epoch: Epoch,
-    /// The SOSMC seeding the next population, while it runs.
+    /// The SOSMC seeding the first population, while it runs.
     pub seeding: Option<SmcState<G>>,
 }
 
@@ -184,37 +112,33 @@ grammar_struct_traits!(HybridState {
     progress,
     population,
     fitness,
-    epoch,
     seeding
 });
 
-/// The hybrid method: the paper's GA ([`Ga`](super::Ga)) with three additions, each of
-/// which its settings can turn off (with all three off it is the GA, to the bit).
+/// The hybrid method: the paper's GA ([`Ga`](super::Ga)) with two additions, each of
+/// which its settings can turn off (with both off it is the GA, to the bit). Each was
+/// kept because it helped in the measurements of `benches/README.md` ("The hybrid
+/// method"); annealed refinement and restarts on stagnation were tried there and
+/// dropped.
 ///
+/// - **Seeding**: with [`seed_steps`](HybridSettings::seed_steps), the first population
+///   is grown by SOSMC (the generative variant, [`SmcVariant::Generative`]) from the
+///   axiom for that many steps, one step per generation, rather than drawn as random
+///   genomes of the GA's `initial_length`: small, well-formed models, cheap to score.
 /// - **Refinement**: after each generation is bred and scored, its
 ///   [`refine`](HybridSettings::refine) best individuals each make
-///   [`refine_moves`](HybridSettings::refine_moves) moves of a short RJMCMC chain: the
+///   [`refine_moves`](HybridSettings::refine_moves) moves of a short RJMCMC chain, the
 ///   tempered variant's jumps and diffusions ([`McmcVariant::Tempered`](
-///   super::McmcVariant::Tempered)), accepted by the Metropolis test at a temperature
-///   that falls over the population's life (see
-///   [`acceptance`](HybridSettings::acceptance) and [`cooling`](HybridSettings::cooling)).
-///   The refined individuals take the place of those they came from.
-/// - **Restarts**: when the population's best has not improved for
-///   [`stagnation`](HybridSettings::stagnation) generations, and for at least as many as
-///   it took to reach that best, a new population replaces it, so that a long run
-///   searches several basins rather than one.
-/// - **Seeding**: with [`seed_steps`](HybridSettings::seed_steps), each population is
-///   grown by SOSMC (the generative variant) from the axiom for that many steps, one
-///   step per generation, rather than drawn as random genomes.
+///   super::McmcVariant::Tempered)); a move is kept when it loses nothing (a chain at
+///   temperature 0). The refined individuals take the place of those they came from.
 ///
 /// Random streams: the GA breeds generation `g` from (seed, `g`, pair); refinement
-/// chain `i` of generation `g` draws from (seed, `g`, 2^31 + `i`); population `k`'s
-/// random genomes come from the streams of the seed derived for `k` (the run's seed for
-/// the first), its seeding from those of the seed derived for `k + 2^32`. Results never
-/// depend on the thread count.
+/// chain `i` of generation `g` draws from (seed, `g`, 2^31 + `i`); the random first
+/// population comes from the run's seed, its seeding from the seed derived for `2^32`.
+/// Results never depend on the thread count.
 ///
-/// Evaluations: a generation costs `population - elitism + refine * refine_moves`; a
-/// new population costs `population`, and each seeding step as much.
+/// Evaluations: the first population costs `population`, and each seeding step as
+/// much; a generation costs `population - elitism + refine * refine_moves`.
 ///
 /// ```
 /// use shapegen_runtime::optimize::{Budget, FnEvaluator, GaSettings, Hybrid, HybridSettings};
@@ -237,12 +161,13 @@ grammar_struct_traits!(HybridState {
 ///
 /// // Look for chains of 12 blocks.
 /// let ga = GaSettings { population: 20, elitism: 4, initial_length: 4, ..GaSettings::default() };
-/// let settings = HybridSettings { ga, refine: 2, refine_moves: 2, ..HybridSettings::default() };
+/// let settings = HybridSettings { ga, seed_steps: 2, refine: 2, refine_moves: 2, ..HybridSettings::default() };
 /// let mut hybrid = Hybrid::<Chain>::new(settings, Limits::new(1, 30, 30)?, 7)?;
 /// let mut eval = FnEvaluator(|g: &Genome<Chain>| -(g.len() as f64 - 12.0).abs());
 /// let result = hybrid.run(&mut eval, &Budget::generations(30), &mut Silent)?;
 /// assert_eq!(result.best.len(), 12);
-/// assert_eq!(result.evaluations, 20 + 30 * (16 + 2 * 2));
+/// // The axiom, two seeding steps, then 28 generations.
+/// assert_eq!(result.evaluations, 20 + 2 * 20 + 28 * (16 + 2 * 2));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub struct Hybrid<G> {
@@ -261,7 +186,6 @@ pub struct Hybrid<G> {
     from: Vec<u32>,
     order: Vec<u32>,
     roulette: Roulette,
-    epoch: Epoch,
     seeding: Option<Smc<G>>,
     chains: refine::Chains<G>,
 }
@@ -271,60 +195,11 @@ impl<G: Grammar> std::fmt::Debug for Hybrid<G> {
         f.debug_struct("Hybrid")
             .field("settings", &self.settings)
             .field("progress", &self.progress)
-            .field("epoch", &self.epoch)
             .finish_non_exhaustive()
     }
 }
 
 impl<G: Grammar> Hybrid<G> {
-    /// The current population's epoch.
-    pub fn epoch(&self) -> &Epoch {
-        &self.epoch
-    }
-
-    /// Whether the population is stuck: no improvement for `stagnation` generations, and
-    /// for at least as many as it took to reach its best.
-    fn stagnant(&self) -> bool {
-        let e = &self.epoch;
-        let stuck = self.progress.generation.saturating_sub(e.improved_at);
-        self.settings.stagnation > 0
-            && self.seeding.is_none()
-            && stuck >= self.settings.stagnation
-            && stuck > e.improved_at.saturating_sub(e.start)
-    }
-
-    /// Starts population `number`, in place at the end of generation `generation`:
-    /// random genomes, scored, or the first step of its seeding.
-    fn new_population(
-        &mut self,
-        evaluator: &mut (dyn Evaluator<G> + '_),
-        number: u64,
-        generation: u64,
-    ) -> Result<(), OptimizeError> {
-        let seed = self.progress.seed;
-        if self.settings.seed_steps > 0 {
-            let smc_seed = derived_seed(seed, number + (1 << 32));
-            let mut smc = Smc::new(self.settings.seeding(), self.limits, smc_seed)?;
-            smc.start(evaluator)?;
-            // Marks its progress started, so that a checkpoint keeps its particles.
-            smc.record();
-            self.progress.evaluations += u64::from(self.settings.ga.population);
-            self.epoch.number = number;
-            self.seeding = Some(smc);
-            return Ok(());
-        }
-        random_population(
-            &self.ops,
-            &self.settings.ga,
-            derived_seed(seed, number),
-            &mut self.population,
-        );
-        evaluator.evaluate(&self.population, &mut self.fitness)?;
-        self.progress.evaluations += self.population.len() as u64;
-        self.epoch = Epoch::begin(number, generation, &self.fitness);
-        Ok(())
-    }
-
     /// One SOSMC step of the population being seeded; the last puts it in place.
     fn seed_step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
         let smc = self.seeding.as_mut().expect("seeding");
@@ -335,8 +210,6 @@ impl<G: Grammar> Hybrid<G> {
         if progress.generation >= u64::from(self.settings.seed_steps) {
             self.population.clone_from_slice(particles);
             self.fitness.copy_from_slice(fitness);
-            let generation = self.progress.generation + 1;
-            self.epoch = Epoch::begin(self.epoch.number, generation, &self.fitness);
             self.seeding = None;
         }
         Ok(())
@@ -374,18 +247,6 @@ impl<G: Grammar> Hybrid<G> {
         Ok(())
     }
 
-    /// The refinement temperature of generation `generation`: 0 for a hill climb.
-    fn temperature(&self, generation: u64) -> f64 {
-        let a = self.settings.acceptance;
-        if a <= 0.0 {
-            return 0.0;
-        }
-        let age = generation
-            .saturating_sub(self.epoch.start)
-            .min(i32::MAX as u64) as i32;
-        -self.epoch.scale / a.ln() * self.settings.cooling.powi(age)
-    }
-
     /// The evaluations of one generation of the GA with its refinement.
     fn generation_cost(&self) -> u64 {
         let s = &self.settings;
@@ -414,7 +275,6 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
             from: vec![0; n - settings.ga.elitism as usize],
             order: Vec::with_capacity(n),
             roulette: Roulette::default(),
-            epoch: Epoch::begin(0, 0, &[]),
             seeding: None,
             chains: refine::Chains::new(settings.refine as usize),
             settings,
@@ -438,7 +298,6 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
             }
             hybrid.seeding = state.seeding.map(Smc::resume).transpose()?;
         }
-        hybrid.epoch = state.epoch;
         hybrid.progress = state.progress;
         Ok(hybrid)
     }
@@ -456,7 +315,6 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
                 Some(_) => Vec::new(),
                 None => self.fitness.clone(),
             },
-            epoch: self.epoch,
             seeding: self.seeding.as_ref().map(Smc::checkpoint),
         }
     }
@@ -469,8 +327,8 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
         &self.progress
     }
 
-    /// The progress, with the current population, or the particles of the population
-    /// being seeded.
+    /// The progress, with the population, or the particles of the population being
+    /// seeded.
     fn parts(&mut self) -> (&mut Progress<Best<G>>, &[Genome<G>], &[f64]) {
         match &mut self.seeding {
             Some(smc) => {
@@ -482,7 +340,7 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
     }
 
     fn step_cost(&self) -> u64 {
-        if self.seeding.is_some() || self.stagnant() {
+        if self.seeding.is_some() {
             u64::from(self.settings.ga.population)
         } else {
             self.generation_cost()
@@ -490,40 +348,46 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
     }
 
     fn start(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
-        self.new_population(evaluator, 0, 0)
+        let seed = self.progress.seed;
+        if self.settings.seed_steps > 0 {
+            let mut smc = Smc::new(
+                self.settings.seeding(),
+                self.limits,
+                derived_seed(seed, 1 << 32),
+            )?;
+            smc.start(evaluator)?;
+            // Marks its progress started, so that a checkpoint keeps its particles.
+            smc.record();
+            self.progress.evaluations += u64::from(self.settings.ga.population);
+            self.seeding = Some(smc);
+            return Ok(());
+        }
+        random_population(&self.ops, &self.settings.ga, seed, &mut self.population);
+        evaluator.evaluate(&self.population, &mut self.fitness)?;
+        self.progress.evaluations += self.population.len() as u64;
+        Ok(())
     }
 
     fn step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
         if self.seeding.is_some() {
             return self.seed_step(evaluator);
         }
-        if self.stagnant() {
-            let generation = self.progress.generation + 1;
-            return self.new_population(evaluator, self.epoch.number + 1, generation);
-        }
         self.breed(evaluator)?;
-        let generation = self.progress.generation + 1;
         let settings = &self.settings;
         self.chains.refine(
             refine::Refinement {
                 count: settings.refine as usize,
                 moves: settings.refine_moves,
                 jump_probability: settings.jump_probability,
-                temperature: self.temperature(generation),
                 ops: &self.moves,
                 seed: self.progress.seed,
-                generation,
+                generation: self.progress.generation + 1,
             },
             evaluator,
             (&mut self.population, &mut self.fitness),
             &mut self.order,
         )?;
         self.progress.evaluations += u64::from(settings.refine) * u64::from(settings.refine_moves);
-        let best = best_of(&self.fitness);
-        if compare(best, self.epoch.best).is_gt() {
-            self.epoch.best = best;
-            self.epoch.improved_at = generation;
-        }
         Ok(())
     }
 }

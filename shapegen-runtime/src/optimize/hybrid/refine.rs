@@ -1,20 +1,19 @@
 //! Refinement: short RJMCMC chains from a population's best individuals, the moves of
-//! the tempered variant accepted at a temperature the hybrid sets.
+//! the tempered variant, each kept when it loses nothing.
 
-use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
 use super::super::fitness::{compare, rank};
-use super::super::mcmc::{MoveScratch, accept, propose};
+use super::super::mcmc::{MoveScratch, propose};
 use super::super::run::stream;
 use super::super::{Evaluator, OptimizeError};
 use crate::derive::Grammar;
 use crate::genome::Genome;
 use crate::ops::Operators;
 
-/// One generation's refinement: how many of the best individuals, how many moves each,
-/// and at what temperature.
+/// One generation's refinement: how many of the best individuals, and how many moves
+/// each.
 pub(super) struct Refinement<'a, G> {
     /// How many of the best individuals are refined.
     pub(super) count: usize,
@@ -22,8 +21,6 @@ pub(super) struct Refinement<'a, G> {
     pub(super) moves: u32,
     /// Chance that a move is a jump.
     pub(super) jump_probability: f64,
-    /// The Metropolis temperature; 0 takes a move exactly when it loses nothing.
-    pub(super) temperature: f64,
     /// The operators of the moves.
     pub(super) ops: &'a Operators<G>,
     /// The run's seed.
@@ -38,7 +35,6 @@ pub(super) struct Chains<G> {
     chosen: Vec<u32>,
     proposals: Vec<Genome<G>>,
     proposal_fitness: Vec<f64>,
-    log_q: Vec<f64>,
     rngs: Vec<ChaCha8Rng>,
 }
 
@@ -51,14 +47,14 @@ impl<G: Grammar> Chains<G> {
                 .map(|_| Genome::from_parts(Vec::new(), 0))
                 .collect(),
             proposal_fitness: vec![f64::NAN; count],
-            log_q: vec![0.0; count],
             rngs: Vec::with_capacity(count),
         }
     }
 
     /// Refines the `count` best of `population` (ranked by `fitness`, the first of
     /// equals first; `order` is scratch) in place: each makes `moves` moves, chain `i`
-    /// drawing from stream (seed, generation, 2^31 + `i`). All chains' proposals of a
+    /// drawing from stream (seed, generation, 2^31 + `i`), and keeps a proposal that
+    /// scores at least as well as its individual (not NaN). All chains' proposals of a
     /// move are scored together, bred from the population.
     pub(super) fn refine(
         &mut self,
@@ -81,14 +77,13 @@ impl<G: Grammar> Chains<G> {
             let (chosen, current) = (&self.chosen, &*population);
             self.proposals[..n]
                 .par_iter_mut()
-                .zip(&mut self.log_q[..n])
                 .zip(&mut self.rngs[..])
                 .enumerate()
                 .for_each_init(
                     || (r.ops.clone(), MoveScratch::default()),
-                    |(ops, scratch), (i, ((p, log_q), rng))| {
+                    |(ops, scratch), (i, (p, rng))| {
                         let from = &current[chosen[i] as usize];
-                        *log_q = propose(r.jump_probability, ops, from, p, scratch, rng).log_q;
+                        propose(r.jump_probability, ops, from, p, scratch, rng);
                     },
                 );
             evaluator.evaluate_bred(
@@ -100,15 +95,7 @@ impl<G: Grammar> Chains<G> {
             for i in 0..n {
                 let at = self.chosen[i] as usize;
                 let (old, new) = (fitness[at], self.proposal_fitness[i]);
-                let rng = &mut self.rngs[i];
-                let taken = if r.temperature > 0.0 {
-                    accept(old, new, r.temperature, self.log_q[i], rng)
-                } else {
-                    // A draw all the same, so that the streams do not depend on it.
-                    let _: f64 = rng.random();
-                    !new.is_nan() && compare(new, old).is_ge()
-                };
-                if taken {
+                if !new.is_nan() && compare(new, old).is_ge() {
                     std::mem::swap(&mut population[at], &mut self.proposals[i]);
                     fitness[at] = new;
                 }

@@ -7,7 +7,7 @@
 mod original;
 mod tempered;
 
-pub(crate) use tempered::{Scratch as MoveScratch, accept, propose};
+pub(crate) use tempered::{Scratch as MoveScratch, propose};
 
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;

@@ -19,9 +19,9 @@ use crate::optimize::{Evaluator, OptimizeError};
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Move {
     /// Whether it is a jump (delayed rejection applies).
-    pub(crate) jump: bool,
+    jump: bool,
     /// Log of the proposal ratio.
-    pub(crate) log_q: f64,
+    log_q: f64,
 }
 
 /// Per-thread scratch of a move.
@@ -156,7 +156,7 @@ impl<G: Grammar> Mcmc<G> {
 
 /// Whether a proposal of fitness `new` replaces a state of fitness `old` at temperature
 /// `t`, with log proposal ratio `log_q`.
-pub(crate) fn accept(old: f64, new: f64, t: f64, log_q: f64, rng: &mut impl Rng) -> bool {
+fn accept(old: f64, new: f64, t: f64, log_q: f64, rng: &mut impl Rng) -> bool {
     if new.is_nan() {
         return false;
     }
