@@ -30,6 +30,9 @@ const POINTS: usize = 400;
 /// Size of the plots.
 const SIZE: (u32, u32) = (800, 500);
 
+/// The x value of a history entry: its seconds or its evaluations.
+type XOf = fn(&HistoryEntry) -> f64;
+
 /// One group of runs (a method, a grid point) with its histories.
 pub struct Group<'a> {
     /// Its name in the tables and legends.
@@ -152,13 +155,13 @@ pub fn write(
         .map(|g| (g.name.clone(), reached(optimum, &g.runs)))
         .collect();
     atomic_write(&dir.join("targets.csv"), &targets_csv(key, &rows)?)?;
-    let last = |f: fn(&HistoryEntry) -> f64| {
+    let last = |f: XOf| {
         groups
             .iter()
             .flat_map(|g| g.runs.iter().filter_map(|h| h.last().map(f)))
             .fold(0.0, f64::max)
     };
-    let axes: [(&str, fn(&HistoryEntry) -> f64, &str); 2] = [
+    let axes: [(&str, XOf, &str); 2] = [
         ("gap-time.png", |h| h.elapsed_s, "seconds"),
         (
             "gap-evaluations.png",
@@ -199,12 +202,7 @@ pub fn write(
 /// The gap to `optimum` of `runs` against `x`: its lower quartile, median and upper
 /// quartile per grid point (the gaps of the upper quartile, median and lower quartile
 /// of the best), each at least [`FLOOR`] times the optimum.
-fn gaps(
-    optimum: f64,
-    runs: &[&[HistoryEntry]],
-    x: fn(&HistoryEntry) -> f64,
-    x_max: f64,
-) -> [Vec<f64>; 3] {
+fn gaps(optimum: f64, runs: &[&[HistoryEntry]], x: XOf, x_max: f64) -> [Vec<f64>; 3] {
     let q = quartile_curve(runs, x, x_max, POINTS);
     let floor = FLOOR * optimum.abs();
     let gap = |v: &Vec<f64>| -> Vec<f64> {

@@ -49,7 +49,8 @@
 //! # or: camera = { view = [[..], [..], [..], [..]], projection = [..], width = .., height = .. }
 //!
 //! [optimizer]                        # optional: the generator's presets for the method
-//! method = "ga"
+//! method = "ga"                      # ga, smc, sosmc, rjmcmc or hybrid (the default,
+//!                                    # but the GA with [islands] or [[objective]] tables)
 //! seed = 1
 //! seconds = 60                       # budgets: time, evaluations, generations
 //! generations = 100

@@ -30,6 +30,11 @@ pub enum Method {
 }
 
 impl Method {
+    /// The method of a scene that names none (and has neither islands nor objectives,
+    /// which the GA searches): the hybrid, which led or was level at every budget and on
+    /// every scene measured (`benches/README.md`, "The hybrid method").
+    pub const DEFAULT: Method = Method::Hybrid;
+
     /// Every method.
     pub const ALL: [Method; 5] = [
         Method::Ga,
@@ -77,7 +82,8 @@ pub enum MethodSettings {
 ///
 /// ```toml
 /// [optimizer]
-/// method = "ga"          # ga, smc, sosmc, rjmcmc or hybrid
+/// method = "hybrid"      # ga, smc, sosmc, rjmcmc or hybrid (the default; the GA with
+///                        # [islands] or [[objective]] tables)
 /// seed = 1
 /// seconds = 60           # wall-time budget (optional)
 /// evaluations = 100000   # evaluation budget (optional)
@@ -280,10 +286,11 @@ pub(super) fn resolve(
 ) -> Result<OptimizerGoal, (String, String)> {
     let key = |k: &str| format!("optimizer.{k}");
     let written = match table.remove("method") {
-        None => Method::Ga,
-        Some(toml::Value::String(m)) => m
-            .parse()
-            .map_err(|e: UnknownMethod| (key("method"), e.to_string()))?,
+        None => None,
+        Some(toml::Value::String(m)) => Some(
+            m.parse()
+                .map_err(|e: UnknownMethod| (key("method"), e.to_string()))?,
+        ),
         Some(other) => {
             return Err((
                 key("method"),
@@ -294,7 +301,6 @@ pub(super) fn resolve(
             ));
         }
     };
-    let method = overrides.method.unwrap_or(written);
     let islands = match (islands, overrides.islands) {
         (None, None) => None,
         (written, count) => {
@@ -303,6 +309,14 @@ pub(super) fn resolve(
             Some(islands)
         }
     };
+    let method = overrides
+        .method
+        .or(written)
+        .unwrap_or(if islands.is_some() {
+            Method::Ga
+        } else {
+            Method::DEFAULT
+        });
     if islands.is_some() && method != Method::Ga {
         return Err((
             "islands".into(),
@@ -695,7 +709,7 @@ mod mcmc_tests {
             assert_eq!(s.islands.migrants, migrants, "the table's, or the default");
         }
         let plain = resolve(&spaceship, toml::Table::new(), None, &Overrides::default());
-        assert!(matches!(plain.unwrap().settings, MethodSettings::Ga(_)));
+        assert!(matches!(plain.unwrap().settings, MethodSettings::Hybrid(_)));
         let rjmcmc = toml::from_str("method = \"rjmcmc\"\n").unwrap();
         let (key, reason) = resolve(&spaceship, rjmcmc, None, &flag).unwrap_err();
         assert_eq!(key, "islands");

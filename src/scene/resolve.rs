@@ -183,6 +183,10 @@ impl<'a> Resolver<'a> {
                 .map_err(|err| self.invalid(err.field, err.to_string()))?;
             let archive = super::optimizer::take_archive(&mut table)
                 .map_err(|(key, reason)| self.invalid(key, reason))?;
+            // The multi-objective GA searches it, whatever the default method.
+            table
+                .entry("method")
+                .or_insert_with(|| toml::Value::String(Method::Ga.name().to_owned()));
             Some(ObjectiveGoal {
                 set,
                 selection,
