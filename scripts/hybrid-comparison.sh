@@ -12,7 +12,7 @@
 # benches/README.md, for the paper's own evaluation count (the spaceship's and the
 # city's 130 and 30 generations); for the trees it is 10 s, since the paper's own tree
 # budget (255 k GA evaluations) already takes some 650 s here. The whole matrix takes
-# about RUNS * 5 * 111 * (sum of the base budgets) seconds: some 60 hours at 10 runs,
+# about RUNS * 5 * 111 * (sum of the base budgets, 32.4 s) seconds: some 50 hours at 10 runs,
 # so run it in parts (SCENES, FACTORS).
 #
 # Writes each comparison to OUT_DIR/SCENE-FACTORx and prints the rows of the tables in
