@@ -10,17 +10,25 @@ use std::process::ExitCode;
 
 use libtest_mimic::{Arguments, Failed, Trial};
 use shapegen::gpu::GpuContext;
-use support::{SHIP_SCENE, UNIT_CUBE_OBJ, s, sample, score, shapegen};
+use support::{
+    SHIP_SCENE, UNIT_CUBE_OBJ, ok, s, sample, score, shapegen, skyline_scene, timeless_curve,
+};
 
 /// A test that runs the binary on the GPU: its name and its body, which panics when the
 /// test fails.
 type GpuTest = (&'static str, fn());
 
 /// The tests of this file.
-const TESTS: &[GpuTest] = &[(
-    "the_gpu_counts_as_the_cpu_does",
-    the_gpu_counts_as_the_cpu_does,
-)];
+const TESTS: &[GpuTest] = &[
+    (
+        "the_gpu_counts_as_the_cpu_does",
+        the_gpu_counts_as_the_cpu_does,
+    ),
+    (
+        "a_gpu_search_counts_children_from_their_parents_with_the_same_result",
+        a_gpu_search_counts_children_from_their_parents_with_the_same_result,
+    ),
+];
 
 fn main() -> ExitCode {
     let args = Arguments::from_args();
@@ -72,4 +80,29 @@ fn the_gpu_counts_as_the_cpu_does() {
         .map(|l| serde_json::from_str(l).unwrap())
         .collect();
     assert_eq!(cpu, gpu, "exact voxel counts and equal fitness");
+}
+
+fn a_gpu_search_counts_children_from_their_parents_with_the_same_result() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = skyline_scene(dir.path());
+    let run = |name: &str, extra: &[&str]| {
+        let out = dir.path().join(name);
+        let base = ["run", s(&scene), "--gpu", "--seed", "5", "--out", s(&out)];
+        let printed = ok(&[&base[..], extra].concat());
+        (out, printed)
+    };
+    let (kept, _) = run("kept", &[]);
+    let (full, _) = run("full", &["--no-incremental"]);
+    assert_eq!(timeless_curve(&kept), timeless_curve(&full));
+    let summary = |dir: &std::path::Path| -> serde_json::Value {
+        serde_json::from_str(&fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
+    };
+    let (kept, full) = (summary(&kept), summary(&full));
+    assert_eq!(kept["best_fitness"], full["best_fitness"]);
+    let incremental = &kept["incremental"];
+    assert!(
+        incremental["children_incremental"].as_u64().unwrap() > 0,
+        "{incremental}"
+    );
+    assert!(full["incremental"].is_null(), "{}", full["incremental"]);
 }
