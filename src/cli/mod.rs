@@ -35,6 +35,7 @@ mod dispatch;
 mod export;
 mod files;
 mod front;
+mod gap;
 mod genome;
 mod genomes;
 mod interrupt;
