@@ -2,7 +2,10 @@
 //! models against the paper's city whale and tree sketch targets (800 x 600), on one CPU
 //! thread, on all CPU threads, and on the GPU when there is one; one city of 100
 //! buildings on one thread; and one full evaluation of single 250-gene trees on one
-//! thread, with the published meshes and with the built-in ones.
+//! thread, with the published meshes and with the built-in ones. On the GPU also 200
+//! bred trees per operator, counted from nothing and from their parents' kept slots.
+
+mod breeding;
 
 use std::hint::black_box;
 use std::path::Path;
@@ -15,7 +18,8 @@ use rand_chacha::ChaCha8Rng;
 use shapegen::genome::Limits;
 use shapegen::ops::Operators;
 use shapegen::score::silhouette::{
-    Camera, GpuSilhouetteScorer, ImageTarget, OrbitCamera, SilhouetteCounts, SilhouetteScorer,
+    Camera, GpuRetention, GpuSilhouetteScorer, ImageTarget, OrbitCamera, SilhouetteCounts,
+    SilhouetteScorer,
 };
 use shapegen::score::{Form, InstanceBatch, Scorer, count_batch};
 use shapegen::{BoundMeshes, Genome, Grammar, gpu::GpuContext};
@@ -238,5 +242,62 @@ fn tree_single(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, populations, hundred_buildings, tree_single);
+/// Bred trees on the GPU, per operator: 200 children of 200 random 250-gene trees, all
+/// by one operator, counted from nothing (`count_batch`) and from their parents' kept
+/// slots (`GpuRetention::count_bred`, the parents' slots counted once before timing).
+fn gpu_bred(c: &mut Criterion) {
+    let Ok(gpu) = GpuContext::new() else {
+        eprintln!("no GPU: no benchmark of bred children on the GPU");
+        return;
+    };
+    let scene = tree_sketch1();
+    let Ok(scorer) = GpuSilhouetteScorer::new(&gpu, &scene.scorer) else {
+        return;
+    };
+    let mut rng = ChaCha8Rng::seed_from_u64(12);
+    let mut ops = Operators::<tree::Tree>::new(tree::PAPER_LIMITS).unwrap();
+    let parents: Vec<Genome<tree::Tree>> =
+        (0..POPULATION).map(|_| ops.random(250, &mut rng)).collect();
+    let from: Vec<u32> = (0..POPULATION as u32).collect();
+    let mut group = c.benchmark_group("silhouette/tree_sketch1/bred 200");
+    group.throughput(Throughput::Elements(POPULATION as u64));
+    group.sample_size(10);
+    for op in breeding::Op::ALL {
+        let children: Vec<Genome<tree::Tree>> = parents
+            .iter()
+            .map(|parent| op.child(&mut ops, parent, 250, &mut rng))
+            .collect();
+        let mut batch = InstanceBatch::new();
+        for child in &children {
+            batch.push_genome(child);
+        }
+        let mut retention = GpuRetention::new(&scorer).unwrap();
+        let mut kept = vec![SilhouetteCounts::default(); POPULATION];
+        retention
+            .count_bred(&scorer, &children, &batch, &parents, &from, &mut kept)
+            .unwrap();
+        let mut full = vec![SilhouetteCounts::default(); POPULATION];
+        scorer.count_batch(&batch, &mut full).unwrap();
+        assert_eq!(kept, full, "the kept slots count as from nothing");
+        group.bench_function(BenchmarkId::new("gpu, from nothing", op.name()), |b| {
+            b.iter(|| scorer.count_batch(&batch, &mut full).unwrap())
+        });
+        group.bench_function(BenchmarkId::new("gpu, from parents", op.name()), |b| {
+            b.iter(|| {
+                retention
+                    .count_bred(&scorer, &children, &batch, &parents, &from, &mut kept)
+                    .unwrap()
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(
+    benches,
+    populations,
+    hundred_buildings,
+    tree_single,
+    gpu_bred
+);
 criterion_main!(benches);

@@ -182,6 +182,9 @@ fn a_comparison_writes_every_run_on_shared_seeds() {
 
     let picture = image::open(out.join("compare.png")).unwrap();
     assert_eq!((picture.width(), picture.height()), (800, 500));
+    // The scene gives no optimum: no gaps to it.
+    assert_eq!(summary["optimum"], serde_json::Value::Null);
+    assert!(!out.join("targets.csv").exists() && !out.join("gap-time.png").exists());
 }
 
 #[test]
@@ -207,7 +210,7 @@ fn equal_evaluation_budgets_give_equal_results_at_any_thread_count() {
         ]);
         let rows = rows(&out);
         let runs = by_run(&rows);
-        assert_eq!(runs.len(), 8);
+        assert_eq!(runs.len(), 10);
         runs.into_iter()
             .map(|(k, v)| {
                 let last = v.last().unwrap();
@@ -225,6 +228,77 @@ fn equal_evaluation_budgets_give_equal_results_at_any_thread_count() {
         summary(&dir.path().join("one"))["seeds"],
         serde_json::json!([4, 5])
     );
+}
+
+#[test]
+fn a_known_optimum_gives_the_gaps_and_the_times_to_its_fractions() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene(dir.path());
+    let compare = |optimum: &str, out: &Path| {
+        vec![
+            "compare".to_owned(),
+            s(&scene).to_owned(),
+            "--methods".to_owned(),
+            "ga,hybrid".to_owned(),
+            "--runs".to_owned(),
+            "3".to_owned(),
+            "--seconds".to_owned(),
+            "1000".to_owned(),
+            "--set".to_owned(),
+            "optimizer.evaluations=600".to_owned(),
+            "--set".to_owned(),
+            format!("fitness.optimum={optimum}"),
+            "--cpu".to_owned(),
+            "--out".to_owned(),
+            s(out).to_owned(),
+        ]
+    };
+    let out = dir.path().join("out");
+    let args = compare("1.0", &out);
+    ok(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    let rows = rows(&out);
+    let runs = by_run(&rows);
+    let summary = summary(&out);
+    assert_eq!(summary["optimum"], 1.0);
+    let targets = fs::read_to_string(out.join("targets.csv")).unwrap();
+    let lines: Vec<&str> = targets.lines().collect();
+    assert_eq!(lines.len(), 1 + 2 * 3, "{targets}");
+    assert_eq!(
+        lines[0],
+        "method,fraction,level,runs,reached,seconds_q1,seconds_median,seconds_q3,\
+         evaluations_q1,evaluations_median,evaluations_q3"
+    );
+    for (m, method) in summary["methods"].as_array().unwrap().iter().enumerate() {
+        let name = method["method"].as_str().unwrap();
+        let finals: Vec<f64> = (0..3)
+            .map(|r| runs[&(name.to_owned(), r)].last().unwrap().best)
+            .collect();
+        let mut sorted = finals.clone();
+        sorted.sort_by(f64::total_cmp);
+        let quartiles = method["final_quartiles"].as_array().unwrap();
+        assert!((quartiles[1].as_f64().unwrap() - sorted[1]).abs() < 1e-12);
+        let reached = method["targets"].as_array().unwrap();
+        for (k, fraction) in [0.9, 0.99, 0.999].into_iter().enumerate() {
+            let want = finals.iter().filter(|&&b| b >= fraction).count();
+            assert_eq!(reached[k]["fraction"], fraction);
+            assert_eq!(reached[k]["runs"], 3);
+            assert_eq!(reached[k]["reached"], want, "{name} {fraction}");
+            let row: Vec<&str> = lines[1 + 3 * m + k].split(',').collect();
+            assert_eq!((row[0], row[4]), (name, want.to_string().as_str()));
+            // The median time is given exactly when two of the three runs got there.
+            assert_eq!(row[6].is_empty(), want < 2, "{row:?}");
+        }
+    }
+    for plot in ["gap-time.png", "gap-evaluations.png", "compare.png"] {
+        let picture = image::open(out.join(plot)).unwrap();
+        assert_eq!((picture.width(), picture.height()), (800, 500), "{plot}");
+    }
+    // An optimum below what the runs reach is wrong, and said so once they show it.
+    let low = dir.path().join("low");
+    let args = compare("0.000001", &low);
+    let err = fails(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    assert!(err.contains("fitness.optimum = 0.000001"), "{err}");
+    assert!(low.join("compare.csv").exists());
 }
 
 #[test]

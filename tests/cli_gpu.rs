@@ -10,7 +10,9 @@ use std::process::ExitCode;
 
 use libtest_mimic::{Arguments, Failed, Trial};
 use shapegen::gpu::GpuContext;
-use support::{SHIP_SCENE, UNIT_CUBE_OBJ, fails, s, sample, score, shapegen};
+use support::{
+    SHIP_SCENE, UNIT_CUBE_OBJ, fails, ok, s, sample, score, shapegen, skyline_scene, timeless_curve,
+};
 
 /// A test that runs the binary on the GPU: its name and its body, which panics when the
 /// test fails.
@@ -25,6 +27,10 @@ const TESTS: &[GpuTest] = &[
     (
         "a_population_beyond_the_gpus_bindings_is_refused_before_it_runs",
         a_population_beyond_the_gpus_bindings_is_refused_before_it_runs,
+    ),
+    (
+        "a_gpu_search_counts_children_from_their_parents_with_the_same_result",
+        a_gpu_search_counts_children_from_their_parents_with_the_same_result,
     ),
 ];
 
@@ -107,4 +113,29 @@ fn a_population_beyond_the_gpus_bindings_is_refused_before_it_runs() {
     );
     assert!(err.contains("count on the CPU (--cpu)"), "{err}");
     assert!(!out.join("checkpoint.json").exists());
+}
+
+fn a_gpu_search_counts_children_from_their_parents_with_the_same_result() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = skyline_scene(dir.path());
+    let run = |name: &str, extra: &[&str]| {
+        let out = dir.path().join(name);
+        let base = ["run", s(&scene), "--gpu", "--seed", "5", "--out", s(&out)];
+        let printed = ok(&[&base[..], extra].concat());
+        (out, printed)
+    };
+    let (kept, _) = run("kept", &[]);
+    let (full, _) = run("full", &["--no-incremental"]);
+    assert_eq!(timeless_curve(&kept), timeless_curve(&full));
+    let summary = |dir: &std::path::Path| -> serde_json::Value {
+        serde_json::from_str(&fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
+    };
+    let (kept, full) = (summary(&kept), summary(&full));
+    assert_eq!(kept["best_fitness"], full["best_fitness"]);
+    let incremental = &kept["incremental"];
+    assert!(
+        incremental["children_incremental"].as_u64().unwrap() > 0,
+        "{incremental}"
+    );
+    assert!(full["incremental"].is_null(), "{}", full["incremental"]);
 }

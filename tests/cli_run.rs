@@ -120,7 +120,7 @@ fn mistakes_are_explained() {
         (&["--set", "optimizer"], "write it as key=value"),
         (
             &["--method", "annealing"],
-            "the methods are ga, smc, sosmc and rjmcmc",
+            "the methods are ga, smc, sosmc, rjmcmc and hybrid",
         ),
         (
             &["--seconds=-1"],
@@ -247,14 +247,21 @@ fn every_method_runs_and_resumes_exactly() {
     let text = fs::read_to_string(&ga_scene).unwrap();
     let scene = dir.path().join("any.toml");
     fs::write(&scene, text.split("[optimizer]").next().unwrap()).unwrap();
-    for (method, size) in [
-        ("smc", "optimizer.particles=16"),
-        ("sosmc", "optimizer.particles=16"),
-        ("rjmcmc", "optimizer.chains=6"),
+    // The hybrid with both additions on: the resume lands just after its seeding.
+    let hybrid = "population=16,elitism=4,refine=3,seed_steps=2";
+    for (method, sets) in [
+        ("smc", "particles=16"),
+        ("sosmc", "particles=16"),
+        ("rjmcmc", "chains=6"),
+        ("hybrid", hybrid),
     ] {
         let whole = dir.path().join(format!("{method}_whole"));
         let parts = dir.path().join(format!("{method}_parts"));
-        let base = ["run", s(&scene), "--cpu", "--method", method, "--set", size];
+        let sets: Vec<String> = sets.split(',').map(|v| format!("optimizer.{v}")).collect();
+        let mut base = vec!["run", s(&scene), "--cpu", "--method", method];
+        for set in &sets {
+            base.extend(["--set", set.as_str()]);
+        }
         ok(&[&base[..], &["--generations", "6", "--out", s(&whole)]].concat());
         ok(&[&base[..], &["--generations", "2", "--out", s(&parts)]].concat());
         ok(&["run", "--resume", s(&parts), "--cpu", "--generations", "6"]);

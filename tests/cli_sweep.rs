@@ -426,3 +426,55 @@ fn an_interrupted_sweep_keeps_its_finished_cells_and_goes_on() {
     );
     assert_eq!(genomes(&out), genomes(&whole));
 }
+
+#[test]
+fn a_known_optimum_gives_each_point_its_gaps_and_times() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = cube_ship_scene(dir.path());
+    let out = dir.path().join("out");
+    ok(&[
+        "sweep",
+        s(&scene),
+        "--grid",
+        "optimizer.population=40,60",
+        "--runs",
+        "2",
+        "--evaluations",
+        "300",
+        "--set",
+        "fitness.optimum=100",
+        "--cpu",
+        "--out",
+        s(&out),
+    ]);
+    let plan: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(out.join("plan.json")).unwrap()).unwrap();
+    assert_eq!(plan["optimum"], 100.0);
+    let targets = fs::read_to_string(out.join("targets.csv")).unwrap();
+    let lines: Vec<&str> = targets.lines().collect();
+    assert_eq!(lines.len(), 1 + 2 * 3, "{targets}");
+    assert!(lines[0].starts_with("point,fraction,level,runs,reached,"));
+    assert!(
+        lines[1].starts_with("optimizer.population=40,0.9,90,2,"),
+        "{targets}"
+    );
+    for plot in ["gap-time.png", "gap-evaluations.png"] {
+        let image = image::open(out.join(plot)).unwrap();
+        assert_eq!((image.width(), image.height()), (800, 500), "{plot}");
+    }
+    // Every grid point is measured against one optimum.
+    let err = fails(&[
+        "sweep",
+        s(&scene),
+        "--grid",
+        "fitness.optimum=50,100",
+        "--runs",
+        "1",
+        "--evaluations",
+        "100",
+        "--cpu",
+        "--out",
+        s(&dir.path().join("two")),
+    ]);
+    assert!(err.contains("fitness.optimum"), "{err}");
+}

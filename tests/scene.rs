@@ -286,8 +286,12 @@ fn project_scenes_are_reachable() {
         ("city_skyline", 1.0),
         ("spaceship_fill", 2.0),
         ("tree_sketch", 1.0),
+        ("spaceship_fill2", 2.0),
+        ("city_whale_view", 1.0),
+        ("tree_sketch2", 1.0),
     ] {
         let scene = Scene::load(scenes.join(format!("{name}.toml"))).unwrap();
+        assert_eq!(scene.optimum, Some(optimum), "{name}");
         let genome = scenes.join(format!("targets/{name}.genome.json"));
         let generator: generators::Published = scene.generator.parse().unwrap();
         let (fitness, counts) = generator.visit(Check(&scene, &genome));
@@ -526,6 +530,18 @@ fn the_length_penalty_starts_at_min_len_unless_asked_otherwise() {
         .load(&VOLUME.replace("optimal_len = 10\n", ""))
         .unwrap();
     assert_eq!(scene.optimal_len, None);
+}
+
+#[test]
+fn an_optimum_is_a_positive_number() {
+    let fixture = Fixture::new();
+    assert_eq!(fixture.load(VOLUME).unwrap().optimum, None);
+    let with = |v: &str| VOLUME.replace("[volume]", &format!("[fitness]\noptimum = {v}\n[volume]"));
+    assert_eq!(fixture.load(&with("2.5")).unwrap().optimum, Some(2.5));
+    for bad in ["0.0", "-1.0", "nan", "inf"] {
+        fixture.refuses(&with(bad), "fitness.optimum", "finite number > 0");
+    }
+    fixture.refuses(&with("\"high\""), "optimum", "");
 }
 
 #[test]

@@ -37,9 +37,11 @@ fn scene(dir: &tempfile::TempDir, optimizer: &str) -> std::path::PathBuf {
     path
 }
 
+/// The GA's settings: those of the hybrid's GA, the default method.
 fn ga(scene: &Scene) -> GaSettings {
     match scene.optimizer.settings {
         MethodSettings::Ga(s) => s,
+        MethodSettings::Hybrid(h) => h.ga,
         other => panic!("not the GA: {other:?}"),
     }
 }

@@ -28,7 +28,7 @@ struct Params {
 @group(0) @binding(3) var<storage, read_write> counts: array<atomic<u32>>;
 
 struct VertexOut {
-    @builtin(position) position: vec4<f32>,
+    @invariant @builtin(position) position: vec4<f32>,
     @location(0) @interpolate(flat) model: u32,
 }
 

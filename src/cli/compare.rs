@@ -1,6 +1,6 @@
 //! `shapegen compare`: runs several search methods on one scene, each several times on
 //! the same seeds and with the same wall-time budget, and writes their results side by
-//! side: every run's history, a summary per method and a picture of the mean curves.
+//! side: every run's history, a summary per method and a picture of the median curves.
 //!
 //! Each method takes its settings as `shapegen run --method M` does (the scene's
 //! `[optimizer]` table over the paper's settings for the method and the generator), with
@@ -18,6 +18,13 @@
 //!
 //! Runs go run-major (run 0 of every method, then run 1, ...) so that slow drifts of the
 //! machine's load hit every method alike.
+//!
+//! Results are given as the median with its quartiles over the runs (and the mean +-
+//! std in `summary.json`). For a scene with a known optimum (`fitness.optimum`), compare
+//! also writes each method's time and evaluations to 90 %, 99 % and 99.9 % of it
+//! (`targets.csv`, and in `summary.json`) and its gap to the optimum against time and
+//! against evaluations on a log scale (`gap-time.png`, `gap-evaluations.png`); see
+//! [`gap`](super::gap).
 
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -34,11 +41,12 @@ use super::backend::{BackendArgs, check_batches};
 use super::dispatch::{Generators, Visit};
 use super::files::{atomic_write, csv_bytes, save_png};
 use super::folder::{Existing, Folder, Kind};
+use super::gap::{self, Group, Reached};
 use super::interrupt;
 use super::memory::{MemoryArgs, MemoryCheck};
-use super::plot::{self, Band};
+use super::plot::{self, Spread, YScale};
 use super::search::{SessionRun, with_method};
-use super::stats::{curve, mean_std};
+use super::stats::{mean_std, quartile_curve, quartiles};
 use crate::registry::Entry;
 
 /// Points of the common time grid the curves are sampled on.
@@ -52,8 +60,12 @@ pub struct CompareArgs {
     /// The scene file (TOML).
     scene: PathBuf,
     /// The methods to compare, comma-separated, in the order they run and are listed:
-    /// any of ga, smc, sosmc and rjmcmc.
-    #[arg(long, value_delimiter = ',', default_value = "ga,smc,sosmc,rjmcmc")]
+    /// any of ga, smc, sosmc, rjmcmc and hybrid.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "ga,smc,sosmc,rjmcmc,hybrid"
+    )]
     methods: Vec<String>,
     /// Runs of each method (at least 1).
     #[arg(long, default_value_t = 3)]
@@ -251,6 +263,7 @@ impl Visit for Compare<'_> {
             methods: self.methods,
             seeds: self.seeds,
             backend: backend.describe(),
+            optimum: self.scene.optimum,
         };
         for (run, &seed) in self.seeds.iter().enumerate() {
             for (&method, goal) in self.methods.iter().zip(self.goals) {
@@ -312,8 +325,13 @@ impl Visit for Compare<'_> {
                 outputs.write(&done)?;
             }
         }
+        let gaps = if self.scene.optimum.is_some() {
+            ", targets.csv, gap-time.png, gap-evaluations.png"
+        } else {
+            ""
+        };
         println!(
-            "compared {} runs; wrote compare.csv, compare.png, summary.json and runs/ to {}",
+            "compared {} runs; wrote compare.csv, compare.png, summary.json{gaps} and runs/ to {}",
             done.len(),
             self.args.out.display()
         );
@@ -327,6 +345,8 @@ struct Outputs<'a> {
     methods: &'a [Method],
     seeds: &'a [u64],
     backend: &'a str,
+    /// The scene's optimum, when it gives one.
+    optimum: Option<f64>,
 }
 
 /// `summary.json`.
@@ -341,6 +361,8 @@ struct Summary<'a> {
     backend: &'a str,
     /// Whether every planned run finished.
     complete: bool,
+    /// The scene's optimum (`fitness.optimum`), when it gives one.
+    optimum: Option<f64>,
     methods: Vec<MethodSummary>,
 }
 
@@ -353,6 +375,8 @@ struct MethodSummary {
     final_mean: f64,
     /// Their sample standard deviation (0 for one run).
     final_std: f64,
+    /// Their first quartile, median and third quartile.
+    final_quartiles: [f64; 3],
     /// The best fitness of all runs.
     best: f64,
     /// The run that found it.
@@ -361,6 +385,9 @@ struct MethodSummary {
     evaluations: f64,
     /// Each run's final best fitness, by run.
     finals: Vec<f64>,
+    /// With an optimum: when the runs reached each fraction of it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    targets: Option<Vec<Reached>>,
 }
 
 impl Outputs<'_> {
@@ -382,6 +409,27 @@ impl Outputs<'_> {
         });
         atomic_write(&dir.join("compare.csv"), &csv_bytes(&header, rows)?)?;
 
+        let groups: Vec<Group<'_>> = self
+            .methods
+            .iter()
+            .map(|&m| Group {
+                name: m.name().to_owned(),
+                colour: colour(m),
+                runs: done
+                    .iter()
+                    .filter(|f| f.method == m)
+                    .map(|f| f.history.as_slice())
+                    .collect(),
+            })
+            .collect();
+        let mut methods: Vec<MethodSummary> =
+            self.methods.iter().map(|&m| summarize(m, done)).collect();
+        if let Some(optimum) = self.optimum {
+            let reached = gap::write(dir, "method", optimum, &groups)?;
+            for (summary, reached) in methods.iter_mut().zip(reached) {
+                summary.targets = Some(reached);
+            }
+        }
         let summary = Summary {
             scene: &self.args.scene,
             seconds: self.args.seconds,
@@ -390,43 +438,42 @@ impl Outputs<'_> {
             seeds: self.seeds,
             backend: self.backend,
             complete: done.len() == self.seeds.len() * self.methods.len(),
-            methods: self.methods.iter().map(|&m| summarize(m, done)).collect(),
+            optimum: self.optimum,
+            methods,
         };
         atomic_write(
             &dir.join("summary.json"),
             serde_json::to_string_pretty(&summary)?.as_bytes(),
         )?;
 
-        let curves: Vec<(Method, Vec<f64>, Vec<f64>)> = self
-            .methods
+        let curves: Vec<_> = groups
             .iter()
-            .map(|&m| {
-                let runs: Vec<&[HistoryEntry]> = done
-                    .iter()
-                    .filter(|f| f.method == m)
-                    .map(|f| f.history.as_slice())
-                    .collect();
-                let (mean, std) = curve(&runs, |h| h.elapsed_s, self.args.seconds, GRID_POINTS);
-                (m, mean, std)
+            .map(|g| quartile_curve(&g.runs, |h| h.elapsed_s, self.args.seconds, GRID_POINTS))
+            .collect();
+        let spreads: Vec<Spread<'_>> = groups
+            .iter()
+            .zip(&curves)
+            .map(|(g, q)| Spread {
+                name: &g.name,
+                colour: g.colour,
+                centre: &q.median,
+                low: &q.q1,
+                high: &q.q3,
             })
             .collect();
-        let bands: Vec<Band<'_>> = curves
-            .iter()
-            .map(|(m, mean, std)| Band {
-                name: m.name(),
-                colour: colour(*m),
-                mean,
-                std,
-            })
-            .collect();
-        let picture = plot::bands(
+        let picture = plot::spreads(
             PLOT_SIZE.0,
             PLOT_SIZE.1,
             self.args.seconds,
-            ("seconds", "best fitness (mean +- std over runs)"),
-            &bands,
+            ("seconds", "best fitness (median and quartiles over runs)"),
+            &spreads,
+            YScale::Linear,
         );
-        save_png(&dir.join("compare.png"), &picture)
+        save_png(&dir.join("compare.png"), &picture)?;
+        match self.optimum {
+            Some(optimum) => gap::check_optimum(optimum, &groups),
+            None => Ok(()),
+        }
     }
 }
 
@@ -444,11 +491,13 @@ fn summarize(method: Method, done: &[Finished]) -> MethodSummary {
         runs: runs.len(),
         final_mean,
         final_std,
+        final_quartiles: quartiles(&finals),
         best: best.map_or(f64::NAN, |f| f.best),
         best_run: best.map(|f| f.run),
         evaluations: runs.iter().map(|f| f.evaluations as f64).sum::<f64>()
             / runs.len().max(1) as f64,
         finals,
+        targets: None,
     }
 }
 
@@ -459,6 +508,7 @@ fn colour(method: Method) -> Rgb<u8> {
         Method::Smc => Rgb([230, 120, 20]),
         Method::Sosmc => Rgb([30, 150, 60]),
         Method::Rjmcmc => Rgb([200, 30, 40]),
+        Method::Hybrid => Rgb([130, 60, 170]),
     }
 }
 
@@ -477,7 +527,7 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(
-            err.contains("`pso`") && err.contains("ga, smc, sosmc, rjmcmc"),
+            err.contains("`pso`") && err.contains("ga, smc, sosmc, rjmcmc, hybrid"),
             "{err}"
         );
         assert!(

@@ -36,6 +36,7 @@ mod export;
 mod files;
 mod folder;
 mod front;
+mod gap;
 mod genome;
 mod genomes;
 mod interrupt;

@@ -1,5 +1,6 @@
 //! Plots as pictures: best and mean fitness against generations for one run, several
-//! methods' mean curves with their spread against time for a comparison, final values
+//! methods' curves with their spread against time or evaluations for a comparison (on a
+//! linear or a log scale), final values
 //! with error bars against a swept setting (numbers or names), and the values of two
 //! objectives across a multi-objective front.
 
@@ -161,31 +162,142 @@ pub fn bands(
     labels: (&str, &str),
     bands: &[Band<'_>],
 ) -> RgbImage {
+    let edges: Vec<(Vec<f64>, Vec<f64>)> = bands
+        .iter()
+        .map(|b| {
+            b.mean
+                .iter()
+                .zip(b.std)
+                .map(|(&m, &s)| {
+                    let s = if s.is_finite() { s } else { 0.0 };
+                    (m - s, m + s)
+                })
+                .unzip()
+        })
+        .collect();
+    let spreads: Vec<Spread<'_>> = bands
+        .iter()
+        .zip(&edges)
+        .map(|(b, (low, high))| Spread {
+            name: b.name,
+            colour: b.colour,
+            centre: b.mean,
+            low,
+            high,
+        })
+        .collect();
+    self::spreads(width, height, x_max, labels, &spreads, YScale::Linear)
+}
+
+/// One curve of [`spreads`]: a centre line (a median, say) over a shaded band from
+/// `low` to `high` (its quartiles), per point of a common grid.
+pub struct Spread<'a> {
+    /// The legend's name for it; a plot whose curves all have empty names has no legend.
+    pub name: &'a str,
+    /// Its colour.
+    pub colour: Rgb<u8>,
+    /// The line, per grid point; non-finite values leave gaps.
+    pub centre: &'a [f64],
+    /// The lower edge of the band, per grid point.
+    pub low: &'a [f64],
+    /// The upper edge of the band, per grid point.
+    pub high: &'a [f64],
+}
+
+/// How [`spreads`] places y values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum YScale {
+    /// By value, with round numbers as ticks.
+    Linear,
+    /// By their base-10 logarithm, with powers of ten as ticks; values of 0 or less
+    /// leave gaps.
+    Log,
+}
+
+/// Plots each curve's centre as a line over its shaded band from `low` to `high`,
+/// against x from 0 to `x_max` (point `i` of `n` at `x_max * i / (n - 1)`), y placed by
+/// `scale`, with numbered axes, the axis labels `labels` (x, y) and a legend naming the
+/// curves. The y range spans every finite value of the centres and the bands (on a log
+/// scale, whole decades).
+pub fn spreads(
+    width: u32,
+    height: u32,
+    x_max: f64,
+    labels: (&str, &str),
+    curves: &[Spread<'_>],
+    scale: YScale,
+) -> RgbImage {
     let mut image = RgbImage::from_pixel(width, height, BACKGROUND);
     let x_max = if x_max.is_finite() && x_max > 0.0 {
         x_max
     } else {
         1.0
     };
-    let axes = Axes::draw(&mut image, (0.0, x_max), y_range(bands), labels, None);
-    for band in bands {
-        shade(&mut image, band, (axes.left, axes.right), &|y| axes.py(y));
+    let to_y = |v: f64| match scale {
+        YScale::Linear => v,
+        YScale::Log if v > 0.0 => v.log10(),
+        YScale::Log => f64::NAN,
+    };
+    let mapped: Vec<[Vec<f64>; 3]> = curves
+        .iter()
+        .map(|c| [c.centre, c.low, c.high].map(|v| v.iter().map(|&v| to_y(v)).collect()))
+        .collect();
+    let finite = mapped
+        .iter()
+        .flatten()
+        .flatten()
+        .copied()
+        .filter(|v| v.is_finite());
+    let (lo, hi) = finite.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+        (lo.min(v), hi.max(v))
+    });
+    let (y_range, y_ticks) = match scale {
+        YScale::Linear => (padded(lo, hi), None),
+        YScale::Log => {
+            let (lo, hi) = if lo <= hi {
+                (lo.floor(), hi.ceil().max(lo.floor() + 1.0))
+            } else {
+                (-1.0, 0.0)
+            };
+            let ticks = (lo as i32..=hi as i32)
+                .map(|k| (f64::from(k), format!("1e{k}")))
+                .collect::<Vec<_>>();
+            ((lo, hi), Some(ticks))
+        }
+    };
+    let axes = Axes::draw(
+        &mut image,
+        (0.0, x_max),
+        y_range,
+        labels,
+        None,
+        y_ticks.as_deref(),
+    );
+    for (c, [_, low, high]) in curves.iter().zip(&mapped) {
+        shade(
+            &mut image,
+            c.colour,
+            (low, high),
+            (axes.left, axes.right),
+            &|y| axes.py(y),
+        );
     }
-    for band in bands {
-        let n = band.mean.len();
+    for (c, [centre, _, _]) in curves.iter().zip(&mapped) {
+        let n = centre.len();
         let at = |i: usize| axes.px(x_max * i as f64 / (n.max(2) - 1) as f64);
-        for (i, pair) in band.mean.windows(2).enumerate() {
+        for (i, pair) in centre.windows(2).enumerate() {
             if pair[0].is_finite() && pair[1].is_finite() {
                 line(
                     &mut image,
                     (at(i), axes.py(pair[0])),
                     (at(i + 1), axes.py(pair[1])),
-                    band.colour,
+                    c.colour,
                 );
             }
         }
     }
-    legend(&mut image, bands);
+    let names: Vec<(&str, Rgb<u8>)> = curves.iter().map(|c| (c.name, c.colour)).collect();
+    legend(&mut image, &names);
     image
 }
 
@@ -213,7 +325,7 @@ pub fn scatter(
     };
     let xs = range(&mut finite.iter().map(|p| p.0));
     let ys = range(&mut finite.iter().map(|p| p.1));
-    let axes = Axes::draw(&mut image, xs, ys, labels, None);
+    let axes = Axes::draw(&mut image, xs, ys, labels, None, None);
     for &(x, y) in &finite {
         dot(&mut image, (axes.px(x), axes.py(y)), colour);
     }
@@ -273,8 +385,9 @@ pub fn error_bars(
     };
     // Room above the data for the legend, so that it hides no bar.
     let (lo, hi) = y_range(bands);
+    let names: Vec<(&str, Rgb<u8>)> = bands.iter().map(|b| (b.name, b.colour)).collect();
     let area = f64::from(height.saturating_sub(TOP + BOTTOM));
-    let room = Legend::size(width, bands).map_or(0.0, |l| f64::from(l.h + 16));
+    let room = Legend::size(width, &names).map_or(0.0, |l| f64::from(l.h + 16));
     let hi = hi + (hi - lo) * room / (area - room).max(1.0);
     let axes = Axes::draw(
         &mut image,
@@ -282,6 +395,7 @@ pub fn error_bars(
         (lo, hi),
         labels,
         named_ticks.as_deref(),
+        None,
     );
     let middle = (bands.len() as f64 - 1.0) / 2.0;
     for (k, band) in bands.iter().enumerate() {
@@ -310,7 +424,7 @@ pub fn error_bars(
             dot(&mut image, (px, py), band.colour);
         }
     }
-    legend(&mut image, bands);
+    legend(&mut image, &names);
     image
 }
 
@@ -337,14 +451,15 @@ struct Axes {
 
 impl Axes {
     /// Draws the grid, the axes with their ticks and numbers, and the axis labels for the
-    /// data ranges `x` and `y` on `image`; the x ticks are `x_ticks` where given (their
-    /// positions and labels), round numbers otherwise.
+    /// data ranges `x` and `y` on `image`; the x and y ticks are `x_ticks` and `y_ticks`
+    /// where given (their positions and labels), round numbers otherwise.
     fn draw(
         image: &mut RgbImage,
         x: (f64, f64),
         y: (f64, f64),
         labels: (&str, &str),
         x_ticks: Option<&[(f64, String)]>,
+        y_ticks: Option<&[(f64, String)]>,
     ) -> Axes {
         let (width, height) = image.dimensions();
         let axes = Axes {
@@ -355,7 +470,7 @@ impl Axes {
             x,
             y,
         };
-        let y_ticks = ticks(y.0, y.1, 6.0);
+        let y_ticks = y_ticks.map_or_else(|| ticks(y.0, y.1, 6.0), <[_]>::to_vec);
         let x_ticks = x_ticks.map_or_else(|| ticks(x.0, x.1, 8.0), <[_]>::to_vec);
         for &(v, _) in &y_ticks {
             let py = axes.py(v) as u32;
@@ -516,30 +631,32 @@ fn ticks(lo: f64, hi: f64, count: f64) -> Vec<(f64, String)> {
         .collect()
 }
 
-/// Shades `band`'s mean +- std, column by column across the plot area.
+/// Shades the band from `low` to `high` (already in the axes' y values), column by
+/// column across the plot area.
 fn shade(
     image: &mut RgbImage,
-    band: &Band<'_>,
+    colour: Rgb<u8>,
+    (low, high): (&[f64], &[f64]),
     (left, right): (f64, f64),
     py: &impl Fn(f64) -> f64,
 ) {
-    let n = band.mean.len();
+    let n = low.len().min(high.len());
     if n == 0 {
         return;
     }
     for x in left as u32..=right as u32 {
         let i = (((f64::from(x) - left) / (right - left)) * (n - 1) as f64).round() as usize;
-        let (m, s) = (band.mean[i.min(n - 1)], band.std[i.min(n - 1)]);
-        if !(m.is_finite() && s.is_finite()) {
+        let (lo, hi) = (low[i.min(n - 1)], high[i.min(n - 1)]);
+        if !(lo.is_finite() && hi.is_finite()) {
             continue;
         }
-        let (a, b) = (py(m + s), py(m - s));
+        let (a, b) = (py(hi), py(lo));
         for y in a.round() as u32..=b.round() as u32 {
             if x < image.width() && y < image.height() {
                 let old = image.get_pixel(x, y).0;
                 let mix =
                     |o: u8, c: u8| (f64::from(o) * (1.0 - SHADE) + f64::from(c) * SHADE) as u8;
-                image.put_pixel(x, y, Rgb([0, 1, 2].map(|k| mix(old[k], band.colour.0[k]))));
+                image.put_pixel(x, y, Rgb([0, 1, 2].map(|k| mix(old[k], colour.0[k]))));
             }
         }
     }
@@ -559,14 +676,14 @@ struct Legend {
 impl Legend {
     /// The legend of `bands` in an image `width` pixels wide: at full size when it fits
     /// across the plot area, half size otherwise; `None` when every name is empty.
-    fn size(width: u32, bands: &[Band<'_>]) -> Option<Legend> {
-        if bands.iter().all(|b| b.name.is_empty()) {
+    fn size(width: u32, bands: &[(&str, Rgb<u8>)]) -> Option<Legend> {
+        if bands.iter().all(|b| b.0.is_empty()) {
             return None;
         }
         let at = |scale: u32| {
             let longest = bands
                 .iter()
-                .map(|b| font::text_width(b.name, scale))
+                .map(|b| font::text_width(b.0, scale))
                 .max()
                 .unwrap_or(0);
             let row = font::HEIGHT * scale + 8;
@@ -590,7 +707,7 @@ impl Legend {
 /// the box hides the fewest drawn pixels (the bottom right among equals), at full size
 /// when it fits across the plot area and half size otherwise; nothing when every name is
 /// empty.
-fn legend(image: &mut RgbImage, bands: &[Band<'_>]) {
+fn legend(image: &mut RgbImage, bands: &[(&str, Rgb<u8>)]) {
     let Some(Legend { scale, row, w, h }) = Legend::size(image.width(), bands) else {
         return;
     };
@@ -626,7 +743,7 @@ fn legend(image: &mut RgbImage, bands: &[Band<'_>]) {
             image.put_pixel(x, y, if edge { AXES } else { BACKGROUND });
         }
     }
-    for (k, band) in bands.iter().enumerate() {
+    for (k, &(name, colour)) in bands.iter().enumerate() {
         let y = y0 + 6 + row * k as u32;
         let mid = f64::from(y + font::HEIGHT * scale / 2);
         let x = f64::from(x0 + 6);
@@ -635,10 +752,10 @@ fn legend(image: &mut RgbImage, bands: &[Band<'_>]) {
                 image,
                 (x, mid + dy),
                 (x + f64::from(swatch), mid + dy),
-                band.colour,
+                colour,
             );
         }
-        font::draw(image, x0 + swatch + 12, y, band.name, scale, AXES);
+        font::draw(image, x0 + swatch + 12, y, name, scale, AXES);
     }
 }
 

@@ -35,7 +35,7 @@ pub struct RunArgs {
     /// The scene file (TOML); a resumed run takes its checkpoint's.
     #[arg(required_unless_present = "resume", conflicts_with = "resume")]
     scene: Option<PathBuf>,
-    /// The search method: ga, smc, sosmc or rjmcmc (overrides `optimizer.method`).
+    /// The search method: ga, smc, sosmc, rjmcmc or hybrid (overrides `optimizer.method`).
     #[arg(long)]
     method: Option<Method>,
     /// Seed of the run (overrides `optimizer.seed`).

@@ -6,7 +6,7 @@ use std::sync::atomic::AtomicBool;
 use shapegen::Grammar;
 use shapegen::genome::Limits;
 use shapegen::optimize::islands::IslandGa;
-use shapegen::optimize::{Best, Budget, Ga, Mcmc, Optimizer, RunResult, Session, Smc};
+use shapegen::optimize::{Best, Budget, Ga, Hybrid, Mcmc, Optimizer, RunResult, Session, Smc};
 use shapegen::scene::{MethodSettings, OptimizerGoal, SceneEvaluator};
 
 /// Work generic over the optimizer that searches one fitness.
@@ -24,6 +24,7 @@ pub fn with_method<G: Grammar, J: MethodJob<G>>(goal: &OptimizerGoal, job: J) ->
         MethodSettings::Islands(s) => job.run::<IslandGa<G>>(s),
         MethodSettings::Smc(s) => job.run::<Smc<G>>(s),
         MethodSettings::Mcmc(s) => job.run::<Mcmc<G>>(s),
+        MethodSettings::Hybrid(s) => job.run::<Hybrid<G>>(s),
     }
 }
 

@@ -16,7 +16,7 @@ use shapegen_runtime::score::retained::{
     CellCounts, Overflow, RetainedScorer, Retention, RetentionStats,
 };
 use shapegen_runtime::score::silhouette::{
-    GpuSilhouetteScorer, SilhouetteCounts, SilhouetteScorer,
+    GpuRetention, GpuSilhouetteScorer, SilhouetteCounts, SilhouetteScorer,
 };
 use shapegen_runtime::score::volume::{GpuVolumeScorer, VolumeCounts, VolumeScorer};
 use shapegen_runtime::score::{InstanceBatch, LengthPenalty, Scorer, count_batch};
@@ -549,21 +549,63 @@ impl Backend<'_> {
         }
         Ok(())
     }
+
+    /// The GPU path of the silhouette scorer, when the scene has one and counts on the
+    /// GPU.
+    fn gpu_silhouette(&self) -> Option<&GpuSilhouetteScorer<'_>> {
+        self.gpu.iter().find_map(|gpu| match gpu {
+            AnyGpuScorer::Silhouette(g) => Some(g),
+            _ => None,
+        })
+    }
+
+    /// Counts the bred `children` (the models of `batch`) into `out` as
+    /// [`count`](Self::count) does, but the silhouette scorer's counts from what
+    /// `retention` kept of their `parents` (child `i` bred from `parents[from[i]]`).
+    fn count_bred<G: Grammar>(
+        &self,
+        retention: &mut GpuRetention,
+        children: &[Genome<G>],
+        batch: &InstanceBatch,
+        parents: &[Genome<G>],
+        from: &[u32],
+        out: &mut Vec<SceneCounts>,
+    ) -> Result<(), GpuError> {
+        out.resize_with(batch.len(), SceneCounts::default);
+        for slot in out.iter_mut() {
+            slot.parts.clear();
+        }
+        for (i, scorer) in self.scorer.scorers.iter().enumerate() {
+            match self.gpu.get(i) {
+                Some(AnyGpuScorer::Silhouette(gpu)) => {
+                    let mut counts = vec![SilhouetteCounts::default(); batch.len()];
+                    retention.count_bred(gpu, children, batch, parents, from, &mut counts)?;
+                    for (slot, counts) in out.iter_mut().zip(counts) {
+                        slot.parts.push(AnyCounts::Silhouette(counts));
+                    }
+                }
+                gpu => scorer.count(gpu, batch, out)?,
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Scores populations for an optimizer with a scene's scorers on a backend: derives
 /// every genome into one reused batch, counts it, and subtracts the length term.
 ///
-/// On the CPU, children bred from a scored population
-/// ([`evaluate_bred`](Evaluator::evaluate_bred)) are counted incrementally, from what was
-/// kept of their parents ([`Retention`]), with exactly the counts of counting them from
-/// nothing; [`with_incremental(false)`](Self::with_incremental) counts every child from
-/// nothing. The GPU counts every model from nothing.
+/// Children bred from a scored population ([`evaluate_bred`](Evaluator::evaluate_bred))
+/// are counted incrementally, from what was kept of their parents, with exactly the
+/// counts of counting them from nothing: on the CPU every scorer's ([`Retention`]), on
+/// the GPU the silhouette scorer's, whose slots of per-pixel counts stay on the device
+/// ([`GpuRetention`]; the GPU's volume scorer counts every model from nothing).
+/// [`with_incremental(false)`](Self::with_incremental) counts every child from nothing.
 pub struct SceneEvaluator<'a> {
     backend: &'a Backend<'a>,
     batch: InstanceBatch,
     counts: Vec<SceneCounts>,
     retention: Option<Retention<AnyScorer>>,
+    gpu_retention: Option<GpuRetention>,
     parts: Vec<AnyCounts>,
 }
 
@@ -574,31 +616,53 @@ impl<'a> SceneEvaluator<'a> {
             backend,
             batch: InstanceBatch::new(),
             counts: Vec::new(),
-            retention: backend.gpu.is_empty().then(Retention::new),
+            retention: None,
+            gpu_retention: None,
             parts: Vec::new(),
         }
+        .with_incremental(true)
     }
 
-    /// Whether bred children are counted from their parents' kept state (the default on
-    /// the CPU; the GPU always counts from nothing).
+    /// Whether bred children are counted from their parents' kept state (the default).
+    /// On the GPU, a scene without a silhouette scorer, or whose one model's per-pixel
+    /// counts exceed the device's largest binding, counts every child from nothing.
     pub fn with_incremental(mut self, incremental: bool) -> Self {
-        self.retention = (incremental && self.backend.gpu.is_empty()).then(Retention::new);
+        let gpu = !self.backend.gpu.is_empty();
+        self.retention = (incremental && !gpu).then(Retention::new);
+        self.gpu_retention = self
+            .backend
+            .gpu_silhouette()
+            .filter(|_| incremental)
+            .and_then(|scorer| GpuRetention::new(scorer).ok());
         self
     }
 
     /// Whether bred children are counted incrementally.
     pub fn incremental(&self) -> bool {
-        self.retention.is_some()
+        self.retention.is_some() || self.gpu_retention.is_some()
     }
 
-    /// How the bred children were counted so far, and the bytes of state kept now;
-    /// `None` when not counting incrementally.
+    /// How the bred children were counted so far, and the bytes of state kept now (on
+    /// the GPU, the device memory of the slots); `None` when not counting
+    /// incrementally.
     pub fn retention(&self) -> Option<(RetentionStats, usize)> {
+        if let Some(gpu) = &self.gpu_retention {
+            let bytes = usize::try_from(gpu.memory()).unwrap_or(usize::MAX);
+            return Some((gpu.stats(), bytes));
+        }
         let retention = self.retention.as_ref()?;
         Some((
             retention.stats(),
             retention.memory(self.backend.scorer.scorers()),
         ))
+    }
+
+    /// Writes the fitness of each of `genomes` from its counts.
+    fn write_fitness<G: Grammar>(&self, genomes: &[Genome<G>], out: &mut [f64]) {
+        let scorer = self.backend.scorer();
+        for ((slot, counts), genome) in out.iter_mut().zip(&self.counts).zip(genomes) {
+            *slot = scorer.fitness(counts, genome.len());
+        }
     }
 
     /// Derives `genomes` into the batch.
@@ -616,10 +680,7 @@ impl<G: Grammar> Evaluator<G> for SceneEvaluator<'_> {
         self.backend
             .count(&self.batch, &mut self.counts)
             .map_err(|err| EvaluateError(err.to_string()))?;
-        let scorer = self.backend.scorer();
-        for ((slot, counts), genome) in out.iter_mut().zip(&self.counts).zip(genomes) {
-            *slot = scorer.fitness(counts, genome.len());
-        }
+        self.write_fitness(genomes, out);
         Ok(())
     }
 
@@ -630,6 +691,16 @@ impl<G: Grammar> Evaluator<G> for SceneEvaluator<'_> {
         from: &[u32],
         out: &mut [f64],
     ) -> Result<(), EvaluateError> {
+        if self.gpu_retention.is_some() {
+            self.derive(genomes);
+            let retention = self.gpu_retention.as_mut().expect("checked above");
+            let (batch, counts) = (&self.batch, &mut self.counts);
+            self.backend
+                .count_bred(retention, genomes, batch, parents, from, counts)
+                .map_err(|err| EvaluateError(err.to_string()))?;
+            self.write_fitness(genomes, out);
+            return Ok(());
+        }
         if self.retention.is_none() {
             return self.evaluate(genomes, out);
         }

@@ -66,6 +66,7 @@ pub(super) struct FitnessFile {
     pub length: f64,
     #[serde(default)]
     pub length_from: LengthFrom,
+    pub optimum: Option<f64>,
 }
 
 /// `fitness.length_from`: the genome length where the length penalty starts.

@@ -7,7 +7,7 @@ use std::mem::size_of;
 use shapegen_runtime::graph::{GeneratorGraph, NodeDesc};
 use shapegen_runtime::optimize::islands::IslandGa;
 use shapegen_runtime::optimize::multi::MultiGa;
-use shapegen_runtime::optimize::{Ga, Held, Mcmc, Optimizer, Smc};
+use shapegen_runtime::optimize::{Ga, Held, Hybrid, Mcmc, Optimizer, Smc};
 use shapegen_runtime::score::objective::Objective;
 use shapegen_runtime::score::retained::DEFAULT_MAX_BYTES;
 use shapegen_runtime::{Grammar, Instance};
@@ -159,6 +159,7 @@ impl Scene {
             (None, MethodSettings::Islands(s)) => IslandGa::<G>::genomes_held(&s),
             (None, MethodSettings::Smc(s)) => Smc::<G>::genomes_held(&s),
             (None, MethodSettings::Mcmc(s)) => Mcmc::<G>::genomes_held(&s),
+            (None, MethodSettings::Hybrid(s)) => Hybrid::<G>::genomes_held(&s),
         }
     }
 

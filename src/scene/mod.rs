@@ -22,6 +22,8 @@
 //! form = "smooth"                    # "smooth" (original implementation) or "weighted" (paper)
 //! length = 0.1                       # weight * S(min_len, max_len, genes), as the original
 //! length_from = "min_len"            # or "optimal_len": weight * S(optimal_len, max_len, genes)
+//! optimum = 1.0                      # optional, > 0: the best fitness there is (a reachable
+//!                                    # target's own score); compare and sweep time fractions of it
 //!
 //! [volume]
 //! grid = { min = [-5, -5, -2], max = [5, 5, 18], resolution = [100, 200, 100] }
@@ -47,7 +49,8 @@
 //! # or: camera = { view = [[..], [..], [..], [..]], projection = [..], width = .., height = .. }
 //!
 //! [optimizer]                        # optional: the generator's presets for the method
-//! method = "ga"
+//! method = "ga"                      # ga, smc, sosmc, rjmcmc or hybrid (the default,
+//!                                    # but the GA with [islands] or [[objective]] tables)
 //! seed = 1
 //! seconds = 60                       # budgets: time, evaluations, generations
 //! generations = 100
@@ -143,6 +146,10 @@ pub struct Scene {
     pub optimal_len: Option<u32>,
     /// The genome-length term of the fitness.
     pub length: LengthPenalty,
+    /// The best fitness the scene can reach, when it says (`fitness.optimum`): the score
+    /// of a reachable target's own genome. `compare` and `sweep` then measure the gap to
+    /// it and the time to fractions of it.
+    pub optimum: Option<f64>,
     /// The scorers' settings, at most one of each [kind](ScorerKind), in the order of
     /// [`ScorerKind::ALL`]; read them with [`scorers`](Self::scorers).
     scorers: Vec<ScorerGoal>,

@@ -9,7 +9,8 @@ use shapegen_runtime::ops::OperatorVariant;
 use shapegen_runtime::optimize::islands::{IslandGaSettings, IslandSettings};
 use shapegen_runtime::optimize::multi::MultiGaSettings;
 use shapegen_runtime::optimize::{
-    Budget, GaSettings, McmcSettings, McmcVariant, Order, SettingsError, SmcSettings, SmcVariant,
+    Budget, GaSettings, HybridSettings, McmcSettings, McmcVariant, Order, SettingsError,
+    SmcSettings, SmcVariant,
 };
 
 /// The search methods.
@@ -23,11 +24,25 @@ pub enum Method {
     Sosmc,
     /// Reversible-jump MCMC with parallel tempering.
     Rjmcmc,
+    /// The GA with its first population seeded by SOSMC and its best refined by short
+    /// RJMCMC chains.
+    Hybrid,
 }
 
 impl Method {
+    /// The method of a scene that names none (and has neither islands nor objectives,
+    /// which the GA searches): the hybrid, which led or was level at every budget and on
+    /// every scene measured (`benches/README.md`, "The hybrid method").
+    pub const DEFAULT: Method = Method::Hybrid;
+
     /// Every method.
-    pub const ALL: [Method; 4] = [Method::Ga, Method::Smc, Method::Sosmc, Method::Rjmcmc];
+    pub const ALL: [Method; 5] = [
+        Method::Ga,
+        Method::Smc,
+        Method::Sosmc,
+        Method::Rjmcmc,
+        Method::Hybrid,
+    ];
 
     /// Its name in scene files and on the command line.
     pub const fn name(self) -> &'static str {
@@ -36,7 +51,15 @@ impl Method {
             Method::Smc => "smc",
             Method::Sosmc => "sosmc",
             Method::Rjmcmc => "rjmcmc",
+            Method::Hybrid => "hybrid",
         }
+    }
+
+    /// Every method's name, for messages: `ga, smc, sosmc, rjmcmc and hybrid`.
+    pub fn names() -> String {
+        let names = Method::ALL.map(Method::name);
+        let (last, rest) = names.split_last().expect("methods");
+        format!("{} and {last}", rest.join(", "))
     }
 }
 
@@ -51,13 +74,16 @@ pub enum MethodSettings {
     Smc(SmcSettings),
     /// Reversible-jump MCMC.
     Mcmc(McmcSettings),
+    /// The hybrid method.
+    Hybrid(HybridSettings),
 }
 
 /// The `[optimizer]` table, resolved. Keys the method does not know are refused.
 ///
 /// ```toml
 /// [optimizer]
-/// method = "ga"          # ga, smc, sosmc or rjmcmc
+/// method = "hybrid"      # ga, smc, sosmc, rjmcmc or hybrid (the default; the GA with
+///                        # [islands] or [[objective]] tables)
 /// seed = 1
 /// seconds = 60           # wall-time budget (optional)
 /// evaluations = 100000   # evaluation budget (optional)
@@ -103,6 +129,7 @@ impl OptimizerGoal {
             MethodSettings::Islands(s) => s.ga.generations,
             MethodSettings::Smc(s) => s.steps,
             MethodSettings::Mcmc(s) => s.iterations,
+            MethodSettings::Hybrid(s) => s.ga.generations,
         }
     }
 
@@ -113,6 +140,7 @@ impl OptimizerGoal {
             MethodSettings::Islands(s) => s.ga.generations = n,
             MethodSettings::Smc(s) => s.steps = n,
             MethodSettings::Mcmc(s) => s.iterations = n,
+            MethodSettings::Hybrid(s) => s.ga.generations = n,
         }
     }
 
@@ -143,6 +171,10 @@ fn preset(method: Method, presets: &Presets) -> MethodSettings {
             ..presets.sosmc
         }),
         Method::Rjmcmc => MethodSettings::Mcmc(presets.rjmcmc),
+        Method::Hybrid => MethodSettings::Hybrid(HybridSettings {
+            ga: presets.ga,
+            ..HybridSettings::default()
+        }),
     }
 }
 
@@ -211,7 +243,7 @@ impl Overrides {
 
 /// A method name that names no method.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("\"{0}\" is not a method; the methods are ga, smc, sosmc and rjmcmc")]
+#[error("\"{0}\" is not a method; the methods are {names}", names = Method::names())]
 pub struct UnknownMethod(pub String);
 
 impl std::str::FromStr for Method {
@@ -254,18 +286,21 @@ pub(super) fn resolve(
 ) -> Result<OptimizerGoal, (String, String)> {
     let key = |k: &str| format!("optimizer.{k}");
     let written = match table.remove("method") {
-        None => Method::Ga,
-        Some(toml::Value::String(m)) => m
-            .parse()
-            .map_err(|e: UnknownMethod| (key("method"), e.to_string()))?,
+        None => None,
+        Some(toml::Value::String(m)) => Some(
+            m.parse()
+                .map_err(|e: UnknownMethod| (key("method"), e.to_string()))?,
+        ),
         Some(other) => {
             return Err((
                 key("method"),
-                format!("{other} is not a method; the methods are ga, smc, sosmc and rjmcmc"),
+                format!(
+                    "{other} is not a method; the methods are {}",
+                    Method::names()
+                ),
             ));
         }
     };
-    let method = overrides.method.unwrap_or(written);
     let islands = match (islands, overrides.islands) {
         (None, None) => None,
         (written, count) => {
@@ -274,6 +309,14 @@ pub(super) fn resolve(
             Some(islands)
         }
     };
+    let method = overrides
+        .method
+        .or(written)
+        .unwrap_or(if islands.is_some() {
+            Method::Ga
+        } else {
+            Method::DEFAULT
+        });
     if islands.is_some() && method != Method::Ga {
         return Err((
             "islands".into(),
@@ -373,6 +416,7 @@ pub(super) fn resolve(
             rename(&mut table, "iterations");
             MethodSettings::Mcmc(merged(base, table, McmcSettings::validate)?)
         }
+        MethodSettings::Hybrid(base) => MethodSettings::Hybrid(hybrid(base, table)?),
     };
     let mut goal = OptimizerGoal {
         method,
@@ -385,6 +429,24 @@ pub(super) fn resolve(
         goal.set_generations(g);
     }
     Ok(goal)
+}
+
+/// The hybrid's settings: `base` with the keys of `table` over it, its own keys
+/// (`seed_steps`, `refine`, ...) read as its own and every other key as its GA's;
+/// errors are `(key, reason)`.
+fn hybrid(
+    base: HybridSettings,
+    mut table: toml::Table,
+) -> Result<HybridSettings, (String, String)> {
+    let own: toml::Table = toml::Table::try_from(base)
+        .map_err(|err| (String::from("optimizer"), err.to_string()))?
+        .into_iter()
+        .filter(|(k, _)| k != "ga")
+        .filter_map(|(k, _)| table.remove_entry(&k))
+        .collect();
+    check_ga_keys(&table)?;
+    let ga = merged(base.ga, table, GaSettings::validate)?;
+    merged(HybridSettings { ga, ..base }, own, HybridSettings::validate)
 }
 
 /// Checks the GA's keys whose serde errors would not name them: `operators` must name an
@@ -647,10 +709,65 @@ mod mcmc_tests {
             assert_eq!(s.islands.migrants, migrants, "the table's, or the default");
         }
         let plain = resolve(&spaceship, toml::Table::new(), None, &Overrides::default());
-        assert!(matches!(plain.unwrap().settings, MethodSettings::Ga(_)));
+        assert!(matches!(plain.unwrap().settings, MethodSettings::Hybrid(_)));
         let rjmcmc = toml::from_str("method = \"rjmcmc\"\n").unwrap();
         let (key, reason) = resolve(&spaceship, rjmcmc, None, &flag).unwrap_err();
         assert_eq!(key, "islands");
         assert!(reason.contains("runs the GA"), "{reason}");
+    }
+}
+
+#[cfg(test)]
+mod hybrid_tests {
+    use super::*;
+
+    fn hybrid(text: &str) -> Result<HybridSettings, (String, String)> {
+        let presets = crate::registry::Registry::published()
+            .get("spaceship")
+            .unwrap()
+            .defaults
+            .presets;
+        let table: toml::Table = toml::from_str(&format!("method = \"hybrid\"\n{text}")).unwrap();
+        match resolve(&presets, table, None, &Overrides::default())?.settings {
+            MethodSettings::Hybrid(s) => Ok(s),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn hybrid_keys_are_its_own_or_its_gas() {
+        let paper = generators::spaceship::paper_ga();
+        let d = hybrid("").unwrap();
+        assert_eq!(
+            d,
+            HybridSettings {
+                ga: paper,
+                ..HybridSettings::default()
+            }
+        );
+        let s = hybrid("refine = 2\nseed_steps = 5\njump_probability = 0.2\npopulation = 60\n")
+            .unwrap();
+        assert_eq!((s.refine, s.seed_steps, s.jump_probability), (2, 5, 0.2));
+        assert_eq!(
+            s.ga,
+            GaSettings {
+                population: 60,
+                ..paper
+            }
+        );
+        for (text, key) in [
+            ("jump_probability = 2.0", "optimizer.jump_probability"),
+            ("seed_steps = -1", "optimizer.seed_steps"),
+            ("refine = -1", "optimizer.refine"),
+            ("refine = 500", "optimizer.refine"),
+            ("jump_probability = \"x\"", "optimizer.jump_probability"),
+            ("elitism = 900", "optimizer.elitism"),
+            ("operators = \"paper\"", "optimizer.operators"),
+        ] {
+            let (k, reason) = hybrid(text).unwrap_err();
+            assert_eq!(k, key, "{text}: {reason}");
+        }
+        let (_, reason) = hybrid("refines = 2").unwrap_err();
+        assert!(reason.contains("refines"), "{reason}");
     }
 }

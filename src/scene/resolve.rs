@@ -126,6 +126,18 @@ impl<'a> Resolver<'a> {
             to: f64::from(limits.max_len),
         };
         let form = file.fitness.form;
+        let optimum = match file.fitness.optimum {
+            Some(v) if !(v.is_finite() && v > 0.0) => {
+                return Err(self.invalid(
+                    "fitness.optimum",
+                    format!(
+                        "{v} must be a finite number > 0: the best fitness the scene can \
+                         reach, whose fractions compare and sweep time"
+                    ),
+                ));
+            }
+            v => v,
+        };
 
         // One arm per kind of scorer, in the order of `ScorerKind::ALL`.
         let scorers: Vec<ScorerGoal> = [
@@ -172,6 +184,10 @@ impl<'a> Resolver<'a> {
                 .map_err(|err| self.invalid(err.field, err.to_string()))?;
             let archive = super::optimizer::take_archive(&mut table)
                 .map_err(|(key, reason)| self.invalid(key, reason))?;
+            // The multi-objective GA searches it, whatever the default method.
+            table
+                .entry("method")
+                .or_insert_with(|| toml::Value::String(Method::Ga.name().to_owned()));
             Some(ObjectiveGoal {
                 set,
                 selection,
@@ -211,6 +227,7 @@ impl<'a> Resolver<'a> {
             limits,
             optimal_len,
             length,
+            optimum,
             scorers,
             objectives,
         })

@@ -207,6 +207,7 @@ length = 0.02
 image = "skyline.png"
 camera = { phi = -1.5708, theta = 0.06, radius = 25, lookat = [0, 4.2, 0], fov = 45, near = 0.1, far = 200, width = 160, height = 90 }
 [optimizer]
+method = "ga"
 population = 24
 elitism = 4
 initial_length = 40

@@ -323,3 +323,10 @@ pub fn stream(seed: u64, generation: u64, index: u64) -> ChaCha8Rng {
     rng.set_stream(generation << 32 | (index & 0xffff_ffff));
     rng
 }
+
+/// The seed of the `k`th family of streams derived from a run's `seed` (the seed itself
+/// for `k = 0`): the island model's island `k`, the hybrid's epoch `k`.
+pub(crate) fn derived_seed(seed: u64, k: u64) -> u64 {
+    const GOLDEN: u64 = 0x9e37_79b9_7f4a_7c15;
+    seed.wrapping_add(GOLDEN.wrapping_mul(k))
+}

@@ -5,15 +5,35 @@
 
 #[path = "../support"]
 mod support {
+    pub mod breeding;
     pub mod city_expanded;
     pub mod scenes;
     pub mod silhouette_scenes;
     pub mod spaceship_expanded;
     pub mod volume_scenes;
+
+    use shapegen_runtime::score::silhouette::{Camera, ImageTarget};
+
+    /// A published target image scaled down to 160 x 120 pixels, as a mask or as a
+    /// weight map.
+    pub fn small_target(scene: &str, file: &str, camera: Camera, weight_map: bool) -> ImageTarget {
+        let path = scenes::scenes().join(scene).join(file);
+        let image = image::open(&path).unwrap().resize_exact(
+            160,
+            120,
+            image::imageops::FilterType::Triangle,
+        );
+        if weight_map {
+            ImageTarget::from_weight_map(file.to_owned(), &image, camera, 1.0, -0.5).unwrap()
+        } else {
+            ImageTarget::from_mask(file.to_owned(), &image, camera, 1.0, -1.0).unwrap()
+        }
+    }
 }
 
 mod context;
 mod silhouette;
+mod silhouette_retained;
 mod volume;
 
 use std::process::ExitCode;
@@ -26,7 +46,13 @@ type GpuTest = (&'static str, fn(&GpuContext));
 
 fn main() -> ExitCode {
     let args = Arguments::from_args();
-    let tests = [context::TESTS, volume::TESTS, silhouette::TESTS].concat();
+    let tests = [
+        context::TESTS,
+        volume::TESTS,
+        silhouette::TESTS,
+        silhouette_retained::TESTS,
+    ]
+    .concat();
     let required = std::env::var("SHAPEGEN_REQUIRE_GPU").as_deref() == Ok("1");
     let gpu: Result<&'static GpuContext, String> = GpuContext::new()
         .map(|gpu| &*Box::leak(Box::new(gpu)))

@@ -10,8 +10,9 @@ use shapegen_runtime::score::silhouette::{
 use shapegen_runtime::score::{InstanceBatch, count_batch};
 
 use crate::GpuTest;
-use crate::support::scenes::{population, scenes};
+use crate::support::scenes::population;
 use crate::support::silhouette_scenes::{SMOOTH, city_camera, tree_camera};
+use crate::support::small_target;
 
 /// The tests of this module.
 pub const TESTS: &[GpuTest] = &[
@@ -41,19 +42,6 @@ fn assert_close(what: &str, cpu: u64, gpu: u64, instances: usize) {
         (cpu as f64 - gpu as f64).abs() <= tolerance,
         "{what}: cpu {cpu}, gpu {gpu}, tolerance {tolerance}"
     );
-}
-
-fn small(scene: &str, file: &str, camera: Camera, weight_map: bool) -> ImageTarget {
-    let path = scenes().join(scene).join(file);
-    let image =
-        image::open(&path)
-            .unwrap()
-            .resize_exact(160, 120, image::imageops::FilterType::Triangle);
-    if weight_map {
-        ImageTarget::from_weight_map(file.to_owned(), &image, camera, 1.0, -0.5).unwrap()
-    } else {
-        ImageTarget::from_mask(file.to_owned(), &image, camera, 1.0, -1.0).unwrap()
-    }
 }
 
 fn compare_on_gpu(gpu: &GpuContext, scorer: &SilhouetteScorer, batch: &InstanceBatch) {
@@ -112,8 +100,8 @@ fn gpu_matches_cpu_on_random_cities(gpu: &GpuContext) {
         .bind(city::City::GRAPH)
         .unwrap();
     let targets = vec![
-        small("city_whale", "city_target_whale.png", city_camera(), false),
-        small("city_whale", "city_target_whale.png", tree_camera(), true),
+        small_target("city_whale", "city_target_whale.png", city_camera(), false),
+        small_target("city_whale", "city_target_whale.png", tree_camera(), true),
     ];
     let scorer = SilhouetteScorer::new(targets, &meshes, SMOOTH).unwrap();
     compare_on_gpu(
@@ -127,7 +115,7 @@ fn gpu_matches_cpu_on_random_trees(gpu: &GpuContext) {
     let meshes = generators::default_meshes()
         .bind(tree::Tree::GRAPH)
         .unwrap();
-    let targets = vec![small(
+    let targets = vec![small_target(
         "tree_sketch1",
         "tree_target_sketch1.png",
         tree_camera(),
@@ -155,7 +143,7 @@ fn gpu_matches_cpu_on_random_spaceships_through_a_close_camera(gpu: &GpuContext)
     let meshes = generators::default_meshes()
         .bind(spaceship::Spaceship::GRAPH)
         .unwrap();
-    let targets = vec![small(
+    let targets = vec![small_target(
         "tree_sketch1",
         "tree_target_sketch1.png",
         camera,

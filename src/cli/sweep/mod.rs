@@ -63,7 +63,7 @@ pub struct SweepArgs {
     /// Base seed: run r of every grid point uses seed + r (default: `optimizer.seed`).
     #[arg(long)]
     seed: Option<u64>,
-    /// The search method of every run: ga, smc, sosmc or rjmcmc (overrides
+    /// The search method of every run: ga, smc, sosmc, rjmcmc or hybrid (overrides
     /// `optimizer.method`; or sweep `--grid optimizer.method=..`).
     #[arg(long)]
     method: Option<Method>,
@@ -143,6 +143,7 @@ pub fn run(args: &SweepArgs, tool: &Generators) -> anyhow::Result<()> {
         method: args.method,
         sets: args.sets.clone(),
         backend: args.backend.clone(),
+        optimum: None,
     }
     .checked(args.seed, tool.registry())?;
     let jobs = match args.jobs {

@@ -186,6 +186,10 @@ pub struct Plan {
     pub sets: Vec<String>,
     /// The backend flags.
     pub backend: BackendArgs,
+    /// The scene's optimum (`fitness.optimum`), when it gives one, the same at every
+    /// grid point.
+    #[serde(default)]
+    pub optimum: Option<f64>,
 }
 
 /// One cell of a plan: run `run` of grid point `point`, on seed `seed`.
@@ -253,9 +257,20 @@ impl Plan {
                  multi-objective scene is searched by the multi-objective GA (`shapegen run`)",
                 self.scene.display()
             );
-            if point == 0 && seed.is_none() {
-                self.seed = scene.optimizer.seed;
+            if point == 0 {
+                if seed.is_none() {
+                    self.seed = scene.optimizer.seed;
+                }
+                self.optimum = scene.optimum;
             }
+            anyhow::ensure!(
+                scene.optimum == self.optimum,
+                "grid point {}: fitness.optimum is {:?} there and {:?} at the first point; \
+                 a sweep measures every point against one optimum",
+                self.describe(point),
+                scene.optimum,
+                self.optimum
+            );
         }
         anyhow::ensure!(
             self.seed.checked_add(self.runs - 1).is_some(),
@@ -423,6 +438,7 @@ mod tests {
             method: None,
             sets: vec!["optimizer.tournament=3".to_owned()],
             backend: BackendArgs::default(),
+            optimum: None,
         }
     }
 

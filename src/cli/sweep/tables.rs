@@ -255,6 +255,7 @@ mod tests {
             method: None,
             sets: Vec::new(),
             backend: BackendArgs::default(),
+            optimum: None,
         }
     }
 

@@ -41,7 +41,7 @@ use super::best::Best;
 use super::error::check_sizes;
 use super::fitness::{Roulette, bits_vec, compare, rank};
 use super::ga::{Generation, Parents, random_population};
-use super::run::{Progress, StopReason, grammar_struct_traits};
+use super::run::{Progress, StopReason, derived_seed, grammar_struct_traits};
 use super::{
     Agreement, Evaluator, GaSettings, Held, OptimizeError, Optimizer, Record, SettingsError,
 };
@@ -337,10 +337,7 @@ impl<G: Grammar> IslandGa<G> {
 
     /// The seed of island `k`'s random streams: the run's seed for island 0.
     fn island_seed(&self, k: usize) -> u64 {
-        const GOLDEN: u64 = 0x9e37_79b9_7f4a_7c15;
-        self.progress
-            .seed
-            .wrapping_add(GOLDEN.wrapping_mul(k as u64))
+        derived_seed(self.progress.seed, k as u64)
     }
 
     /// Island `k` of this process (from 0): its genomes and their fitness.

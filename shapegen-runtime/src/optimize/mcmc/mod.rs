@@ -7,6 +7,8 @@
 mod original;
 mod tempered;
 
+pub(crate) use tempered::{Scratch as MoveScratch, propose};
+
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};

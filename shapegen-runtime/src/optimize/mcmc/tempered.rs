@@ -5,7 +5,7 @@
 use rand::{Rng, RngExt};
 use rayon::prelude::*;
 
-use super::{Mcmc, McmcSettings};
+use super::Mcmc;
 use crate::derive::Grammar;
 use crate::genome::{Genome, node_of};
 use crate::graph::HEADER_WORDS;
@@ -17,7 +17,7 @@ use crate::optimize::{Evaluator, OptimizeError};
 
 /// What a chain proposed this iteration.
 #[derive(Clone, Copy, Debug, Default)]
-pub(super) struct Move {
+pub(crate) struct Move {
     /// Whether it is a jump (delayed rejection applies).
     jump: bool,
     /// Log of the proposal ratio.
@@ -26,7 +26,7 @@ pub(super) struct Move {
 
 /// Per-thread scratch of a move.
 #[derive(Default)]
-struct Scratch {
+pub(crate) struct Scratch {
     depth: Vec<u32>,
     links: Vec<(u32, u32)>,
     queue: Vec<(u32, u32)>,
@@ -73,7 +73,9 @@ impl<G: Grammar> Mcmc<G> {
             .enumerate()
             .for_each_init(
                 || (ops.clone(), Scratch::default()),
-                |(ops, s), (i, ((p, m), rng))| *m = propose(settings, ops, &chains[i], p, s, rng),
+                |(ops, s), (i, ((p, m), rng))| {
+                    *m = propose(settings.jump_probability, ops, &chains[i], p, s, rng);
+                },
             );
         self.evaluate_proposals(evaluator)?;
         self.retry.clear();
@@ -167,9 +169,11 @@ fn accept(old: f64, new: f64, t: f64, log_q: f64, rng: &mut impl Rng) -> bool {
     a >= 0.0 || u.ln() < a
 }
 
-/// Proposes a move from `chain` into `proposal`.
-fn propose<G: Grammar>(
-    settings: &McmcSettings,
+/// Proposes a move from `chain` into `proposal`: with `jump_probability` a jump (a link
+/// redrawn from the grammar), else a diffusion (one gene altered); see
+/// [`McmcVariant::Tempered`](super::McmcVariant::Tempered).
+pub(crate) fn propose<G: Grammar>(
+    jump_probability: f64,
     ops: &mut Operators<G>,
     chain: &Genome<G>,
     proposal: &mut Genome<G>,
@@ -178,7 +182,7 @@ fn propose<G: Grammar>(
 ) -> Move {
     proposal.clone_from(chain);
     let limits = *ops.limits();
-    if rng.random::<f64>() < settings.jump_probability {
+    if rng.random::<f64>() < jump_probability {
         jump_links(proposal, &limits, &mut s.depth, &mut s.links, &mut s.queue);
         if !s.links.is_empty() {
             let before = s.links.len() as f64;

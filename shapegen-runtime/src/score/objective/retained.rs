@@ -24,8 +24,9 @@ use crate::score::silhouette::raster::Coverage;
 /// use shapegen_runtime::score::Scorer;
 /// use shapegen_runtime::{CUBE, Instance, MeshLibrary};
 ///
-/// // The top view of [-2, 2]^2 in 8 x 8 pixels; the target is the middle 4 x 4.
-/// let mask: Vec<bool> = (0..64).map(|i| (2..6).contains(&(i % 8)) && (2..6).contains(&(i / 8))).collect();
+/// // The top view of [-2, 2]^2 in 8 x 8 pixels; the target is the middle 4 x 2, where
+/// // two unit cubes side by side stand.
+/// let mask: Vec<bool> = (0..64).map(|i| (2..6).contains(&(i % 8)) && (3..5).contains(&(i / 8))).collect();
 /// let top = ProjectionMatch::new(View::Top, Vec2::splat(-2.0), Vec2::splat(2.0), 8, 8, &mask)?;
 /// let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"])?;
 /// let scorer = ProjectionScorer::new(top.clone(), meshes.clone());
@@ -41,7 +42,7 @@ use crate::score::silhouette::raster::Coverage;
 /// scorer.update(&mut state, diff.removed(), diff.added(), &mut scratch).unwrap();
 /// let counts = scorer.state_counts(&state);
 /// assert_eq!(counts, scorer.count(&child, &mut scratch));
-/// assert_eq!(counts.mismatched, 8); // the right half of the target, uncovered
+/// assert_eq!(counts.mismatched, 4); // the right half of the target, uncovered
 /// assert_eq!(scorer.fitness(&counts), top.score(&Surface::from_instances(&child, &meshes)));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```

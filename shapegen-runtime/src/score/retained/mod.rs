@@ -60,6 +60,7 @@ mod retention;
 pub use cells::{CellCounts, Changed, Overflow, TILE_BYTES, TILE_WORDS};
 pub use diff::InstanceDiff;
 pub use pixels::{Hit, PixelCounts};
+pub(crate) use retention::genome_key;
 pub use retention::{DEFAULT_MAX_BYTES, Retention, RetentionStats};
 
 use super::Scorer;

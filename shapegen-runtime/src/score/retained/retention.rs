@@ -393,7 +393,7 @@ fn full_state<S: RetainedScorer>(
 /// A 64-bit key of a genome's words, to find a parent's state: equal genomes have equal
 /// keys. Two genomes sharing a key only cost work, never a wrong count, since a state is
 /// always updated from the instances it was counted from.
-fn genome_key<G: Grammar>(genome: &Genome<G>) -> u64 {
+pub(crate) fn genome_key<G: Grammar>(genome: &Genome<G>) -> u64 {
     const K: u64 = 0x9e37_79b9_7f4a_7c15;
     let words = genome.words();
     let mut h = (genome.len() as u64).wrapping_mul(K);

@@ -53,10 +53,22 @@ const MAX_CHUNK: u64 = 256;
 
 /// One target as the GPU sees it.
 #[derive(Debug)]
-struct GpuTarget {
+pub(super) struct GpuTarget {
     params: Params,
-    pixels: wgpu::Buffer,
-    attachment: wgpu::TextureView,
+    pub(super) pixels: wgpu::Buffer,
+    pub(super) attachment: wgpu::TextureView,
+}
+
+impl GpuTarget {
+    /// The camera's view-projection matrix, by columns.
+    pub(super) fn view_projection(&self) -> [[f32; 4]; 4] {
+        self.params.view_projection
+    }
+
+    /// Width and height in pixels.
+    pub(super) fn size(&self) -> (u32, u32) {
+        (self.params.width, self.params.height)
+    }
 }
 
 /// The [`SilhouetteScorer`] on the GPU: the same counts, up to pixels whose centres lie
@@ -85,13 +97,13 @@ struct GpuTarget {
 /// ```
 #[derive(Debug)]
 pub struct GpuSilhouetteScorer<'a> {
-    gpu: &'a GpuContext,
+    pub(super) gpu: &'a GpuContext,
     pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
-    vertices: wgpu::Buffer,
+    pub(super) vertices: wgpu::Buffer,
     /// Vertex range of each mesh in `vertices`, indexed by mesh id.
-    mesh_vertices: Vec<Range<u32>>,
-    targets: Vec<GpuTarget>,
+    pub(super) mesh_vertices: Vec<Range<u32>>,
+    pub(super) targets: Vec<GpuTarget>,
     coverage: wgpu::Buffer,
     /// Models per chunk.
     chunk: usize,
@@ -214,7 +226,13 @@ impl<'a> GpuSilhouetteScorer<'a> {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let (pipeline, layout) = pipeline(gpu);
+        let (pipeline, layout) = pipeline(
+            gpu,
+            "silhouette",
+            SHADER,
+            size_of::<GpuInstance>() as u64,
+            &wgpu::vertex_attr_array![4 => Uint32],
+        );
         GpuSilhouetteScorer {
             gpu,
             pipeline,
@@ -302,19 +320,8 @@ impl<'a> GpuSilhouetteScorer<'a> {
                 if m >= meshes {
                     continue;
                 }
-                let t = instance.transform;
-                let (x, y, z, p) = (
-                    t.matrix3.x_axis,
-                    t.matrix3.y_axis,
-                    t.matrix3.z_axis,
-                    t.translation,
-                );
                 sorted[next[m] as usize] = GpuInstance {
-                    rows: [
-                        [x.x, y.x, z.x, p.x],
-                        [x.y, y.y, z.y, p.y],
-                        [x.z, y.z, z.z, p.z],
-                    ],
+                    rows: rows(&instance.transform),
                     model: model as u32,
                     _pad: [0; 3],
                 };
@@ -376,32 +383,22 @@ impl<'a> GpuSilhouetteScorer<'a> {
                 });
                 let used = u64::from(params.image_words) * 4 * chunk.len() as u64;
                 encoder.clear_buffer(&self.coverage, 0, Some(used));
-                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("silhouette"),
-                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                        view: &target.attachment,
-                        depth_slice: None,
-                        resolve_target: None,
-                        ops: wgpu::Operations {
-                            load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                            store: wgpu::StoreOp::Discard,
-                        },
-                    })],
-                    depth_stencil_attachment: None,
-                    timestamp_writes: None,
-                    occlusion_query_set: None,
-                    multiview_mask: None,
-                });
-                pass.set_pipeline(&self.pipeline);
-                pass.set_bind_group(0, &bind_group, &[]);
-                pass.set_vertex_buffer(0, self.vertices.slice(..));
-                pass.set_vertex_buffer(1, instance_buffer.slice(..));
-                for (vertices, range) in self.mesh_vertices.iter().zip(mesh_ranges) {
-                    let of_chunk = self.chunk_range(instances, range, &chunk);
-                    if !of_chunk.is_empty() && !vertices.is_empty() {
-                        pass.draw(vertices.clone(), of_chunk);
-                    }
-                }
+                let draws = self
+                    .mesh_vertices
+                    .iter()
+                    .zip(mesh_ranges)
+                    .map(|(vertices, range)| {
+                        (vertices.clone(), self.chunk_range(instances, range, &chunk))
+                    });
+                draw_pass(
+                    &mut encoder,
+                    &target.attachment,
+                    &self.pipeline,
+                    &bind_group,
+                    &self.vertices,
+                    &instance_buffer,
+                    draws,
+                );
             }
         }
         self.gpu.queue.submit([encoder.finish()]);
@@ -440,7 +437,22 @@ impl<'a> GpuSilhouetteScorer<'a> {
     }
 }
 
-fn entry(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+/// The rows of an affine transform, as the vertex shaders read them.
+pub(super) fn rows(t: &glam::Affine3A) -> [[f32; 4]; 3] {
+    let (x, y, z, p) = (
+        t.matrix3.x_axis,
+        t.matrix3.y_axis,
+        t.matrix3.z_axis,
+        t.translation,
+    );
+    [
+        [x.x, y.x, z.x, p.x],
+        [x.y, y.y, z.y, p.y],
+        [x.z, y.z, z.z, p.z],
+    ]
+}
+
+pub(super) fn entry(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
     wgpu::BindGroupEntry {
         binding,
         resource: buffer.as_entire_binding(),
@@ -460,15 +472,25 @@ fn storage(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
-/// The render pipeline and its bind group layout.
-fn pipeline(gpu: &GpuContext) -> (wgpu::RenderPipeline, wgpu::BindGroupLayout) {
+/// A silhouette shader's render pipeline and bind group layout. Both shaders bind a
+/// uniform (0), the target's pixels (1) and two read-write buffers (2, 3), read the
+/// mesh's vertex positions at location 0 and the instance's transform rows at
+/// locations 1 to 3, followed by `instance_tail` (locations from 4, offsets from the
+/// end of the rows, as `wgpu::vertex_attr_array!` gives them).
+pub(super) fn pipeline(
+    gpu: &GpuContext,
+    label: &str,
+    source: &str,
+    instance_stride: u64,
+    instance_tail: &[wgpu::VertexAttribute],
+) -> (wgpu::RenderPipeline, wgpu::BindGroupLayout) {
     let device = &gpu.device;
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("silhouette"),
-        source: wgpu::ShaderSource::Wgsl(SHADER.into()),
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
     });
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("silhouette"),
+        label: Some(label),
         entries: &[
             wgpu::BindGroupLayoutEntry {
                 binding: 0,
@@ -486,13 +508,17 @@ fn pipeline(gpu: &GpuContext) -> (wgpu::RenderPipeline, wgpu::BindGroupLayout) {
         ],
     });
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some("silhouette"),
+        label: Some(label),
         bind_group_layouts: &[Some(&layout)],
         immediate_size: 0,
     });
-    let instance_attributes = wgpu::vertex_attr_array![
-        1 => Float32x4, 2 => Float32x4, 3 => Float32x4, 4 => Uint32
-    ];
+    let rows = wgpu::vertex_attr_array![1 => Float32x4, 2 => Float32x4, 3 => Float32x4];
+    let rows_bytes = size_of::<[[f32; 4]; 3]>() as u64;
+    let tail = instance_tail.iter().map(|a| wgpu::VertexAttribute {
+        offset: a.offset + rows_bytes,
+        ..*a
+    });
+    let instance_attributes: Vec<wgpu::VertexAttribute> = rows.into_iter().chain(tail).collect();
     let buffers = [
         Some(wgpu::VertexBufferLayout {
             array_stride: 12,
@@ -500,13 +526,13 @@ fn pipeline(gpu: &GpuContext) -> (wgpu::RenderPipeline, wgpu::BindGroupLayout) {
             attributes: &wgpu::vertex_attr_array![0 => Float32x3],
         }),
         Some(wgpu::VertexBufferLayout {
-            array_stride: size_of::<GpuInstance>() as u64,
+            array_stride: instance_stride,
             step_mode: wgpu::VertexStepMode::Instance,
             attributes: &instance_attributes,
         }),
     ];
     let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("silhouette"),
+        label: Some(label),
         layout: Some(&pipeline_layout),
         vertex: wgpu::VertexState {
             module: &module,
@@ -535,4 +561,43 @@ fn pipeline(gpu: &GpuContext) -> (wgpu::RenderPipeline, wgpu::BindGroupLayout) {
         cache: None,
     });
     (pipeline, layout)
+}
+
+/// Records one render pass into `attachment` (cleared, never stored) with `pipeline`,
+/// `bind_group`, the meshes' `vertices` and `instances`, drawing for each
+/// `(vertex range, instance range)` of `draws`.
+pub(super) fn draw_pass(
+    encoder: &mut wgpu::CommandEncoder,
+    attachment: &wgpu::TextureView,
+    pipeline: &wgpu::RenderPipeline,
+    bind_group: &wgpu::BindGroup,
+    vertices: &wgpu::Buffer,
+    instances: &wgpu::Buffer,
+    draws: impl IntoIterator<Item = (Range<u32>, Range<u32>)>,
+) {
+    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("silhouette"),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view: attachment,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                store: wgpu::StoreOp::Discard,
+            },
+        })],
+        depth_stencil_attachment: None,
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    pass.set_pipeline(pipeline);
+    pass.set_bind_group(0, bind_group, &[]);
+    pass.set_vertex_buffer(0, vertices.slice(..));
+    pass.set_vertex_buffer(1, instances.slice(..));
+    for (vertices, instances) in draws {
+        if !vertices.is_empty() && !instances.is_empty() {
+            pass.draw(vertices, instances);
+        }
+    }
 }

@@ -48,6 +48,7 @@
 mod camera;
 mod counts;
 mod gpu;
+mod gpu_retained;
 mod meshes;
 pub(in crate::score) mod raster;
 mod retained;
@@ -59,6 +60,7 @@ mod tests;
 pub use camera::{Camera, CameraError, OrbitCamera};
 pub use counts::{MAX_TARGETS, SilhouetteCounts, TargetCounts};
 pub use gpu::GpuSilhouetteScorer;
+pub use gpu_retained::GpuRetention;
 pub use retained::SilhouetteState;
 pub use scorer::{SilhouetteError, SilhouetteScorer, SilhouetteScratch};
 pub use target::{ImageTarget, MAX_TARGET_PIXELS, MaskRule, TargetError, TargetKind};

@@ -642,8 +642,9 @@ fn scorer_errors_name_the_limit() {
 }
 
 #[test]
-fn the_shader_validates() {
+fn the_shaders_validate() {
     crate::gpu::validate_wgsl(gpu::SHADER).unwrap();
+    crate::gpu::validate_wgsl(gpu_retained::SHADER).unwrap();
 }
 
 #[test]

@@ -1,0 +1,420 @@
+//! The hybrid method: the paper's GA, its first population grown by a few steps of
+//! SOSMC and its best individuals refined by short RJMCMC chains every generation
+//! ([`Hybrid`]).
+
+mod refine;
+
+use serde::{Deserialize, Serialize};
+
+use super::best::Best;
+use super::error::{check_range, check_sizes};
+use super::fitness::{Roulette, bits_vec};
+use super::ga::{Generation, Parents, random_population};
+use super::run::{Progress, derived_seed, grammar_struct_traits};
+use super::{
+    Evaluator, GaSettings, Held, OptimizeError, Optimizer, Order, Record, SettingsError, Smc,
+    SmcSettings, SmcState, SmcVariant,
+};
+use crate::derive::Grammar;
+use crate::genome::{Genome, Limits};
+use crate::ops::Operators;
+
+/// Settings of the [`Hybrid`]: the GA's, and those of its seeding and its refinement.
+/// Loads from scene files with serde; missing fields take the [`Default`] values,
+/// unknown fields are errors.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct HybridSettings {
+    /// The GA that breeds every generation.
+    pub ga: GaSettings,
+    /// SOSMC steps that grow the first population from the axiom before the GA breeds
+    /// it; 0 starts from random genomes, as the GA does.
+    pub seed_steps: u32,
+    /// How many of the best individuals a short chain refines each generation; at most
+    /// the population. 0 refines none.
+    pub refine: u32,
+    /// Moves each refined individual makes per generation; 0 refines none.
+    pub refine_moves: u32,
+    /// Chance that a refinement move is a jump (a subtree redrawn from the grammar)
+    /// rather than a diffusion (one gene's parameters redrawn); in `[0, 1]`.
+    pub jump_probability: f64,
+}
+
+impl Default for HybridSettings {
+    fn default() -> Self {
+        HybridSettings {
+            ga: GaSettings::default(),
+            seed_steps: 3,
+            refine: 4,
+            refine_moves: 2,
+            jump_probability: 0.5,
+        }
+    }
+}
+
+impl HybridSettings {
+    /// Checks every field; the error names the first one out of range.
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        self.ga.validate()?;
+        if self.refine > self.ga.population {
+            return Err(SettingsError::new(
+                "refine",
+                self.refine,
+                "at most the population",
+            ));
+        }
+        check_range(
+            "jump_probability",
+            self.jump_probability,
+            0.0,
+            1.0,
+            "between 0 and 1",
+        )
+    }
+
+    /// The SOSMC that seeds the first population.
+    fn seeding(&self) -> SmcSettings {
+        SmcSettings {
+            particles: self.ga.population,
+            steps: u64::from(self.seed_steps),
+            order: Order::Stochastic,
+            variant: SmcVariant::Generative,
+            ..SmcSettings::default()
+        }
+    }
+}
+
+/// A checkpoint of a [`Hybrid`], resumed by [`Hybrid::resume`].
+#[derive(Serialize, Deserialize)]
+#[serde(
+    deny_unknown_fields,
+    bound(serialize = "G: Grammar", deserialize = "G: Grammar")
+)]
+pub struct HybridState<G> {
+    /// The settings.
+    pub settings: HybridSettings,
+    /// The genome limits.
+    pub limits: Limits,
+    /// Generation, evaluations, best so far, history.
+    pub progress: Progress<Best<G>>,
+    /// The population (empty while it is being seeded).
+    pub population: Vec<Genome<G>>,
+    /// Its fitness.
+    #[serde(with = "bits_vec")]
+    pub fitness: Vec<f64>,
+    /// The SOSMC seeding the first population, while it runs.
+    pub seeding: Option<SmcState<G>>,
+}
+
+grammar_struct_traits!(HybridState {
+    settings,
+    limits,
+    progress,
+    population,
+    fitness,
+    seeding
+});
+
+/// The hybrid method: the paper's GA ([`Ga`](super::Ga)) with two additions, each of
+/// which its settings can turn off (with both off it is the GA, to the bit). Each was
+/// kept because it helped in the measurements of `benches/README.md` ("The hybrid
+/// method"); annealed refinement and restarts on stagnation were tried there and
+/// dropped.
+///
+/// - **Seeding**: with [`seed_steps`](HybridSettings::seed_steps), the first population
+///   is grown by SOSMC (the generative variant, [`SmcVariant::Generative`]) from the
+///   axiom for that many steps, one step per generation, rather than drawn as random
+///   genomes of the GA's `initial_length`: small, well-formed models, cheap to score.
+/// - **Refinement**: after each generation is bred and scored, its
+///   [`refine`](HybridSettings::refine) best individuals each make
+///   [`refine_moves`](HybridSettings::refine_moves) moves of a short RJMCMC chain, the
+///   tempered variant's jumps and diffusions ([`McmcVariant::Tempered`](
+///   super::McmcVariant::Tempered)); a move is kept when it loses nothing (a chain at
+///   temperature 0). The refined individuals take the place of those they came from.
+///
+/// Random streams: the GA breeds generation `g` from (seed, `g`, pair); refinement
+/// chain `i` of generation `g` draws from (seed, `g`, 2^31 + `i`); the random first
+/// population comes from the run's seed, its seeding from the seed derived for `2^32`.
+/// Results never depend on the thread count.
+///
+/// Evaluations: the first population costs `population`, and each seeding step as
+/// much; a generation costs `population - elitism + refine * refine_moves`.
+///
+/// ```
+/// use shapegen_runtime::optimize::{Budget, FnEvaluator, GaSettings, Hybrid, HybridSettings};
+/// use shapegen_runtime::optimize::{Optimizer, Silent};
+/// use shapegen_runtime::prelude::*;
+///
+/// generator! {
+///     /// A chain of blocks.
+///     pub Chain {
+///         axiom Seg;
+///         node Seg {
+///             children { next: Seg = 0.5 }
+///             derive(s) {
+///                 s.emit(CUBE);
+///                 if let Some(next) = next { s.translate(vec3(0.0, 1.0, 0.0)).derive(next); }
+///             }
+///         }
+///     }
+/// }
+///
+/// // Look for chains of 12 blocks.
+/// let ga = GaSettings { population: 20, elitism: 4, initial_length: 4, ..GaSettings::default() };
+/// let settings = HybridSettings { ga, seed_steps: 2, refine: 2, refine_moves: 2, ..HybridSettings::default() };
+/// let mut hybrid = Hybrid::<Chain>::new(settings, Limits::new(1, 30, 30)?, 7)?;
+/// let mut eval = FnEvaluator(|g: &Genome<Chain>| -(g.len() as f64 - 12.0).abs());
+/// let result = hybrid.run(&mut eval, &Budget::generations(30), &mut Silent)?;
+/// assert_eq!(result.best.len(), 12);
+/// // The axiom, two seeding steps, then 28 generations.
+/// assert_eq!(result.evaluations, 20 + 2 * 20 + 28 * (16 + 2 * 2));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub struct Hybrid<G> {
+    settings: HybridSettings,
+    limits: Limits,
+    /// The GA's operators.
+    ops: Operators<G>,
+    /// The refinement's operators (the tempered RJMCMC's, keeping to the limits).
+    moves: Operators<G>,
+    progress: Progress<Best<G>>,
+    population: Vec<Genome<G>>,
+    fitness: Vec<f64>,
+    next: Vec<Genome<G>>,
+    next_fitness: Vec<f64>,
+    /// The parent each child of `next` was bred from, by index into `population`.
+    from: Vec<u32>,
+    order: Vec<u32>,
+    roulette: Roulette,
+    seeding: Option<Smc<G>>,
+    chains: refine::Chains<G>,
+}
+
+impl<G: Grammar> std::fmt::Debug for Hybrid<G> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Hybrid")
+            .field("settings", &self.settings)
+            .field("progress", &self.progress)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<G: Grammar> Hybrid<G> {
+    /// One SOSMC step of the population being seeded; the last puts it in place.
+    fn seed_step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
+        let smc = self.seeding.as_mut().expect("seeding");
+        smc.step(evaluator)?;
+        let (progress, particles, fitness) = smc.parts();
+        progress.generation += 1;
+        self.progress.evaluations += particles.len() as u64;
+        if progress.generation >= u64::from(self.settings.seed_steps) {
+            self.population.clone_from_slice(particles);
+            self.fitness.copy_from_slice(fitness);
+            self.seeding = None;
+        }
+        Ok(())
+    }
+
+    /// Breeds and scores the next generation, as the GA does.
+    fn breed(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
+        let elite = self.settings.ga.elitism as usize;
+        let (elites, children) = self.next.split_at_mut(elite);
+        Generation {
+            settings: &self.settings.ga,
+            ops: &self.ops,
+            seed: self.progress.seed,
+            generation: self.progress.generation + 1,
+        }
+        .breed(
+            Parents {
+                population: &self.population,
+                fitness: &self.fitness,
+            },
+            &mut self.order,
+            &mut self.roulette,
+            (elites, &mut self.next_fitness[..elite]),
+            (children, &mut self.from),
+        )?;
+        evaluator.evaluate_bred(
+            &self.next[elite..],
+            &self.population,
+            &self.from,
+            &mut self.next_fitness[elite..],
+        )?;
+        self.progress.evaluations += (self.population.len() - elite) as u64;
+        std::mem::swap(&mut self.population, &mut self.next);
+        std::mem::swap(&mut self.fitness, &mut self.next_fitness);
+        Ok(())
+    }
+
+    /// The evaluations of one generation of the GA with its refinement.
+    fn generation_cost(&self) -> u64 {
+        let s = &self.settings;
+        u64::from(s.ga.population - s.ga.elitism) + u64::from(s.refine) * u64::from(s.refine_moves)
+    }
+}
+
+impl<G: Grammar> Optimizer<G> for Hybrid<G> {
+    type Settings = HybridSettings;
+    type State = HybridState<G>;
+    type Record = Best<G>;
+
+    /// The GA's population, its next generation and their copies; while seeding, the
+    /// SOSMC's particles (one per model of the population) beside them; the refined
+    /// elites' proposals.
+    fn genomes_held(settings: &HybridSettings) -> Vec<Held> {
+        let population = u64::from(settings.ga.population);
+        let mut held = vec![settings.ga.held(1)];
+        if settings.seed_steps > 0 {
+            held.push(Held {
+                genomes: 3 * population,
+                saved: population,
+                setting: "optimizer.population",
+                value: population,
+            });
+        }
+        held.push(Held {
+            genomes: 2 * u64::from(settings.refine),
+            saved: 0,
+            setting: "optimizer.refine",
+            value: settings.refine.into(),
+        });
+        held
+    }
+
+    fn new(settings: HybridSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {
+        settings.validate()?;
+        let n = settings.ga.population as usize;
+        let empty = || Genome::from_parts(Vec::new(), 0);
+        Ok(Hybrid {
+            ops: settings.ga.build_operators(limits)?,
+            moves: Operators::new(limits)?,
+            limits,
+            progress: Progress::new(seed),
+            population: (0..n).map(|_| empty()).collect(),
+            fitness: vec![f64::NAN; n],
+            next: (0..n).map(|_| empty()).collect(),
+            next_fitness: vec![f64::NAN; n],
+            from: vec![0; n - settings.ga.elitism as usize],
+            order: Vec::with_capacity(n),
+            roulette: Roulette::default(),
+            seeding: None,
+            chains: refine::Chains::new(settings.refine as usize),
+            settings,
+        })
+    }
+
+    fn resume(state: HybridState<G>) -> Result<Self, OptimizeError> {
+        let mut hybrid = Hybrid::new(state.settings, state.limits, state.progress.seed)?;
+        if state.progress.record.started() {
+            let n = hybrid.population.len();
+            if state.seeding.is_none() {
+                check_sizes(
+                    &[
+                        (state.population.len(), n, "genomes"),
+                        (state.fitness.len(), n, "fitness values"),
+                    ],
+                    format_args!("a population of {n}"),
+                )?;
+                hybrid.population = state.population;
+                hybrid.fitness = state.fitness;
+            }
+            hybrid.seeding = state.seeding.map(Smc::resume).transpose()?;
+        }
+        hybrid.progress = state.progress;
+        Ok(hybrid)
+    }
+
+    fn checkpoint(&self) -> HybridState<G> {
+        HybridState {
+            settings: self.settings,
+            limits: self.limits,
+            progress: self.progress.clone(),
+            population: match self.seeding {
+                Some(_) => Vec::new(),
+                None => self.population.clone(),
+            },
+            fitness: match self.seeding {
+                Some(_) => Vec::new(),
+                None => self.fitness.clone(),
+            },
+            seeding: self.seeding.as_ref().map(Smc::checkpoint),
+        }
+    }
+
+    fn settings(&self) -> &HybridSettings {
+        &self.settings
+    }
+
+    fn state_settings(state: &HybridState<G>) -> &HybridSettings {
+        &state.settings
+    }
+
+    fn progress(&self) -> &Progress<Best<G>> {
+        &self.progress
+    }
+
+    /// The progress, with the population, or the particles of the population being
+    /// seeded.
+    fn parts(&mut self) -> (&mut Progress<Best<G>>, &[Genome<G>], &[f64]) {
+        match &mut self.seeding {
+            Some(smc) => {
+                let (_, particles, fitness) = smc.parts();
+                (&mut self.progress, particles, fitness)
+            }
+            None => (&mut self.progress, &self.population, &self.fitness),
+        }
+    }
+
+    fn step_cost(&self) -> u64 {
+        if self.seeding.is_some() {
+            u64::from(self.settings.ga.population)
+        } else {
+            self.generation_cost()
+        }
+    }
+
+    fn start(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
+        let seed = self.progress.seed;
+        if self.settings.seed_steps > 0 {
+            let mut smc = Smc::new(
+                self.settings.seeding(),
+                self.limits,
+                derived_seed(seed, 1 << 32),
+            )?;
+            smc.start(evaluator)?;
+            // Marks its progress started, so that a checkpoint keeps its particles.
+            smc.record();
+            self.progress.evaluations += u64::from(self.settings.ga.population);
+            self.seeding = Some(smc);
+            return Ok(());
+        }
+        random_population(&self.ops, &self.settings.ga, seed, &mut self.population);
+        evaluator.evaluate(&self.population, &mut self.fitness)?;
+        self.progress.evaluations += self.population.len() as u64;
+        Ok(())
+    }
+
+    fn step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
+        if self.seeding.is_some() {
+            return self.seed_step(evaluator);
+        }
+        self.breed(evaluator)?;
+        let settings = &self.settings;
+        self.chains.refine(
+            refine::Refinement {
+                count: settings.refine as usize,
+                moves: settings.refine_moves,
+                jump_probability: settings.jump_probability,
+                ops: &self.moves,
+                seed: self.progress.seed,
+                generation: self.progress.generation + 1,
+            },
+            evaluator,
+            (&mut self.population, &mut self.fitness),
+            &mut self.order,
+        )?;
+        self.progress.evaluations += u64::from(settings.refine) * u64::from(settings.refine_moves);
+        Ok(())
+    }
+}

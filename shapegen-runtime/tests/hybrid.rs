@@ -1,0 +1,330 @@
+//! The hybrid method: the GA to the bit with its additions off; deterministic at any
+//! thread count; resumable anywhere, also while its first population is being seeded;
+//! safe with NaN fitness; its settings checked field by field.
+
+mod support {
+    pub mod evaluators;
+}
+
+use generators::{City, Spaceship, city, spaceship};
+use shapegen_runtime::optimize::*;
+use shapegen_runtime::prelude::*;
+use support::evaluators::{BoxTarget, Skyline, timeless};
+
+/// The paper's city GA, smaller.
+fn small_ga() -> GaSettings {
+    GaSettings {
+        population: 40,
+        elitism: 8,
+        initial_length: 30,
+        generations: 15,
+        ..city::paper_ga()
+    }
+}
+
+/// Every addition on: seeding and refinement.
+fn full() -> HybridSettings {
+    HybridSettings {
+        ga: small_ga(),
+        seed_steps: 2,
+        refine: 4,
+        refine_moves: 3,
+        jump_probability: 0.5,
+    }
+}
+
+/// Every addition off: the GA.
+fn none() -> HybridSettings {
+    HybridSettings {
+        ga: small_ga(),
+        seed_steps: 0,
+        refine: 0,
+        refine_moves: 0,
+        ..HybridSettings::default()
+    }
+}
+
+/// [`full`] and each addition on alone.
+fn variants() -> [HybridSettings; 3] {
+    [
+        full(),
+        HybridSettings {
+            refine: 4,
+            refine_moves: 2,
+            ..none()
+        },
+        HybridSettings {
+            seed_steps: 3,
+            ..none()
+        },
+    ]
+}
+
+fn same_result<G: Grammar>(a: &RunResult<G>, b: &RunResult<G>) {
+    assert_eq!(a.best, b.best);
+    assert_eq!(a.best_fitness.to_bits(), b.best_fitness.to_bits());
+    assert_eq!(a.evaluations, b.evaluations);
+    assert_eq!(a.generations, b.generations);
+    assert_eq!(timeless(&a.history), timeless(&b.history));
+}
+
+fn threads<T: Send>(n: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(n)
+        .build()
+        .unwrap()
+        .install(f)
+}
+
+/// [`Skyline`] capped at 3: many individuals tie at the cap.
+struct Capped(Skyline);
+
+impl Evaluator<City> for Capped {
+    fn evaluate(&mut self, genomes: &[Genome<City>], out: &mut [f64]) -> Result<(), EvaluateError> {
+        self.0.evaluate(genomes, out)?;
+        out.iter_mut().for_each(|o| *o = o.min(3.0));
+        Ok(())
+    }
+}
+
+/// Scores like [`Skyline`] but gives NaN to every third genome and -inf to some.
+struct Poisoned(Skyline, u64);
+
+impl Evaluator<City> for Poisoned {
+    fn evaluate(&mut self, genomes: &[Genome<City>], out: &mut [f64]) -> Result<(), EvaluateError> {
+        self.0.evaluate(genomes, out)?;
+        for o in out.iter_mut() {
+            self.1 += 1;
+            if self.1.is_multiple_of(3) {
+                *o = f64::NAN;
+            } else if self.1.is_multiple_of(17) {
+                *o = f64::NEG_INFINITY;
+            }
+        }
+        Ok(())
+    }
+}
+
+#[test]
+fn hybrid_with_every_addition_off_is_the_ga() {
+    for seed in [1, 2] {
+        let budget = Budget::generations(12);
+        let ga = Ga::<City>::new(small_ga(), city::PAPER_LIMITS, seed)
+            .unwrap()
+            .run(&mut Skyline::new(), &budget, &mut Silent)
+            .unwrap();
+        let hybrid = Hybrid::<City>::new(none(), city::PAPER_LIMITS, seed)
+            .unwrap()
+            .run(&mut Skyline::new(), &budget, &mut Silent)
+            .unwrap();
+        same_result(&ga, &hybrid);
+    }
+}
+
+#[test]
+fn hybrid_improves_and_counts_every_evaluation() {
+    for (k, s) in variants().into_iter().enumerate() {
+        let mut eval = Skyline::new();
+        let r = Hybrid::<City>::new(s, city::PAPER_LIMITS, 3)
+            .unwrap()
+            .run(&mut eval, &Budget::generations(15), &mut Silent)
+            .unwrap();
+        assert!(r.best_fitness > r.history[0].best, "variant {k}: {r:?}");
+        assert_eq!(eval.genomes, r.evaluations, "variant {k}");
+        // An evaluation budget stops it within one generation's cost.
+        let mut eval = Skyline::new();
+        let r = Hybrid::<City>::new(s, city::PAPER_LIMITS, 3)
+            .unwrap()
+            .run(&mut eval, &Budget::evaluations(500), &mut Silent)
+            .unwrap();
+        assert_eq!(r.stopped, StopReason::Evaluations, "variant {k}");
+        assert!(r.evaluations <= 500, "variant {k}: {}", r.evaluations);
+        assert_eq!(eval.genomes, r.evaluations, "variant {k}");
+    }
+}
+
+#[test]
+fn hybrid_refinement_keeps_or_betters_its_elites_when_it_hill_climbs() {
+    // A refined individual only ever moves to an equal or better one, so
+    // with the GA's elitism the best never falls from one generation to the next.
+    let s = HybridSettings {
+        refine: 6,
+        refine_moves: 4,
+        ..none()
+    };
+    let r = Hybrid::<Spaceship>::new(s, spaceship::PAPER_LIMITS, 4)
+        .unwrap()
+        .run(&mut BoxTarget::new(), &Budget::generations(10), &mut Silent)
+        .unwrap();
+    assert!(r.history.windows(2).all(|w| w[1].best >= w[0].best));
+    assert_eq!(r.evaluations, 40 + 10 * (32 + 6 * 4));
+}
+
+#[test]
+fn hybrid_seeds_its_first_population_by_sosmc() {
+    let s = HybridSettings {
+        seed_steps: 2,
+        ..none()
+    };
+    let mut hybrid = Hybrid::<City>::new(s, city::PAPER_LIMITS, 1).unwrap();
+    let mut eval = Skyline::new();
+    // The axiom's particles, then two SOSMC steps of 40 each.
+    let r = hybrid
+        .run(&mut eval, &Budget::generations(1), &mut Silent)
+        .unwrap();
+    assert_eq!(r.evaluations, 2 * 40);
+    let state = hybrid.checkpoint();
+    assert!(state.seeding.is_some() && state.population.is_empty());
+    let r = hybrid
+        .run(&mut eval, &Budget::generations(2), &mut Silent)
+        .unwrap();
+    assert_eq!(r.evaluations, 3 * 40);
+    let state = hybrid.checkpoint();
+    assert!(state.seeding.is_none() && state.population.len() == 40);
+    let r = hybrid
+        .run(&mut eval, &Budget::generations(3), &mut Silent)
+        .unwrap();
+    assert_eq!(r.evaluations, 3 * 40 + 32);
+}
+
+#[test]
+fn hybrid_same_seed_same_result_at_any_thread_count() {
+    for (k, s) in variants().into_iter().enumerate() {
+        let run = || {
+            Hybrid::<City>::new(s, city::PAPER_LIMITS, 5)
+                .unwrap()
+                .run(
+                    &mut Capped(Skyline::new()),
+                    &Budget::generations(12),
+                    &mut Silent,
+                )
+                .unwrap()
+        };
+        let (a, b) = (threads(1, run), threads(2, run));
+        same_result(&a, &b);
+        let run = || {
+            Hybrid::<Spaceship>::new(s, spaceship::PAPER_LIMITS, 5)
+                .unwrap()
+                .run(&mut BoxTarget::new(), &Budget::generations(12), &mut Silent)
+                .unwrap()
+        };
+        same_result(&threads(1, run), &threads(2, run));
+        assert!(a.generations == 12, "variant {k}");
+    }
+}
+
+#[test]
+fn hybrid_resume_equals_uninterrupted() {
+    for (k, s) in variants().into_iter().enumerate() {
+        let end = Budget::generations(14);
+        let mut whole = Hybrid::<City>::new(s, city::PAPER_LIMITS, 4).unwrap();
+        let full = whole
+            .run(&mut Capped(Skyline::new()), &end, &mut Silent)
+            .unwrap();
+        // Stopped before, during and after seeding.
+        for stop in [0, 1, 2, 3, 5, 8] {
+            let mut first = Hybrid::<City>::new(s, city::PAPER_LIMITS, 4).unwrap();
+            first
+                .run(
+                    &mut Capped(Skyline::new()),
+                    &Budget::generations(stop),
+                    &mut Silent,
+                )
+                .unwrap();
+            let json = serde_json::to_string(&first.checkpoint()).unwrap();
+            let state: HybridState<City> = serde_json::from_str(&json).unwrap();
+            let mut resumed = Hybrid::resume(state).unwrap();
+            let r = resumed
+                .run(&mut Capped(Skyline::new()), &end, &mut Silent)
+                .unwrap();
+            same_result(&full, &r);
+            assert_eq!(
+                whole.checkpoint().population,
+                resumed.checkpoint().population,
+                "variant {k}, stopped after {stop}"
+            );
+        }
+    }
+}
+
+#[test]
+fn hybrid_checkpoints_of_the_wrong_size_are_refused() {
+    let mut hybrid = Hybrid::<City>::new(none(), city::PAPER_LIMITS, 2).unwrap();
+    hybrid
+        .run(&mut Skyline::new(), &Budget::generations(2), &mut Silent)
+        .unwrap();
+    let mut state = hybrid.checkpoint();
+    state.fitness.pop();
+    let err = Hybrid::resume(state).unwrap_err();
+    assert!(matches!(err, OptimizeError::Checkpoint(_)), "{err}");
+}
+
+#[test]
+fn hybrid_survives_nan_fitness() {
+    for (k, s) in variants().into_iter().enumerate() {
+        let r = Hybrid::<City>::new(s, city::PAPER_LIMITS, 2)
+            .unwrap()
+            .run(
+                &mut Poisoned(Skyline::new(), 0),
+                &Budget::generations(12),
+                &mut Silent,
+            )
+            .unwrap();
+        assert!(
+            r.best_fitness.is_finite() && r.best_fitness > r.history[0].best,
+            "variant {k}: {}",
+            r.best_fitness
+        );
+        assert!(r.history.iter().all(|h| h.mean.is_finite()), "variant {k}");
+        // All NaN: nothing breaks, the best stays NaN.
+        let r = Hybrid::<City>::new(s, city::PAPER_LIMITS, 2)
+            .unwrap()
+            .run(
+                &mut FnEvaluator(|_: &Genome<City>| f64::NAN),
+                &Budget::generations(8),
+                &mut Silent,
+            )
+            .unwrap();
+        assert!(r.best_fitness.is_nan(), "variant {k}");
+    }
+}
+
+#[test]
+fn hybrid_settings_are_validated() {
+    let check = |s: HybridSettings, field: &str| {
+        let e = s.validate().unwrap_err();
+        assert_eq!(e.field, field, "{e}");
+        assert!(matches!(
+            Hybrid::<City>::new(s, city::PAPER_LIMITS, 0),
+            Err(OptimizeError::Settings(_))
+        ));
+    };
+    let d = full();
+    check(HybridSettings { refine: 41, ..d }, "refine");
+    for p in [-0.1, 1.5, f64::NAN] {
+        check(
+            HybridSettings {
+                jump_probability: p,
+                ..d
+            },
+            "jump_probability",
+        );
+    }
+    check(
+        HybridSettings {
+            ga: GaSettings {
+                population: 1,
+                ..small_ga()
+            },
+            refine: 0,
+            ..d
+        },
+        "population",
+    );
+    HybridSettings::default().validate().unwrap();
+    d.validate().unwrap();
+    let parsed: HybridSettings =
+        serde_json::from_str(r#"{"refine": 2, "ga": {"population": 50}}"#).unwrap();
+    assert_eq!((parsed.refine, parsed.ga.population), (2, 50));
+    assert!(serde_json::from_str::<HybridSettings>(r#"{"refines": 2}"#).is_err());
+}
