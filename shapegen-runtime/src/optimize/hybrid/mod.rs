@@ -259,27 +259,20 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
     type State = HybridState<G>;
     type Record = Best<G>;
 
-    /// The GA's population, its next generation and their copies; while seeding, the
-    /// SOSMC's particles (one per model of the population) beside them; the refined
-    /// elites' proposals.
+    /// The GA's population, its next generation and their copies, and the refined
+    /// elites' proposals. While the first population is seeded, the SOSMC holds as many
+    /// particles (one per model, with their copies) and the GA's own are still empty, so
+    /// the GA's count covers both.
     fn genomes_held(settings: &HybridSettings) -> Vec<Held> {
-        let population = u64::from(settings.ga.population);
-        let mut held = vec![settings.ga.held(1)];
-        if settings.seed_steps > 0 {
-            held.push(Held {
-                genomes: 3 * population,
-                saved: population,
-                setting: "optimizer.population",
-                value: population,
-            });
-        }
-        held.push(Held {
-            genomes: 2 * u64::from(settings.refine),
-            saved: 0,
-            setting: "optimizer.refine",
-            value: settings.refine.into(),
-        });
-        held
+        vec![
+            settings.ga.held(1),
+            Held {
+                genomes: 2 * u64::from(settings.refine),
+                saved: 0,
+                setting: "optimizer.refine",
+                value: settings.refine.into(),
+            },
+        ]
     }
 
     fn new(settings: HybridSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {
