@@ -51,7 +51,7 @@ for sweep in "${sweeps[@]}"; do
     read -r name key values budget_flag budget <<<"$sweep"
     echo "== $name: $key = $values, $runs runs of $budget ${budget_flag#--} each" >&2
     t=$SECONDS
-    ./target/release/shapegen sweep "$scene" --cpu --grid "$key=$values" --runs "$runs" \
+    ./target/release/shapegen sweep "$scene" --method ga --cpu --grid "$key=$values" --runs "$runs" \
         "$budget_flag" "$budget" --seed "$seed" "${jobs[@]}" --out "$out/$name"
     echo "   $name took $((SECONDS - t)) s" >&2
     cp "$out/$name/final-$key.png" "docs/ga-study-$name.png"

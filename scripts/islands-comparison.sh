@@ -54,7 +54,7 @@ for scene in spaceship_volume city_whale tree_sketch1; do
     for seed in $(seq 1 "$runs"); do
         "$bin" run "scenes/paper/$scene.toml" --cpu --seed "$seed" --generations "$g" \
             --islands "$k" --out "$out/$scene/islands-$seed" >/dev/null 2>&1
-        "$bin" run "scenes/paper/$scene.toml" --cpu --seed "$seed" --generations "$g" \
+        "$bin" run "scenes/paper/$scene.toml" --method ga --cpu --seed "$seed" --generations "$g" \
             --set "optimizer.population=$((k * n))" --set "optimizer.elitism=$((k * e))" \
             --out "$out/$scene/one-$seed" >/dev/null 2>&1
     done
