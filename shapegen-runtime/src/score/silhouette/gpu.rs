@@ -341,21 +341,8 @@ impl<'a> GpuSilhouetteScorer<'a> {
         count_bytes: u64,
     ) -> wgpu::Buffer {
         let device = &self.gpu.device;
-        let instance_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("silhouette instances"),
-            contents: if instances.is_empty() {
-                &[0; size_of::<GpuInstance>()]
-            } else {
-                bytemuck::cast_slice(instances)
-            },
-            usage: wgpu::BufferUsages::VERTEX,
-        });
-        let counts = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("silhouette counts"),
-            size: count_bytes,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let instance_buffer = instance_buffer(device, "silhouette instances", instances);
+        let counts = result_buffer(device, "silhouette counts", count_bytes);
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("silhouette"),
         });
@@ -435,6 +422,35 @@ impl<'a> GpuSilhouetteScorer<'a> {
     pub fn bitset_bytes(&self) -> u64 {
         self.image_words * 4
     }
+}
+
+/// A vertex buffer of per-instance records (one zeroed record when there are none, as
+/// a buffer may not be empty).
+pub(super) fn instance_buffer<T: Pod>(
+    device: &wgpu::Device,
+    label: &str,
+    instances: &[T],
+) -> wgpu::Buffer {
+    let empty = vec![0u8; size_of::<T>()];
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents: if instances.is_empty() {
+            &empty
+        } else {
+            bytemuck::cast_slice(instances)
+        },
+        usage: wgpu::BufferUsages::VERTEX,
+    })
+}
+
+/// A storage buffer of `bytes` the shader accumulates counters in, to be read back.
+pub(super) fn result_buffer(device: &wgpu::Device, label: &str, bytes: u64) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: bytes,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    })
 }
 
 /// The rows of an affine transform, as the vertex shaders read them.

@@ -18,7 +18,9 @@ use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
 use super::counts::{SilhouetteCounts, TargetCounts};
-use super::gpu::{GpuSilhouetteScorer, draw_pass, entry, pipeline, rows};
+use super::gpu::{
+    GpuSilhouetteScorer, draw_pass, entry, instance_buffer, pipeline, result_buffer, rows,
+};
 use crate::geometry::Instance;
 use crate::gpu::GpuError;
 use crate::score::InstanceBatch;
@@ -545,21 +547,8 @@ impl GpuRetention {
         change_bytes: u64,
     ) -> wgpu::Buffer {
         let device = &scorer.gpu.device;
-        let instance_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("silhouette changed instances"),
-            contents: if instances.is_empty() {
-                &[0; size_of::<GpuInstance>()]
-            } else {
-                bytemuck::cast_slice(instances)
-            },
-            usage: wgpu::BufferUsages::VERTEX,
-        });
-        let changes = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("silhouette changes"),
-            size: change_bytes,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let instance_buffer = instance_buffer(device, "silhouette changed instances", instances);
+        let changes = result_buffer(device, "silhouette changes", change_bytes);
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("silhouette retained"),
         });
