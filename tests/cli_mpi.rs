@@ -2,8 +2,8 @@
 //! same run on 1, 2 and 4 processes, a stop on one rank stopping every rank, resuming on
 //! another number of processes, and islands the processes cannot share. The tests need
 //! a build with the `mpi` feature and OpenMPI's `mpirun`; without them they are reported
-//! as ignored, after a line saying why, unless `SHAPEGEN_REQUIRE_MPI=1` (as in CI), where
-//! they fail instead.
+//! as ignored, after a line saying why, unless `SHAPEGEN_REQUIRE_MPI=1` (as in CI's run
+//! with the feature), where they fail instead.
 
 mod support;
 
