@@ -1,12 +1,13 @@
 //! Output folders: one command at a time in each, a killed command's lock taken over,
 //! another run's outputs refused unless `--resume` or `--force`, SIGTERM and SIGHUP
-//! stopping a run as Ctrl-C does, and a write that fails (a file-size limit, as on a full
-//! disk) leaving every file as it was.
+//! stopping a run as Ctrl-C does, a write that fails (a file-size limit, as on a full
+//! disk) leaving every file as it was, and a read-only folder refused untouched.
 
 mod support;
 
 use std::collections::BTreeMap;
-use std::fs;
+use std::fs::{self, Permissions};
+use std::os::unix::fs::{MetadataExt, PermissionsExt};
 use std::path::Path;
 use std::process::Command;
 
@@ -296,4 +297,55 @@ fn a_write_that_fails_leaves_every_file_as_it_was() {
         fs::read_to_string(parts.join("best.genome.json")).unwrap(),
         fs::read_to_string(whole.join("best.genome.json")).unwrap()
     );
+}
+
+/// A read-only folder: resuming the run in it fails at its lock, saying the folder is not
+/// writable, and leaves every file as it was. Permissions do not bind root, so as root the
+/// command runs as the user `nobody` (through util-linux's `setpriv`), from a link to the
+/// binary inside the test's folder, which that user can reach.
+#[test]
+fn a_read_only_folder_is_refused_and_left_as_it_was() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene(dir.path());
+    let parts = dir.path().join("parts");
+    ok(&[
+        "run",
+        s(&scene),
+        "--cpu",
+        "--generations",
+        "3",
+        "--out",
+        s(&parts),
+    ]);
+    let before = snapshot(&parts);
+    let bin = dir.path().join("shapegen");
+    if fs::hard_link(env!("CARGO_BIN_EXE_shapegen"), &bin).is_err() {
+        fs::copy(env!("CARGO_BIN_EXE_shapegen"), &bin).unwrap();
+    }
+    fs::set_permissions(dir.path(), Permissions::from_mode(0o755)).unwrap();
+    fs::set_permissions(&parts, Permissions::from_mode(0o555)).unwrap();
+    let root = fs::metadata("/proc/self").unwrap().uid() == 0;
+    let mut command = match root {
+        true => {
+            let mut setpriv = Command::new("setpriv");
+            setpriv.args(["--reuid=65534", "--regid=65534", "--clear-groups"]);
+            setpriv.arg(&bin);
+            setpriv
+        }
+        false => Command::new(&bin),
+    };
+    let resumed = command
+        .args(["run", "--resume", s(&parts), "--cpu", "--generations", "6"])
+        .output()
+        .expect("setpriv (util-linux) runs the command as another user when tests run as root");
+    fs::set_permissions(&parts, Permissions::from_mode(0o755)).unwrap();
+    let err = String::from_utf8_lossy(&resumed.stderr);
+    assert!(!resumed.status.success(), "{err}");
+    assert!(
+        err.contains(&format!("`{}` is not writable", parts.display()))
+            && err.contains("nothing in it was changed")
+            && err.contains("Permission denied"),
+        "{err}"
+    );
+    assert_eq!(snapshot(&parts), before, "every file as it was");
 }

@@ -265,6 +265,7 @@ impl Folder {
                 .create(true)
                 .truncate(false)
                 .open(&path)
+                .map_err(|err| unwritable(dir, err))
                 .with_context(cannot)?;
             match file.try_lock() {
                 Ok(()) => {}
@@ -306,6 +307,20 @@ impl Drop for Folder {
     fn drop(&mut self) {
         // Removed before the file closes, so that no process finds it unlocked meanwhile.
         let _ = std::fs::remove_file(&self.lock);
+    }
+}
+
+/// `err`, from creating a file in `dir`, with what to do added when the folder cannot
+/// be written (permissions, a read-only file system).
+fn unwritable(dir: &Path, err: std::io::Error) -> anyhow::Error {
+    use std::io::ErrorKind::{PermissionDenied, ReadOnlyFilesystem};
+    match err.kind() {
+        PermissionDenied | ReadOnlyFilesystem => anyhow::Error::new(err).context(format!(
+            "`{}` is not writable: give a folder this user can write in (nothing in it was \
+             changed)",
+            dir.display()
+        )),
+        _ => err.into(),
     }
 }
 
