@@ -1,6 +1,7 @@
 // Silhouette counting: every model's instances are drawn through a target's camera, and
 // each fragment marks its pixel in the model's coverage bitset; the invocation that set
 // a pixel's bit adds the pixel to the model's counts. No depth test, no colour written.
+// Compiled after `clip.wgsl`, whose `clip_position` places the vertices.
 
 // Mirrors `Params` in shapegen-runtime/src/score/silhouette/gpu.rs.
 struct Params {
@@ -40,13 +41,7 @@ fn vs_main(
     @location(3) row2: vec4<f32>,
     @location(4) model: u32,
 ) -> VertexOut {
-    let p = vec4<f32>(position, 1.0);
-    let world = vec4<f32>(dot(row0, p), dot(row1, p), dot(row2, p), 1.0);
-    var clip = params.view_projection * world;
-    // The camera's clip space keeps z in [-w, w]; the hardware keeps z in [0, w]. This
-    // puts the near plane z = -w at 0 exactly and moves the far clip to z = 1023 w, far
-    // beyond any camera's far plane: triangles are clipped at the near plane only.
-    clip.z = (clip.z + clip.w) * (1.0 / 1024.0);
+    let clip = clip_position(params.view_projection, position, row0, row1, row2);
     return VertexOut(clip, model);
 }
 

@@ -4,8 +4,8 @@
 // while its count is above 0, so the fragment that takes it from 0 to 1 (or from 1 to 0)
 // adds the pixel to (or takes it from) the model's counts. The counts change by exactly
 // the difference between the covered pixels before and after, whatever order the
-// fragments run in. The vertex stage is `silhouette.wgsl`'s, so the same fragments are
-// drawn.
+// fragments run in. Compiled after `clip.wgsl`, whose `clip_position` places the
+// vertices as `silhouette.wgsl` does, so the same fragments are drawn.
 
 // Mirrors `Params` in shapegen-runtime/src/score/silhouette/gpu_retained.rs.
 struct Params {
@@ -49,11 +49,7 @@ fn vs_main(
     @location(5) slot: u32,
     @location(6) removed: u32,
 ) -> VertexOut {
-    let p = vec4<f32>(position, 1.0);
-    let world = vec4<f32>(dot(row0, p), dot(row1, p), dot(row2, p), 1.0);
-    var clip = params.view_projection * world;
-    // As in silhouette.wgsl: the near plane at z = 0, the far clip out of the way.
-    clip.z = (clip.z + clip.w) * (1.0 / 1024.0);
+    let clip = clip_position(params.view_projection, position, row0, row1, row2);
     return VertexOut(clip, entry, slot, removed);
 }
 

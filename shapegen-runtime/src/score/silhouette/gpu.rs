@@ -12,7 +12,10 @@ use crate::gpu::{GpuContext, GpuError};
 use crate::score::InstanceBatch;
 
 /// The WGSL source.
-pub(super) const SHADER: &str = include_str!("../../../shaders/silhouette.wgsl");
+pub(super) const SHADER: &str = concat!(
+    include_str!("../../../shaders/clip.wgsl"),
+    include_str!("../../../shaders/silhouette.wgsl")
+);
 
 /// Mirrors the WGSL struct `Params` of `shaders/silhouette.wgsl`.
 #[repr(C)]

@@ -28,7 +28,10 @@ use crate::score::retained::{InstanceDiff, RetentionStats, genome_key};
 use crate::{Genome, Grammar};
 
 /// The WGSL source.
-pub(super) const SHADER: &str = include_str!("../../../shaders/silhouette_retained.wgsl");
+pub(super) const SHADER: &str = concat!(
+    include_str!("../../../shaders/clip.wgsl"),
+    include_str!("../../../shaders/silhouette_retained.wgsl")
+);
 
 /// Mirrors the WGSL struct `Params` of `shaders/silhouette_retained.wgsl`.
 #[repr(C)]
