@@ -219,17 +219,7 @@ fn gaps(optimum: f64, runs: &[&[HistoryEntry]], x: XOf, x_max: f64) -> [Vec<f64>
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn entry(elapsed_s: f64, evaluations: u64, best: f64) -> HistoryEntry {
-        HistoryEntry {
-            generation: 0,
-            elapsed_s,
-            evaluations,
-            best,
-            mean: best,
-            std: 0.0,
-        }
-    }
+    use crate::cli::stats::tests::entry;
 
     #[test]
     fn levels_are_reached_by_some_runs_and_timed_over_all() {

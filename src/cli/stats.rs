@@ -157,10 +157,11 @@ pub fn curve(
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
-    fn entry(elapsed_s: f64, evaluations: u64, best: f64) -> HistoryEntry {
+    /// A history entry at this time and evaluation count, with its mean equal to its best.
+    pub(in crate::cli) fn entry(elapsed_s: f64, evaluations: u64, best: f64) -> HistoryEntry {
         HistoryEntry {
             generation: 0,
             elapsed_s,
