@@ -189,7 +189,7 @@ fn a_size_that_is_not_one_is_refused_with_what_is_valid() {
 }
 
 #[test]
-fn a_resumed_checkpoint_is_checked_by_its_own_settings() {
+fn a_resumed_checkpoint_is_checked_by_its_own_settings_and_limits() {
     let dir = tempfile::tempdir().unwrap();
     let scene = scene(dir.path());
     let out = dir.path().join("out");
@@ -213,4 +213,10 @@ fn a_resumed_checkpoint_is_checked_by_its_own_settings() {
         err.contains("comes from optimizer.population = 100000000"),
         "{err}"
     );
+    // Its own population, but genomes allowed to grow to a billion genes.
+    checkpoint["search"]["settings"]["population"] = 100.into();
+    checkpoint["search"]["limits"]["max_len"] = 1_000_000_000.into();
+    std::fs::write(&path, checkpoint.to_string()).unwrap();
+    let err = fails(&["run", "--resume", s(&out), "--cpu", "--generations", "2"]);
+    assert!(err.contains("of up to 1000000000 genes"), "{err}");
 }

@@ -69,7 +69,8 @@ impl Visit for MemoryCheck<'_> {
 }
 
 /// Refuses to resume a run of `scene` from `state`, a checkpoint of `O`, that would not
-/// fit in memory: what the checkpoint's own settings hold, which may not be the scene's.
+/// fit in memory: what the checkpoint's own settings and genome limits hold, which may
+/// not be the scene's.
 pub fn check_resumed<G: Grammar, O: Optimizer<G>>(
     scene: &Scene,
     state: &O::State,
@@ -80,6 +81,7 @@ pub fn check_resumed<G: Grammar, O: Optimizer<G>>(
     let shape = RunShape {
         graph: G::GRAPH,
         held: O::genomes_held(O::state_settings(state)),
+        max_len: O::state_limits(state).max_len,
         threads: rayon::current_num_threads(),
         incremental,
         gpu,

@@ -28,6 +28,9 @@ pub struct RunShape {
     /// The genomes the method holds ([`Optimizer::genomes_held`](
     /// shapegen_runtime::optimize::Optimizer::genomes_held)).
     pub held: Vec<Held>,
+    /// The most genes a genome may have: the scene's `limits.max_len`, or a resumed
+    /// checkpoint's own.
+    pub max_len: u32,
     /// The worker threads scoring models.
     pub threads: usize,
     /// Whether bred children are counted from their parents' kept state.
@@ -50,7 +53,7 @@ pub struct MemoryPart {
 /// A run's memory, estimated by part ([`Scene::memory_estimate`]).
 ///
 /// The estimate is an upper bound of what grows with the settings: every genome at the
-/// scene's `limits.max_len` genes of the grammar's largest gene; the checkpoint's text
+/// run's `limits.max_len` genes ([`RunShape::max_len`]) of the grammar's largest gene; the checkpoint's text
 /// (about [`JSON_BYTES_PER_WORD`] per genome word); the instances of a whole population
 /// derived for scoring (one per gene); the scorers' grids and images, and their scratch
 /// buffers per worker thread; and, when children are counted incrementally, the state
@@ -175,6 +178,7 @@ impl Scene {
         RunShape {
             graph: G::GRAPH,
             held: self.genomes_held::<G>(goal),
+            max_len: self.limits.max_len,
             threads,
             incremental,
             gpu,
@@ -184,7 +188,7 @@ impl Scene {
     /// The estimated memory of a run of this scene shaped as `shape` (see the
     /// [`MemoryEstimate`]).
     pub fn memory_estimate(&self, shape: &RunShape) -> MemoryEstimate {
-        let max_len = u64::from(self.limits.max_len);
+        let max_len = u64::from(shape.max_len);
         let gene_words = shape
             .graph
             .nodes

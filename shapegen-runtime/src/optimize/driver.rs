@@ -175,6 +175,9 @@ pub trait Optimizer<G: Grammar>: Sized {
     /// [`resume`](Self::resume) allocates anything.
     fn state_settings(state: &Self::State) -> &Self::Settings;
 
+    /// The genome limits of a checkpoint, which resuming it keeps to.
+    fn state_limits(state: &Self::State) -> &Limits;
+
     /// The counters and the record.
     fn progress(&self) -> &Progress<Self::Record>;
 

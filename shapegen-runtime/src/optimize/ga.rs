@@ -341,6 +341,14 @@ impl<G: Grammar> std::fmt::Debug for Ga<G> {
     }
 }
 
+impl<G: Grammar> Ga<G> {
+    /// The progress, the population and its fitness, for a method that changes
+    /// individuals between the GA's generations (the hybrid's seeding and refinement).
+    pub(super) fn parts_mut(&mut self) -> (&mut Progress<Best<G>>, &mut [Genome<G>], &mut [f64]) {
+        (&mut self.progress, &mut self.population, &mut self.fitness)
+    }
+}
+
 impl<G: Grammar> Optimizer<G> for Ga<G> {
     type Settings = GaSettings;
     type State = GaState<G>;
@@ -409,6 +417,10 @@ impl<G: Grammar> Optimizer<G> for Ga<G> {
 
     fn state_settings(state: &GaState<G>) -> &GaSettings {
         &state.settings
+    }
+
+    fn state_limits(state: &GaState<G>) -> &Limits {
+        &state.limits
     }
 
     fn progress(&self) -> &Progress<Best<G>> {

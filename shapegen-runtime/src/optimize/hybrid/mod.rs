@@ -7,13 +7,12 @@ mod refine;
 use serde::{Deserialize, Serialize};
 
 use super::best::Best;
-use super::error::{check_range, check_sizes};
-use super::fitness::{Roulette, bits_vec};
-use super::ga::{Generation, Parents, random_population};
+use super::error::check_range;
+use super::fitness::bits_vec;
 use super::run::{Progress, derived_seed, grammar_struct_traits};
 use super::{
-    Evaluator, GaSettings, Held, OptimizeError, Optimizer, Order, Record, SettingsError, Smc,
-    SmcSettings, SmcState, SmcVariant,
+    Evaluator, Ga, GaSettings, GaState, Held, OptimizeError, Optimizer, Order, Record,
+    SettingsError, Smc, SmcSettings, SmcState, SmcVariant,
 };
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
@@ -172,20 +171,10 @@ grammar_struct_traits!(HybridState {
 /// ```
 pub struct Hybrid<G> {
     settings: HybridSettings,
-    limits: Limits,
-    /// The GA's operators.
-    ops: Operators<G>,
+    /// The GA that breeds every generation; its progress is the hybrid's.
+    ga: Ga<G>,
     /// The refinement's operators (the tempered RJMCMC's, keeping to the limits).
     moves: Operators<G>,
-    progress: Progress<Best<G>>,
-    population: Vec<Genome<G>>,
-    fitness: Vec<f64>,
-    next: Vec<Genome<G>>,
-    next_fitness: Vec<f64>,
-    /// The parent each child of `next` was bred from, by index into `population`.
-    from: Vec<u32>,
-    order: Vec<u32>,
-    roulette: Roulette,
     seeding: Option<Smc<G>>,
     chains: refine::Chains<G>,
 }
@@ -194,63 +183,44 @@ impl<G: Grammar> std::fmt::Debug for Hybrid<G> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Hybrid")
             .field("settings", &self.settings)
-            .field("progress", &self.progress)
+            .field("progress", self.ga.progress())
             .finish_non_exhaustive()
     }
 }
 
 impl<G: Grammar> Hybrid<G> {
+    /// A hybrid of these settings around `ga`, a GA of `settings.ga` keeping to `limits`.
+    fn around(settings: HybridSettings, ga: Ga<G>, limits: Limits) -> Result<Self, OptimizeError> {
+        settings.validate()?;
+        Ok(Hybrid {
+            settings,
+            ga,
+            moves: Operators::new(limits)?,
+            seeding: None,
+            chains: refine::Chains::new(settings.refine as usize),
+        })
+    }
+
     /// One SOSMC step of the population being seeded; the last puts it in place.
     fn seed_step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
         let smc = self.seeding.as_mut().expect("seeding");
         smc.step(evaluator)?;
-        let (progress, particles, fitness) = smc.parts();
-        progress.generation += 1;
-        self.progress.evaluations += particles.len() as u64;
-        if progress.generation >= u64::from(self.settings.seed_steps) {
-            self.population.clone_from_slice(particles);
-            self.fitness.copy_from_slice(fitness);
+        let (seeding, particles, particle_fitness) = smc.parts();
+        seeding.generation += 1;
+        let (progress, population, fitness) = self.ga.parts_mut();
+        progress.evaluations += particles.len() as u64;
+        if seeding.generation >= u64::from(self.settings.seed_steps) {
+            population.clone_from_slice(particles);
+            fitness.copy_from_slice(particle_fitness);
             self.seeding = None;
         }
-        Ok(())
-    }
-
-    /// Breeds and scores the next generation, as the GA does.
-    fn breed(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
-        let elite = self.settings.ga.elitism as usize;
-        let (elites, children) = self.next.split_at_mut(elite);
-        Generation {
-            settings: &self.settings.ga,
-            ops: &self.ops,
-            seed: self.progress.seed,
-            generation: self.progress.generation + 1,
-        }
-        .breed(
-            Parents {
-                population: &self.population,
-                fitness: &self.fitness,
-            },
-            &mut self.order,
-            &mut self.roulette,
-            (elites, &mut self.next_fitness[..elite]),
-            (children, &mut self.from),
-        )?;
-        evaluator.evaluate_bred(
-            &self.next[elite..],
-            &self.population,
-            &self.from,
-            &mut self.next_fitness[elite..],
-        )?;
-        self.progress.evaluations += (self.population.len() - elite) as u64;
-        std::mem::swap(&mut self.population, &mut self.next);
-        std::mem::swap(&mut self.fitness, &mut self.next_fitness);
         Ok(())
     }
 
     /// The evaluations of one generation of the GA with its refinement.
     fn generation_cost(&self) -> u64 {
         let s = &self.settings;
-        u64::from(s.ga.population - s.ga.elitism) + u64::from(s.refine) * u64::from(s.refine_moves)
+        self.ga.step_cost() + u64::from(s.refine) * u64::from(s.refine_moves)
     }
 }
 
@@ -277,60 +247,61 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
 
     fn new(settings: HybridSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {
         settings.validate()?;
-        let n = settings.ga.population as usize;
-        let empty = || Genome::from_parts(Vec::new(), 0);
-        Ok(Hybrid {
-            ops: settings.ga.build_operators(limits)?,
-            moves: Operators::new(limits)?,
-            limits,
-            progress: Progress::new(seed),
-            population: (0..n).map(|_| empty()).collect(),
-            fitness: vec![f64::NAN; n],
-            next: (0..n).map(|_| empty()).collect(),
-            next_fitness: vec![f64::NAN; n],
-            from: vec![0; n - settings.ga.elitism as usize],
-            order: Vec::with_capacity(n),
-            roulette: Roulette::default(),
-            seeding: None,
-            chains: refine::Chains::new(settings.refine as usize),
-            settings,
-        })
+        Hybrid::around(settings, Ga::new(settings.ga, limits, seed)?, limits)
     }
 
     fn resume(state: HybridState<G>) -> Result<Self, OptimizeError> {
-        let mut hybrid = Hybrid::new(state.settings, state.limits, state.progress.seed)?;
-        if state.progress.record.started() {
-            let n = hybrid.population.len();
-            if state.seeding.is_none() {
-                check_sizes(
-                    &[
-                        (state.population.len(), n, "genomes"),
-                        (state.fitness.len(), n, "fitness values"),
-                    ],
-                    format_args!("a population of {n}"),
-                )?;
-                hybrid.population = state.population;
-                hybrid.fitness = state.fitness;
+        let HybridState {
+            settings,
+            limits,
+            progress,
+            population,
+            fitness,
+            seeding,
+        } = state;
+        settings.validate()?;
+        let seeding = match progress.record.started() {
+            true => seeding.map(Smc::resume).transpose()?,
+            false => None,
+        };
+        // While the first population is seeded, the GA's own is not there yet.
+        let ga = match seeding {
+            Some(_) => {
+                let mut ga = Ga::new(settings.ga, limits, progress.seed)?;
+                *ga.parts_mut().0 = progress;
+                ga
             }
-            hybrid.seeding = state.seeding.map(Smc::resume).transpose()?;
-        }
-        hybrid.progress = state.progress;
+            None => Ga::resume(GaState {
+                settings: settings.ga,
+                limits,
+                progress,
+                population,
+                fitness,
+            })?,
+        };
+        let mut hybrid = Hybrid::around(settings, ga, limits)?;
+        hybrid.seeding = seeding;
         Ok(hybrid)
     }
 
     fn checkpoint(&self) -> HybridState<G> {
+        let GaState {
+            limits,
+            progress,
+            mut population,
+            mut fitness,
+            ..
+        } = self.ga.checkpoint();
+        if self.seeding.is_some() {
+            population.clear();
+            fitness.clear();
+        }
         HybridState {
             settings: self.settings,
-            limits: self.limits,
-            progress: self.progress.clone(),
-            population: match self.seeding {
-                Some(_) => Vec::new(),
-                None => self.population.clone(),
-            },
-            fitness: match self.seeding {
-                Some(_) => Vec::new(),
-                None => self.fitness.clone(),
-            },
+            limits,
+            progress,
+            population,
+            fitness,
             seeding: self.seeding.as_ref().map(Smc::checkpoint),
         }
     }
@@ -343,8 +314,12 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
         &state.settings
     }
 
+    fn state_limits(state: &HybridState<G>) -> &Limits {
+        &state.limits
+    }
+
     fn progress(&self) -> &Progress<Best<G>> {
-        &self.progress
+        self.ga.progress()
     }
 
     /// The progress, with the population, or the particles of the population being
@@ -353,9 +328,9 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
         match &mut self.seeding {
             Some(smc) => {
                 let (_, particles, fitness) = smc.parts();
-                (&mut self.progress, particles, fitness)
+                (self.ga.parts_mut().0, particles, fitness)
             }
-            None => (&mut self.progress, &self.population, &self.fitness),
+            None => self.ga.parts(),
         }
     }
 
@@ -368,23 +343,20 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
     }
 
     fn start(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
-        let seed = self.progress.seed;
-        if self.settings.seed_steps > 0 {
-            let mut smc = Smc::new(
-                self.settings.seeding(),
-                self.limits,
-                derived_seed(seed, 1 << 32),
-            )?;
-            smc.start(evaluator)?;
-            // Marks its progress started, so that a checkpoint keeps its particles.
-            smc.record();
-            self.progress.evaluations += u64::from(self.settings.ga.population);
-            self.seeding = Some(smc);
-            return Ok(());
+        if self.settings.seed_steps == 0 {
+            return self.ga.start(evaluator);
         }
-        random_population(&self.ops, &self.settings.ga, seed, &mut self.population);
-        evaluator.evaluate(&self.population, &mut self.fitness)?;
-        self.progress.evaluations += self.population.len() as u64;
+        let progress = self.ga.parts_mut().0;
+        let mut smc = Smc::new(
+            self.settings.seeding(),
+            *self.moves.limits(),
+            derived_seed(progress.seed, 1 << 32),
+        )?;
+        smc.start(evaluator)?;
+        // Marks its progress started, so that a checkpoint keeps its particles.
+        smc.record();
+        progress.evaluations += u64::from(self.settings.ga.population);
+        self.seeding = Some(smc);
         Ok(())
     }
 
@@ -392,22 +364,22 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
         if self.seeding.is_some() {
             return self.seed_step(evaluator);
         }
-        self.breed(evaluator)?;
+        self.ga.step(evaluator)?;
         let settings = &self.settings;
+        let (progress, population, fitness) = self.ga.parts_mut();
         self.chains.refine(
             refine::Refinement {
                 count: settings.refine as usize,
                 moves: settings.refine_moves,
                 jump_probability: settings.jump_probability,
                 ops: &self.moves,
-                seed: self.progress.seed,
-                generation: self.progress.generation + 1,
+                seed: progress.seed,
+                generation: progress.generation + 1,
             },
             evaluator,
-            (&mut self.population, &mut self.fitness),
-            &mut self.order,
+            (population, fitness),
         )?;
-        self.progress.evaluations += u64::from(settings.refine) * u64::from(settings.refine_moves);
+        progress.evaluations += u64::from(settings.refine) * u64::from(settings.refine_moves);
         Ok(())
     }
 }

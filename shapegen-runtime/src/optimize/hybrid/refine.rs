@@ -36,6 +36,8 @@ pub(super) struct Chains<G> {
     proposals: Vec<Genome<G>>,
     proposal_fitness: Vec<f64>,
     rngs: Vec<ChaCha8Rng>,
+    /// The population's ranks, best first.
+    order: Vec<u32>,
 }
 
 impl<G: Grammar> Chains<G> {
@@ -48,11 +50,12 @@ impl<G: Grammar> Chains<G> {
                 .collect(),
             proposal_fitness: vec![f64::NAN; count],
             rngs: Vec::with_capacity(count),
+            order: Vec::new(),
         }
     }
 
     /// Refines the `count` best of `population` (ranked by `fitness`, the first of
-    /// equals first; `order` is scratch) in place: each makes `moves` moves, chain `i`
+    /// equals first) in place: each makes `moves` moves, chain `i`
     /// drawing from stream (seed, generation, 2^31 + `i`), and keeps a proposal that
     /// scores at least as well as its individual (not NaN). All chains' proposals of a
     /// move are scored together, bred from the population.
@@ -61,15 +64,14 @@ impl<G: Grammar> Chains<G> {
         r: Refinement<'_, G>,
         evaluator: &mut (dyn Evaluator<G> + '_),
         (population, fitness): (&mut [Genome<G>], &mut [f64]),
-        order: &mut Vec<u32>,
     ) -> Result<(), OptimizeError> {
         let n = r.count.min(population.len());
         if n == 0 || r.moves == 0 {
             return Ok(());
         }
-        rank(fitness, order);
+        rank(fitness, &mut self.order);
         self.chosen.clear();
-        self.chosen.extend_from_slice(&order[..n]);
+        self.chosen.extend_from_slice(&self.order[..n]);
         self.rngs.clear();
         self.rngs
             .extend((0..n).map(|i| stream(r.seed, r.generation, (1 << 31) + i as u64)));

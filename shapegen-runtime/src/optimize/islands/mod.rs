@@ -540,6 +540,10 @@ impl<G: Grammar> Optimizer<G> for IslandGa<G> {
         &state.settings
     }
 
+    fn state_limits(state: &IslandGaState<G>) -> &Limits {
+        &state.limits
+    }
+
     fn progress(&self) -> &Progress<Best<G>> {
         &self.progress
     }

@@ -548,6 +548,10 @@ impl<G: Grammar> Optimizer<G> for Mcmc<G> {
         &state.settings
     }
 
+    fn state_limits(state: &McmcState<G>) -> &Limits {
+        &state.limits
+    }
+
     fn progress(&self) -> &Progress<Best<G>> {
         &self.progress
     }

@@ -545,6 +545,10 @@ impl<G: Grammar> Optimizer<G> for MultiGa<G> {
         &state.settings
     }
 
+    fn state_limits(state: &MultiGaState<G>) -> &Limits {
+        &state.limits
+    }
+
     fn progress(&self) -> &Progress<Front<G>> {
         &self.progress
     }

@@ -450,6 +450,10 @@ impl<G: Grammar> Optimizer<G> for Smc<G> {
         &state.settings
     }
 
+    fn state_limits(state: &SmcState<G>) -> &Limits {
+        &state.limits
+    }
+
     fn progress(&self) -> &Progress<Best<G>> {
         &self.progress
     }
