@@ -1,7 +1,6 @@
-//! The hybrid method: the GA to the bit with its additions off; adaptive rates that learn;
-//! deterministic at any thread count; resumable anywhere, also while its first
-//! population is being seeded; safe with NaN fitness; its settings checked field by
-//! field.
+//! The hybrid method: the GA to the bit with its additions off; deterministic at any
+//! thread count; resumable anywhere, also while its first population is being seeded;
+//! safe with NaN fitness; its settings checked field by field.
 
 mod support {
     pub mod evaluators;
@@ -31,7 +30,6 @@ fn full() -> HybridSettings {
         refine: 4,
         refine_moves: 3,
         jump_probability: 0.5,
-        adapt_rates: false,
     }
 }
 
@@ -46,18 +44,10 @@ fn none() -> HybridSettings {
     }
 }
 
-/// [`full`], with adaptive rates too, and each addition on alone.
-fn variants() -> [HybridSettings; 5] {
+/// [`full`] and each addition on alone.
+fn variants() -> [HybridSettings; 3] {
     [
         full(),
-        HybridSettings {
-            adapt_rates: true,
-            ..full()
-        },
-        HybridSettings {
-            adapt_rates: true,
-            ..none()
-        },
         HybridSettings {
             refine: 4,
             refine_moves: 2,
@@ -195,28 +185,6 @@ fn hybrid_seeds_its_first_population_by_sosmc() {
         .run(&mut eval, &Budget::generations(3), &mut Silent)
         .unwrap();
     assert_eq!(r.evaluations, 3 * 40 + 32);
-}
-
-#[test]
-fn hybrid_adaptive_rates_learn_and_change_the_breeding() {
-    let adaptive = HybridSettings {
-        adapt_rates: true,
-        ..none()
-    };
-    let run = |s: HybridSettings| {
-        let mut hybrid = Hybrid::<City>::new(s, city::PAPER_LIMITS, 6).unwrap();
-        let r = hybrid
-            .run(&mut Skyline::new(), &Budget::generations(8), &mut Silent)
-            .unwrap();
-        (r, hybrid.checkpoint().adaptation)
-    };
-    let ((a, learned), (fixed, none_learned)) = (run(adaptive), run(none()));
-    assert_eq!(none_learned, Adaptation::default());
-    assert_ne!(learned, Adaptation::default());
-    // The first generation is bred at the settings' rates, the later ones at the
-    // learned rates.
-    assert_eq!(timeless(&a.history[..2]), timeless(&fixed.history[..2]));
-    assert_ne!(timeless(&a.history), timeless(&fixed.history));
 }
 
 #[test]

@@ -745,12 +745,9 @@ mod hybrid_tests {
                 ..HybridSettings::default()
             }
         );
-        let s = hybrid(
-            "refine = 2\nseed_steps = 5\njump_probability = 0.2\nadapt_rates = true\npopulation = 60\n",
-        )
-        .unwrap();
+        let s = hybrid("refine = 2\nseed_steps = 5\njump_probability = 0.2\npopulation = 60\n")
+            .unwrap();
         assert_eq!((s.refine, s.seed_steps, s.jump_probability), (2, 5, 0.2));
-        assert!(s.adapt_rates);
         assert_eq!(
             s.ga,
             GaSettings {
@@ -764,7 +761,6 @@ mod hybrid_tests {
             ("refine = -1", "optimizer.refine"),
             ("refine = 500", "optimizer.refine"),
             ("jump_probability = \"x\"", "optimizer.jump_probability"),
-            ("adapt_rates = 1", "optimizer.adapt_rates"),
             ("elitism = 900", "optimizer.elitism"),
             ("operators = \"paper\"", "optimizer.operators"),
         ] {

@@ -328,8 +328,6 @@ pub struct Ga<G> {
     next_fitness: Vec<f64>,
     /// The parent each child of `next` was bred from, by index into `population`.
     from: Vec<u32>,
-    /// How each child of `next` was made.
-    made: Vec<Made>,
     order: Vec<u32>,
     roulette: Roulette,
 }
@@ -348,30 +346,6 @@ impl<G: Grammar> Ga<G> {
     /// individuals between the GA's generations (the hybrid's seeding and refinement).
     pub(super) fn parts_mut(&mut self) -> (&mut Progress<Best<G>>, &mut [Genome<G>], &mut [f64]) {
         (&mut self.progress, &mut self.population, &mut self.fitness)
-    }
-
-    /// The children the last generation bred, after it is scored: for each, how it was
-    /// made, its fitness and that of the parent it was made from. Empty before the
-    /// first generation is bred.
-    pub(super) fn bred(&self) -> impl Iterator<Item = (Made, f64, f64)> + '_ {
-        let bred = self.progress.generation > 0;
-        let elite = self.settings.elitism as usize;
-        let children = self.fitness[elite..]
-            .iter()
-            .take(if bred { usize::MAX } else { 0 });
-        children
-            .zip(&self.made)
-            .zip(&self.from)
-            .map(|((&child, &made), &from)| (made, child, self.next_fitness[from as usize]))
-    }
-
-    /// Sets the chance that a pair is mutated and the mutations' weights, for the
-    /// generations bred from now on.
-    pub(super) fn set_rates(&mut self, mutation_probability: f64, [grow, cut, alter]: [f64; 3]) {
-        self.settings.mutation_probability = mutation_probability;
-        self.settings.grow_weight = grow;
-        self.settings.cut_weight = cut;
-        self.settings.alter_weight = alter;
     }
 }
 
@@ -400,7 +374,6 @@ impl<G: Grammar> Optimizer<G> for Ga<G> {
             next: (0..n).map(|_| empty()).collect(),
             next_fitness: vec![f64::NAN; n],
             from: vec![0; n - settings.elitism as usize],
-            made: vec![Made::Crossover; n - settings.elitism as usize],
             order: Vec::with_capacity(n),
             roulette: Roulette::default(),
         })
@@ -487,7 +460,7 @@ impl<G: Grammar> Optimizer<G> for Ga<G> {
             &mut self.order,
             &mut self.roulette,
             (elites, &mut self.next_fitness[..elite]),
-            (children, &mut self.from, &mut self.made),
+            (children, &mut self.from),
         )?;
         evaluator.evaluate_bred(
             &self.next[elite..],
@@ -527,15 +500,14 @@ pub(crate) struct Generation<'a, G> {
 impl<G: Grammar> Generation<'_, G> {
     /// Breeds the next generation of `parents`: copies its `elitism` best, with their
     /// fitness, into `elites`, and breeds `children` (see [`Breed::children`]), each
-    /// child's parent index into `from` and how it was made into `made`. `order` and
-    /// `roulette` are scratch.
+    /// child's parent index into `from`. `order` and `roulette` are scratch.
     pub(crate) fn breed(
         &self,
         parents: Parents<'_, G>,
         order: &mut Vec<u32>,
         roulette: &mut Roulette,
         (elites, elite_fitness): (&mut [Genome<G>], &mut [f64]),
-        (children, from, made): (&mut [Genome<G>], &mut [u32], &mut [Made]),
+        (children, from): (&mut [Genome<G>], &mut [u32]),
     ) -> Result<(), OptimizeError> {
         rank(parents.fitness, order);
         roulette.build(parents.fitness);
@@ -550,7 +522,7 @@ impl<G: Grammar> Generation<'_, G> {
             roulette,
             worst: *order.last().expect("a population of at least 2"),
         }
-        .children(self.ops, self.seed, self.generation, children, (from, made))
+        .children(self.ops, self.seed, self.generation, children, from)
     }
 }
 
@@ -601,74 +573,66 @@ impl<G: Grammar> Breed<'_, G> {
         seed: u64,
         generation: u64,
         children: &mut [Genome<G>],
-        (from, made): (&mut [u32], &mut [Made]),
+        from: &mut [u32],
     ) -> Result<(), OptimizeError> {
         debug_assert_eq!(children.len(), from.len());
-        debug_assert_eq!(children.len(), made.len());
         let empty = || Genome::from_parts(Vec::new(), 0);
         children
             .par_chunks_mut(2)
             .zip(from.par_chunks_mut(2))
-            .zip(made.par_chunks_mut(2))
             .enumerate()
             .try_for_each_init(
                 || (ops.clone(), [empty(), empty()]),
-                |(ops, spare), (pair, ((children, from), made))| {
+                |(ops, spare), (pair, (children, from))| {
                     let rng = &mut stream(seed, generation, pair as u64);
                     if self.settings.operators == OperatorVariant::Original {
-                        return self.original_pair(ops, children, (from, made), spare, rng);
+                        return self.original_pair(ops, children, from, spare, rng);
                     }
                     let (a, b) = match children {
                         [a, b] => (a, b),
                         [a] => (a, &mut spare[0]),
                         _ => unreachable!("chunks hold one or two children"),
                     };
-                    let bred = self.pair(ops, a, b, rng);
-                    for ((from, made), (parent, how)) in from.iter_mut().zip(made).zip(bred) {
-                        (*from, *made) = (parent, how);
-                    }
+                    let parents = self.pair(ops, a, b, rng);
+                    from.copy_from_slice(&parents[..from.len()]);
                     Ok(())
                 },
             )
     }
 
     /// Breeds two children into `a` and `b`, and returns the parents they were made
-    /// from, in that order, and how each was made.
+    /// from, in that order.
     fn pair(
         &self,
         ops: &mut Operators<G>,
         a: &mut Genome<G>,
         b: &mut Genome<G>,
         rng: &mut impl Rng,
-    ) -> [(u32, Made); 2] {
+    ) -> [u32; 2] {
         let (i1, i2) = self.parents(rng);
         let (p1, p2) = (&self.population[i1], &self.population[i2]);
-        let made = if self.mutates(rng) {
+        if self.mutates(rng) {
             a.clone_from(p1);
-            let first = self.mutate(ops, a, rng);
+            self.mutate(ops, a, rng);
             b.clone_from(p2);
-            [first, self.mutate(ops, b, rng)]
-        } else {
-            if !ops.crossover_into(p1, p2, a, b, rng) {
-                a.clone_from(p1);
-                b.clone_from(p2);
-            }
-            [Made::Crossover; 2]
-        };
-        [(i1 as u32, made[0]), (i2 as u32, made[1])]
+            self.mutate(ops, b, rng);
+        } else if !ops.crossover_into(p1, p2, a, b, rng) {
+            a.clone_from(p1);
+            b.clone_from(p2);
+        }
+        [i1 as u32, i2 as u32]
     }
 
     /// Fills `slots` (one or two) as the original's `createNewGeneration` fills the
     /// generation: breeds a pair of children into `kids` (none when the crossover
     /// fails), keeps each child with `min_len <= len < max_len` in the next empty slot
     /// (swapping buffers, so nothing is allocated once warmed up), and breeds again until
-    /// the slots are full. `from` gets the parent of each slot's child, `made` how it was
-    /// made.
+    /// the slots are full. `from` gets the parent of each slot's child.
     fn original_pair(
         &self,
         ops: &mut Operators<G>,
         slots: &mut [Genome<G>],
-        (from, made): (&mut [u32], &mut [Made]),
+        from: &mut [u32],
         kids: &mut [Genome<G>; 2],
         rng: &mut impl Rng,
     ) -> Result<(), OptimizeError> {
@@ -679,22 +643,24 @@ impl<G: Grammar> Breed<'_, G> {
             let (i1, i2) = self.parents(rng);
             let (p1, p2) = (&self.population[i1], &self.population[i2]);
             let [c, d] = kids;
-            let how = if self.mutates(rng) {
+            let bred = if self.mutates(rng) {
                 c.clone_from(p1);
-                let first = self.mutate(ops, c, rng);
+                self.mutate(ops, c, rng);
                 d.clone_from(p2);
-                [first, self.mutate(ops, d, rng)]
-            } else if ops.crossover_into(p1, p2, c, d, rng) {
-                [Made::Crossover; 2]
+                self.mutate(ops, d, rng);
+                true
             } else {
-                continue;
+                ops.crossover_into(p1, p2, c, d, rng)
             };
-            for ((kid, parent), how) in kids.iter_mut().zip([i1, i2]).zip(how) {
+            if !bred {
+                continue;
+            }
+            for (kid, parent) in kids.iter_mut().zip([i1, i2]) {
                 if !fits(kid) {
                     continue;
                 }
                 std::mem::swap(kid, &mut slots[filled]);
-                (from[filled], made[filled]) = (parent as u32, how);
+                from[filled] = parent as u32;
                 filled += 1;
                 if filled == slots.len() {
                     return Ok(());
@@ -768,44 +734,22 @@ impl<G: Grammar> Breed<'_, G> {
         }
     }
 
-    /// One mutation, grow / cut / alter by their weights; says which.
-    fn mutate(&self, ops: &mut Operators<G>, g: &mut Genome<G>, rng: &mut impl Rng) -> Made {
-        let mutation = self.mutation(rng);
-        match mutation {
+    /// One mutation, grow / cut / alter by their weights.
+    fn mutate(&self, ops: &mut Operators<G>, g: &mut Genome<G>, rng: &mut impl Rng) {
+        match self.mutation(rng) {
             Mutation::Grow => ops.grow(g, rng),
             Mutation::Cut => ops.cut(g, rng),
             Mutation::Alter => ops.alter(g, rng),
         };
-        Made::Mutated(mutation)
     }
 }
 
 /// The three mutations.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Mutation {
+enum Mutation {
     Grow,
     Cut,
     Alter,
-}
-
-/// How a child was bred: by crossover (or copied from its parent, when the crossover
-/// found no subtrees to exchange), or by one of the three mutations.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Made {
-    Crossover,
-    Mutated(Mutation),
-}
-
-impl Made {
-    /// Its place among the four: crossover, grow, cut, alter.
-    pub(crate) fn index(self) -> usize {
-        match self {
-            Made::Crossover => 0,
-            Made::Mutated(Mutation::Grow) => 1,
-            Made::Mutated(Mutation::Cut) => 2,
-            Made::Mutated(Mutation::Alter) => 3,
-        }
-    }
 }
 
 /// Selection and mutation rates, each on its own: statistical tests with fixed seeds,
@@ -1022,8 +966,7 @@ mod tests {
     fn children_are_mutated_copies_at_the_mutation_rate() {
         // Parents of different lengths, so that a child's origin shows: with mutation
         // probability 0 every pair is crossed over (lengths add up to the parents'), with
-        // 1 and only grow every child is its parent grown by at least one gene; and each
-        // child says so.
+        // 1 and only grow every child is its parent grown by at least one gene.
         let limits = Limits::new(1, 60, 60).unwrap();
         let mut ops = Operators::<Chain>::new(limits).unwrap();
         let population: Vec<Genome<Chain>> = [3, 9]
@@ -1057,19 +1000,13 @@ mod tests {
             let mut children: Vec<Genome<Chain>> =
                 (0..200).map(|_| population[0].clone()).collect();
             let mut from = vec![u32::MAX; children.len()];
-            let mut made = vec![Made::Mutated(Mutation::Cut); children.len()];
             breed
-                .children(&ops, 3, 1, &mut children, (&mut from, &mut made))
+                .children(&ops, 3, 1, &mut children, &mut from)
                 .unwrap();
             assert!(
                 from.iter().all(|&f| (f as usize) < population.len()),
                 "{from:?}"
             );
-            let how = match p {
-                0.0 => Made::Crossover,
-                _ => Made::Mutated(Mutation::Grow),
-            };
-            assert!(made.iter().all(|&m| m == how), "{made:?}");
             for pair in children.chunks(2) {
                 let lens = (pair[0].len(), pair[1].len());
                 if p == 0.0 {

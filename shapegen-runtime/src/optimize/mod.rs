@@ -53,7 +53,7 @@ pub use best::Best;
 pub use driver::{Agreement, Held, Optimizer, Record, drive};
 pub use error::{OptimizeError, SettingsError};
 pub use ga::{Ga, GaSettings, GaState, ParentSelection};
-pub use hybrid::{Adaptation, Hybrid, HybridSettings, HybridState};
+pub use hybrid::{Hybrid, HybridSettings, HybridState};
 pub use mcmc::{Mcmc, McmcSettings, McmcState, McmcVariant};
 pub use run::{
     Budget, Control, HistoryEntry, Observer, Progress, RunResult, Silent, Snapshot, StopReason,

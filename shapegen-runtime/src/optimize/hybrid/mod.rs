@@ -2,10 +2,7 @@
 //! SOSMC and its best individuals refined by short RJMCMC chains every generation
 //! ([`Hybrid`]).
 
-mod adapt;
 mod refine;
-
-pub use adapt::Adaptation;
 
 use serde::{Deserialize, Serialize};
 
@@ -40,10 +37,6 @@ pub struct HybridSettings {
     /// Chance that a refinement move is a jump (a subtree redrawn from the grammar)
     /// rather than a diffusion (one gene's parameters redrawn); in `[0, 1]`.
     pub jump_probability: f64,
-    /// Whether the GA's mutation probability and mutation weights follow which ways of
-    /// breeding have been producing children better than their parents ([`Adaptation`]);
-    /// `false` breeds at the settings' rates throughout.
-    pub adapt_rates: bool,
 }
 
 impl Default for HybridSettings {
@@ -54,7 +47,6 @@ impl Default for HybridSettings {
             refine: 4,
             refine_moves: 2,
             jump_probability: 0.5,
-            adapt_rates: false,
         }
     }
 }
@@ -111,10 +103,6 @@ pub struct HybridState<G> {
     pub fitness: Vec<f64>,
     /// The SOSMC seeding the first population, while it runs.
     pub seeding: Option<SmcState<G>>,
-    /// What the adaptation of the operator rates has learned (unchanged from its default
-    /// without [`adapt_rates`](HybridSettings::adapt_rates)).
-    #[serde(default)]
-    pub adaptation: Adaptation,
 }
 
 grammar_struct_traits!(HybridState {
@@ -123,8 +111,7 @@ grammar_struct_traits!(HybridState {
     progress,
     population,
     fitness,
-    seeding,
-    adaptation
+    seeding
 });
 
 /// The hybrid method: the paper's GA ([`Ga`](super::Ga)) with two additions, each of
@@ -143,10 +130,6 @@ grammar_struct_traits!(HybridState {
 ///   tempered variant's jumps and diffusions ([`McmcVariant::Tempered`](
 ///   super::McmcVariant::Tempered)); a move is kept when it loses nothing (a chain at
 ///   temperature 0). The refined individuals take the place of those they came from.
-/// - **Adaptive rates** (off unless [`adapt_rates`](HybridSettings::adapt_rates)):
-///   after each generation is scored, the GA's mutation probability and mutation weights
-///   are set from which ways of breeding have been producing children better than
-///   their parents ([`Adaptation`]).
 ///
 /// Random streams: the GA breeds generation `g` from (seed, `g`, pair); refinement
 /// chain `i` of generation `g` draws from (seed, `g`, 2^31 + `i`); the random first
@@ -194,7 +177,6 @@ pub struct Hybrid<G> {
     moves: Operators<G>,
     seeding: Option<Smc<G>>,
     chains: refine::Chains<G>,
-    adaptation: Adaptation,
 }
 
 impl<G: Grammar> std::fmt::Debug for Hybrid<G> {
@@ -216,15 +198,7 @@ impl<G: Grammar> Hybrid<G> {
             moves: Operators::new(limits)?,
             seeding: None,
             chains: refine::Chains::new(settings.refine as usize),
-            adaptation: Adaptation::default(),
         })
-    }
-
-    /// Takes in the generation just bred and sets the GA's rates for the next.
-    fn adapt(&mut self) {
-        self.adaptation.observe(self.ga.bred());
-        let (mutation, weights) = self.adaptation.rates(&self.settings.ga);
-        self.ga.set_rates(mutation, weights);
     }
 
     /// One SOSMC step of the population being seeded; the last puts it in place.
@@ -284,7 +258,6 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
             population,
             fitness,
             seeding,
-            adaptation,
         } = state;
         settings.validate()?;
         let seeding = match progress.record.started() {
@@ -308,9 +281,6 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
         };
         let mut hybrid = Hybrid::around(settings, ga, limits)?;
         hybrid.seeding = seeding;
-        hybrid.adaptation = adaptation;
-        let (mutation, weights) = adaptation.rates(&settings.ga);
-        hybrid.ga.set_rates(mutation, weights);
         Ok(hybrid)
     }
 
@@ -333,7 +303,6 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
             population,
             fitness,
             seeding: self.seeding.as_ref().map(Smc::checkpoint),
-            adaptation: self.adaptation,
         }
     }
 
@@ -396,9 +365,6 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
             return self.seed_step(evaluator);
         }
         self.ga.step(evaluator)?;
-        if self.settings.adapt_rates {
-            self.adapt();
-        }
         let settings = &self.settings;
         let (progress, population, fitness) = self.ga.parts_mut();
         self.chains.refine(

@@ -40,7 +40,7 @@ pub use exchange::{Alone, Exchange, ExchangeError};
 use super::best::Best;
 use super::error::check_sizes;
 use super::fitness::{Roulette, bits_vec, compare, rank};
-use super::ga::{Generation, Made, Parents, random_population};
+use super::ga::{Generation, Parents, random_population};
 use super::run::{Progress, StopReason, derived_seed, grammar_struct_traits};
 use super::{
     Agreement, Evaluator, GaSettings, Held, OptimizeError, Optimizer, Record, SettingsError,
@@ -224,8 +224,6 @@ pub struct IslandGa<G> {
     children: Vec<Genome<G>>,
     child_fitness: Vec<f64>,
     from: Vec<u32>,
-    /// How each child of one island was made (not used: scratch).
-    made: Vec<Made>,
     order: Vec<u32>,
     roulette: Roulette,
     /// What the last generation was over all islands, as every process records it.
@@ -286,7 +284,6 @@ impl<G: Grammar> IslandGa<G> {
             children: empty(local * children),
             child_fitness: vec![f64::NAN; local * children],
             from: vec![0; local * children],
-            made: vec![Made::Crossover; children],
             order: Vec::with_capacity(n),
             roulette: Roulette::default(),
             whole: Whole {
@@ -638,7 +635,7 @@ impl<G: Grammar> Optimizer<G> for IslandGa<G> {
                 &mut self.order,
                 &mut self.roulette,
                 (elites, &mut self.next_fitness[k * n..k * n + e]),
-                (&mut self.children[k * c..(k + 1) * c], from, &mut self.made),
+                (&mut self.children[k * c..(k + 1) * c], from),
             )?;
             from.iter_mut().for_each(|f| *f += (k * n) as u32);
         }

@@ -12,7 +12,7 @@ use crate::genome::{Genome, Limits};
 use crate::ops::Operators;
 use crate::optimize::error::check_sizes;
 use crate::optimize::fitness::{Roulette, bits_vec, rank};
-use crate::optimize::ga::{Breed, Made, random_population};
+use crate::optimize::ga::{Breed, random_population};
 use crate::optimize::run::grammar_struct_traits;
 use crate::optimize::{
     Control, EvaluateError, Held, MultiEvaluator, OptimizeError, Optimizer, Progress, Record,
@@ -327,8 +327,6 @@ pub struct MultiGa<G> {
     next_values: Vec<f64>,
     /// The parent each child of `next` was bred from, by index into `population`.
     from: Vec<u32>,
-    /// How each child was made (not used: scratch).
-    made: Vec<Made>,
     fitness: Vec<f64>,
     order: Vec<u32>,
     roulette: Roulette,
@@ -469,7 +467,6 @@ impl<G: Grammar> Optimizer<G> for MultiGa<G> {
             next: (0..n).map(|_| empty()).collect(),
             next_values: Vec::new(),
             from: vec![0; n - settings.ga.elitism as usize],
-            made: vec![Made::Crossover; n - settings.ga.elitism as usize],
             fitness: vec![f64::NAN; n],
             order: Vec::with_capacity(n),
             roulette: Roulette::default(),
@@ -629,8 +626,7 @@ impl<G: Grammar> Optimizer<G> for MultiGa<G> {
         };
         let (seed, generation) = (self.progress.seed, self.progress.generation + 1);
         let children = &mut self.next[elite..];
-        let lineage = (&mut self.from[..], &mut self.made[..]);
-        breed.children(&self.ops, seed, generation, children, lineage)?;
+        breed.children(&self.ops, seed, generation, children, &mut self.from)?;
         evaluator.evaluate_bred(
             &self.next[elite..],
             &self.population,
