@@ -125,6 +125,10 @@ impl Optimizer<Chain> for Climb {
         &state.settings
     }
 
+    fn state_limits(state: &ClimbState) -> &Limits {
+        &state.limits
+    }
+
     fn progress(&self) -> &Progress<Best<Chain>> {
         &self.progress
     }

@@ -117,8 +117,8 @@ grammar_struct_traits!(HybridState {
 /// The hybrid method: the paper's GA ([`Ga`](super::Ga)) with two additions, each of
 /// which its settings can turn off (with both off it is the GA, to the bit). Each was
 /// kept because it helped in the measurements of `benches/README.md` ("The hybrid
-/// method"); annealed refinement and restarts on stagnation were tried there and
-/// dropped.
+/// method"); annealed refinement, restarts on stagnation and adaptive operator rates
+/// were tried there and dropped.
 ///
 /// - **Seeding**: with [`seed_steps`](HybridSettings::seed_steps), the first population
 ///   is grown by SOSMC (the generative variant, [`SmcVariant::Generative`]) from the
