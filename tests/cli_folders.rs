@@ -45,6 +45,20 @@ fn endless<'a>(scene: &'a Path, out: &'a Path) -> [&'a str; 7] {
     ]
 }
 
+/// Runs `scene` for 3 generations into `out` and returns the folder's files.
+fn three_generations(scene: &Path, out: &Path) -> BTreeMap<String, Vec<u8>> {
+    ok(&[
+        "run",
+        s(scene),
+        "--cpu",
+        "--generations",
+        "3",
+        "--out",
+        s(out),
+    ]);
+    snapshot(out)
+}
+
 /// The generation of the checkpoint in `out`.
 fn checkpoint_generation(out: &Path) -> u64 {
     let text = fs::read_to_string(out.join("checkpoint.json")).unwrap();
@@ -256,16 +270,7 @@ fn a_write_that_fails_leaves_every_file_as_it_was() {
     let scene = scene(dir.path());
     let (whole, parts) = (dir.path().join("whole"), dir.path().join("parts"));
     ok(&["run", s(&scene), "--cpu", "--out", s(&whole)]);
-    ok(&[
-        "run",
-        s(&scene),
-        "--cpu",
-        "--generations",
-        "3",
-        "--out",
-        s(&parts),
-    ]);
-    let before = snapshot(&parts);
+    let before = three_generations(&scene, &parts);
     // At most one 512-byte block per file (dash's unit; bash's is 1024): the lock file
     // fits, the run's models and checkpoint do not.
     let limited = Command::new("sh")
@@ -308,16 +313,7 @@ fn a_read_only_folder_is_refused_and_left_as_it_was() {
     let dir = tempfile::tempdir().unwrap();
     let scene = scene(dir.path());
     let parts = dir.path().join("parts");
-    ok(&[
-        "run",
-        s(&scene),
-        "--cpu",
-        "--generations",
-        "3",
-        "--out",
-        s(&parts),
-    ]);
-    let before = snapshot(&parts);
+    let before = three_generations(&scene, &parts);
     let bin = dir.path().join("shapegen");
     if fs::hard_link(env!("CARGO_BIN_EXE_shapegen"), &bin).is_err() {
         fs::copy(env!("CARGO_BIN_EXE_shapegen"), &bin).unwrap();
