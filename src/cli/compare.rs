@@ -153,10 +153,8 @@ pub fn run(args: &CompareArgs, tool: &Generators) -> anyhow::Result<()> {
         MemoryCheck {
             scene: &scene,
             goals: &goals,
-            threads: rayon::current_num_threads(),
             jobs: 1,
-            incremental: args.backend.incremental(),
-            gpu: args.backend.may_use_gpu(),
+            backend: &args.backend,
             limit: args.memory,
         },
     )?;

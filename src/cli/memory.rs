@@ -11,6 +11,7 @@ use shapegen::Grammar;
 use shapegen::optimize::Optimizer;
 use shapegen::scene::{OptimizerGoal, RunShape, Scene};
 
+use super::backend::BackendArgs;
 use super::dispatch::Visit;
 use crate::registry::Entry;
 
@@ -37,21 +38,17 @@ impl MemoryArgs {
 }
 
 /// Refuses a search of `scene` that would not fit in memory: each of `goals` (a
-/// comparison's methods) run `jobs` at a time (a sweep's cells side by side), each on
-/// `threads` worker threads.
+/// comparison's methods) run `jobs` at a time (a sweep's cells side by side), the worker
+/// threads shared among them, on the backend `backend` allows.
 pub struct MemoryCheck<'a> {
     /// The scene searched.
     pub scene: &'a Scene,
     /// The goals run, one at a time.
     pub goals: &'a [OptimizerGoal],
-    /// Worker threads of each run.
-    pub threads: usize,
     /// Runs at once.
     pub jobs: usize,
-    /// Whether bred children are counted incrementally.
-    pub incremental: bool,
-    /// Whether models may be counted on a GPU.
-    pub gpu: bool,
+    /// Where models are counted, and whether incrementally.
+    pub backend: &'a BackendArgs,
     /// The limit given.
     pub limit: MemoryArgs,
 }
@@ -59,9 +56,9 @@ pub struct MemoryCheck<'a> {
 impl Visit for MemoryCheck<'_> {
     fn visit<G: Grammar>(self, _: &Entry) -> anyhow::Result<()> {
         for goal in self.goals {
-            let shape = self
-                .scene
-                .run_shape::<G>(goal, self.threads, self.incremental, self.gpu);
+            let threads = (rayon::current_num_threads() / self.jobs).max(1);
+            let (incremental, gpu) = (self.backend.incremental(), self.backend.may_use_gpu());
+            let shape = self.scene.run_shape::<G>(goal, threads, incremental, gpu);
             check(self.scene, &shape, self.jobs, self.limit)?;
         }
         Ok(())

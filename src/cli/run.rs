@@ -135,10 +135,8 @@ pub fn run(args: &RunArgs, tool: &Generators) -> anyhow::Result<()> {
             MemoryCheck {
                 scene: &scene,
                 goals: std::slice::from_ref(&scene.optimizer),
-                threads: rayon::current_num_threads(),
                 jobs: 1,
-                incremental: args.backend.incremental(),
-                gpu: args.backend.may_use_gpu(),
+                backend: &args.backend,
                 limit: args.memory,
             },
         )?;

@@ -185,10 +185,8 @@ fn check_memory(
             MemoryCheck {
                 scene: &scene,
                 goals: std::slice::from_ref(&scene.optimizer),
-                threads: (rayon::current_num_threads() / jobs).max(1),
                 jobs,
-                incremental: plan.backend.incremental(),
-                gpu: plan.backend.may_use_gpu(),
+                backend: &plan.backend,
                 limit,
             },
         )
@@ -269,10 +267,8 @@ fn run_cell(dir: &Path, index: u64, tool: &Generators, limit: MemoryArgs) -> any
         MemoryCheck {
             scene: &scene,
             goals: std::slice::from_ref(&scene.optimizer),
-            threads: rayon::current_num_threads(),
             jobs: 1,
-            incremental: plan.backend.incremental(),
-            gpu: plan.backend.may_use_gpu(),
+            backend: &plan.backend,
             limit,
         },
     )?;
