@@ -4,23 +4,14 @@
 
 mod support {
     pub mod evaluators;
+    pub mod runs;
 }
 
 use generators::{City, Spaceship, city, spaceship};
 use shapegen_runtime::optimize::*;
 use shapegen_runtime::prelude::*;
-use support::evaluators::{BoxTarget, Skyline, timeless};
-
-/// The paper's city GA, smaller.
-fn small_ga() -> GaSettings {
-    GaSettings {
-        population: 40,
-        elitism: 8,
-        initial_length: 30,
-        generations: 15,
-        ..city::paper_ga()
-    }
-}
+use support::evaluators::{BoxTarget, Skyline};
+use support::runs::{Poisoned, same_result, small_ga, threads};
 
 /// Every addition on: seeding and refinement.
 fn full() -> HybridSettings {
@@ -60,22 +51,6 @@ fn variants() -> [HybridSettings; 3] {
     ]
 }
 
-fn same_result<G: Grammar>(a: &RunResult<G>, b: &RunResult<G>) {
-    assert_eq!(a.best, b.best);
-    assert_eq!(a.best_fitness.to_bits(), b.best_fitness.to_bits());
-    assert_eq!(a.evaluations, b.evaluations);
-    assert_eq!(a.generations, b.generations);
-    assert_eq!(timeless(&a.history), timeless(&b.history));
-}
-
-fn threads<T: Send>(n: usize, f: impl FnOnce() -> T + Send) -> T {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(n)
-        .build()
-        .unwrap()
-        .install(f)
-}
-
 /// [`Skyline`] capped at 3: many individuals tie at the cap.
 struct Capped(Skyline);
 
@@ -83,24 +58,6 @@ impl Evaluator<City> for Capped {
     fn evaluate(&mut self, genomes: &[Genome<City>], out: &mut [f64]) -> Result<(), EvaluateError> {
         self.0.evaluate(genomes, out)?;
         out.iter_mut().for_each(|o| *o = o.min(3.0));
-        Ok(())
-    }
-}
-
-/// Scores like [`Skyline`] but gives NaN to every third genome and -inf to some.
-struct Poisoned(Skyline, u64);
-
-impl Evaluator<City> for Poisoned {
-    fn evaluate(&mut self, genomes: &[Genome<City>], out: &mut [f64]) -> Result<(), EvaluateError> {
-        self.0.evaluate(genomes, out)?;
-        for o in out.iter_mut() {
-            self.1 += 1;
-            if self.1.is_multiple_of(3) {
-                *o = f64::NAN;
-            } else if self.1.is_multiple_of(17) {
-                *o = f64::NEG_INFINITY;
-            }
-        }
         Ok(())
     }
 }

@@ -3,6 +3,7 @@
 
 mod support {
     pub mod evaluators;
+    pub mod runs;
 }
 
 use generators::{City, Spaceship, city, spaceship};
@@ -10,18 +11,8 @@ use shapegen_runtime::ops::OperatorVariant;
 use shapegen_runtime::optimize::multi::{MultiEvaluator, MultiGa, MultiGaSettings};
 use shapegen_runtime::optimize::*;
 use shapegen_runtime::prelude::*;
-use support::evaluators::{BoxTarget, Skyline, timeless};
-
-/// The paper's city settings (the original's operators and breeding), smaller.
-fn small_ga() -> GaSettings {
-    GaSettings {
-        population: 40,
-        elitism: 8,
-        initial_length: 30,
-        generations: 15,
-        ..city::paper_ga()
-    }
-}
+use support::evaluators::{BoxTarget, Skyline};
+use support::runs::{Poisoned, same_result, small_ga, threads};
 
 /// [`small_ga`] with each operator variant.
 fn both_variants() -> [GaSettings; 2] {
@@ -33,22 +24,6 @@ fn both_variants() -> [GaSettings; 2] {
 
 fn initial_best<G: Grammar>(result: &RunResult<G>) -> f64 {
     result.history[0].best
-}
-
-fn same_result<G: Grammar>(a: &RunResult<G>, b: &RunResult<G>) {
-    assert_eq!(a.best, b.best);
-    assert_eq!(a.best_fitness.to_bits(), b.best_fitness.to_bits());
-    assert_eq!(a.evaluations, b.evaluations);
-    assert_eq!(a.generations, b.generations);
-    assert_eq!(timeless(&a.history), timeless(&b.history));
-}
-
-fn threads<T: Send>(n: usize, f: impl FnOnce() -> T + Send) -> T {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(n)
-        .build()
-        .unwrap()
-        .install(f)
 }
 
 #[test]
@@ -336,24 +311,6 @@ fn multi_ga_breeds_with_the_original_rules() {
     assert!(a.population == b.population && a.archive.len() == b.archive.len());
     assert!(a.population.iter().all(|g| (4..14).contains(&g.len())));
     assert!(a.population.iter().any(|g| g.len() == 13));
-}
-
-/// Scores like [`Skyline`] but gives NaN to every third genome and -inf/+inf to some.
-struct Poisoned(Skyline, u64);
-
-impl Evaluator<City> for Poisoned {
-    fn evaluate(&mut self, genomes: &[Genome<City>], out: &mut [f64]) -> Result<(), EvaluateError> {
-        self.0.evaluate(genomes, out)?;
-        for o in out.iter_mut() {
-            self.1 += 1;
-            if self.1.is_multiple_of(3) {
-                *o = f64::NAN;
-            } else if self.1.is_multiple_of(17) {
-                *o = f64::NEG_INFINITY;
-            }
-        }
-        Ok(())
-    }
 }
 
 #[test]
