@@ -59,6 +59,19 @@ fn three_generations(scene: &Path, out: &Path) -> BTreeMap<String, Vec<u8>> {
     snapshot(out)
 }
 
+/// Resumes the run in `out` on the CPU until it has made `generations` generations.
+fn resume_to(out: &Path, generations: u64) {
+    let generations = generations.to_string();
+    ok(&[
+        "run",
+        "--resume",
+        s(out),
+        "--cpu",
+        "--generations",
+        &generations,
+    ]);
+}
+
 /// The generation of the checkpoint in `out`.
 fn checkpoint_generation(out: &Path) -> u64 {
     let text = fs::read_to_string(out.join("checkpoint.json")).unwrap();
@@ -112,14 +125,7 @@ fn a_folder_in_use_is_refused_with_its_holder_named() {
     assert!(ended.status.success());
     assert!(!out.join("shapegen.lock").exists(), "the lock goes with it");
     let generations = checkpoint_generation(&out) + 1;
-    ok(&[
-        "run",
-        "--resume",
-        s(&out),
-        "--cpu",
-        "--generations",
-        &generations.to_string(),
-    ]);
+    resume_to(&out, generations);
 }
 
 #[test]
@@ -249,14 +255,7 @@ fn sigterm_and_sighup_stop_a_run_as_ctrl_c_does() {
         assert_eq!(summary["stopped"], "interrupted", "SIG{signal}");
         assert!(!out.join("shapegen.lock").exists(), "SIG{signal}");
         let generations = summary["generations"].as_u64().unwrap() + 1;
-        ok(&[
-            "run",
-            "--resume",
-            s(&out),
-            "--cpu",
-            "--generations",
-            &generations.to_string(),
-        ]);
+        resume_to(&out, generations);
     }
 }
 
