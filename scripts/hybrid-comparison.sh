@@ -15,8 +15,8 @@
 #   spaceships 0.3, 3 and 60 s: about 0.5, 4.7 and 90 times the original's
 #   cities     0.5, 5 and 50 s: about 1.2, 12 and 150 times
 #   trees      10, 100 and 1000 s: about 0.09, 0.77 and 8 times
-# The whole matrix takes about RUNS * 5 * (sum of all budgets, 9.5 k s) seconds: some
-# 130 hours at 10 runs, the trees' 1000 s alone 125 of them; run it in parts (SCENES,
+# The whole matrix takes about RUNS * 5 * (sum of all budgets, 3.7 k s) seconds: some
+# 51 hours at 10 runs, the trees' 1000 s alone 42 of them; run it in parts (SCENES,
 # BUDGETS, METHODS).
 #
 # Writes each comparison to OUT_DIR/SCENE-SECONDSs and prints the rows of the table in

@@ -53,11 +53,17 @@ pub struct MemoryCheck<'a> {
     pub limit: MemoryArgs,
 }
 
+/// The worker threads each of `jobs` runs at once gets: an equal share of the pool's,
+/// at least one.
+pub fn threads_per_job(jobs: usize) -> usize {
+    (rayon::current_num_threads() / jobs.max(1)).max(1)
+}
+
 impl Visit for MemoryCheck<'_> {
     fn visit<G: Grammar>(self, _: &Entry) -> anyhow::Result<()> {
+        let threads = threads_per_job(self.jobs);
+        let (incremental, gpu) = (self.backend.incremental(), self.backend.may_use_gpu());
         for goal in self.goals {
-            let threads = (rayon::current_num_threads() / self.jobs).max(1);
-            let (incremental, gpu) = (self.backend.incremental(), self.backend.may_use_gpu());
             let shape = self.scene.run_shape::<G>(goal, threads, incremental, gpu);
             check(self.scene, &shape, self.jobs, self.limit)?;
         }

@@ -28,7 +28,7 @@ use super::backend::BackendArgs;
 use super::dispatch::Generators;
 use super::folder::{Existing, Folder, Kind};
 use super::interrupt;
-use super::memory::{MemoryArgs, MemoryCheck};
+use super::memory::{MemoryArgs, MemoryCheck, threads_per_job};
 use cell::Finished;
 use plan::{Axis, Plan, StudyBudget};
 use slurm::SlurmArgs;
@@ -350,7 +350,7 @@ fn run_local(plan: &Plan, dir: &Path, jobs: usize, tool: &Generators) -> anyhow:
         write_outputs(plan, dir, &done)?;
     }
     let jobs = jobs.min(pending.len()).max(1);
-    let threads = (rayon::current_num_threads() / jobs).max(1);
+    let threads = threads_per_job(jobs);
     let gpu = if pending.is_empty() {
         None
     } else {
