@@ -34,7 +34,7 @@ struct Scene {
 
 fn target(scene: &str, file: &str, camera: OrbitCamera) -> ImageTarget {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/paper-scenes")
+        .join("scenes/paper")
         .join(scene)
         .join(file);
     let image = image::open(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
@@ -173,7 +173,7 @@ fn hundred_buildings(c: &mut Criterion) {
 /// them: the built-in library with the published trunk and leaf, normalized as the
 /// original normalizes them.
 fn published_tree_meshes() -> BoundMeshes {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/paper-scenes/tree_sketch1");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper/tree_sketch1");
     let mut library = generators::default_meshes();
     for (name, file) in [("trunk", "trunk.obj"), ("leaf", "leaf.obj")] {
         library.register_obj(name, dir.join(file)).unwrap();

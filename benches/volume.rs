@@ -22,7 +22,7 @@ const POPULATION: usize = 200;
 
 /// The paper's spaceship scene: grid, target, smooth form good 2 bad 15.
 fn paper_scorer() -> VolumeScorer {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/paper-scenes/spaceship_volume");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper/spaceship_volume");
     let mesh = Mesh::from_obj(dir.join("spaceship_target.obj")).expect("the paper's target loads");
     let grid = Grid::new(
         Vec3::new(-5.0, -5.0, -2.0),

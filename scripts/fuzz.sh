@@ -44,13 +44,15 @@ shopt -s nullglob
 seed scene_toml scenes/*.toml scenes/paper/*.toml examples/*/*.toml fuzz/seeds/scene_toml/*
 seed genome_json scenes/targets/*.genome.json examples/*/targets/*.genome.json fuzz/seeds/genome_json/*
 seed checkpoint fuzz/seeds/checkpoint/*
-seed obj_mesh generators/meshes/*.obj scenes/targets/*.obj fuzz/seeds/obj_mesh/*
-seed target_image scenes/targets/*.png fuzz/seeds/target_image/*
-# The paper's scenes' files and the golden genomes, where shared/ lies beside the project.
-shared="$root/../shared"
-seed obj_mesh "$shared"/paper-scenes/*/*.obj
-seed target_image "$shared"/paper-scenes/*/*.png
-seed genome_json "$shared"/golden/*.json
+seed obj_mesh generators/meshes/*.obj scenes/targets/*.obj scenes/paper/*/*.obj fuzz/seeds/obj_mesh/*
+seed target_image scenes/targets/*.png scenes/paper/*/*.png fuzz/seeds/target_image/*
+# The original's derivations (JSON of another shape, gzip-compressed in the repository).
+golden="$(mktemp -d)"
+trap 'rm -rf "$golden"' EXIT
+for file in generators/tests/golden/*.json.gz; do
+    gzip -dc "$file" >"$golden/$(basename "$file" .gz)"
+done
+seed genome_json "$golden"/*.json
 
 cd fuzz
 mkdir -p "$logs"

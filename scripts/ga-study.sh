@@ -11,18 +11,13 @@
 # Environment: RUNS (runs per setting, default 20), EVALUATIONS (budget per run, default
 # 20000), SEED (base seed, default 1), JOBS (runs at once, default: one per core).
 #
-# Needs the published scene files in ../shared/paper-scenes (beside the repository);
-# without them it says so and exits 0. Writes each sweep to OUT_DIR/KEY, copies its plot
+# Writes each sweep to OUT_DIR/KEY, copies its plot
 # to docs/ga-study-KEY.png, and prints each sweep's summary and how long it took. A
 # sweep already done in OUT_DIR is not run again.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
-if [[ ! -d ../shared/paper-scenes ]]; then
-    echo "skipped: the paper scenes (../shared/paper-scenes) are not beside the repository"
-    exit 0
-fi
 
 out="${1:-target/ga-study}"
 runs="${RUNS:-20}"

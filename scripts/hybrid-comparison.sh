@@ -50,10 +50,6 @@ command -v jq >/dev/null || { echo "jq is needed to print the table" >&2; exit 1
 cargo build --release --quiet
 mkdir -p "$out"
 for scene in $scenes; do
-    if [[ $scene == paper/* && ! -d ../shared/paper-scenes ]]; then
-        echo "skipped $scene: the paper scenes (../shared/paper-scenes) are not beside the repository" >&2
-        continue
-    fi
     for seconds in ${BUDGETS:-${budgets[$scene]}}; do
         dir="$out/$(basename "$scene")-${seconds}s"
         echo "== $scene: $runs runs per method, $seconds s each (load: $(cut -d' ' -f1-3 /proc/loadavg))" >&2

@@ -13,16 +13,11 @@
 #
 # Usage: scripts/islands-speedup.sh [OUT_DIR]   (default target/islands-speedup)
 # Environment: K (islands, default 4), GENERATIONS (default 60), REPEATS (default 3).
-# Needs a build with the `mpi` feature, OpenMPI's mpirun and jq, and the published
-# scene files in ../shared/paper-scenes beside the repository.
+# Needs a build with the `mpi` feature, OpenMPI's mpirun and jq.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
-if [[ ! -d ../shared/paper-scenes ]]; then
-    echo "skipped: the paper scenes (../shared/paper-scenes) are not beside the repository"
-    exit 0
-fi
 command -v jq >/dev/null || { echo "jq is needed to read the summaries" >&2; exit 1; }
 command -v mpirun >/dev/null || { echo "mpirun (OpenMPI) is needed" >&2; exit 1; }
 

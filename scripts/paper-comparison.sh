@@ -8,18 +8,13 @@
 # wall budget per run in seconds: SPACESHIP_SECONDS and CITY_SECONDS (default 20),
 # TREE_SECONDS (default 40).
 #
-# Needs the published scene files in ../shared/paper-scenes (beside the repository);
-# without them it says so and exits 0. Writes each scene's comparison to OUT_DIR/SCENE,
+# Writes each scene's comparison to OUT_DIR/SCENE,
 # copies the pictures to benches/figures/compare-SCENE.png and prints the table rows of
 # benches/README.md.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
-if [[ ! -d ../shared/paper-scenes ]]; then
-    echo "skipped: the paper scenes (../shared/paper-scenes) are not beside the repository"
-    exit 0
-fi
 
 out="${1:-target/paper-comparison}"
 runs="${RUNS:-3}"

@@ -3,7 +3,7 @@
 # `slurm-wlm` and `munge` when missing, starts munge, writes /etc/slurm/slurm.conf for
 # this one node (no cgroups, no accounting, no systemd needed), starts slurmctld and
 # slurmd, and waits until the controller answers and the node is idle. For Debian 12
-# as root; the settings are those of ../shared/CLUSTER.md.
+# as root.
 #
 # Usage: scripts/slurm-up.sh          (a second call finds Slurm up and does nothing)
 #        scripts/slurm-down.sh        stops what this started

@@ -27,8 +27,10 @@
 //! let mut registry = Registry::published();
 //! registry.add::<Stack>("stack", Defaults::default())?;
 //! assert_eq!(registry.get("stack").unwrap().grammar, "Stack");
-//! // Genome files name their generator by its grammar, scenes by its name.
+//! // Genome files name their generator by its grammar (`"stack"`, or `"Stack"`), scenes
+//! // by its registered name.
 //! assert_eq!(registry.find("Stack").unwrap().name, "stack");
+//! assert_eq!(registry.get("stack").unwrap().key, "stack");
 //! assert!(registry.add::<Stack>("spaceship", Defaults::default()).is_err());
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
@@ -106,8 +108,11 @@ impl Default for Defaults {
 pub struct Entry {
     /// The name scenes and the command line use (`generator = "tower"`).
     pub name: String,
-    /// The grammar's own name, which genome files record (`"generator": "Tower"`).
+    /// The grammar's own name (`Tower`).
     pub grammar: &'static str,
+    /// The grammar's name in snake case, which genome files record
+    /// (`"generator": "tower"`; [`GeneratorGraph::key`](shapegen_runtime::GeneratorGraph::key)).
+    pub key: &'static str,
     /// Its defaults.
     pub defaults: Defaults,
 }
@@ -172,6 +177,7 @@ impl Registry {
         self.entries.push(Entry {
             name: name.to_owned(),
             grammar: G::GRAPH.name,
+            key: G::GRAPH.key,
             defaults,
         });
         Ok(())
@@ -184,13 +190,14 @@ impl Registry {
             .find(|e| e.name.eq_ignore_ascii_case(name))
     }
 
-    /// The generator named `name` or whose grammar is `name` (genome files record the
-    /// grammar's name), without regard to case.
+    /// The generator named `name`, or whose grammar is `name` in either spelling
+    /// (genome files record `"spaceship"`, older ones `"Spaceship"`), without regard to
+    /// case.
     pub fn find(&self, name: &str) -> Option<&Entry> {
         self.get(name).or_else(|| {
             self.entries
                 .iter()
-                .find(|e| e.grammar.eq_ignore_ascii_case(name))
+                .find(|e| e.grammar.eq_ignore_ascii_case(name) || e.key.eq_ignore_ascii_case(name))
         })
     }
 

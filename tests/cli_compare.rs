@@ -134,7 +134,11 @@ fn a_comparison_writes_every_run_on_shared_seeds() {
             let last = run.last().unwrap();
             assert!(last.elapsed_s >= 0.6 && last.elapsed_s < 5.0, "{m} {r}");
             let genome = out.join(format!("runs/{m}-{r}/best.genome.json"));
-            assert!(fs::read_to_string(genome).unwrap().contains("\"City\""));
+            assert!(
+                fs::read_to_string(genome)
+                    .unwrap()
+                    .contains(r#""generator": "city""#)
+            );
         }
     }
 

@@ -59,7 +59,7 @@ fn convert_rewrites_a_set_in_the_other_form_and_back_byte_for_byte() {
     );
     let text = read(&nested);
     assert!(
-        text.starts_with("{\n  \"generator\": \"Spaceship\",\n  \"genomes\": [\n    {\n      \"tree\": {\n        \"node\": \"Start\",\n"),
+        text.starts_with("{\n  \"generator\": \"spaceship\",\n  \"genomes\": [\n    {\n      \"tree\": {\n        \"node\": \"Start\",\n"),
         "{text}"
     );
     let original = GenomeSet::<Spaceship>::load(&packed).unwrap();
@@ -104,6 +104,18 @@ fn convert_takes_single_genomes_of_any_generator() {
     let genome = Genome::<Spaceship>::load_json(&packed).unwrap();
     assert_eq!(read(&packed), genome.to_json());
     assert_eq!(genome.len(), 4);
+    // `HAND_SHIP` names its generator as the grammar (`Spaceship`); the file is written
+    // with the name the tool knows it by, and a file written so converts as well.
+    assert!(read(&packed).contains(r#""generator": "spaceship""#));
+    let lower = dir.path().join("hand.lower.json");
+    fs::write(
+        &lower,
+        HAND_SHIP.replace(r#""Spaceship""#, r#""spaceship""#),
+    )
+    .unwrap();
+    let out = convert(&lower, &dir.path().join("lower.packed.json"), None);
+    assert!(out.contains("wrote a Spaceship genome"), "{out}");
+    assert_eq!(read(&dir.path().join("lower.packed.json")), read(&packed));
     let nested = dir.path().join("hand.nested.json");
     convert(&packed, &nested, Some("nested"));
     assert_eq!(read(&nested), genome.to_nested_json());
@@ -146,7 +158,7 @@ fn convert_explains_its_mistakes() {
         err.trim(),
         format!(
             "error: `{}` names no generator; a genome file names it as `\"generator\": \
-             \"Spaceship\"` (the grammar's name)",
+             \"spaceship\"`",
             nameless.display()
         )
     );
@@ -501,7 +513,7 @@ fn export_explains_its_mistakes() {
         err.trim(),
         format!(
             "error: cannot load genomes `{}`: the genome is of generator `Spaceship`, but is \
-             being read as `City`",
+             being read as `city` (also written `City`)",
             hand.display()
         )
     );

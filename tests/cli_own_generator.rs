@@ -75,7 +75,7 @@ fn a_generator_of_ones_own_gets_every_command() {
     .unwrap();
     let genomes = samples.join("genomes.json");
     let text = fs::read_to_string(&genomes).unwrap();
-    assert!(text.contains("\"Pile\""), "{text}");
+    assert!(text.contains(r#""generator": "pile""#), "{text}");
     assert!(samples.join("model_0.obj").is_file() && samples.join("model_3.glb").is_file());
 
     // A reachable target: the voxels of sample 2, through a scene that names the pile.

@@ -162,7 +162,7 @@ fn an_interrupted_run_keeps_what_it_found() {
     let summary = timeless_summary(&out);
     assert_eq!(summary["stopped"], "interrupted");
     let genome = fs::read_to_string(out.join("best.genome.json")).unwrap();
-    assert!(genome.contains("\"generator\": \"City\""));
+    assert!(genome.contains("\"generator\": \"city\""));
     // The run can go on from where it stopped.
     ok(&[
         "run",

@@ -210,7 +210,7 @@ fn mistakes_are_explained() {
 
     let err = fails(&["score", s(&scene), "--genomes", s(&cities)]);
     assert!(
-        err.contains("genomes.json") && err.contains("City"),
+        err.contains("genomes.json") && err.contains("`city`"),
         "{err}"
     );
     let err = fails(&["score", "nowhere.toml", "--genomes", s(&cities)]);
@@ -225,7 +225,7 @@ fn mistakes_are_explained() {
         "--out",
         "x",
     ]);
-    assert!(err.contains("City") || err.contains("--index"), "{err}");
+    assert!(err.contains("`city`") || err.contains("--index"), "{err}");
     let ships = sample("spaceship", "1", &dir.path().join("ships"));
     let err = fails(&[
         "target",

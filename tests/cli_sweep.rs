@@ -121,7 +121,7 @@ fn a_sweep_writes_every_cell_its_tables_and_its_plots() {
         assert!(
             fs::read_to_string(cell.join("best.genome.json"))
                 .unwrap()
-                .contains("\"Spaceship\"")
+                .contains(r#""generator": "spaceship""#)
         );
     }
     let summary = fs::read_to_string(out.join("summary.md")).unwrap();

@@ -107,13 +107,6 @@ fn well_formed_scenes_load() {
 #[test]
 fn paper_scenes_load() {
     let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper");
-    if !Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/paper-scenes")
-        .is_dir()
-    {
-        eprintln!("skipping: the published scene files (../shared/paper-scenes) are absent");
-        return;
-    }
     for name in ["spaceship_volume", "city_whale", "tree_sketch1"] {
         let scene = Scene::load(scenes.join(format!("{name}.toml")))
             .unwrap_or_else(|err| panic!("{name}: {err}"));

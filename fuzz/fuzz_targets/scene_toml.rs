@@ -22,6 +22,7 @@ fuzz_target!(|data: &[u8]| {
         sets: sets.lines().map(str::to_owned).collect(),
         ..Overrides::default()
     };
-    let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/fuzz.toml"));
-    let _ = Scene::parse_in(scene, path, &REGISTRY, &overrides);
+    // A scene in the project's `scenes/` folder, so that seeded scenes find their targets.
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("fuzz/ has a parent");
+    let _ = Scene::parse_in(scene, &folder.join("scenes/fuzz.toml"), &REGISTRY, &overrides);
 });

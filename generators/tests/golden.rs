@@ -1,5 +1,5 @@
 //! The published generators against derivations made by the original implementation
-//! itself (`../shared/golden/`, see its README): every genome there (random ones, and
+//! itself (`golden/` beside this file, see its README): every genome there (random ones, and
 //! ones made by the original's crossover and mutations) is built here node for node,
 //! derived, and every instance's transform compared with the matrix the original
 //! emitted, to 1e-4 of the matrix's largest entry.
@@ -11,7 +11,7 @@
 //! tree's unscaled leaves); the mesh normalisation the original applies at load time is
 //! not part of them, nor of our transforms.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use generators::{City, Spaceship, Tree, city, spaceship, tree};
 use glam::{Affine3A, Vec2, Vec3};
@@ -23,22 +23,18 @@ use shapegen_runtime::{Grammar, Instance};
 /// Relative tolerance on matrix entries.
 const TOLERANCE: f32 = 1e-4;
 
-fn golden_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/golden")
-}
-
-/// The golden file of `generator`, or `None` (saying so) when the files are absent.
-fn load(generator: &str) -> Option<Value> {
-    let path = golden_dir().join(format!("{generator}.json"));
-    if !path.is_file() {
-        eprintln!(
-            "skipping: the original's derivations ({}) are absent",
+/// The golden file `NAME.json.gz` beside this test, parsed; a missing or unreadable file
+/// fails the test, naming it.
+fn load(name: &str) -> Value {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("tests/golden/{name}.json.gz"));
+    let file = std::fs::File::open(&path).unwrap_or_else(|e| {
+        panic!(
+            "the original's derivations `{}` are missing ({e}); they are part of the repository",
             path.display()
-        );
-        return None;
-    }
-    let text = std::fs::read_to_string(&path).expect("the golden file reads");
-    Some(serde_json::from_str(&text).expect("the golden file is JSON"))
+        )
+    });
+    serde_json::from_reader(flate2::read::GzDecoder::new(std::io::BufReader::new(file)))
+        .unwrap_or_else(|e| panic!("`{}` is not gzip-compressed JSON: {e}", path.display()))
 }
 
 fn float(v: &Value) -> f32 {
@@ -306,9 +302,7 @@ fn check_all<G: Grammar, R: NodeParams>(
     root: R,
     child: impl Fn(&mut Genome<G>, u32, &Value) -> u32 + Copy,
 ) {
-    let Some(golden) = load(generator) else {
-        return;
-    };
+    let golden = load(generator);
     let genomes = golden["genomes"].as_array().expect("genomes");
     assert_eq!(genomes.len(), 45);
     let mut compared = 0;
@@ -351,10 +345,8 @@ fn city_derives_as_the_original() {
 /// does, has the original's bounding box after normalization (`meshes.json`).
 #[test]
 fn generator_meshes_are_normalized_as_the_original() {
-    let Some(meshes) = load("meshes") else {
-        return;
-    };
-    let scenes = golden_dir().join("../paper-scenes");
+    let meshes = load("meshes");
+    let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/paper");
     let mut checked = 0;
     for shapes in meshes["generators"]
         .as_object()

@@ -1,6 +1,6 @@
 //! Known derivations of the published generators: small genomes built by hand, whose
 //! instances are checked against transforms worked out by hand from the geometry the
-//! paper's scenes describe (`shared/paper-scenes/README.md`).
+//! original implementation's grammars give them (`docs/fidelity.md`).
 //!
 //! An instance `scope_frame * scale(scope_size) * mesh` has as matrix columns the scope's
 //! world axes times its size along them, and as translation the scope's centre. The

@@ -23,6 +23,7 @@ use quote::quote;
 use syn::ext::IdentExt;
 use syn::{Attribute, Lifetime};
 
+use crate::check::snake_case;
 use crate::layout::{NodeLayout, node_layout};
 use crate::model::{AngleUnit, Dist, Generator, Node, Param, ParamType, Rule};
 
@@ -305,9 +306,11 @@ impl<'a> Expander<'a> {
     pub fn stub_grammar_impl(&self) -> TokenStream {
         let p = &self.p;
         let name = plain(self.g.name);
+        let key = snake_case(&name);
         let graph = quote! {
             &#p::GeneratorGraph {
                 name: #name,
+                key: #key,
                 axiom: 0,
                 nodes: &[],
                 meshes: &["cube"],
@@ -365,6 +368,7 @@ impl<'a> Expander<'a> {
             }
         };
         let graph_name = plain(name);
+        let graph_key = snake_case(&graph_name);
         let meshes =
             std::iter::once("cube".to_owned()).chain(g.meshes.iter().map(|m| m.file.clone()));
         let grammar_impl = self.grammar_impl(quote!(&GRAPH), arms);
@@ -384,6 +388,7 @@ impl<'a> Expander<'a> {
                 #[allow(clippy::approx_constant)]
                 const GRAPH: #p::GeneratorGraph = #p::GeneratorGraph {
                     name: #graph_name,
+                    key: #graph_key,
                     axiom: #axiom,
                     meshes: &[#(#meshes),*],
                     nodes: &[#(#descs),*],

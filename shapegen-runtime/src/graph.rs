@@ -11,8 +11,12 @@ pub const HEADER_WORDS: u32 = 2;
 /// A procedural generator's graph: its node types and the edges between them.
 #[derive(Debug)]
 pub struct GeneratorGraph {
-    /// Name of the grammar as written in `generator!`.
+    /// Name of the grammar as written in `generator!` (`ThreeBranchTree`).
     pub name: &'static str,
+    /// The name in snake case (`three_branch_tree`): what genome files write as their
+    /// `"generator"` and the name the command-line tool knows a published generator by.
+    /// A file naming the generator either way reads ([`answers_to`](Self::answers_to)).
+    pub key: &'static str,
     /// Index of the axiom in [`nodes`](Self::nodes).
     pub axiom: u32,
     /// Every node type, indexed by node kind.
@@ -23,6 +27,13 @@ pub struct GeneratorGraph {
 }
 
 impl GeneratorGraph {
+    /// Whether `name` names this generator in a file: its [`key`](Self::key)
+    /// (`spaceship`, what files are written with) or its [`name`](Self::name)
+    /// (`Spaceship`), exactly.
+    pub fn answers_to(&self, name: &str) -> bool {
+        name == self.key || name == self.name
+    }
+
     /// The node type of kind `kind`, if there is one.
     #[inline]
     pub fn node(&self, kind: u32) -> Option<&'static NodeDesc> {

@@ -200,7 +200,7 @@ fn json_is_readable_one_gene_a_line() {
     assert_eq!(
         json,
         r#"{
-  "generator": "Spaceship",
+  "generator": "spaceship",
   "genes": [
     {"node": "Start", "parent": 0, "links": [3], "params": {}},
     {"node": "Body", "parent": -3, "links": [0, 8, 0], "params": {"size": [0.83, 1.2, 0.7]}},
@@ -230,6 +230,23 @@ fn json_writes_every_parameter_type() {
     assert_eq!(Genome::<City>::from_json(&json).unwrap(), g);
 }
 
+#[test]
+fn a_file_names_its_generator_by_key_or_by_grammar_name() {
+    // Written with the key, the name the tool knows the generator by; the grammar's own
+    // name reads as well, in either form; another spelling is refused with both.
+    assert!(small().to_json().contains(r#""generator": "spaceship""#));
+    for json in [small().to_json(), small().to_nested_json()] {
+        let grammar = json.replacen(r#""spaceship""#, r#""Spaceship""#, 1);
+        assert_eq!(Genome::<Spaceship>::from_json(&grammar).unwrap(), small());
+        let other = json.replacen(r#""spaceship""#, r#""SpaceShip""#, 1);
+        assert_eq!(
+            error_chain(&Genome::<Spaceship>::from_json(&other).unwrap_err()),
+            "the genome is of generator `SpaceShip`, but is being read as `spaceship` (also \
+             written `Spaceship`)"
+        );
+    }
+}
+
 /// `small()`'s JSON with `from` replaced by `to`.
 fn tampered(from: &str, to: &str) -> String {
     let json = small().to_json();
@@ -247,8 +264,8 @@ fn load_err(json: &str) -> String {
 fn json_load_names_what_is_wrong() {
     let cases = [
         (
-            tampered(r#""generator": "Spaceship""#, r#""generator": "City""#),
-            "the genome is of generator `City`, but is being read as `Spaceship`",
+            tampered(r#""generator": "spaceship""#, r#""generator": "city""#),
+            "the genome is of generator `city`, but is being read as `spaceship` (also written `Spaceship`)",
         ),
         (
             tampered(r#""node": "Wing""#, r#""node": "Wong""#),
@@ -452,7 +469,7 @@ fn json_files_and_sets() {
     let back = GenomeSet::<Spaceship>::load(&set_path).unwrap();
     assert_eq!(back, set);
     let text = std::fs::read_to_string(&set_path).unwrap();
-    assert!(text.starts_with("{\n  \"generator\": \"Spaceship\",\n  \"genomes\": [\n    {\n      \"genes\": [\n        {\"node\": \"Start\", "), "{text}");
+    assert!(text.starts_with("{\n  \"generator\": \"spaceship\",\n  \"genomes\": [\n    {\n      \"genes\": [\n        {\"node\": \"Start\", "), "{text}");
     // An error names the genome of the set.
     let third = text.match_indices(r#""links": [3]"#).nth(2).unwrap().0;
     let bad = format!(
@@ -473,7 +490,7 @@ fn json_files_and_sets() {
         .unwrap_err();
     assert_eq!(
         err,
-        "the genome is of generator `Spaceship`, but is being read as `City`"
+        "the genome is of generator `spaceship`, but is being read as `city` (also written `City`)"
     );
 }
 

@@ -192,7 +192,7 @@ fn the_nested_form_is_laid_out_for_reading() {
     assert_eq!(
         small().to_nested_json(),
         r#"{
-  "generator": "Spaceship",
+  "generator": "spaceship",
   "tree": {
     "node": "Start",
     "children": {
@@ -214,7 +214,7 @@ fn the_nested_form_is_laid_out_for_reading() {
     assert_eq!(
         json,
         r#"{
-  "generator": "City",
+  "generator": "city",
   "tree": {
     "node": "Start",
     "children": {
@@ -270,7 +270,7 @@ fn the_nested_form_is_laid_out_for_reading() {
     assert_eq!(
         set.to_nested_json(),
         r#"{
-  "generator": "Spaceship",
+  "generator": "spaceship",
   "genomes": [
     {
       "tree": {
@@ -296,7 +296,7 @@ fn the_nested_form_is_laid_out_for_reading() {
     let empty = GenomeSet::<Spaceship>::new(Vec::new());
     assert_eq!(
         empty.to_nested_json(),
-        "{\n  \"generator\": \"Spaceship\",\n  \"genomes\": []\n}\n"
+        "{\n  \"generator\": \"spaceship\",\n  \"genomes\": []\n}\n"
     );
     assert_eq!(
         GenomeSet::<Spaceship>::from_json(&empty.to_nested_json())
@@ -348,7 +348,7 @@ fn array_slots_take_short_lists_nulls_and_any_order_of_keys() {
 
 /// `small()`'s nested form, on one line, with `from` replaced by `to`.
 fn tampered(from: &str, to: &str) -> String {
-    let json = r#"{"generator": "Spaceship", "tree": {"node": "Start", "children": {"body": {"node": "Body", "params": {"size": [0.83, 1.2, 0.7]}, "children": {"wing": {"node": "Wing", "params": {"size": [0.5, 0.3, 0.7], "shift": 0.1}}}}}}}"#;
+    let json = r#"{"generator": "spaceship", "tree": {"node": "Start", "children": {"body": {"node": "Body", "params": {"size": [0.83, 1.2, 0.7]}, "children": {"wing": {"node": "Wing", "params": {"size": [0.5, 0.3, 0.7], "shift": 0.1}}}}}}}"#;
     assert_eq!(Genome::<Spaceship>::from_json(json).unwrap(), small());
     assert!(json.contains(from), "{from} not in {json}");
     json.replacen(from, to, 1)
@@ -366,8 +366,8 @@ const SHIP_NODES: &str = "`Start`, `Body`, `Top`, `TopNext`, `Wing`, `WingNext`"
 fn every_mistake_is_named_by_the_node_path() {
     let cases = [
         (
-            tampered(r#""generator": "Spaceship""#, r#""generator": "City""#),
-            "the genome is of generator `City`, but is being read as `Spaceship`".to_owned(),
+            tampered(r#""generator": "spaceship""#, r#""generator": "city""#),
+            "the genome is of generator `city`, but is being read as `spaceship` (also written `Spaceship`)".to_owned(),
         ),
         (
             tampered(r#""node": "Wing""#, r#""node": "Wong""#),
@@ -485,8 +485,8 @@ fn every_mistake_is_named_by_the_node_path() {
     }
     // Keys of the whole are checked by serde, with the place in the text.
     let err = load_err(&tampered(
-        r#""generator": "Spaceship""#,
-        r#""generator": "Spaceship", "genes": []"#,
+        r#""generator": "spaceship""#,
+        r#""generator": "spaceship", "genes": []"#,
     ));
     assert!(
         err.starts_with(
@@ -674,6 +674,6 @@ fn both_forms_are_read_from_text_and_files() {
         GenomeSet::<City>::from_json(&set.to_nested_json())
             .map_err(|e| error_chain(&e))
             .unwrap_err(),
-        "the genome is of generator `Spaceship`, but is being read as `City`"
+        "the genome is of generator `spaceship`, but is being read as `city` (also written `City`)"
     );
 }

@@ -32,12 +32,12 @@ impl GenomeFile {
         })
     }
 
-    /// The generator of `tool` the file names (by its grammar's name, as `"Spaceship"`).
+    /// The generator of `tool` the file names (as `"spaceship"`, or `"Spaceship"`).
     pub fn generator<'t>(&self, tool: &'t Generators) -> anyhow::Result<&'t Entry> {
         let name = self.layout.generator.as_deref().with_context(|| {
             format!(
                 "`{}` names no generator; a genome file names it as `\"generator\": \
-                 \"Spaceship\"` (the grammar's name)",
+                 \"spaceship\"`",
                 self.path.display()
             )
         })?;

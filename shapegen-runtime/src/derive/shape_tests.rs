@@ -12,6 +12,7 @@ struct House;
 
 static HOUSE: GeneratorGraph = GeneratorGraph {
     name: "House",
+    key: "house",
     axiom: 0,
     nodes: &[NodeDesc {
         name: "House",

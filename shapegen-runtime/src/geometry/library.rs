@@ -191,6 +191,7 @@ mod tests {
 
     static TREE: GeneratorGraph = GeneratorGraph {
         name: "Tree",
+        key: "tree",
         axiom: 0,
         nodes: &[],
         meshes: &["cube", "trunk", "leaf"],

@@ -309,14 +309,10 @@ f 4//1 5//1 6//1
         );
     }
 
-    /// The published scenes' meshes, where the shared directory is present.
+    /// The paper's scenes' meshes (`scenes/paper/` of the repository).
     #[test]
     fn loads_the_paper_meshes() {
-        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/paper-scenes");
-        if !dir.is_dir() {
-            eprintln!("skipped: {} is absent", dir.display());
-            return;
-        }
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/paper");
         // (file, triangles in the file, vertex positions in the file)
         for (file, triangles, positions) in [
             ("spaceship_volume/cube.obj", 12, 8),

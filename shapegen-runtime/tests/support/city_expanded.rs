@@ -157,6 +157,7 @@ const _: () = {
 
     const GRAPH: __p::GeneratorGraph = __p::GeneratorGraph {
         name: "City",
+        key: "city",
         axiom: 0,
         meshes: &["cube"],
         nodes: &[

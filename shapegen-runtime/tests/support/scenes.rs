@@ -8,9 +8,9 @@ use rand_chacha::ChaCha8Rng;
 use shapegen_runtime::score::InstanceBatch;
 use shapegen_runtime::{Grammar, Limits, Operators};
 
-/// The folder of the published scenes (`shared/paper-scenes`).
+/// The folder of the paper's scenes (`scenes/paper/` of the repository).
 pub fn scenes() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/paper-scenes")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/paper")
 }
 
 /// The instances of `n` random genomes of `G` of length `initial`, drawn from `seed`.

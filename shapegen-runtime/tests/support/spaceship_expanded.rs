@@ -204,6 +204,7 @@ const _: () = {
 
     const GRAPH: __p::GeneratorGraph = __p::GeneratorGraph {
         name: "Spaceship",
+        key: "spaceship",
         axiom: 0,
         meshes: &["cube"],
         nodes: &[

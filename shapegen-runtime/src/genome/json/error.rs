@@ -6,7 +6,10 @@ use std::path::PathBuf;
 
 use crate::genome::GenomeError;
 #[cfg(doc)]
-use crate::genome::{Genome, GenomeSet};
+use crate::{
+    GeneratorGraph,
+    genome::{Genome, GenomeSet},
+};
 
 /// Why genome JSON could not be read or written.
 #[derive(Debug, thiserror::Error)]
@@ -16,12 +19,16 @@ pub enum JsonError {
     #[error("not a genome in JSON")]
     Syntax(#[from] serde_json::Error),
     /// The genome belongs to another grammar.
-    #[error("the genome is of generator `{found}`, but is being read as `{expected}`")]
+    #[error(
+        "the genome is of generator `{found}`, but is being read as `{expected}` (also written `{also}`)"
+    )]
     WrongGenerator {
         /// Generator named in the file.
         found: String,
-        /// Generator it was read as.
+        /// Generator it was read as, as files write it ([`GeneratorGraph::key`]).
         expected: &'static str,
+        /// The other spelling that reads as it ([`GeneratorGraph::name`]).
+        also: &'static str,
     },
     /// A gene names no node of the grammar.
     #[error("gene {gene}: `{node}` is not a node of `{generator}`; its nodes are: {valid}")]

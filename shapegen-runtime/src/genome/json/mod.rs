@@ -31,7 +31,7 @@ impl<G: Grammar> Genome<G> {
     ///
     /// ```json
     /// {
-    ///   "generator": "Spaceship",
+    ///   "generator": "spaceship",
     ///   "genes": [
     ///     {"node": "Start", "parent": 0, "links": [3], "params": {}},
     ///     {"node": "Body", "parent": -3, "links": [0, 8, 0], "params": {"size": [0.83, 1.2, 0.7]}},
@@ -49,7 +49,7 @@ impl<G: Grammar> Genome<G> {
     /// round-trips exactly.
     ///
     /// Many genomes go in one file as a [`GenomeSet`]:
-    /// `{"generator": "Spaceship", "genomes": [{"genes": [...]}, ...]}`.
+    /// `{"generator": "spaceship", "genomes": [{"genes": [...]}, ...]}`.
     ///
     /// Loading checks the generator's name, node names, the number of links, that each
     /// parameter is present, known and of its type, and then every layout invariant with
@@ -83,7 +83,7 @@ impl<G: Grammar> Genome<G> {
     /// g.attach(0, "first", Seg { len: 0.75 })?;
     /// let json = g.to_json();
     /// assert_eq!(json, r#"{
-    ///   "generator": "Chain",
+    ///   "generator": "chain",
     ///   "genes": [
     ///     {"node": "Start", "parent": 0, "links": [3], "params": {}},
     ///     {"node": "Seg", "parent": -3, "links": [0, 0], "params": {"len": 0.75}}
@@ -107,7 +107,7 @@ impl<G: Grammar> Genome<G> {
     ///
     /// ```json
     /// {
-    ///   "generator": "Spaceship",
+    ///   "generator": "spaceship",
     ///   "tree": {
     ///     "node": "Start",
     ///     "children": {
@@ -155,7 +155,7 @@ impl<G: Grammar> Genome<G> {
     /// one; reading it fails with [`JsonError::NestedTooDeep`].
     ///
     /// Many genomes go in one file as a [`GenomeSet`]:
-    /// `{"generator": "Spaceship", "genomes": [{"tree": {...}}, ...]}`.
+    /// `{"generator": "spaceship", "genomes": [{"tree": {...}}, ...]}`.
     ///
     /// ```
     /// use shapegen_runtime::genome::Genome;
@@ -186,7 +186,7 @@ impl<G: Grammar> Genome<G> {
     /// g.attach(first, "side", Seg { len: 0.5 })?;
     /// let json = g.to_nested_json();
     /// assert_eq!(json, r#"{
-    ///   "generator": "Chain",
+    ///   "generator": "chain",
     ///   "tree": {
     ///     "node": "Start",
     ///     "children": {
@@ -204,7 +204,7 @@ impl<G: Grammar> Genome<G> {
     /// assert_eq!(Genome::<Chain>::from_json(&json)?, g);
     ///
     /// // Written by hand, on one line or many.
-    /// let hand = r#"{"generator": "Chain", "tree": {"node": "Start", "children": {
+    /// let hand = r#"{"generator": "chain", "tree": {"node": "Start", "children": {
     ///     "first": {"node": "Seg", "params": {"len": 1.2}, "children": {
     ///         "next": {"node": "Seg", "params": {"len": 0.9}}}}}}}"#;
     /// assert_eq!(Genome::<Chain>::from_json(hand)?.len(), 3);
@@ -250,8 +250,8 @@ impl<G: Grammar> Genome<G> {
 }
 
 /// Many genomes of one grammar, as saved in one file (`genomes.json`):
-/// `{"generator": "Spaceship", "genomes": [{"genes": [...]}, ...]}` in the packed form
-/// ([`Genome::to_json`]), `{"generator": "Spaceship", "genomes": [{"tree": {...}}, ...]}`
+/// `{"generator": "spaceship", "genomes": [{"genes": [...]}, ...]}` in the packed form
+/// ([`Genome::to_json`]), `{"generator": "spaceship", "genomes": [{"tree": {...}}, ...]}`
 /// in the nested form ([`Genome::to_nested_json`]).
 pub struct GenomeSet<G> {
     /// The genomes, in file order.
@@ -354,12 +354,13 @@ fn in_file(path: &Path, e: JsonError) -> JsonError {
 }
 
 fn check_generator<G: Grammar>(found: &str) -> Result<(), JsonError> {
-    if found == G::GRAPH.name {
+    if G::GRAPH.answers_to(found) {
         Ok(())
     } else {
         Err(JsonError::WrongGenerator {
             found: found.to_owned(),
-            expected: G::GRAPH.name,
+            expected: G::GRAPH.key,
+            also: G::GRAPH.name,
         })
     }
 }

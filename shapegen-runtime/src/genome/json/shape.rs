@@ -18,10 +18,10 @@ use serde::de::{DeserializeSeed, IgnoredAny, MapAccess, SeqAccess, Visitor};
 /// ```
 /// use shapegen_runtime::genome::JsonLayout;
 ///
-/// let layout = JsonLayout::of(r#"{"generator": "Tree", "genomes": [{"tree": {"node": "Start"}}]}"#);
-/// assert_eq!(layout.generator.as_deref(), Some("Tree"));
+/// let layout = JsonLayout::of(r#"{"generator": "tree", "genomes": [{"tree": {"node": "Start"}}]}"#);
+/// assert_eq!(layout.generator.as_deref(), Some("tree"));
 /// assert!(layout.set && layout.nested);
-/// assert!(!JsonLayout::of(r#"{"generator": "Tree", "genes": []}"#).nested);
+/// assert!(!JsonLayout::of(r#"{"generator": "tree", "genes": []}"#).nested);
 /// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct JsonLayout {

@@ -15,7 +15,7 @@ use crate::graph::{Distribution, HEADER_WORDS, NodeDesc};
 impl<G: Grammar> Serialize for Genome<G> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         let mut st = s.serialize_struct("Genome", 2)?;
-        st.serialize_field("generator", G::GRAPH.name)?;
+        st.serialize_field("generator", G::GRAPH.key)?;
         st.serialize_field("genes", &GenesOut::<G>(&self.words, PhantomData))?;
         st.end()
     }
@@ -24,7 +24,7 @@ impl<G: Grammar> Serialize for Genome<G> {
 impl<G: Grammar> Serialize for GenomeSet<G> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         let mut st = s.serialize_struct("GenomeSet", 2)?;
-        st.serialize_field("generator", G::GRAPH.name)?;
+        st.serialize_field("generator", G::GRAPH.key)?;
         st.serialize_field("genomes", &SetOut(&self.genomes))?;
         st.end()
     }

@@ -44,7 +44,7 @@ pub(in crate::genome::json) fn set_to_nested<G: Grammar>(set: &GenomeSet<G>) -> 
 /// Opens the top object and names the generator.
 fn header<G: Grammar>(out: &mut Vec<u8>) {
     out.extend_from_slice(b"{\n  \"generator\": ");
-    quoted(out, G::GRAPH.name);
+    quoted(out, G::GRAPH.key);
 }
 
 /// Writes the subtree of the gene at word `pos`, its opening brace where `out` ends and
