@@ -1,7 +1,7 @@
 //! Evolves a city skyline toward a silhouette: the project's `scenes/city_skyline.toml`,
 //! whose target is the skyline of one city of the published generator seen from the
 //! south. The genetic algorithm starts from random cities and finds one whose silhouette
-//! matches the target's: 400 generations of 100, about two seconds on two cores, or the
+//! matches the target's: 400 generations of 100, under a second on two cores, or the
 //! time budget if that comes first.
 //!
 //! ```sh
