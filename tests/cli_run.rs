@@ -275,3 +275,25 @@ fn every_method_runs_and_resumes_exactly() {
         );
     }
 }
+
+#[test]
+fn the_papers_scenes_run_from_the_repository() {
+    // The paper's three scenes read only files in the repository (`scenes/paper/`).
+    let dir = tempfile::tempdir().unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for name in ["spaceship_volume", "tree_sketch1", "city_whale"] {
+        let scene = root.join(format!("scenes/paper/{name}.toml"));
+        let out = dir.path().join(name);
+        let printed = ok(&[
+            "run",
+            s(&scene),
+            "--cpu",
+            "--generations",
+            "2",
+            "--out",
+            s(&out),
+        ]);
+        assert!(printed.contains("after 2 generations"), "{name}: {printed}");
+        assert!(out.join("best.genome.json").is_file(), "{name}");
+    }
+}
