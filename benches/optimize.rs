@@ -14,8 +14,8 @@ use std::time::Instant;
 use criterion::{Criterion, criterion_group, criterion_main};
 use generators::{Spaceship, spaceship};
 use shapegen::Genome;
-use shapegen::optimize::Optimizer;
 use shapegen::optimize::{Budget, FnEvaluator, Ga, GaSettings, Silent};
+use shapegen::optimize::{Optimizer, Settings};
 use shapegen::scene::{BackendChoice, Scene, SceneEvaluator, SceneScorer};
 
 fn ga_generation(c: &mut Criterion) {

@@ -18,8 +18,8 @@ use anyhow::Context;
 use generators::Building;
 use shapegen::export::{Palette, Preview, save_glb};
 use shapegen::optimize::Control;
-use shapegen::optimize::Optimizer;
 use shapegen::optimize::multi::{MultiGa, MultiSnapshot};
+use shapegen::optimize::{Optimizer, Settings};
 use shapegen::scene::{ObjectiveEvaluator, Scene};
 
 fn main() -> anyhow::Result<()> {

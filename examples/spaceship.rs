@@ -15,8 +15,8 @@ use anyhow::Context;
 use generators::Spaceship;
 use shapegen::Grammar;
 use shapegen::export::{Palette, Preview, save_glb, save_obj};
-use shapegen::optimize::Optimizer;
 use shapegen::optimize::{Control, Ga, GaSettings, Snapshot};
+use shapegen::optimize::{Optimizer, Settings};
 use shapegen::scene::{BackendChoice, Scene, SceneEvaluator, SceneScorer};
 
 fn main() -> anyhow::Result<()> {

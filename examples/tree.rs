@@ -17,8 +17,8 @@ use generators::Tree;
 use image::Rgb;
 use shapegen::Grammar;
 use shapegen::export::{Palette, Preview, save_glb, save_obj};
-use shapegen::optimize::Optimizer;
 use shapegen::optimize::{Control, Ga, Snapshot};
+use shapegen::optimize::{Optimizer, Settings};
 use shapegen::scene::{BackendChoice, Scene, SceneEvaluator, SceneScorer};
 
 fn main() -> anyhow::Result<()> {

@@ -26,12 +26,30 @@ generator! {
 }
 
 /// Settings of the climber.
-#[derive(Clone, Copy, Debug, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 struct ClimbSettings {
     /// Children per generation.
     lambda: u32,
     /// Length of the initial genome.
     initial_length: u32,
+    /// Generations a run takes.
+    generations: u64,
+}
+
+impl Settings for ClimbSettings {
+    const GENERATIONS: &'static str = "generations";
+
+    fn generations(&self) -> u64 {
+        self.generations
+    }
+
+    fn set_generations(&mut self, generations: u64) {
+        self.generations = generations;
+    }
+
+    fn validate(&self) -> Result<(), SettingsError> {
+        Ok(())
+    }
 }
 
 /// Its checkpoint.
@@ -183,6 +201,7 @@ fn settings() -> ClimbSettings {
     ClimbSettings {
         lambda: 6,
         initial_length: 2,
+        generations: 100,
     }
 }
 

@@ -9,7 +9,7 @@ use shapegen_runtime::ops::OperatorVariant;
 use shapegen_runtime::optimize::islands::{IslandGaSettings, IslandSettings};
 use shapegen_runtime::optimize::multi::MultiGaSettings;
 use shapegen_runtime::optimize::{
-    Budget, GaSettings, HybridSettings, McmcSettings, McmcVariant, Order, SettingsError,
+    Budget, GaSettings, HybridSettings, McmcSettings, McmcVariant, Order, Settings, SettingsError,
     SmcSettings, SmcVariant,
 };
 

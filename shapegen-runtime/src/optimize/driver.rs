@@ -33,8 +33,8 @@ use std::time::Instant;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 
-use super::OptimizeError;
 use super::run::{Budget, Control, Progress, StopReason};
+use super::{OptimizeError, Settings};
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
 
@@ -143,7 +143,7 @@ pub struct Held {
 /// ```
 pub trait Optimizer<G: Grammar>: Sized {
     /// The settings, as scene files give them.
-    type Settings: Clone + Serialize + DeserializeOwned;
+    type Settings: Settings;
     /// A checkpoint, from which [`resume`](Self::resume) goes on exactly as an
     /// uninterrupted run would.
     type State: Serialize + DeserializeOwned;

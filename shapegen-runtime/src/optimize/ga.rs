@@ -8,7 +8,7 @@ use super::best::Best;
 use super::error::{check_range, check_sizes};
 use super::fitness::{Roulette, bits_vec, compare, rank};
 use super::run::{Progress, grammar_struct_traits, stream};
-use super::{Budget, Evaluator, Held, OptimizeError, Optimizer, Record, SettingsError};
+use super::{Evaluator, Held, OptimizeError, Optimizer, Record, Settings, SettingsError};
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
 use crate::ops::{OperatorVariant, Operators};
@@ -126,16 +126,26 @@ pub enum ParentSelection {
     Random,
 }
 
-impl GaSettings {
+impl Settings for GaSettings {
+    const GENERATIONS: &'static str = "generations";
+
+    fn generations(&self) -> u64 {
+        self.generations
+    }
+
+    fn set_generations(&mut self, generations: u64) {
+        self.generations = generations;
+    }
+
     /// Checks every field; the error names the first one out of range.
     ///
     /// ```
-    /// use shapegen_runtime::optimize::GaSettings;
+    /// use shapegen_runtime::optimize::{GaSettings, Settings};
     ///
     /// let bad = GaSettings { elitism: 200, ..GaSettings::default() };
     /// assert_eq!(bad.validate().unwrap_err().field, "elitism");
     /// ```
-    pub fn validate(&self) -> Result<(), SettingsError> {
+    fn validate(&self) -> Result<(), SettingsError> {
         if self.population < 2 {
             return Err(SettingsError::new(
                 "population",
@@ -177,7 +187,9 @@ impl GaSettings {
         }
         Ok(())
     }
+}
 
+impl GaSettings {
     /// The genomes `populations` GAs of these settings hold: each its population, the
     /// next generation and a checkpoint's copy.
     pub(crate) fn held(&self, populations: u64) -> Held {
@@ -187,11 +199,6 @@ impl GaSettings {
             setting: "optimizer.population",
             value: self.population.into(),
         }
-    }
-
-    /// A budget of [`generations`](Self::generations) generations.
-    pub fn budget(&self) -> Budget {
-        Budget::generations(self.generations)
     }
 
     /// Checks the settings against the genome limits: the original's breeding keeps only

@@ -46,6 +46,7 @@ mod mcmc;
 pub mod multi;
 mod run;
 mod session;
+mod settings;
 mod smc;
 
 pub use crate::evaluate::{EvaluateError, Evaluator, FnEvaluator, MultiEvaluator, Sense};
@@ -60,4 +61,5 @@ pub use run::{
     stream,
 };
 pub use session::{SAVE_SPACING, Save, Session, SessionError};
+pub use settings::Settings;
 pub use smc::{Cursor, Order, Smc, SmcSettings, SmcState, SmcVariant};

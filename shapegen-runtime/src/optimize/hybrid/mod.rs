@@ -11,7 +11,7 @@ use super::error::check_range;
 use super::fitness::bits_vec;
 use super::run::{Progress, derived_seed, grammar_struct_traits};
 use super::{
-    Evaluator, Ga, GaSettings, GaState, Held, OptimizeError, Optimizer, Order, Record,
+    Evaluator, Ga, GaSettings, GaState, Held, OptimizeError, Optimizer, Order, Record, Settings,
     SettingsError, Smc, SmcSettings, SmcState, SmcVariant,
 };
 use crate::derive::Grammar;
@@ -51,9 +51,19 @@ impl Default for HybridSettings {
     }
 }
 
-impl HybridSettings {
+impl Settings for HybridSettings {
+    const GENERATIONS: &'static str = "generations";
+
+    fn generations(&self) -> u64 {
+        self.ga.generations
+    }
+
+    fn set_generations(&mut self, generations: u64) {
+        self.ga.generations = generations;
+    }
+
     /// Checks every field; the error names the first one out of range.
-    pub fn validate(&self) -> Result<(), SettingsError> {
+    fn validate(&self) -> Result<(), SettingsError> {
         self.ga.validate()?;
         if self.refine > self.ga.population {
             return Err(SettingsError::new(
@@ -70,7 +80,9 @@ impl HybridSettings {
             "between 0 and 1",
         )
     }
+}
 
+impl HybridSettings {
     /// The SOSMC that seeds the first population.
     fn seeding(&self) -> SmcSettings {
         SmcSettings {

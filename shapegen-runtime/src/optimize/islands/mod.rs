@@ -43,7 +43,8 @@ use super::fitness::{Roulette, bits_vec, compare, rank};
 use super::ga::{Generation, Parents, random_population};
 use super::run::{Progress, StopReason, derived_seed, grammar_struct_traits};
 use super::{
-    Agreement, Evaluator, GaSettings, Held, OptimizeError, Optimizer, Record, SettingsError,
+    Agreement, Evaluator, GaSettings, Held, OptimizeError, Optimizer, Record, Settings,
+    SettingsError,
 };
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
@@ -92,12 +93,22 @@ pub struct IslandGaSettings {
     pub islands: IslandSettings,
 }
 
-impl IslandGaSettings {
+impl Settings for IslandGaSettings {
+    const GENERATIONS: &'static str = "generations";
+
+    fn generations(&self) -> u64 {
+        self.ga.generations
+    }
+
+    fn set_generations(&mut self, generations: u64) {
+        self.ga.generations = generations;
+    }
+
     /// Checks every field; the error names the first one out of range (the islands'
     /// under `islands.`).
     ///
     /// ```
-    /// use shapegen_runtime::optimize::GaSettings;
+    /// use shapegen_runtime::optimize::{GaSettings, Settings};
     /// use shapegen_runtime::optimize::islands::{IslandGaSettings, IslandSettings};
     ///
     /// let ga = GaSettings { population: 50, elitism: 10, ..GaSettings::default() };
@@ -105,7 +116,7 @@ impl IslandGaSettings {
     /// let err = IslandGaSettings { ga, islands }.validate().unwrap_err();
     /// assert_eq!(err.field, "islands.migrants");
     /// ```
-    pub fn validate(&self) -> Result<(), SettingsError> {
+    fn validate(&self) -> Result<(), SettingsError> {
         self.ga.validate()?;
         let islands = &self.islands;
         if islands.count == 0 {

@@ -18,7 +18,7 @@ use super::driver::Record;
 use super::error::{check_range, check_sizes};
 use super::fitness::bits_vec;
 use super::run::{Progress, grammar_struct_traits, stream};
-use super::{Budget, Evaluator, Held, OptimizeError, Optimizer, SettingsError};
+use super::{Evaluator, Held, OptimizeError, Optimizer, Settings, SettingsError};
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
 use crate::ops::{OperatorVariant, Operators};
@@ -208,10 +208,20 @@ impl Default for McmcSettings {
     }
 }
 
-impl McmcSettings {
+impl Settings for McmcSettings {
+    const GENERATIONS: &'static str = "iterations";
+
+    fn generations(&self) -> u64 {
+        self.iterations
+    }
+
+    fn set_generations(&mut self, generations: u64) {
+        self.iterations = generations;
+    }
+
     /// Checks every field the variant reads; the error names the first one out of
     /// range.
-    pub fn validate(&self) -> Result<(), SettingsError> {
+    fn validate(&self) -> Result<(), SettingsError> {
         if self.chains == 0 {
             return Err(SettingsError::new("chains", 0, "at least 1"));
         }
@@ -230,7 +240,9 @@ impl McmcSettings {
         }
         Ok(())
     }
+}
 
+impl McmcSettings {
     /// Checks the fields only the tempered variant reads.
     fn validate_tempered(&self) -> Result<(), SettingsError> {
         if self.delayed_rejection > 16 {
@@ -266,11 +278,6 @@ impl McmcSettings {
             ));
         }
         Ok(())
-    }
-
-    /// A budget of [`iterations`](Self::iterations) generations.
-    pub fn budget(&self) -> Budget {
-        Budget::generations(self.iterations)
     }
 }
 

@@ -16,7 +16,7 @@ use crate::optimize::ga::{Breed, random_population};
 use crate::optimize::run::grammar_struct_traits;
 use crate::optimize::{
     Control, EvaluateError, Held, MultiEvaluator, OptimizeError, Optimizer, Progress, Record,
-    Sense, Silent, StopReason,
+    Sense, Settings, Silent, StopReason,
 };
 
 /// A model of the archive: its genome and its raw objective values.

@@ -3,7 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::optimize::error::check_range;
-use crate::optimize::{GaSettings, SettingsError};
+use crate::optimize::{GaSettings, Settings, SettingsError};
 
 /// How a population's objective vectors become one selection fitness (see
 /// [`selection_fitness`](super::selection_fitness)).
@@ -202,6 +202,37 @@ impl Default for MultiGaSettings {
     }
 }
 
+impl Settings for MultiGaSettings {
+    const GENERATIONS: &'static str = "generations";
+
+    fn generations(&self) -> u64 {
+        self.ga.generations
+    }
+
+    fn set_generations(&mut self, generations: u64) {
+        self.ga.generations = generations;
+    }
+
+    /// Checks every field; the error names the first one out of range (the GA's fields
+    /// by their names in [`GaSettings`]).
+    ///
+    /// ```
+    /// use shapegen_runtime::optimize::Settings;
+    /// use shapegen_runtime::optimize::multi::MultiGaSettings;
+    ///
+    /// let bad = MultiGaSettings { archive: 0, ..MultiGaSettings::thesis() };
+    /// assert_eq!(bad.validate().unwrap_err().field, "archive");
+    /// ```
+    fn validate(&self) -> Result<(), SettingsError> {
+        self.ga.validate()?;
+        self.selection.validate()?;
+        if self.archive == 0 {
+            return Err(SettingsError::new("archive", 0, "at least 1"));
+        }
+        Ok(())
+    }
+}
+
 impl MultiGaSettings {
     /// The thesis's GP settings (ALGORITHMS.md, section 7) in this GA: population 300,
     /// 30 generations, tournament 3, elitism 2% (6), mutation instead of crossover for
@@ -224,24 +255,6 @@ impl MultiGaSettings {
             selection: Selection::default(),
             archive: 300,
         }
-    }
-
-    /// Checks every field; the error names the first one out of range (the GA's fields
-    /// by their names in [`GaSettings`]).
-    ///
-    /// ```
-    /// use shapegen_runtime::optimize::multi::MultiGaSettings;
-    ///
-    /// let bad = MultiGaSettings { archive: 0, ..MultiGaSettings::thesis() };
-    /// assert_eq!(bad.validate().unwrap_err().field, "archive");
-    /// ```
-    pub fn validate(&self) -> Result<(), SettingsError> {
-        self.ga.validate()?;
-        self.selection.validate()?;
-        if self.archive == 0 {
-            return Err(SettingsError::new("archive", 0, "at least 1"));
-        }
-        Ok(())
     }
 }
 

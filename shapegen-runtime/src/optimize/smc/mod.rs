@@ -16,7 +16,7 @@ use super::driver::Record;
 use super::error::{check_range, check_sizes};
 use super::fitness::{Roulette, bits_vec};
 use super::run::{Progress, grammar_struct_traits, stream};
-use super::{Budget, Evaluator, Held, OptimizeError, Optimizer, SettingsError};
+use super::{Evaluator, Held, OptimizeError, Optimizer, Settings, SettingsError};
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
 
@@ -185,9 +185,19 @@ impl Default for SmcSettings {
     }
 }
 
-impl SmcSettings {
+impl Settings for SmcSettings {
+    const GENERATIONS: &'static str = "steps";
+
+    fn generations(&self) -> u64 {
+        self.steps
+    }
+
+    fn set_generations(&mut self, generations: u64) {
+        self.steps = generations;
+    }
+
     /// Checks every field the variant reads; the error names the first one out of range.
-    pub fn validate(&self) -> Result<(), SettingsError> {
+    fn validate(&self) -> Result<(), SettingsError> {
         if self.particles == 0 {
             return Err(SettingsError::new("particles", 0, "at least 1"));
         }
@@ -206,11 +216,6 @@ impl SmcSettings {
             }
         }
         Ok(())
-    }
-
-    /// A budget of [`steps`](Self::steps) generations.
-    pub fn budget(&self) -> Budget {
-        Budget::generations(self.steps)
     }
 }
 

@@ -1,0 +1,47 @@
+//! What every method's settings have in common: a count of generations that makes a run's
+//! budget, and a check of their values.
+
+use std::fmt::Debug;
+
+use serde::Serialize;
+use serde::de::DeserializeOwned;
+
+use super::SettingsError;
+use super::run::Budget;
+
+/// A search method's settings, as scene files give them ([`Optimizer::Settings`](
+/// super::Optimizer::Settings)).
+///
+/// Every method runs in generations: the GA's generations, SMC's steps, RJMCMC's
+/// iterations. [`GENERATIONS`](Self::GENERATIONS) names the field that counts them, so
+/// that a scene's `optimizer.generations` (or the command line's `--generations`) sets it
+/// whatever the method calls it.
+///
+/// ```
+/// use shapegen_runtime::optimize::{Budget, McmcSettings, Settings};
+///
+/// let mut s = McmcSettings::default();
+/// s.set_generations(300);
+/// assert_eq!((McmcSettings::GENERATIONS, s.iterations), ("iterations", 300));
+/// assert_eq!(s.budget(), Budget::generations(300));
+/// let bad = McmcSettings { chains: 0, ..s };
+/// assert_eq!(bad.validate().unwrap_err().field, "chains");
+/// ```
+pub trait Settings: Clone + Debug + PartialEq + Serialize + DeserializeOwned {
+    /// The field that counts the generations, by its name in scene files.
+    const GENERATIONS: &'static str;
+
+    /// The generations a run of these settings takes.
+    fn generations(&self) -> u64;
+
+    /// Sets the generations a run takes.
+    fn set_generations(&mut self, generations: u64);
+
+    /// Checks every field; the error names the first one out of range.
+    fn validate(&self) -> Result<(), SettingsError>;
+
+    /// A budget of [`generations`](Self::generations) generations.
+    fn budget(&self) -> Budget {
+        Budget::generations(self.generations())
+    }
+}
