@@ -34,7 +34,7 @@ fn scene(generator: &str, optimizer: &str, sets: &[&str]) -> Result<Scene, Scene
 
 fn smc(scene: Result<Scene, SceneError>) -> SmcSettings {
     match scene.unwrap().optimizer.settings {
-        MethodSettings::Smc(s) => s,
+        MethodSettings::Smc(s) | MethodSettings::Sosmc(s) => s,
         other => panic!("not SMC: {other:?}"),
     }
 }

@@ -45,7 +45,7 @@ use super::gap::{self, Group, Reached};
 use super::interrupt;
 use super::memory::{MemoryArgs, MemoryCheck};
 use super::plot::{self, Spread, YScale};
-use super::search::{SessionRun, with_method};
+use super::search::SessionRun;
 use super::stats::{mean_std, quartile_curve, quartiles};
 use crate::registry::Entry;
 
@@ -59,14 +59,13 @@ const PLOT_SIZE: (u32, u32) = (800, 500);
 pub struct CompareArgs {
     /// The scene file (TOML).
     scene: PathBuf,
-    /// The methods to compare, comma-separated, in the order they run and are listed:
-    /// any of ga, smc, sosmc, rjmcmc and hybrid.
-    #[arg(
-        long,
-        value_delimiter = ',',
-        default_value = "ga,smc,sosmc,rjmcmc,hybrid"
-    )]
-    methods: Vec<String>,
+    /// The methods to compare, comma-separated, in the order they run and are listed
+    /// (default: every method).
+    #[arg(long, value_delimiter = ',', help = super::method_help(
+        "The methods to compare, comma-separated, in the order they run and are listed \
+         (default: all of them)"
+    ))]
+    methods: Option<Vec<String>>,
     /// Runs of each method (at least 1).
     #[arg(long, default_value_t = 3)]
     runs: u64,
@@ -95,7 +94,10 @@ pub struct CompareArgs {
 
 /// Runs `shapegen compare`.
 pub fn run(args: &CompareArgs, tool: &Generators) -> anyhow::Result<()> {
-    let methods = parse_methods(&args.methods)?;
+    let methods = match &args.methods {
+        Some(names) => parse_methods(names)?,
+        None => Method::ALL.to_vec(),
+    };
     anyhow::ensure!(
         args.runs >= 1,
         "--runs {}: give at least 1 run per method",
@@ -274,16 +276,13 @@ impl Visit for Compare<'_> {
                     evaluations: goal.evaluations,
                     wall_time: Some(Duration::from_secs_f64(self.args.seconds)),
                 };
-                let result = with_method::<G, _>(
-                    &goal,
-                    SessionRun {
-                        seed: goal.seed,
-                        limits: self.scene.limits,
-                        budget,
-                        stop: &stop,
-                        evaluator: &mut evaluator,
-                    },
-                )?;
+                let result = goal.run::<G, _>(SessionRun {
+                    seed: goal.seed,
+                    limits: self.scene.limits,
+                    budget,
+                    stop: &stop,
+                    evaluator: &mut evaluator,
+                })?;
                 if result.stopped == StopReason::Observer {
                     outputs.write(&done)?;
                     anyhow::bail!(
@@ -412,7 +411,7 @@ impl Outputs<'_> {
             .iter()
             .map(|&m| Group {
                 name: m.name().to_owned(),
-                colour: colour(m),
+                colour: Rgb(m.colour()),
                 runs: done
                     .iter()
                     .filter(|f| f.method == m)
@@ -496,17 +495,6 @@ fn summarize(method: Method, done: &[Finished]) -> MethodSummary {
             / runs.len().max(1) as f64,
         finals,
         targets: None,
-    }
-}
-
-/// Each method's colour in the pictures, the same in every comparison.
-fn colour(method: Method) -> Rgb<u8> {
-    match method {
-        Method::Ga => Rgb([30, 80, 200]),
-        Method::Smc => Rgb([230, 120, 20]),
-        Method::Sosmc => Rgb([30, 150, 60]),
-        Method::Rjmcmc => Rgb([200, 30, 40]),
-        Method::Hybrid => Rgb([130, 60, 170]),
     }
 }
 

@@ -244,3 +244,11 @@ enum Command {
     /// nested).
     Genome(genome::GenomeArgs),
 }
+
+/// The help of an option naming methods: what it does, and every method it may name.
+fn method_help(what: &str) -> String {
+    format!(
+        "{what}; the methods are {}",
+        shapegen::scene::Method::names()
+    )
+}

@@ -3,7 +3,8 @@
 //! its islands. Rank 0 prints and writes; an error on any rank ends them all.
 
 use shapegen::optimize::islands::Exchange;
-use shapegen::scene::{MethodSettings, Scene};
+use shapegen::optimize::islands::IslandSettings;
+use shapegen::scene::Scene;
 
 /// The processes of this run.
 pub struct Processes {
@@ -48,12 +49,12 @@ impl Processes {
         if n == 1 {
             return Ok(());
         }
-        match scene.optimizer.settings {
-            MethodSettings::Islands(s) if (s.islands.count as usize).is_multiple_of(n) => Ok(()),
-            MethodSettings::Islands(s) => anyhow::bail!(
+        match scene.optimizer.islands {
+            Some(islands) if (islands.count as usize).is_multiple_of(n) => Ok(()),
+            Some(islands) => anyhow::bail!(
                 "--islands {}: the {n} processes must share the islands evenly; give a \
                  multiple of {n}",
-                s.islands.count
+                islands.count
             ),
             _ if scene.objectives.is_some() => anyhow::bail!(
                 "a run on {n} processes spreads the GA's islands over them, and a scene with \
@@ -78,13 +79,11 @@ impl Processes {
 
     /// How the method runs, for the first line of output: `" as 4 islands on 2
     /// processes"`, or nothing for one population.
-    pub fn describe(&self, settings: &MethodSettings) -> String {
-        match (settings, self.count()) {
-            (MethodSettings::Islands(s), 1) => format!(" as {} islands", s.islands.count),
-            (MethodSettings::Islands(s), n) => {
-                format!(" as {} islands on {n} processes", s.islands.count)
-            }
-            _ => String::new(),
+    pub fn describe(&self, islands: Option<IslandSettings>) -> String {
+        match (islands, self.count()) {
+            (Some(islands), 1) => format!(" as {} islands", islands.count),
+            (Some(islands), n) => format!(" as {} islands on {n} processes", islands.count),
+            (None, _) => String::new(),
         }
     }
 

@@ -8,9 +8,11 @@ use clap::Args;
 use image::Rgb;
 use serde::Serialize;
 use shapegen::export::{Palette, Preview, glb_bytes, write_mtl, write_obj};
-use shapegen::optimize::islands::{IslandGa, IslandSettings};
+use shapegen::optimize::islands::{IslandGa, IslandGaSettings, IslandSettings};
 use shapegen::optimize::{Best, Control, Optimizer, RunResult, Session, Snapshot};
-use shapegen::scene::{Method, MethodSettings, Overrides, Scene, SceneEvaluator, SceneScorer};
+use shapegen::scene::{
+    Method, MethodJob, MethodSettings, Overrides, Scene, SceneEvaluator, SceneScorer,
+};
 use shapegen::{Genome, Grammar};
 
 use crate::registry::Entry;
@@ -27,7 +29,6 @@ use super::overlay::overlay;
 use super::plot;
 use super::processes::Processes;
 use super::progress::ProgressLine;
-use super::search::{MethodJob, with_method};
 
 /// Arguments of `shapegen run`.
 #[derive(Debug, Args)]
@@ -35,8 +36,8 @@ pub struct RunArgs {
     /// The scene file (TOML); a resumed run takes its checkpoint's.
     #[arg(required_unless_present = "resume", conflicts_with = "resume")]
     scene: Option<PathBuf>,
-    /// The search method: ga, smc, sosmc, rjmcmc or hybrid (overrides `optimizer.method`).
-    #[arg(long)]
+    /// The search method (overrides `optimizer.method`).
+    #[arg(long, help = super::method_help("The search method (overrides `optimizer.method`)"))]
     method: Option<Method>,
     /// Seed of the run (overrides `optimizer.seed`).
     #[arg(long)]
@@ -184,9 +185,11 @@ impl Visit for Run<'_> {
             }
             .run::<G>();
         }
-        if let MethodSettings::Islands(settings) = self.scene.optimizer.settings
+        if let (Some(islands), MethodSettings::Ga(ga)) =
+            (self.scene.optimizer.islands, self.scene.optimizer.settings)
             && let Some(exchange) = self.processes.exchange()
         {
+            let settings = IslandGaSettings { ga, islands };
             let islands = match self.resumed::<G, IslandGa<G>>()? {
                 Some(state) => IslandGa::resume_on(state, exchange)?,
                 None => {
@@ -196,7 +199,8 @@ impl Visit for Run<'_> {
             };
             return self.drive(islands);
         }
-        with_method::<G, _>(&self.scene.optimizer, self)
+        let scene = self.scene;
+        scene.optimizer.run::<G, _>(self)
     }
 }
 
@@ -219,7 +223,7 @@ impl Run<'_> {
         let Some(dir) = &self.args.resume else {
             return Ok(None);
         };
-        let method = self.scene.optimizer.method.name();
+        let method = self.scene.optimizer.method().name();
         let checkpoint: Checkpoint<O::State> =
             Checkpoint::load(dir, &format!("a {method} run of this scene"))?;
         let backend = &self.args.backend;
@@ -249,8 +253,8 @@ impl Run<'_> {
             eprintln!(
                 "evolving {} with {}{} on {}",
                 self.scene.generator,
-                goal.method.name(),
-                self.processes.describe(&goal.settings),
+                goal.method().name(),
+                self.processes.describe(goal.islands),
                 backend.describe()
             );
         }
@@ -308,11 +312,8 @@ impl Run<'_> {
             generations: result.generations,
             elapsed_s: result.history.last().map_or(0.0, |h| h.elapsed_s),
             seed: goal.seed,
-            method: goal.method.name(),
-            islands: match goal.settings {
-                MethodSettings::Islands(s) => Some(s.islands),
-                _ => None,
-            },
+            method: goal.method().name(),
+            islands: goal.islands,
             processes: self.processes.count(),
             backend: backend.describe(),
             genes: result.best.len(),

@@ -5,14 +5,13 @@
 use std::mem::size_of;
 
 use shapegen_runtime::graph::{GeneratorGraph, NodeDesc};
-use shapegen_runtime::optimize::islands::IslandGa;
 use shapegen_runtime::optimize::multi::MultiGa;
-use shapegen_runtime::optimize::{Ga, Held, Hybrid, Mcmc, Optimizer, Smc};
+use shapegen_runtime::optimize::{Best, Held, Optimizer};
 use shapegen_runtime::score::objective::Objective;
 use shapegen_runtime::score::retained::DEFAULT_MAX_BYTES;
 use shapegen_runtime::{Grammar, Instance};
 
-use super::{MethodSettings, OptimizerGoal, Scene, ScorerGoal};
+use super::{MethodJob, OptimizerGoal, Scene, ScorerGoal};
 
 /// Bytes of checkpoint text per genome word, about: a tree-sketch genome of 380 genes
 /// of 11 words takes 64 KiB of JSON, some 15 bytes a word.
@@ -156,13 +155,17 @@ impl Scene {
     /// generator): those of `goal`'s method, or the multi-objective GA's for a scene
     /// with objectives ([`Optimizer::genomes_held`]).
     pub fn genomes_held<G: Grammar>(&self, goal: &OptimizerGoal) -> Vec<Held> {
-        match (self.multi_settings(), goal.settings) {
-            (Some(multi), _) => MultiGa::<G>::genomes_held(&multi),
-            (None, MethodSettings::Ga(s)) => Ga::<G>::genomes_held(&s),
-            (None, MethodSettings::Islands(s)) => IslandGa::<G>::genomes_held(&s),
-            (None, MethodSettings::Smc(s)) => Smc::<G>::genomes_held(&s),
-            (None, MethodSettings::Mcmc(s)) => Mcmc::<G>::genomes_held(&s),
-            (None, MethodSettings::Hybrid(s)) => Hybrid::<G>::genomes_held(&s),
+        /// Asks the method's optimizer.
+        struct Genomes;
+        impl<G: Grammar> MethodJob<G> for Genomes {
+            type Output = Vec<Held>;
+            fn run<O: Optimizer<G, Record = Best<G>>>(self, settings: O::Settings) -> Self::Output {
+                O::genomes_held(&settings)
+            }
+        }
+        match self.multi_settings() {
+            Some(multi) => MultiGa::<G>::genomes_held(&multi),
+            None => goal.run::<G, _>(Genomes),
         }
     }
 

@@ -49,8 +49,8 @@
 //! # or: camera = { view = [[..], [..], [..], [..]], projection = [..], width = .., height = .. }
 //!
 //! [optimizer]                        # optional: the generator's presets for the method
-//! method = "ga"                      # ga, smc, sosmc, rjmcmc or hybrid (the default,
-//!                                    # but the GA with [islands] or [[objective]] tables)
+//! method = "ga"                      # a method's name (`Method`); hybrid by default,
+//!                                    # but the GA with [islands] or [[objective]] tables
 //! seed = 1
 //! seconds = 60                       # budgets: time, evaluations, generations
 //! generations = 100
@@ -104,6 +104,7 @@ mod evaluate;
 mod file;
 mod image;
 mod memory;
+mod method;
 mod objective;
 mod optimizer;
 mod resolve;
@@ -127,8 +128,9 @@ pub use evaluate::{
 };
 pub use image::{decode_image, read_image};
 pub use memory::{JSON_BYTES_PER_WORD, MemoryEstimate, MemoryPart, RunShape};
+pub use method::{Method, MethodJob, MethodSettings, UnknownMethod};
 pub use objective::ObjectiveEvaluator;
-pub use optimizer::{Method, MethodSettings, OptimizerGoal, Overrides, UnknownMethod};
+pub use optimizer::{OptimizerGoal, Overrides};
 
 /// A loaded and checked scene.
 #[derive(Clone, Debug)]

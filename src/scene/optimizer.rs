@@ -3,86 +3,19 @@
 use std::time::Duration;
 
 use crate::registry::Presets;
-use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
-use shapegen_runtime::ops::OperatorVariant;
-use shapegen_runtime::optimize::islands::{IslandGaSettings, IslandSettings};
+use shapegen_runtime::Grammar;
+use shapegen_runtime::optimize::islands::{IslandGa, IslandGaSettings, IslandSettings};
 use shapegen_runtime::optimize::multi::MultiGaSettings;
-use shapegen_runtime::optimize::{
-    Budget, GaSettings, HybridSettings, McmcSettings, McmcVariant, Order, Settings, SettingsError,
-    SmcSettings, SmcVariant,
-};
+use shapegen_runtime::optimize::{Budget, Settings};
 
-/// The search methods.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Method {
-    /// The genetic algorithm.
-    Ga,
-    /// Sequential Monte Carlo, growing in chromosome order.
-    Smc,
-    /// Sequential Monte Carlo with stochastic futures.
-    Sosmc,
-    /// Reversible-jump MCMC with parallel tempering.
-    Rjmcmc,
-    /// The GA with its first population seeded by SOSMC and its best refined by short
-    /// RJMCMC chains.
-    Hybrid,
-}
-
-impl Method {
-    /// The method of a scene that names none (and has neither islands nor objectives,
-    /// which the GA searches): the hybrid, which led or was level at every budget and on
-    /// every scene measured (`benches/README.md`, "The hybrid method").
-    pub const DEFAULT: Method = Method::Hybrid;
-
-    /// Every method.
-    pub const ALL: [Method; 5] = [
-        Method::Ga,
-        Method::Smc,
-        Method::Sosmc,
-        Method::Rjmcmc,
-        Method::Hybrid,
-    ];
-
-    /// Its name in scene files and on the command line.
-    pub const fn name(self) -> &'static str {
-        match self {
-            Method::Ga => "ga",
-            Method::Smc => "smc",
-            Method::Sosmc => "sosmc",
-            Method::Rjmcmc => "rjmcmc",
-            Method::Hybrid => "hybrid",
-        }
-    }
-
-    /// Every method's name, for messages: `ga, smc, sosmc, rjmcmc and hybrid`.
-    pub fn names() -> String {
-        let names = Method::ALL.map(Method::name);
-        let (last, rest) = names.split_last().expect("methods");
-        format!("{} and {last}", rest.join(", "))
-    }
-}
-
-/// A method with its settings.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum MethodSettings {
-    /// The genetic algorithm.
-    Ga(GaSettings),
-    /// The genetic algorithm as an island model (a scene's `[islands]`, `--islands`).
-    Islands(IslandGaSettings),
-    /// SMC or SOSMC (its `order` says which).
-    Smc(SmcSettings),
-    /// Reversible-jump MCMC.
-    Mcmc(McmcSettings),
-    /// The hybrid method.
-    Hybrid(HybridSettings),
-}
+use super::method::{Method, MethodJob, MethodSettings, UnknownMethod};
 
 /// The `[optimizer]` table, resolved. Keys the method does not know are refused.
 ///
 /// ```toml
 /// [optimizer]
-/// method = "hybrid"      # ga, smc, sosmc, rjmcmc or hybrid (the default; the GA with
+/// method = "hybrid"      # a [`Method`]'s name (the hybrid by default; the GA with
 ///                        # [islands] or [[objective]] tables)
 /// seed = 1
 /// seconds = 60           # wall-time budget (optional)
@@ -98,7 +31,8 @@ pub enum MethodSettings {
 ///                        # variant ("original" or "generative"),
 ///                        # step_back_probability, max_grows_per_step; for RJMCMC
 ///                        # variant ("original" or "tempered"), chains, iterations,
-///                        # initial_length, jump_probability, ...
+///                        # initial_length, jump_probability, ...; each method's
+///                        # fields are those of its settings type ([`MethodSettings`])
 /// ```
 ///
 /// The paper's GA settings use the original's operators and breeding
@@ -109,39 +43,33 @@ pub enum MethodSettings {
 /// generator.
 #[derive(Clone, Debug, PartialEq)]
 pub struct OptimizerGoal {
-    /// The method.
-    pub method: Method,
     /// Seed of every random stream of the run.
     pub seed: u64,
     /// Wall-time budget.
     pub seconds: Option<f64>,
     /// Evaluation budget.
     pub evaluations: Option<u64>,
-    /// The method's settings.
+    /// The method and its settings.
     pub settings: MethodSettings,
+    /// The island model the GA runs as (a scene's `[islands]`, `--islands`); only with
+    /// the GA.
+    pub islands: Option<IslandSettings>,
 }
 
 impl OptimizerGoal {
+    /// The method.
+    pub fn method(&self) -> Method {
+        self.settings.method()
+    }
+
     /// Generations (steps, iterations) the method's settings ask for.
     pub fn generations(&self) -> u64 {
-        match self.settings {
-            MethodSettings::Ga(s) => s.generations,
-            MethodSettings::Islands(s) => s.ga.generations,
-            MethodSettings::Smc(s) => s.steps,
-            MethodSettings::Mcmc(s) => s.iterations,
-            MethodSettings::Hybrid(s) => s.ga.generations,
-        }
+        self.settings.generations()
     }
 
     /// Sets the generations (steps, iterations) the method's settings ask for.
     pub fn set_generations(&mut self, n: u64) {
-        match &mut self.settings {
-            MethodSettings::Ga(s) => s.generations = n,
-            MethodSettings::Islands(s) => s.ga.generations = n,
-            MethodSettings::Smc(s) => s.steps = n,
-            MethodSettings::Mcmc(s) => s.iterations = n,
-            MethodSettings::Hybrid(s) => s.ga.generations = n,
-        }
+        self.settings.set_generations(n);
     }
 
     /// The run's budget: the settings' generations, and the time and evaluation limits
@@ -156,51 +84,17 @@ impl OptimizerGoal {
         }
         budget
     }
-}
 
-/// The settings `presets` give `method`.
-fn preset(method: Method, presets: &Presets) -> MethodSettings {
-    match method {
-        Method::Ga => MethodSettings::Ga(presets.ga),
-        Method::Smc => MethodSettings::Smc(SmcSettings {
-            order: Order::Chromosome,
-            ..presets.smc
-        }),
-        Method::Sosmc => MethodSettings::Smc(SmcSettings {
-            order: Order::Stochastic,
-            ..presets.sosmc
-        }),
-        Method::Rjmcmc => MethodSettings::Mcmc(presets.rjmcmc),
-        Method::Hybrid => MethodSettings::Hybrid(HybridSettings {
-            ga: presets.ga,
-            ..HybridSettings::default()
-        }),
+    /// Runs `job` with the optimizer that searches this goal: the method's, or the GA's
+    /// island model ([`IslandGa`]) when the goal has islands.
+    pub fn run<G: Grammar, J: MethodJob<G>>(&self, job: J) -> J::Output {
+        match (self.islands, self.settings) {
+            (Some(islands), MethodSettings::Ga(ga)) => {
+                job.run::<IslandGa<G>>(IslandGaSettings { ga, islands })
+            }
+            (_, settings) => settings.run(job),
+        }
     }
-}
-
-/// `base` with the keys of `table` over it, checked by `validate`.
-fn merged<T: Serialize + DeserializeOwned>(
-    base: T,
-    table: toml::Table,
-    validate: impl Fn(&T) -> Result<(), SettingsError>,
-) -> Result<T, (String, String)> {
-    let base =
-        toml::Table::try_from(base).map_err(|err| (String::from("optimizer"), err.to_string()))?;
-    let read = |keys: &toml::Table| -> Result<T, toml::de::Error> {
-        let mut merged = base.clone();
-        merged.extend(keys.clone());
-        toml::Value::Table(merged).try_into()
-    };
-    let settings: T = read(&table).map_err(|err| {
-        // Name the key that is wrong: the first that fails on its own.
-        let key = table
-            .iter()
-            .find(|(k, v)| read(&toml::Table::from_iter([((*k).clone(), (*v).clone())])).is_err())
-            .map_or_else(|| "optimizer".to_owned(), |(k, _)| format!("optimizer.{k}"));
-        (key, err.message().to_owned())
-    })?;
-    validate(&settings).map_err(|err| (format!("optimizer.{}", err.field), err.to_string()))?;
-    Ok(settings)
 }
 
 /// What the command line sets over a scene: typed flags (`--method`, `--seed`,
@@ -238,35 +132,6 @@ impl Overrides {
         self.islands = later.islands.or(self.islands);
         self.sets.extend(later.sets.iter().cloned());
         self
-    }
-}
-
-/// A method name that names no method.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("\"{0}\" is not a method; the methods are {names}", names = Method::names())]
-pub struct UnknownMethod(pub String);
-
-impl std::str::FromStr for Method {
-    type Err = UnknownMethod;
-
-    fn from_str(s: &str) -> Result<Method, UnknownMethod> {
-        Method::ALL
-            .into_iter()
-            .find(|m| m.name() == s)
-            .ok_or_else(|| UnknownMethod(s.to_owned()))
-    }
-}
-
-impl Serialize for Method {
-    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.serialize_str(self.name())
-    }
-}
-
-impl<'de> Deserialize<'de> for Method {
-    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Method, D::Error> {
-        let name = String::deserialize(deserializer)?;
-        name.parse().map_err(serde::de::Error::custom)
     }
 }
 
@@ -377,136 +242,25 @@ pub(super) fn resolve(
         Some(n) => Some(n),
         None => written_evaluations,
     };
-    // `generations` names the GA's generations, SMC's steps and RJMCMC's iterations.
-    let rename = |table: &mut toml::Table, to: &str| {
-        if let Some(g) = table.remove("generations") {
-            table.insert(to.to_owned(), g);
-        }
-    };
-    let settings = match preset(method, presets) {
-        MethodSettings::Ga(base) | MethodSettings::Islands(IslandGaSettings { ga: base, .. }) => {
-            check_ga_keys(&table)?;
-            let ga = merged(base, table, GaSettings::validate)?;
-            match islands {
-                None => MethodSettings::Ga(ga),
-                Some(islands) => {
-                    let settings = IslandGaSettings { ga, islands };
-                    settings.validate().map_err(|err| {
-                        let flag = err.field == "islands.count" && overrides.islands.is_some();
-                        let key = if flag { "--islands" } else { err.field };
-                        (key.to_owned(), err.to_string())
-                    })?;
-                    MethodSettings::Islands(settings)
-                }
-            }
-        }
-        MethodSettings::Smc(base) => {
-            if table.contains_key("order") {
-                return Err((
-                    key("order"),
-                    "is set by the method: \"smc\" or \"sosmc\"".into(),
-                ));
-            }
-            check_smc_variant(&table)?;
-            rename(&mut table, "steps");
-            MethodSettings::Smc(merged(base, table, SmcSettings::validate)?)
-        }
-        MethodSettings::Mcmc(base) => {
-            check_mcmc_variant(&table)?;
-            rename(&mut table, "iterations");
-            MethodSettings::Mcmc(merged(base, table, McmcSettings::validate)?)
-        }
-        MethodSettings::Hybrid(base) => MethodSettings::Hybrid(hybrid(base, table)?),
-    };
+    let settings = method.preset(presets).read(table)?;
+    if let (Some(islands), MethodSettings::Ga(ga)) = (islands, settings) {
+        IslandGaSettings { ga, islands }.validate().map_err(|err| {
+            let flag = err.field == "islands.count" && overrides.islands.is_some();
+            let key = if flag { "--islands" } else { err.field };
+            (key.to_owned(), err.to_string())
+        })?;
+    }
     let mut goal = OptimizerGoal {
-        method,
         seed: overrides.seed.unwrap_or(seed),
         seconds,
         evaluations,
         settings,
+        islands,
     };
     if let Some(g) = overrides.generations {
         goal.set_generations(g);
     }
     Ok(goal)
-}
-
-/// The hybrid's settings: `base` with the keys of `table` over it, its own keys
-/// (`seed_steps`, `refine`, ...) read as its own and every other key as its GA's;
-/// errors are `(key, reason)`.
-fn hybrid(
-    base: HybridSettings,
-    mut table: toml::Table,
-) -> Result<HybridSettings, (String, String)> {
-    let own: toml::Table = toml::Table::try_from(base)
-        .map_err(|err| (String::from("optimizer"), err.to_string()))?
-        .into_iter()
-        .filter(|(k, _)| k != "ga")
-        .filter_map(|(k, _)| table.remove_entry(&k))
-        .collect();
-    check_ga_keys(&table)?;
-    let ga = merged(base.ga, table, GaSettings::validate)?;
-    merged(HybridSettings { ga, ..base }, own, HybridSettings::validate)
-}
-
-/// Checks the GA's keys whose serde errors would not name them: `operators` must name an
-/// operator variant and `cross_array_index` be a boolean; errors are `(key, reason)`.
-fn check_ga_keys(table: &toml::Table) -> Result<(), (String, String)> {
-    let names = OperatorVariant::ALL.map(OperatorVariant::name);
-    match table.get("operators") {
-        None => {}
-        Some(toml::Value::String(v)) if names.contains(&v.as_str()) => {}
-        Some(other) => {
-            return Err((
-                "optimizer.operators".into(),
-                format!(
-                    "{other} is not an operator variant; the variants are \"{}\"",
-                    names.join("\" and \"")
-                ),
-            ));
-        }
-    }
-    match table.get("cross_array_index") {
-        None | Some(toml::Value::Boolean(_)) => Ok(()),
-        Some(other) => Err((
-            "optimizer.cross_array_index".into(),
-            format!("{other} must be true or false"),
-        )),
-    }
-}
-
-/// Checks that SMC's `variant`, whose serde error would not name it, names an SMC
-/// variant; errors are `(key, reason)`.
-fn check_smc_variant(table: &toml::Table) -> Result<(), (String, String)> {
-    let names = SmcVariant::ALL.map(SmcVariant::name);
-    match table.get("variant") {
-        None => Ok(()),
-        Some(toml::Value::String(v)) if names.contains(&v.as_str()) => Ok(()),
-        Some(other) => Err((
-            "optimizer.variant".into(),
-            format!(
-                "{other} is not an SMC variant; the variants are \"{}\"",
-                names.join("\" and \"")
-            ),
-        )),
-    }
-}
-
-/// Checks RJMCMC's `variant`, whose serde error would not name it: it must name a
-/// [`McmcVariant`]; errors are `(key, reason)`.
-fn check_mcmc_variant(table: &toml::Table) -> Result<(), (String, String)> {
-    let names = McmcVariant::ALL.map(McmcVariant::name);
-    match table.get("variant") {
-        None => Ok(()),
-        Some(toml::Value::String(v)) if names.contains(&v.as_str()) => Ok(()),
-        Some(other) => Err((
-            "optimizer.variant".into(),
-            format!(
-                "{other} is not an RJMCMC variant; the variants are \"{}\"",
-                names.join("\" and \"")
-            ),
-        )),
-    }
 }
 
 /// Takes `archive` (the multi-objective GA's archive size) out of an `[optimizer]`
@@ -557,6 +311,7 @@ pub(super) fn apply_overrides(root: &mut toml::Table, sets: &[String]) -> Result
 #[cfg(test)]
 mod mcmc_tests {
     use super::*;
+    use shapegen_runtime::optimize::{McmcSettings, McmcVariant, Order};
 
     fn presets(name: &str) -> Presets {
         crate::registry::Registry::published()
@@ -569,7 +324,7 @@ mod mcmc_tests {
     fn mcmc(generator: &str, text: &str) -> Result<McmcSettings, (String, String)> {
         let table: toml::Table = toml::from_str(text).unwrap();
         match resolve(&presets(generator), table, None, &Overrides::default())?.settings {
-            MethodSettings::Mcmc(s) => Ok(s),
+            MethodSettings::Rjmcmc(s) => Ok(s),
             other => panic!("{other:?}"),
         }
     }
@@ -616,7 +371,7 @@ mod mcmc_tests {
         let settings = resolve(&presets("spaceship"), table, None, &Overrides::default())
             .unwrap()
             .settings;
-        let MethodSettings::Mcmc(s) = settings else {
+        let MethodSettings::Rjmcmc(s) = settings else {
             panic!("{settings:?}");
         };
         assert_eq!(s.variant, McmcVariant::Tempered);
@@ -644,14 +399,14 @@ mod mcmc_tests {
             &Overrides::default(),
         );
         assert_eq!(goal, keys.unwrap());
-        let MethodSettings::Smc(s) = goal.settings else {
+        let MethodSettings::Sosmc(s) = goal.settings else {
             panic!("{goal:?}");
         };
         assert_eq!((s.order, s.steps), (Order::Stochastic, 7));
         // Flags win over the table's keys.
         let table = toml::from_str("method = \"ga\"\nseed = 3\n").unwrap();
         let goal = resolve(&spaceship, table, None, &flags).unwrap();
-        assert_eq!((goal.method, goal.seed), (Method::Sosmc, 9));
+        assert_eq!((goal.method(), goal.seed), (Method::Sosmc, 9));
         for (bad, key) in [
             (
                 Overrides {
@@ -700,13 +455,13 @@ mod mcmc_tests {
             (None, &flag, 6),
         ] {
             let goal = resolve(&spaceship, toml::Table::new(), islands, overrides).unwrap();
-            let MethodSettings::Islands(s) = goal.settings else {
+            let (Some(s), MethodSettings::Ga(ga)) = (goal.islands, goal.settings) else {
                 panic!("{goal:?}");
             };
-            assert_eq!(s.islands.count, count);
-            assert_eq!(s.ga, spaceship.ga);
+            assert_eq!(s.count, count);
+            assert_eq!(ga, spaceship.ga);
             let migrants = if islands.is_some() { 3 } else { 2 };
-            assert_eq!(s.islands.migrants, migrants, "the table's, or the default");
+            assert_eq!(s.migrants, migrants, "the table's, or the default");
         }
         let plain = resolve(&spaceship, toml::Table::new(), None, &Overrides::default());
         assert!(matches!(plain.unwrap().settings, MethodSettings::Hybrid(_)));
@@ -720,6 +475,7 @@ mod mcmc_tests {
 #[cfg(test)]
 mod hybrid_tests {
     use super::*;
+    use shapegen_runtime::optimize::{GaSettings, HybridSettings};
 
     fn hybrid(text: &str) -> Result<HybridSettings, (String, String)> {
         let presets = crate::registry::Registry::published()

@@ -16,8 +16,7 @@ use super::file::{
 };
 use super::image::read_image;
 use super::{
-    Method, MethodSettings, ObjectiveGoal, Overrides, Scene, SceneError, ScorerGoal,
-    SilhouetteGoal, VolumeGoal,
+    Method, ObjectiveGoal, Overrides, Scene, SceneError, ScorerGoal, SilhouetteGoal, VolumeGoal,
 };
 use crate::registry::Registry;
 
@@ -197,20 +196,20 @@ impl<'a> Resolver<'a> {
 
         let optimizer = super::optimizer::resolve(&presets, table.clone(), file.islands, overrides)
             .map_err(|(key, reason)| self.invalid(key, reason))?;
-        if objectives.is_some() && matches!(optimizer.settings, MethodSettings::Islands(_)) {
+        if objectives.is_some() && optimizer.islands.is_some() {
             return Err(self.invalid(
                 "islands",
                 "scenes with [[objective]] tables are searched by the multi-objective GA, \
                  which has no island model; leave out [islands] and --islands",
             ));
         }
-        if objectives.is_some() && optimizer.method != Method::Ga {
+        if objectives.is_some() && optimizer.method() != Method::Ga {
             return Err(self.invalid(
                 "optimizer.method",
                 format!(
                     "\"{}\": scenes with [[objective]] tables are searched by the \
                      multi-objective GA; the method must be \"ga\"",
-                    optimizer.method.name()
+                    optimizer.method().name()
                 ),
             ));
         }

@@ -25,7 +25,7 @@ use shapegen::scene::{Scene, SceneEvaluator, SceneScorer};
 use super::super::backend::check_batches;
 use super::super::dispatch::{Generators, Visit};
 use super::super::files::{csv_bytes, read};
-use super::super::search::{SessionRun, with_method};
+use super::super::search::SessionRun;
 use super::plan::Plan;
 use crate::registry::Entry;
 
@@ -315,16 +315,13 @@ impl Visit for CellRun<'_> {
         let mut evaluator =
             SceneEvaluator::new(&backend).with_incremental(self.plan.backend.incremental());
         let goal = &self.scene.optimizer;
-        let result = with_method::<G, _>(
-            goal,
-            SessionRun {
-                seed: goal.seed,
-                limits: self.scene.limits,
-                budget: self.plan.budget.budget(),
-                stop: self.stop,
-                evaluator: &mut evaluator,
-            },
-        )?;
+        let result = goal.run::<G, _>(SessionRun {
+            seed: goal.seed,
+            limits: self.scene.limits,
+            budget: self.plan.budget.budget(),
+            stop: self.stop,
+            evaluator: &mut evaluator,
+        })?;
         *self.outcome = Some(Outcome {
             best: result.best_fitness,
             evaluations: result.evaluations,

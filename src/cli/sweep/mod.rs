@@ -63,9 +63,12 @@ pub struct SweepArgs {
     /// Base seed: run r of every grid point uses seed + r (default: `optimizer.seed`).
     #[arg(long)]
     seed: Option<u64>,
-    /// The search method of every run: ga, smc, sosmc, rjmcmc or hybrid (overrides
-    /// `optimizer.method`; or sweep `--grid optimizer.method=..`).
-    #[arg(long)]
+    /// The search method of every run (overrides `optimizer.method`; or sweep
+    /// `--grid optimizer.method=..`).
+    #[arg(long, help = super::method_help(
+        "The search method of every run (overrides `optimizer.method`; or sweep \
+         `--grid optimizer.method=..`)"
+    ))]
     method: Option<Method>,
     /// Overrides a scene value in every run, e.g. `--set optimizer.tournament=3`;
     /// repeatable; the grid's values come after these.

@@ -1,0 +1,336 @@
+//! The search methods a scene can name, each declared once, in the `methods!` table at
+//! the end of this file: its name in scene files and on the command line, its optimizer
+//! and settings types, its colour in the pictures, its settings where a scene leaves
+//! them out (from the generator's [`Presets`]) and how its keys of the `[optimizer]`
+//! table are read. Everything that lists or dispatches on methods is derived from the
+//! table: [`Method`] and [`MethodSettings`], the scene's `[optimizer]` parsing, the
+//! command line's `--method` and `--methods`, `compare`'s and `sweep`'s runs, the
+//! memory estimate ([`Optimizer::genomes_held`]) and the run itself
+//! ([`OptimizerGoal::run`](super::OptimizerGoal::run)).
+//!
+//! A method of one's own is an [`Optimizer`] with a [`Settings`] type; adding it to the
+//! table is one row.
+//!
+//! ```
+//! use shapegen::scene::{Method, MethodSettings};
+//!
+//! let hybrid: Method = "hybrid".parse()?;
+//! assert_eq!(hybrid.name(), "hybrid");
+//! assert!(Method::ALL.contains(&hybrid));
+//! assert!("pso".parse::<Method>().unwrap_err().to_string().contains(&Method::names()));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use serde::{Deserialize, Serialize};
+use shapegen_runtime::Grammar;
+use shapegen_runtime::ops::OperatorVariant;
+use shapegen_runtime::optimize::{
+    Best, Ga, GaSettings, Hybrid, HybridSettings, Mcmc, McmcSettings, McmcVariant, Optimizer,
+    Order, Settings, Smc, SmcSettings, SmcVariant,
+};
+
+use crate::registry::Presets;
+
+/// Work generic over the optimizer of a method that searches one fitness: a command's
+/// run, a memory estimate. [`MethodSettings::run`] runs it with the method's optimizer.
+pub trait MethodJob<G: Grammar> {
+    /// What the work returns.
+    type Output;
+    /// Does the work with optimizer `O`, whose settings the scene gives as `settings`.
+    fn run<O: Optimizer<G, Record = Best<G>>>(self, settings: O::Settings) -> Self::Output;
+}
+
+/// A method's settings read from a scene's `[optimizer]` table: the keys of `table` over
+/// `base`; errors are `(key, reason)`.
+type Read<S> = fn(S, toml::Table) -> Result<S, (String, String)>;
+
+/// Declares the search methods, each once:
+///
+/// ```text
+/// /// docs
+/// Variant("name"): Optimizer, Settings, colour [r, g, b],
+///     preset |presets| settings where a scene leaves them out, read a Read<Settings>;
+/// ```
+///
+/// It expands into [`Method`] (with [`ALL`](Method::ALL), [`name`](Method::name) and
+/// [`colour`](Method::colour)), [`MethodSettings`] (one variant per method, with the
+/// dispatch to its optimizer) and the reading of the `[optimizer]` table.
+macro_rules! methods {
+    ($(
+        $(#[doc = $doc:literal])*
+        $variant:ident($name:literal): $optimizer:ident, $settings:ty, colour $colour:expr,
+            preset |$p:ident| $preset:expr, read $read:expr;
+    )*) => {
+        /// A search method.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+        pub enum Method {
+            $($(#[doc = $doc])* $variant,)*
+        }
+
+        impl Method {
+            /// Every method, in the order the table lists them (and `compare` runs them).
+            pub const ALL: &[Method] = &[$(Method::$variant),*];
+
+            /// Its name in scene files and on the command line.
+            pub const fn name(self) -> &'static str {
+                match self {
+                    $(Method::$variant => $name,)*
+                }
+            }
+
+            /// Its colour in the pictures, the same in every comparison.
+            pub const fn colour(self) -> [u8; 3] {
+                match self {
+                    $(Method::$variant => $colour,)*
+                }
+            }
+
+            /// Its settings where a scene leaves them out: from the generator's
+            /// `presets`.
+            pub fn preset(self, presets: &Presets) -> MethodSettings {
+                match self {
+                    $(Method::$variant => {
+                        let $p = presets;
+                        MethodSettings::$variant($preset)
+                    })*
+                }
+            }
+        }
+
+        /// A method with its settings.
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub enum MethodSettings {
+            $($(#[doc = $doc])* $variant($settings),)*
+        }
+
+        impl MethodSettings {
+            /// The method.
+            pub fn method(&self) -> Method {
+                match self {
+                    $(MethodSettings::$variant(_) => Method::$variant,)*
+                }
+            }
+
+            /// The generations (steps, iterations) the settings ask for.
+            pub fn generations(&self) -> u64 {
+                match self {
+                    $(MethodSettings::$variant(s) => s.generations(),)*
+                }
+            }
+
+            /// Sets the generations (steps, iterations) the settings ask for.
+            pub fn set_generations(&mut self, generations: u64) {
+                match self {
+                    $(MethodSettings::$variant(s) => s.set_generations(generations),)*
+                }
+            }
+
+            /// The settings with the keys of an `[optimizer]` table over them (without
+            /// the keys every method shares: `method`, `seed`, `seconds`,
+            /// `evaluations`); `generations` sets the field that counts the method's
+            /// generations. Errors are `(key, reason)`.
+            pub(super) fn read(self, mut table: toml::Table) -> Result<MethodSettings, (String, String)> {
+                match self {
+                    $(MethodSettings::$variant(base) => {
+                        rename_generations::<$settings>(&mut table);
+                        let read: Read<$settings> = $read;
+                        read(base, table).map(MethodSettings::$variant)
+                    })*
+                }
+            }
+
+            /// Runs `job` with the method's optimizer and these settings.
+            pub fn run<G: Grammar, J: MethodJob<G>>(self, job: J) -> J::Output {
+                match self {
+                    $(MethodSettings::$variant(s) => job.run::<$optimizer<G>>(s),)*
+                }
+            }
+        }
+    };
+}
+
+impl Method {
+    /// The method of a scene that names none (and has neither islands nor objectives,
+    /// which the GA searches): the hybrid, which led or was level at every budget and on
+    /// every scene measured (`benches/README.md`, "The hybrid method").
+    pub const DEFAULT: Method = Method::Hybrid;
+
+    /// Every method's name, for messages: `ga, smc, ... and hybrid`.
+    pub fn names() -> String {
+        let names: Vec<&str> = Method::ALL.iter().map(|m| m.name()).collect();
+        match names.split_last() {
+            Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
+            _ => names.concat(),
+        }
+    }
+}
+
+/// A method name that names no method.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("\"{0}\" is not a method; the methods are {names}", names = Method::names())]
+pub struct UnknownMethod(pub String);
+
+impl std::str::FromStr for Method {
+    type Err = UnknownMethod;
+
+    fn from_str(s: &str) -> Result<Method, UnknownMethod> {
+        Method::ALL
+            .iter()
+            .copied()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| UnknownMethod(s.to_owned()))
+    }
+}
+
+impl Serialize for Method {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
+}
+
+impl<'de> Deserialize<'de> for Method {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Method, D::Error> {
+        let name = String::deserialize(deserializer)?;
+        name.parse().map_err(serde::de::Error::custom)
+    }
+}
+
+/// Moves the table's `generations` to the key that counts `S`'s generations (SMC's
+/// `steps`, RJMCMC's `iterations`).
+fn rename_generations<S: Settings>(table: &mut toml::Table) {
+    if S::GENERATIONS != "generations"
+        && let Some(g) = table.remove("generations")
+    {
+        table.insert(S::GENERATIONS.to_owned(), g);
+    }
+}
+
+/// `base` with the keys of `table` over it, checked by [`Settings::validate`]; errors
+/// are `(key, reason)`, naming the first key that is wrong on its own.
+fn merged<S: Settings>(base: S, table: toml::Table) -> Result<S, (String, String)> {
+    let base =
+        toml::Table::try_from(base).map_err(|err| (String::from("optimizer"), err.to_string()))?;
+    let read = |keys: &toml::Table| -> Result<S, toml::de::Error> {
+        let mut merged = base.clone();
+        merged.extend(keys.clone());
+        toml::Value::Table(merged).try_into()
+    };
+    let settings: S = read(&table).map_err(|err| {
+        // Name the key that is wrong: the first that fails on its own.
+        let key = table
+            .iter()
+            .find(|(k, v)| read(&toml::Table::from_iter([((*k).clone(), (*v).clone())])).is_err())
+            .map_or_else(|| "optimizer".to_owned(), |(k, _)| format!("optimizer.{k}"));
+        (key, err.message().to_owned())
+    })?;
+    settings
+        .validate()
+        .map_err(|err| (format!("optimizer.{}", err.field), err.to_string()))?;
+    Ok(settings)
+}
+
+/// The GA's settings, after checking the keys whose serde errors would not name them.
+fn read_ga(base: GaSettings, table: toml::Table) -> Result<GaSettings, (String, String)> {
+    check_ga_keys(&table)?;
+    merged(base, table)
+}
+
+/// SMC's or SOSMC's settings: the method sets the order, and `variant` must name an SMC
+/// variant.
+fn read_smc(base: SmcSettings, table: toml::Table) -> Result<SmcSettings, (String, String)> {
+    if table.contains_key("order") {
+        return Err((
+            "optimizer.order".into(),
+            "is set by the method: \"smc\" or \"sosmc\"".into(),
+        ));
+    }
+    check_variant(&table, "an SMC", &SmcVariant::ALL.map(SmcVariant::name))?;
+    merged(base, table)
+}
+
+/// RJMCMC's settings, `variant` naming an RJMCMC variant.
+fn read_mcmc(base: McmcSettings, table: toml::Table) -> Result<McmcSettings, (String, String)> {
+    check_variant(
+        &table,
+        "an RJMCMC",
+        &McmcVariant::ALL.map(McmcVariant::name),
+    )?;
+    merged(base, table)
+}
+
+/// The hybrid's settings: its own keys (`seed_steps`, `refine`, ...) read as its own and
+/// every other key as its GA's.
+fn read_hybrid(
+    base: HybridSettings,
+    mut table: toml::Table,
+) -> Result<HybridSettings, (String, String)> {
+    let own: toml::Table = toml::Table::try_from(base)
+        .map_err(|err| (String::from("optimizer"), err.to_string()))?
+        .into_iter()
+        .filter(|(k, _)| k != "ga")
+        .filter_map(|(k, _)| table.remove_entry(&k))
+        .collect();
+    let ga = read_ga(base.ga, table)?;
+    merged(HybridSettings { ga, ..base }, own)
+}
+
+/// Checks the GA's keys whose serde errors would not name them: `operators` must name an
+/// operator variant and `cross_array_index` be a boolean.
+fn check_ga_keys(table: &toml::Table) -> Result<(), (String, String)> {
+    let names = OperatorVariant::ALL.map(OperatorVariant::name);
+    match table.get("operators") {
+        None => {}
+        Some(toml::Value::String(v)) if names.contains(&v.as_str()) => {}
+        Some(other) => {
+            return Err((
+                "optimizer.operators".into(),
+                format!(
+                    "{other} is not an operator variant; the variants are \"{}\"",
+                    names.join("\" and \"")
+                ),
+            ));
+        }
+    }
+    match table.get("cross_array_index") {
+        None | Some(toml::Value::Boolean(_)) => Ok(()),
+        Some(other) => Err((
+            "optimizer.cross_array_index".into(),
+            format!("{other} must be true or false"),
+        )),
+    }
+}
+
+/// Checks that `variant`, whose serde error would not name it, is one of `names`, the
+/// variants of `what` method.
+fn check_variant(table: &toml::Table, what: &str, names: &[&str]) -> Result<(), (String, String)> {
+    match table.get("variant") {
+        None => Ok(()),
+        Some(toml::Value::String(v)) if names.contains(&v.as_str()) => Ok(()),
+        Some(other) => Err((
+            "optimizer.variant".into(),
+            format!(
+                "{other} is not {what} variant; the variants are \"{}\"",
+                names.join("\" and \"")
+            ),
+        )),
+    }
+}
+
+methods! {
+    /// The genetic algorithm.
+    Ga("ga"): Ga, GaSettings, colour [30, 80, 200],
+        preset |p| p.ga, read read_ga;
+    /// Sequential Monte Carlo, growing in chromosome order.
+    Smc("smc"): Smc, SmcSettings, colour [230, 120, 20],
+        preset |p| SmcSettings { order: Order::Chromosome, ..p.smc }, read read_smc;
+    /// Sequential Monte Carlo with stochastic futures.
+    Sosmc("sosmc"): Smc, SmcSettings, colour [30, 150, 60],
+        preset |p| SmcSettings { order: Order::Stochastic, ..p.sosmc }, read read_smc;
+    /// Reversible-jump MCMC with parallel tempering.
+    Rjmcmc("rjmcmc"): Mcmc, McmcSettings, colour [200, 30, 40],
+        preset |p| p.rjmcmc, read read_mcmc;
+    /// The GA with its first population seeded by SOSMC and its best refined by short
+    /// RJMCMC chains.
+    Hybrid("hybrid"): Hybrid, HybridSettings, colour [130, 60, 170],
+        preset |p| HybridSettings { ga: p.ga, ..HybridSettings::default() }, read read_hybrid;
+}
