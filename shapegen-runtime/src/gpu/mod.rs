@@ -1,23 +1,18 @@
-//! The GPU backend's plumbing: choosing an adapter, creating the device, checking shaders
-//! and reading results back. The scorers' GPU paths build on it.
+//! The GPU backend's plumbing: choosing an adapter, creating the device, compiling shaders
+//! and reading results back. The scorers' GPU paths build on it; their WGSL is the
+//! `shapegen-shaders` crate's.
 //!
 //! Every GPU path has a CPU path that gives the same counts; a caller that finds no adapter
 //! ([`GpuContext::new`] fails) scores on the CPU and says so.
 //!
 //! ```
-//! use shapegen_runtime::gpu::{GpuContext, validate_wgsl};
-//!
-//! // Shaders are checked without a device.
-//! validate_wgsl("@compute @workgroup_size(1) fn main() {}").unwrap();
-//! assert!(validate_wgsl("fn broken( {").is_err());
+//! use shapegen_runtime::gpu::GpuContext;
 //!
 //! match GpuContext::new() {
 //!     Ok(gpu) => println!("scoring on {}", gpu.describe()),
 //!     Err(err) => println!("no GPU ({err}); scoring on the CPU"),
 //! }
 //! ```
-
-use wgpu::naga;
 
 pub use wgpu;
 
@@ -182,33 +177,5 @@ impl GpuContext {
         drop(view);
         staging.unmap();
         Ok(out)
-    }
-}
-
-/// Checks WGSL `source` with naga (parse and validate), needing no device: the shaders'
-/// unit tests run everywhere.
-///
-/// # Errors
-/// The parser's or validator's message, with the source location.
-pub fn validate_wgsl(source: &str) -> Result<(), String> {
-    let module = naga::front::wgsl::parse_str(source).map_err(|err| err.emit_to_string(source))?;
-    naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::default(),
-    )
-    .validate(&module)
-    .map_err(|err| err.emit_to_string(source))?;
-    Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn validation_reports_the_location() {
-        let err = validate_wgsl("@compute @workgroup_size(1) fn main() { let x: u32 = 1.5; }")
-            .unwrap_err();
-        assert!(err.contains("wgsl:1:"), "{err}");
     }
 }

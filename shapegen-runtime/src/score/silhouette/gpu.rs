@@ -1,5 +1,5 @@
 //! The silhouette scorer on the GPU: a whole population per submission, counted by the
-//! fragment shader `shaders/silhouette.wgsl`.
+//! fragment shader of [`shapegen_shaders::SILHOUETTE`].
 
 use std::ops::Range;
 
@@ -11,13 +11,7 @@ use super::scorer::SilhouetteScorer;
 use crate::gpu::{GpuContext, GpuError};
 use crate::score::InstanceBatch;
 
-/// The WGSL source.
-pub(super) const SHADER: &str = concat!(
-    include_str!("../../../shaders/clip.wgsl"),
-    include_str!("../../../shaders/silhouette.wgsl")
-);
-
-/// Mirrors the WGSL struct `Params` of `shaders/silhouette.wgsl`.
+/// Mirrors the WGSL struct `Params` of [`shapegen_shaders::SILHOUETTE`].
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 struct Params {
@@ -232,7 +226,7 @@ impl<'a> GpuSilhouetteScorer<'a> {
         let (pipeline, layout) = pipeline(
             gpu,
             "silhouette",
-            SHADER,
+            shapegen_shaders::SILHOUETTE,
             size_of::<GpuInstance>() as u64,
             &wgpu::vertex_attr_array![4 => Uint32],
         );

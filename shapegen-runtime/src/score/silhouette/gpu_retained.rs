@@ -2,13 +2,13 @@
 //!
 //! [`GpuRetention`] keeps, in the GPU's memory, a *slot* for each model of a search's
 //! current population: how many triangle fragments of the model's instances hit each
-//! pixel of each target (`shaders/silhouette_retained.wgsl`). A child bred from a parent
-//! is counted by copying the parent's slot and drawing only the instances the child lost
-//! (subtracting) and gained (adding); the fragment that takes a pixel from 0 to 1, or from
-//! 1 to 0, changes the child's counts. Only the changed instances are uploaded and drawn,
-//! and the counts are exactly those of drawing the child from nothing, since the same
-//! instances give the same fragments (the vertex stage is [`GpuSilhouetteScorer`]'s, with
-//! an invariant position).
+//! pixel of each target ([`shapegen_shaders::SILHOUETTE_RETAINED`]). A child bred from a
+//! parent is counted by copying the parent's slot and drawing only the instances the child
+//! lost (subtracting) and gained (adding); the fragment that takes a pixel from 0 to 1, or
+//! from 1 to 0, changes the child's counts. Only the changed instances are uploaded and
+//! drawn, and the counts are exactly those of drawing the child from nothing, since the
+//! same instances give the same fragments (the vertex stage is [`GpuSilhouetteScorer`]'s,
+//! with an invariant position).
 
 use std::collections::{HashMap, HashSet};
 use std::ops::Range;
@@ -27,13 +27,7 @@ use crate::score::InstanceBatch;
 use crate::score::retained::{InstanceDiff, RetentionStats, genome_key};
 use crate::{Genome, Grammar};
 
-/// The WGSL source.
-pub(super) const SHADER: &str = concat!(
-    include_str!("../../../shaders/clip.wgsl"),
-    include_str!("../../../shaders/silhouette_retained.wgsl")
-);
-
-/// Mirrors the WGSL struct `Params` of `shaders/silhouette_retained.wgsl`.
+/// Mirrors the WGSL struct `Params` of [`shapegen_shaders::SILHOUETTE_RETAINED`].
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 struct Params {
@@ -166,7 +160,7 @@ impl GpuRetention {
             pipeline(
                 scorer.gpu,
                 "silhouette retained",
-                SHADER,
+                shapegen_shaders::SILHOUETTE_RETAINED,
                 size_of::<GpuInstance>() as u64,
                 &wgpu::vertex_attr_array![4 => Uint32, 5 => Uint32, 6 => Uint32],
             )

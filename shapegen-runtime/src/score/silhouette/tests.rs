@@ -642,12 +642,6 @@ fn scorer_errors_name_the_limit() {
 }
 
 #[test]
-fn the_shaders_validate() {
-    crate::gpu::validate_wgsl(gpu::SHADER).unwrap();
-    crate::gpu::validate_wgsl(gpu_retained::SHADER).unwrap();
-}
-
-#[test]
 fn the_tree_meshes_take_the_hull_path_and_a_concave_mesh_does_not() {
     // Copies of the tree generator's meshes, so that the crate's tests stay inside it.
     let trunk = crate::Mesh::from_obj_str("trunk", include_str!("testdata/trunk.obj"));

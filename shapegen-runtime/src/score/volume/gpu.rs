@@ -2,12 +2,12 @@
 //!
 //! Every model's box instances are quantised on the CPU ([`QuantBox`]) into one buffer
 //! per pass, and their spans' out-of-grid voxels are counted there too (a closed form
-//! per instance); `shaders/volume.wgsl` runs one invocation per (instance, row) pair,
-//! found from a prefix sum of rows per instance, marks the row's voxels in the model's
-//! bitset with `atomicOr`, marks those that were already set in a second bitset (voxels
-//! covered more than once) and adds what it counted to the model's counters. A pass
-//! holds as many models as their bitsets fit in one storage binding; all passes go in
-//! one submission, followed by one small read-back of the counters.
+//! per instance); the shader [`shapegen_shaders::VOLUME`] runs one invocation per
+//! (instance, row) pair, found from a prefix sum of rows per instance, marks the row's
+//! voxels in the model's bitset with `atomicOr`, marks those that were already set in a
+//! second bitset (voxels covered more than once) and adds what it counted to the model's
+//! counters. A pass holds as many models as their bitsets fit in one storage binding; all
+//! passes go in one submission, followed by one small read-back of the counters.
 
 use std::sync::Mutex;
 
@@ -21,9 +21,6 @@ use super::{VolumeCounts, VolumeScorer};
 use crate::gpu::{GpuContext, GpuError};
 use crate::score::InstanceBatch;
 
-/// The shader's source.
-pub const VOLUME_WGSL: &str = include_str!("../../../shaders/volume.wgsl");
-
 /// Invocations per workgroup (`@workgroup_size` in the shader).
 const WORKGROUP: u64 = 64;
 /// Most workgroups along one dispatch dimension.
@@ -35,7 +32,8 @@ const OVERLAP_HITS: usize = 2 * MAX_CLASSES;
 const OUT_OF_GRID_HITS: usize = OVERLAP_HITS + 2;
 const OVERLAP_VOXELS: usize = OUT_OF_GRID_HITS + 2;
 
-/// One pass's uniforms. Mirrors `struct Params` in `shaders/volume.wgsl` (48 bytes).
+/// One pass's uniforms. Mirrors `struct Params` in [`shapegen_shaders::VOLUME`] (48
+/// bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 struct PassParams {
@@ -148,7 +146,7 @@ impl<'a> GpuVolumeScorer<'a> {
                 "the class grid of {class_bytes} bytes exceeds the largest storage binding of {max} bytes"
             )));
         }
-        let module = ctx.shader("volume", VOLUME_WGSL)?;
+        let module = ctx.shader("volume", shapegen_shaders::VOLUME)?;
         let (pipeline, classes) = ctx.checked(|| {
             let pipeline = ctx
                 .device
@@ -436,11 +434,6 @@ fn pack_classes(voxels: &[u8]) -> Vec<u32> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn the_shader_validates() {
-        crate::gpu::validate_wgsl(VOLUME_WGSL).unwrap();
-    }
 
     #[test]
     fn classes_pack_four_bits_each() {

@@ -112,7 +112,7 @@ mod span;
 
 pub use classes::{MAX_CLASSES, VoxelClasses};
 pub use count::VolumeScratch;
-pub use gpu::{GpuVolumeScorer, VOLUME_WGSL};
+pub use gpu::GpuVolumeScorer;
 pub use grid::{Grid, GridError, MAX_VOXELS};
 pub use retained::VolumeState;
 

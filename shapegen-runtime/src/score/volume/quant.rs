@@ -11,7 +11,7 @@
 //! point thick along its axis) is 0. From then on coverage is integer arithmetic only: a lattice point of the bounding box is
 //! covered iff `-H_a <= A_a i + B_a j + C_a k + D_a <= H_a` for all three axes, and in
 //! row `(j, k)` the covered `i` form one interval found by exact floor and ceiling
-//! divisions ([`QuantBox::row`], mirrored by `row_interval` in `shaders/volume.wgsl`).
+//! divisions ([`QuantBox::row`], mirrored by `row_interval` in [`shapegen_shaders::VOLUME`]).
 //!
 //! # Scale and precision
 //! `s_a` is the largest integer with `M_a 2^s_a <= 2^29`, where
@@ -45,7 +45,7 @@ pub(crate) const MAX_INDEX: f64 = (1u64 << 30) as f64;
 /// Target bound of the scaled terms of one axis.
 const TERM_BUDGET: f64 = (1u64 << 29) as f64;
 
-/// One box instance, quantised. Mirrors `struct QuantBox` in `shaders/volume.wgsl`
+/// One box instance, quantised. Mirrors `struct QuantBox` in [`shapegen_shaders::VOLUME`]
 /// (six `vec4<i32>`, 96 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
