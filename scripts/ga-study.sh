@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The GA study that preceded the paper (CESCG, ALGORITHMS.md section 4), reproduced with
+# The GA study that preceded the paper (Haubenwallner, CESCG 2017), reproduced with
 # `shapegen sweep` on the paper's spaceship scene: one setting at a time around the
 # paper's settings for that scene (population 150, elitism 30, initial length 50,
 # mutation 30 % split 45 / 45 / 10, parents by 10-tournament and roulette, the original's
