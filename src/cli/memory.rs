@@ -98,21 +98,30 @@ fn check(scene: &Scene, shape: &RunShape, jobs: usize, limit: MemoryArgs) -> any
         return Ok(());
     };
     let estimate = scene.memory_estimate(shape).times(jobs);
-    estimate.check(limit, &source).map_err(anyhow::Error::msg)
+    Ok(estimate.check(limit, &source)?)
+}
+
+/// Why a text is not a size as `--max-memory` takes it.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum SizeError {
+    /// Not a number, with or without a unit.
+    #[error(
+        "`{0}` is not a size: give a number of bytes or a number with K, M, G or T (powers \
+         of 1024), e.g. 512M or 4G"
+    )]
+    NotASize(String),
+    /// A number of bytes below one, or too large to count.
+    #[error("`{0}`: give a size of at least one byte, e.g. 512M or 4G")]
+    OutOfRange(String),
 }
 
 /// A size as `--max-memory` takes it: a number (a fraction allowed) and a unit K, M, G
 /// or T (powers of 1024, optionally followed by `B` or `iB`, any case), or bytes.
 ///
 /// # Errors
-/// A message saying what is valid, for anything else or a size of 0.
-pub fn parse_size(text: &str) -> Result<u64, String> {
-    let invalid = || {
-        format!(
-            "`{text}` is not a size: give a number of bytes or a number with K, M, G or T \
-             (powers of 1024), e.g. 512M or 4G"
-        )
-    };
+/// [`SizeError`], saying what is valid, for anything else or a size of 0.
+pub fn parse_size(text: &str) -> Result<u64, SizeError> {
+    let invalid = || SizeError::NotASize(text.to_owned());
     let t = text.trim();
     let lower = t.to_ascii_lowercase();
     let digits = lower.trim_end_matches(|c: char| c.is_ascii_alphabetic());
@@ -128,9 +137,7 @@ pub fn parse_size(text: &str) -> Result<u64, String> {
     let number: f64 = digits.trim().parse().map_err(|_| invalid())?;
     let size = number * (1u64 << shift) as f64;
     if !size.is_finite() || size < 1.0 || size >= u64::MAX as f64 {
-        return Err(format!(
-            "`{text}`: give a size of at least one byte, e.g. 512M or 4G"
-        ));
+        return Err(SizeError::OutOfRange(text.to_owned()));
     }
     Ok(size as u64)
 }
@@ -237,7 +244,7 @@ mod tests {
     #[test]
     fn sizes_that_are_not_refused_with_what_is_valid() {
         for bad in ["", "G", "4X", "four G", "-1G", "1e400", "0", "0.1"] {
-            let err = parse_size(bad).unwrap_err();
+            let err = parse_size(bad).unwrap_err().to_string();
             assert!(err.contains("512M"), "{bad}: {err}");
         }
     }

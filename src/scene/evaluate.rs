@@ -22,7 +22,7 @@ use shapegen_runtime::score::volume::{GpuVolumeScorer, VolumeCounts, VolumeScore
 use shapegen_runtime::score::{InstanceBatch, LengthPenalty, Scorer, count_batch};
 use shapegen_runtime::{Genome, Grammar, Instance};
 
-use super::{Scene, SceneError, SilhouetteGoal, VolumeGoal};
+use super::{BackendError, Scene, SceneError, SilhouetteGoal, ValueError, VolumeGoal};
 
 /// Declares the kinds of scorer, each once:
 ///
@@ -33,7 +33,8 @@ use super::{Scene, SceneError, SilhouetteGoal, VolumeGoal};
 ///
 /// `table` names the kind's table in scene files and its key in `shapegen score`'s
 /// output; `CpuScorer` implements [`Scorer`] with `Counts`, and `GpuScorer` has
-/// `new(&GpuContext, &CpuScorer)` and `count_batch(&InstanceBatch, &mut [Counts])`. It
+/// `new(&GpuContext, &CpuScorer)` and `count_batch(&InstanceBatch, &mut [Counts])`;
+/// making the `CpuScorer` fails with an error that a [`ValueError`] holds. It
 /// expands into [`ScorerKind`], [`ScorerGoal`], [`AnyScorer`], [`AnyCounts`], the GPU
 /// paths, their dispatch, and a typed accessor per kind on [`SceneScorer`]
 /// (`scorer.volume()`, `scorer.silhouette()`, ...).
@@ -184,12 +185,11 @@ macro_rules! scorer_kinds {
             }
 
             /// Its scorer of models made of `meshes`, or why there is none.
-            fn scorer(&self, meshes: &BoundMeshes) -> Result<AnyScorer, String> {
+            fn scorer(&self, meshes: &BoundMeshes) -> Result<AnyScorer, ValueError> {
                 match self {
                     $(ScorerGoal::$kind($g) => {
                         let $meshes = meshes;
-                        $new.map(AnyScorer::$kind)
-                            .map_err(|err| shapegen_runtime::error_chain(&err))
+                        $new.map(AnyScorer::$kind).map_err(ValueError::from)
                     })*
                 }
             }
@@ -396,8 +396,9 @@ impl SceneScorer {
     /// The scene's scorers for grammar `G`, which must be the scene's generator.
     ///
     /// # Errors
-    /// [`SceneError::Invalid`] when the scene's meshes lack one the grammar uses, a
-    /// target cannot be used, or the scene's goal is [`objectives`](Scene::objectives).
+    /// [`SceneError::Value`] when the scene's meshes lack one the grammar uses or a
+    /// target cannot be used, [`SceneError::Invalid`] when the scene's goal is
+    /// [`objectives`](Scene::objectives).
     pub fn new<G: Grammar>(scene: &Scene) -> Result<SceneScorer, SceneError> {
         if scene.objectives.is_some() {
             return Err(scene.invalid(
@@ -411,13 +412,13 @@ impl SceneScorer {
         let meshes = scene
             .meshes
             .bind(G::GRAPH)
-            .map_err(|err| scene.invalid("meshes", shapegen_runtime::error_chain(&err)))?;
+            .map_err(|err| scene.refused("meshes", err))?;
         let scorers = scene
             .scorers
             .iter()
             .map(|goal| {
                 goal.scorer(&meshes)
-                    .map_err(|reason| scene.invalid(goal.kind().name(), reason))
+                    .map_err(|cause| scene.refused(goal.kind().name(), cause))
             })
             .collect::<Result<_, _>>()?;
         Ok(SceneScorer {
@@ -436,8 +437,8 @@ impl SceneScorer {
     /// over software adapters, which are slower than the CPU path.
     ///
     /// # Errors
-    /// [`SceneError::Backend`] for [`BackendChoice::Gpu`] without a device, or when the
-    /// scene cannot run on it.
+    /// [`SceneError::Backend`] for [`BackendChoice::Gpu`]: [`BackendError::NoAdapter`]
+    /// without a device, [`BackendError::Gpu`] when the scene cannot run on it.
     pub fn on<'a>(
         &'a self,
         choice: BackendChoice,
@@ -450,11 +451,7 @@ impl SceneScorer {
         };
         let context = match (choice, gpu) {
             (BackendChoice::Cpu, _) => return Ok(cpu("")),
-            (BackendChoice::Gpu, None) => {
-                return Err(SceneError::Backend(
-                    "--gpu asks for the GPU, but no GPU adapter was found".into(),
-                ));
-            }
+            (BackendChoice::Gpu, None) => return Err(BackendError::NoAdapter.into()),
             (BackendChoice::Auto, None) => return Ok(cpu(" (no GPU adapter)")),
             (BackendChoice::Auto, Some(context))
                 if context.info.device_type == wgpu::DeviceType::Cpu =>
@@ -470,7 +467,7 @@ impl SceneScorer {
                 gpu,
                 description: format!("GPU: {}", context.describe()),
             }),
-            Err(err) if choice == BackendChoice::Gpu => Err(SceneError::Backend(err.to_string())),
+            Err(err) if choice == BackendChoice::Gpu => Err(BackendError::Gpu(err).into()),
             Err(err) => Ok(cpu(&format!(" ({err})"))),
         }
     }
@@ -522,15 +519,18 @@ impl Backend<'_> {
     /// number, as `key = value`. Always passes on the CPU.
     ///
     /// # Errors
-    /// [`SceneError::Backend`] naming the setting, the number and the device's bound.
+    /// [`SceneError::Backend`] with [`BackendError::Batch`]: the setting, the number and
+    /// the device's bound.
     pub fn check_batch(&self, models: u64, setting: &str) -> Result<(), SceneError> {
         let max = self.gpu.iter().map(AnyScorer::max_batch).min();
         match max {
-            Some(max) if models > max as u64 => Err(SceneError::Backend(format!(
-                "{setting} has the GPU count {models} models at once, but the counts of at most \
-                 {max} fit the storage bindings of {}: lower it, or count on the CPU (--cpu)",
-                self.description
-            ))),
+            Some(max) if models > max as u64 => Err(BackendError::Batch {
+                setting: setting.to_owned(),
+                models,
+                max,
+                backend: self.description.clone(),
+            }
+            .into()),
             _ => Ok(()),
         }
     }

@@ -19,6 +19,8 @@ use std::path::Path;
 use image::{DynamicImage, ImageReader, Limits};
 use shapegen_runtime::score::silhouette::MAX_TARGET_PIXELS;
 
+use super::{DecodeError, ImageError};
+
 /// Bytes a decoder may allocate: the largest target at 16-bit RGBA, and a little more.
 const MAX_DECODE_BYTES: u64 = MAX_TARGET_PIXELS * 8 + (1 << 20);
 
@@ -27,42 +29,48 @@ const MAX_DECODE_BYTES: u64 = MAX_TARGET_PIXELS * 8 + (1 << 20);
 /// header.
 ///
 /// # Errors
-/// A message when the bytes are not an image of a known format, the image is too large,
-/// or it does not decode.
-pub fn decode_image(bytes: &[u8]) -> Result<DynamicImage, String> {
+/// [`DecodeError::Decoder`] when the bytes are not an image of a known format or do not
+/// decode, [`DecodeError::TooLarge`] when the image is too large.
+pub fn decode_image(bytes: &[u8]) -> Result<DynamicImage, DecodeError> {
     let reader = || {
         let mut reader = ImageReader::new(Cursor::new(bytes))
             .with_guessed_format()
-            .map_err(|err| err.to_string())?;
+            .map_err(|err| DecodeError::Decoder(err.into()))?;
         let mut limits = Limits::default();
         limits.max_alloc = Some(MAX_DECODE_BYTES);
         reader.limits(limits);
-        Ok::<_, String>(reader)
+        Ok::<_, DecodeError>(reader)
     };
-    let (width, height) = reader()?.into_dimensions().map_err(|err| err.to_string())?;
+    let (width, height) = reader()?.into_dimensions().map_err(DecodeError::Decoder)?;
     let pixels = u64::from(width) * u64::from(height);
     if pixels > MAX_TARGET_PIXELS {
-        return Err(format!(
-            "the image is {width} x {height} pixels; at most {MAX_TARGET_PIXELS} pixels are \
-             supported"
-        ));
+        return Err(DecodeError::TooLarge {
+            width,
+            height,
+            max: MAX_TARGET_PIXELS,
+        });
     }
-    reader()?.decode().map_err(|err| err.to_string())
+    reader()?.decode().map_err(DecodeError::Decoder)
 }
 
 /// Reads and decodes the target image at `path` ([`decode_image`]).
 ///
 /// # Errors
-/// A message naming the file when it cannot be read or decoded.
-pub fn read_image(path: &Path) -> Result<DynamicImage, String> {
-    let bytes =
-        std::fs::read(path).map_err(|err| format!("cannot read `{}`: {err}", path.display()))?;
-    decode_image(&bytes).map_err(|err| format!("`{}`: {err}", path.display()))
+/// [`ImageError`], naming the file, when it cannot be read or decoded.
+pub fn read_image(path: &Path) -> Result<DynamicImage, ImageError> {
+    let bytes = std::fs::read(path).map_err(|source| ImageError::Read {
+        path: path.to_owned(),
+        source,
+    })?;
+    decode_image(&bytes).map_err(|source| ImageError::Decode {
+        path: path.to_owned(),
+        source,
+    })
 }
 
 #[cfg(test)]
 mod tests {
-    use super::decode_image;
+    use super::{decode_image, read_image};
 
     /// A PNG whose header claims `width x height` grey pixels, with one row of data.
     fn claiming(width: u32, height: u32) -> Vec<u8> {
@@ -97,7 +105,9 @@ mod tests {
 
     #[test]
     fn an_image_claiming_too_many_pixels_is_refused_from_its_header() {
-        let err = decode_image(&claiming(100_000, 100_000)).unwrap_err();
+        let err = decode_image(&claiming(100_000, 100_000))
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("100000 x 100000"), "{err}");
         assert!(err.contains("at most 16777216 pixels"), "{err}");
     }
@@ -106,5 +116,26 @@ mod tests {
     fn what_is_not_an_image_is_refused() {
         assert!(decode_image(b"").is_err());
         assert!(decode_image(b"\x89PNG\r\n\x1a\n").is_err());
+    }
+
+    #[test]
+    fn a_file_that_does_not_decode_is_named_with_the_decoders_message_once() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("broken.png");
+        // A broken CRC: the decoder's error prints its cause and also gives it as its
+        // `source()`.
+        let mut png = claiming(4, 3);
+        png[30] ^= 0xff;
+        std::fs::write(&path, &png).unwrap();
+        let decoder = decode_image(&png).unwrap_err().to_string();
+        assert!(decoder.contains("CRC error"), "{decoder}");
+        let err = read_image(&path).unwrap_err();
+        assert_eq!(err.to_string(), format!("`{}`", path.display()));
+        let chain = shapegen_runtime::error_chain(&err);
+        assert_eq!(chain, format!("`{}`: {decoder}", path.display()));
+        let missing = read_image(&dir.path().join("missing.png")).unwrap_err();
+        let chain = shapegen_runtime::error_chain(&missing);
+        assert!(chain.starts_with("cannot read `"), "{chain}");
+        assert!(chain.contains("missing.png`: "), "{chain}");
     }
 }

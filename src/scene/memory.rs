@@ -74,7 +74,9 @@ pub struct MemoryPart {
 /// let estimate = scene.memory_estimate(&shape);
 /// assert!(estimate.total() > 100 << 30);
 /// let refused = estimate.check(16 << 30, "that --max-memory allows").unwrap_err();
-/// assert!(refused.contains("optimizer.population = 100000000"), "{refused}");
+/// assert_eq!((refused.estimate.total(), refused.limit), (estimate.total(), 16 << 30));
+/// let message = refused.to_string();
+/// assert!(message.contains("optimizer.population = 100000000"), "{message}");
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -107,14 +109,24 @@ impl MemoryEstimate {
         self
     }
 
-    /// Checks the estimate against `limit` bytes; over it, the error gives the estimate,
-    /// its parts and the setting of the largest. `source` says where the limit comes
+    /// Checks the estimate against `limit` bytes; `limit_from` says where the limit comes
     /// from, following its size: "that --max-memory allows", "available".
-    pub fn check(&self, limit: u64, source: &str) -> Result<(), String> {
-        let total = self.total();
-        if total <= limit {
+    ///
+    /// # Errors
+    /// [`MemoryError`] when the estimate is over the limit.
+    pub fn check(&self, limit: u64, limit_from: &str) -> Result<(), MemoryError> {
+        if self.total() <= limit {
             return Ok(());
         }
+        Err(MemoryError {
+            estimate: self.clone(),
+            limit,
+            limit_from: limit_from.to_owned(),
+        })
+    }
+
+    /// The largest parts, at most four, in words, with their sizes and settings.
+    fn largest_parts(&self) -> String {
         let parts: Vec<String> = self
             .parts
             .iter()
@@ -122,16 +134,34 @@ impl MemoryEstimate {
             .take(4)
             .map(|p| format!("{} {} ({})", bytes(p.bytes), p.what, p.setting))
             .collect();
-        let largest = &self.parts[0];
-        Err(format!(
-            "this run would take about {} of memory, more than the {} {source}: {}. The \
-             largest part comes from {}: change it, or give --max-memory SIZE to allow more",
-            bytes(total),
-            bytes(limit),
-            parts.join("; "),
-            largest.setting,
-        ))
+        parts.join("; ")
     }
+
+    /// The setting of the largest part; empty for an estimate of no parts.
+    fn largest_setting(&self) -> &str {
+        self.parts.first().map_or("", |p| &p.setting)
+    }
+}
+
+/// A run whose estimated memory is over the limit: the estimate, its largest parts and
+/// the setting of the largest.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "this run would take about {} of memory, more than the {} {limit_from}: {}. The largest \
+     part comes from {}: change it, or give --max-memory SIZE to allow more",
+    bytes(estimate.total()),
+    bytes(*limit),
+    estimate.largest_parts(),
+    estimate.largest_setting()
+)]
+pub struct MemoryError {
+    /// The estimate.
+    pub estimate: MemoryEstimate,
+    /// The limit, in bytes.
+    pub limit: u64,
+    /// Where the limit comes from, following its size: "that --max-memory allows",
+    /// "available (MemAvailable in /proc/meminfo)".
+    pub limit_from: String,
 }
 
 /// `n` bytes in words: `512 B`, `3.4 MiB`, `1.2 GiB`, ...
@@ -448,7 +478,10 @@ mod tests {
         let (_, estimate) = spaceship(100_000, 2, true);
         let total = estimate.total();
         assert_eq!(estimate.check(total, "available"), Ok(()));
-        let err = estimate.check(total - 1, "available").unwrap_err();
+        let err = estimate
+            .check(total - 1, "available")
+            .unwrap_err()
+            .to_string();
         assert!(err.contains(&bytes(total)), "{err}");
         assert!(
             err.contains("comes from optimizer.population = 100000"),

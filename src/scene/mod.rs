@@ -121,14 +121,16 @@ use shapegen_runtime::score::silhouette::ImageTarget;
 use shapegen_runtime::score::volume::{Grid, VolumeTarget};
 use shapegen_runtime::score::{Form, LengthPenalty};
 
-pub use error::SceneError;
+pub use error::{BackendError, DecodeError, ImageError, SceneError, SetError, ValueError};
 pub use evaluate::{
     AnyCounts, AnyScorer, Backend, BackendChoice, SceneCounts, SceneEvaluator, SceneScorer,
     ScorerGoal, ScorerKind,
 };
 pub use image::{decode_image, read_image};
-pub use memory::{JSON_BYTES_PER_WORD, MemoryEstimate, MemoryPart, RunShape};
-pub use method::{Method, MethodJob, MethodSettings, UnknownMethod};
+pub use memory::{JSON_BYTES_PER_WORD, MemoryError, MemoryEstimate, MemoryPart, RunShape};
+pub use method::{
+    Method, MethodJob, MethodSettings, SettingsCause, SettingsKeyError, UnknownMethod,
+};
 pub use objective::ObjectiveEvaluator;
 pub use optimizer::{OptimizerGoal, Overrides};
 
@@ -247,7 +249,12 @@ impl Scene {
         } else {
             let mut table: toml::Table =
                 toml::from_str(text).map_err(|err| syntax(err.to_string()))?;
-            optimizer::apply_overrides(&mut table, &overrides.sets).map_err(syntax)?;
+            optimizer::apply_overrides(&mut table, &overrides.sets).map_err(|error| {
+                SceneError::Set {
+                    path: path.to_owned(),
+                    error,
+                }
+            })?;
             toml::Value::Table(table)
                 .try_into()
                 .map_err(|err: toml::de::Error| syntax(format!("after --set: {}", err.message())))?
@@ -259,7 +266,8 @@ impl Scene {
     /// overrides read as that method's (`shapegen compare` runs each method so).
     ///
     /// # Errors
-    /// When a key of the table is not one of the method's settings, or out of range.
+    /// [`SceneError::Optimizer`] when a key of the table is not one of the method's
+    /// settings, or out of range.
     pub fn optimizer_for(&self, method: Method) -> Result<OptimizerGoal, SceneError> {
         let overrides = Overrides {
             method: Some(method),
@@ -271,7 +279,10 @@ impl Scene {
             self.islands,
             &overrides,
         )
-        .map_err(|(key, reason)| self.invalid(&key, reason))
+        .map_err(|error| SceneError::Optimizer {
+            path: self.path.clone(),
+            error: Box::new(error),
+        })
     }
 
     /// The multi-objective GA's settings of a scene with objectives: the `[optimizer]`
@@ -295,6 +306,15 @@ impl Scene {
             path: self.path.clone(),
             key: key.to_owned(),
             reason,
+        }
+    }
+
+    /// An error about `key` of this scene, whose value cannot be used for `cause`.
+    pub(crate) fn refused(&self, key: &str, cause: impl Into<ValueError>) -> SceneError {
+        SceneError::Value {
+            path: self.path.clone(),
+            key: key.to_owned(),
+            cause: Box::new(cause.into()),
         }
     }
 }

@@ -15,7 +15,7 @@ use shapegen_runtime::{Genome, Grammar};
 use super::file::{ObjectiveFile, ProjectionFile};
 use super::image::read_image;
 use super::resolve::Resolver;
-use super::{Scene, SceneError};
+use super::{Scene, SceneError, ValueError};
 
 impl Resolver<'_> {
     /// The objectives of `[[objective]]` tables, in order.
@@ -45,8 +45,7 @@ impl Resolver<'_> {
                 objective,
             ));
         }
-        ObjectiveSet::new(entries)
-            .map_err(|err| self.invalid("objective", shapegen_runtime::error_chain(&err)))
+        ObjectiveSet::new(entries).map_err(|err| self.refused("objective", err))
     }
 
     /// The `name` of the `i`th `[[objective]]` table, and the rest read as its kind's.
@@ -59,26 +58,27 @@ impl Resolver<'_> {
             .remove("name")
             .map(toml::Value::try_into::<String>)
             .transpose()
-            .map_err(|err| self.invalid(format!("objective[{i}].name"), err.message()))?;
+            .map_err(|err| self.refused(format!("objective[{i}].name"), ValueError::Toml(err)))?;
         let kind = table
             .get("kind")
             .and_then(toml::Value::as_str)
             .map(str::to_owned);
-        let file = toml::Value::Table(table).try_into().map_err(|err| {
-            // serde's message names the key and what is valid; this adds the table, and
-            // the kind whose keys they are.
-            let message = err.message();
-            match kind {
-                _ if message.starts_with("unknown variant") => {
-                    self.invalid(format!("objective[{i}].kind"), message)
+        let file = toml::Value::Table(table)
+            .try_into()
+            .map_err(|err: toml::de::Error| {
+                // serde's message names the key and what is valid; this adds the table, and
+                // the kind whose keys they are.
+                match kind {
+                    _ if err.message().starts_with("unknown variant") => {
+                        self.refused(format!("objective[{i}].kind"), ValueError::Toml(err))
+                    }
+                    Some(kind) => self.refused(
+                        format!("objective[{i}]"),
+                        ValueError::ObjectiveKey { kind, error: err },
+                    ),
+                    None => self.refused(format!("objective[{i}]"), ValueError::Toml(err)),
                 }
-                Some(kind) => self.invalid(
-                    format!("objective[{i}]"),
-                    format!("kind \"{kind}\": {message}"),
-                ),
-                None => self.invalid(format!("objective[{i}]"), message),
-            }
-        })?;
+            })?;
         Ok((name, file))
     }
 
@@ -91,11 +91,11 @@ impl Resolver<'_> {
     ) -> Result<Objective, SceneError> {
         let path = self.file(key, &p.image)?;
         let image = read_image(&path)
-            .map_err(|err| self.invalid(key, err))?
+            .map_err(|err| self.refused(key, err))?
             .into_luma8();
         let (min, max) = (Vec2::from(p.min), Vec2::from(p.max));
         let projection = ProjectionMatch::from_image(view, min, max, &image)
-            .map_err(|err| self.invalid(key, shapegen_runtime::error_chain(&err)))?;
+            .map_err(|err| self.refused(key, err))?;
         Ok(Objective::Projection(projection))
     }
 }
@@ -122,8 +122,8 @@ impl<'a> ObjectiveEvaluator<'a> {
     /// counting bred children incrementally where it can.
     ///
     /// # Errors
-    /// [`SceneError::Invalid`] when the scene has no objectives or its meshes lack one
-    /// the grammar uses.
+    /// [`SceneError::Invalid`] when the scene has no objectives, [`SceneError::Value`]
+    /// when its meshes lack one the grammar uses.
     pub fn new<G: Grammar>(scene: &'a Scene) -> Result<ObjectiveEvaluator<'a>, SceneError> {
         let goal = scene.objectives.as_ref().ok_or_else(|| {
             scene.invalid(
@@ -134,7 +134,7 @@ impl<'a> ObjectiveEvaluator<'a> {
         let meshes = scene
             .meshes
             .bind(G::GRAPH)
-            .map_err(|err| scene.invalid("meshes", shapegen_runtime::error_chain(&err)))?;
+            .map_err(|err| scene.refused("meshes", err))?;
         Ok(ObjectiveEvaluator {
             set: &goal.set,
             bred: BredObjectives::new(&goal.set, &meshes),

@@ -9,7 +9,8 @@ use shapegen_runtime::optimize::islands::{IslandGa, IslandGaSettings, IslandSett
 use shapegen_runtime::optimize::multi::MultiGaSettings;
 use shapegen_runtime::optimize::{Budget, Settings};
 
-use super::method::{Method, MethodJob, MethodSettings, UnknownMethod};
+use super::SetError;
+use super::method::{Method, MethodJob, MethodSettings, SettingsCause, SettingsKeyError};
 
 /// The `[optimizer]` table, resolved. Keys the method does not know are refused.
 ///
@@ -135,36 +136,42 @@ impl Overrides {
     }
 }
 
+/// The range of a budget in seconds.
+const SECONDS: &str = "a number of seconds > 0";
+
+/// The range of a budget of evaluations.
+const EVALUATIONS: &str = "a whole number > 0";
+
 /// `value` if it can be a budget in seconds.
 fn budget_seconds(value: f64) -> Option<f64> {
     (value.is_finite() && value > 0.0).then_some(value)
 }
 
+/// `value`, printed, out of the range `valid`.
+fn out_of_range(value: impl ToString, valid: &'static str) -> SettingsCause {
+    SettingsCause::OutOfRange {
+        value: value.to_string(),
+        valid,
+    }
+}
+
 /// Resolves the `[optimizer]` table over the generator's `presets` for the method, with
-/// the `[islands]` table and the typed `overrides` in place of the keys they name;
-/// errors are `(key, reason)`.
+/// the `[islands]` table and the typed `overrides` in place of the keys they name.
 pub(super) fn resolve(
     presets: &Presets,
     mut table: toml::Table,
     islands: Option<IslandSettings>,
     overrides: &Overrides,
-) -> Result<OptimizerGoal, (String, String)> {
-    let key = |k: &str| format!("optimizer.{k}");
+) -> Result<OptimizerGoal, SettingsKeyError> {
+    let error =
+        |k: &str, cause: SettingsCause| SettingsKeyError::new(format!("optimizer.{k}"), cause);
     let written = match table.remove("method") {
         None => None,
         Some(toml::Value::String(m)) => Some(
             m.parse()
-                .map_err(|e: UnknownMethod| (key("method"), e.to_string()))?,
+                .map_err(|e| error("method", SettingsCause::UnknownMethod(e)))?,
         ),
-        Some(other) => {
-            return Err((
-                key("method"),
-                format!(
-                    "{other} is not a method; the methods are {}",
-                    Method::names()
-                ),
-            ));
-        }
+        Some(other) => return Err(error("method", SettingsCause::NotAMethod(other))),
     };
     let islands = match (islands, overrides.islands) {
         (None, None) => None,
@@ -183,19 +190,15 @@ pub(super) fn resolve(
             Method::DEFAULT
         });
     if islands.is_some() && method != Method::Ga {
-        return Err((
-            "islands".into(),
-            format!(
-                "the island model runs the GA, and the method is \"{}\"; leave out \
-                 [islands] and --islands, or use method \"ga\"",
-                method.name()
-            ),
+        return Err(SettingsKeyError::new(
+            "islands",
+            SettingsCause::IslandsNeedGa(method),
         ));
     }
     let seed = match table.remove("seed") {
         None => 1,
         Some(toml::Value::Integer(s)) if s >= 0 => s as u64,
-        Some(other) => return Err((key("seed"), format!("{other} must be a whole number >= 0"))),
+        Some(other) => return Err(error("seed", out_of_range(other, "a whole number >= 0"))),
     };
     let written_seconds = match table.remove("seconds") {
         None => None,
@@ -205,38 +208,26 @@ pub(super) fn resolve(
             .and_then(budget_seconds)
         {
             Some(s) => Some(s),
-            None => {
-                return Err((
-                    key("seconds"),
-                    format!("{v} must be a number of seconds > 0"),
-                ));
-            }
+            None => return Err(error("seconds", out_of_range(v, SECONDS))),
         },
     };
     let written_evaluations = match table.remove("evaluations") {
         None => None,
         Some(toml::Value::Integer(n)) if n > 0 => Some(n as u64),
-        Some(other) => {
-            return Err((
-                key("evaluations"),
-                format!("{other} must be a whole number > 0"),
-            ));
-        }
+        Some(other) => return Err(error("evaluations", out_of_range(other, EVALUATIONS))),
     };
     let seconds = match overrides.seconds {
         None => written_seconds,
-        Some(s) => Some(budget_seconds(s).ok_or_else(|| {
-            (
-                "--seconds".to_owned(),
-                format!("{s} must be a number of seconds > 0"),
-            )
-        })?),
+        Some(s) => Some(
+            budget_seconds(s)
+                .ok_or_else(|| SettingsKeyError::new("--seconds", out_of_range(s, SECONDS)))?,
+        ),
     };
     let evaluations = match overrides.evaluations {
         Some(0) => {
-            return Err((
-                "--evaluations".into(),
-                "0 must be a whole number > 0".into(),
+            return Err(SettingsKeyError::new(
+                "--evaluations",
+                out_of_range(0, EVALUATIONS),
             ));
         }
         Some(n) => Some(n),
@@ -246,8 +237,7 @@ pub(super) fn resolve(
     if let (Some(islands), MethodSettings::Ga(ga)) = (islands, settings) {
         IslandGaSettings { ga, islands }.validate().map_err(|err| {
             let flag = err.field == "islands.count" && overrides.islands.is_some();
-            let key = if flag { "--islands" } else { err.field };
-            (key.to_owned(), err.to_string())
+            SettingsKeyError::new(if flag { "--islands" } else { err.field }, err)
         })?;
     }
     let mut goal = OptimizerGoal {
@@ -264,14 +254,14 @@ pub(super) fn resolve(
 }
 
 /// Takes `archive` (the multi-objective GA's archive size) out of an `[optimizer]`
-/// table: its value, or the default of [`MultiGaSettings`]; errors are `(key, reason)`.
-pub(super) fn take_archive(table: &mut toml::Table) -> Result<u32, (String, String)> {
+/// table: its value, or the default of [`MultiGaSettings`].
+pub(super) fn take_archive(table: &mut toml::Table) -> Result<u32, SettingsKeyError> {
     match table.remove("archive") {
         None => Ok(MultiGaSettings::default().archive),
         Some(toml::Value::Integer(n)) if (1..=i64::from(u32::MAX)).contains(&n) => Ok(n as u32),
-        Some(other) => Err((
-            "optimizer.archive".into(),
-            format!("{other} must be a whole number >= 1"),
+        Some(other) => Err(SettingsKeyError::new(
+            "optimizer.archive",
+            out_of_range(other, "a whole number >= 1"),
         )),
     }
 }
@@ -279,12 +269,10 @@ pub(super) fn take_archive(table: &mut toml::Table) -> Result<u32, (String, Stri
 /// Applies `key=value` overrides (`--set optimizer.population=200`) to a scene's TOML
 /// tree. The value is read as TOML (a number, a boolean, an array, a quoted string) or,
 /// when it is none of those, as a bare string.
-pub(super) fn apply_overrides(root: &mut toml::Table, sets: &[String]) -> Result<(), String> {
+pub(super) fn apply_overrides(root: &mut toml::Table, sets: &[String]) -> Result<(), SetError> {
     for set in sets {
         let Some((path, value)) = set.split_once('=') else {
-            return Err(format!(
-                "--set {set}: write it as key=value, e.g. optimizer.seed=3"
-            ));
+            return Err(SetError::NotKeyValue { set: set.clone() });
         };
         let value = toml::from_str::<toml::Table>(&format!("v = {value}"))
             .ok()
@@ -292,16 +280,20 @@ pub(super) fn apply_overrides(root: &mut toml::Table, sets: &[String]) -> Result
             .unwrap_or_else(|| toml::Value::String(value.to_owned()));
         let keys: Vec<&str> = path.trim().split('.').collect();
         if keys.iter().any(|k| k.is_empty()) {
-            return Err(format!("--set {set}: `{path}` is not a dotted key"));
+            return Err(SetError::NotDottedKey {
+                set: set.clone(),
+                key: path.to_owned(),
+            });
         }
         let mut table = &mut *root;
         for k in &keys[..keys.len() - 1] {
             let entry = table
                 .entry(k.to_string())
                 .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-            table = entry
-                .as_table_mut()
-                .ok_or_else(|| format!("--set {set}: `{k}` is not a table"))?;
+            table = entry.as_table_mut().ok_or_else(|| SetError::NotATable {
+                set: set.clone(),
+                part: k.to_string(),
+            })?;
         }
         table.insert(keys[keys.len() - 1].to_owned(), value);
     }
@@ -321,7 +313,7 @@ mod mcmc_tests {
             .presets
     }
 
-    fn mcmc(generator: &str, text: &str) -> Result<McmcSettings, (String, String)> {
+    fn mcmc(generator: &str, text: &str) -> Result<McmcSettings, SettingsKeyError> {
         let table: toml::Table = toml::from_str(text).unwrap();
         match resolve(&presets(generator), table, None, &Overrides::default())?.settings {
             MethodSettings::Rjmcmc(s) => Ok(s),
@@ -350,15 +342,16 @@ mod mcmc_tests {
         }
         for bad in ["\"talton\"", "1"] {
             let text = format!("{m}variant = {bad}\n");
-            let (key, reason) = mcmc("tree", &text).unwrap_err();
+            let SettingsKeyError { key, cause } = mcmc("tree", &text).unwrap_err();
             assert_eq!(key, "optimizer.variant");
+            let reason = cause.to_string();
             assert!(reason.contains("\"original\" and \"tempered\""), "{reason}");
         }
         // The tempered variant's own fields are checked when it runs.
         let odd = format!("{m}hot_acceptance = 1.0\n");
         assert!(mcmc("spaceship", &odd).is_ok());
         let text = format!("{odd}variant = \"tempered\"\n");
-        let (key, _) = mcmc("spaceship", &text).unwrap_err();
+        let key = mcmc("spaceship", &text).unwrap_err().key;
         assert_eq!(key, "optimizer.hot_acceptance");
     }
 
@@ -423,7 +416,9 @@ mod mcmc_tests {
                 "--evaluations",
             ),
         ] {
-            let (k, _) = resolve(&spaceship, toml::Table::new(), None, &bad).unwrap_err();
+            let k = resolve(&spaceship, toml::Table::new(), None, &bad)
+                .unwrap_err()
+                .key;
             assert_eq!(k, key);
         }
     }
@@ -431,9 +426,10 @@ mod mcmc_tests {
     #[test]
     fn a_value_of_the_wrong_type_is_refused_under_its_own_key() {
         let table = toml::from_str("population = \"abc\"\nelitism = 3\n").unwrap();
-        let (key, reason) =
+        let SettingsKeyError { key, cause } =
             resolve(&presets("spaceship"), table, None, &Overrides::default()).unwrap_err();
         assert_eq!(key, "optimizer.population");
+        let reason = cause.to_string();
         assert!(reason.contains("abc"), "{reason}");
     }
 
@@ -466,8 +462,9 @@ mod mcmc_tests {
         let plain = resolve(&spaceship, toml::Table::new(), None, &Overrides::default());
         assert!(matches!(plain.unwrap().settings, MethodSettings::Hybrid(_)));
         let rjmcmc = toml::from_str("method = \"rjmcmc\"\n").unwrap();
-        let (key, reason) = resolve(&spaceship, rjmcmc, None, &flag).unwrap_err();
+        let SettingsKeyError { key, cause } = resolve(&spaceship, rjmcmc, None, &flag).unwrap_err();
         assert_eq!(key, "islands");
+        let reason = cause.to_string();
         assert!(reason.contains("runs the GA"), "{reason}");
     }
 }
@@ -477,7 +474,7 @@ mod hybrid_tests {
     use super::*;
     use shapegen_runtime::optimize::{GaSettings, HybridSettings};
 
-    fn hybrid(text: &str) -> Result<HybridSettings, (String, String)> {
+    fn hybrid(text: &str) -> Result<HybridSettings, SettingsKeyError> {
         let presets = crate::registry::Registry::published()
             .get("spaceship")
             .unwrap()
@@ -520,10 +517,10 @@ mod hybrid_tests {
             ("elitism = 900", "optimizer.elitism"),
             ("operators = \"paper\"", "optimizer.operators"),
         ] {
-            let (k, reason) = hybrid(text).unwrap_err();
-            assert_eq!(k, key, "{text}: {reason}");
+            let SettingsKeyError { key: k, cause } = hybrid(text).unwrap_err();
+            assert_eq!(k, key, "{text}: {cause}");
         }
-        let (_, reason) = hybrid("refines = 2").unwrap_err();
+        let reason = hybrid("refines = 2").unwrap_err().cause.to_string();
         assert!(reason.contains("refines"), "{reason}");
     }
 }

@@ -16,7 +16,8 @@ use super::file::{
 };
 use super::image::read_image;
 use super::{
-    Method, ObjectiveGoal, Overrides, Scene, SceneError, ScorerGoal, SilhouetteGoal, VolumeGoal,
+    Method, ObjectiveGoal, Overrides, Scene, SceneError, ScorerGoal, SettingsKeyError,
+    SilhouetteGoal, ValueError, VolumeGoal,
 };
 use crate::registry::Registry;
 
@@ -36,6 +37,27 @@ impl<'a> Resolver<'a> {
             path: self.path.to_owned(),
             key: key.into(),
             reason: reason.into(),
+        }
+    }
+
+    /// An error about `key`, whose value cannot be used for `cause`.
+    pub(super) fn refused(
+        &self,
+        key: impl Into<String>,
+        cause: impl Into<ValueError>,
+    ) -> SceneError {
+        SceneError::Value {
+            path: self.path.to_owned(),
+            key: key.into(),
+            cause: Box::new(cause.into()),
+        }
+    }
+
+    /// An error about a key of the `[optimizer]` or `[islands]` table.
+    fn optimizer(&self, error: SettingsKeyError) -> SceneError {
+        SceneError::Optimizer {
+            path: self.path.to_owned(),
+            error: Box::new(error),
         }
     }
 
@@ -104,7 +126,7 @@ impl<'a> Resolver<'a> {
             } else {
                 meshes.register_obj_as_written(name.clone(), &path)
             };
-            registered.map_err(|err| self.invalid(&key, shapegen_runtime::error_chain(&err)))?;
+            registered.map_err(|err| self.refused(key, err))?;
         }
 
         let (limits, optimal_len) = self.limits(&file.limits)?;
@@ -180,9 +202,9 @@ impl<'a> Resolver<'a> {
             selection
                 .validate()
                 .and_then(|()| selection.check_objectives(set.len()))
-                .map_err(|err| self.invalid(err.field, err.to_string()))?;
-            let archive = super::optimizer::take_archive(&mut table)
-                .map_err(|(key, reason)| self.invalid(key, reason))?;
+                .map_err(|err| self.refused(err.field, err))?;
+            let archive =
+                super::optimizer::take_archive(&mut table).map_err(|err| self.optimizer(err))?;
             // The multi-objective GA searches it, whatever the default method.
             table
                 .entry("method")
@@ -195,7 +217,7 @@ impl<'a> Resolver<'a> {
         };
 
         let optimizer = super::optimizer::resolve(&presets, table.clone(), file.islands, overrides)
-            .map_err(|(key, reason)| self.invalid(key, reason))?;
+            .map_err(|err| self.optimizer(err))?;
         if objectives.is_some() && optimizer.islands.is_some() {
             return Err(self.invalid(
                 "islands",
@@ -290,7 +312,7 @@ impl<'a> Resolver<'a> {
             Vec3::from(v.grid.max),
             v.grid.resolution,
         )
-        .map_err(|err| self.invalid("volume.grid", err.to_string()))?;
+        .map_err(|err| self.refused("volume.grid", err))?;
         if v.target.is_empty() {
             return Err(self.invalid(
                 "volume.target",
@@ -301,9 +323,8 @@ impl<'a> Resolver<'a> {
         for (i, t) in v.target.iter().enumerate() {
             let key = format!("volume.target[{i}]");
             let path = self.file(&format!("{key}.mesh"), &t.mesh)?;
-            let mesh = Mesh::from_obj(&path).map_err(|err| {
-                self.invalid(format!("{key}.mesh"), shapegen_runtime::error_chain(&err))
-            })?;
+            let mesh =
+                Mesh::from_obj(&path).map_err(|err| self.refused(format!("{key}.mesh"), err))?;
             targets.push(VolumeTarget {
                 name: t.mesh.clone(),
                 mesh,
@@ -340,7 +361,7 @@ impl<'a> Resolver<'a> {
         let camera = self.camera(&format!("{key}.camera"), &t.camera)?;
         let image_key = format!("{key}.image");
         let path = self.file(&image_key, &t.image)?;
-        let image = read_image(&path).map_err(|err| self.invalid(&image_key, err))?;
+        let image = read_image(&path).map_err(|err| self.refused(&image_key, err))?;
         let (width, height) = (image.width(), image.height());
         if (width, height) != (t.camera.width, t.camera.height) {
             return Err(self.invalid(
@@ -377,7 +398,7 @@ impl<'a> Resolver<'a> {
             ImageKind::Mask => ImageTarget::from_mask_by(name, &image, camera, on, off, rule),
             ImageKind::Weights => ImageTarget::from_weight_map(name, &image, camera, on, off),
         };
-        target.map_err(|err| self.invalid(&image_key, shapegen_runtime::error_chain(&err)))
+        target.map_err(|err| self.refused(image_key, err))
     }
 
     fn camera(&self, key: &str, c: &CameraFile) -> Result<Camera, SceneError> {
@@ -451,9 +472,7 @@ impl<'a> Resolver<'a> {
                 ));
             }
         };
-        camera
-            .validate()
-            .map_err(|err| self.invalid(key, shapegen_runtime::error_chain(&err)))?;
+        camera.validate().map_err(|err| self.refused(key, err))?;
         Ok(camera)
     }
 }

@@ -21,6 +21,8 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod error;
+
 use serde::{Deserialize, Serialize};
 use shapegen_runtime::Grammar;
 use shapegen_runtime::ops::OperatorVariant;
@@ -30,6 +32,8 @@ use shapegen_runtime::optimize::{
 };
 
 use crate::registry::Presets;
+
+pub use error::{SettingsCause, SettingsKeyError};
 
 /// Work generic over the optimizer of a method that searches one fitness: a command's
 /// run, a memory estimate. [`MethodSettings::run`] runs it with the method's optimizer.
@@ -41,8 +45,8 @@ pub trait MethodJob<G: Grammar> {
 }
 
 /// A method's settings read from a scene's `[optimizer]` table: the keys of `table` over
-/// `base`; errors are `(key, reason)`.
-type Read<S> = fn(S, toml::Table) -> Result<S, (String, String)>;
+/// `base`.
+type Read<S> = fn(S, toml::Table) -> Result<S, SettingsKeyError>;
 
 /// Declares the search methods, each once:
 ///
@@ -128,8 +132,8 @@ macro_rules! methods {
             /// The settings with the keys of an `[optimizer]` table over them (without
             /// the keys every method shares: `method`, `seed`, `seconds`,
             /// `evaluations`); `generations` sets the field that counts the method's
-            /// generations. Errors are `(key, reason)`.
-            pub(super) fn read(self, mut table: toml::Table) -> Result<MethodSettings, (String, String)> {
+            /// generations.
+            pub(super) fn read(self, mut table: toml::Table) -> Result<MethodSettings, SettingsKeyError> {
                 match self {
                     $(MethodSettings::$variant(base) => {
                         rename_generations::<$settings>(&mut table);
@@ -205,11 +209,11 @@ fn rename_generations<S: Settings>(table: &mut toml::Table) {
     }
 }
 
-/// `base` with the keys of `table` over it, checked by [`Settings::validate`]; errors
-/// are `(key, reason)`, naming the first key that is wrong on its own.
-fn merged<S: Settings>(base: S, table: toml::Table) -> Result<S, (String, String)> {
+/// `base` with the keys of `table` over it, checked by [`Settings::validate`]; an error
+/// names the first key that is wrong on its own.
+fn merged<S: Settings>(base: S, table: toml::Table) -> Result<S, SettingsKeyError> {
     let base =
-        toml::Table::try_from(base).map_err(|err| (String::from("optimizer"), err.to_string()))?;
+        toml::Table::try_from(base).map_err(|err| SettingsKeyError::new("optimizer", err))?;
     let read = |keys: &toml::Table| -> Result<S, toml::de::Error> {
         let mut merged = base.clone();
         merged.extend(keys.clone());
@@ -221,27 +225,27 @@ fn merged<S: Settings>(base: S, table: toml::Table) -> Result<S, (String, String
             .iter()
             .find(|(k, v)| read(&toml::Table::from_iter([((*k).clone(), (*v).clone())])).is_err())
             .map_or_else(|| "optimizer".to_owned(), |(k, _)| format!("optimizer.{k}"));
-        (key, err.message().to_owned())
+        SettingsKeyError::new(key, SettingsCause::Toml(err))
     })?;
     settings
         .validate()
-        .map_err(|err| (format!("optimizer.{}", err.field), err.to_string()))?;
+        .map_err(|err| SettingsKeyError::new(format!("optimizer.{}", err.field), err))?;
     Ok(settings)
 }
 
 /// The GA's settings, after checking the keys whose serde errors would not name them.
-fn read_ga(base: GaSettings, table: toml::Table) -> Result<GaSettings, (String, String)> {
+fn read_ga(base: GaSettings, table: toml::Table) -> Result<GaSettings, SettingsKeyError> {
     check_ga_keys(&table)?;
     merged(base, table)
 }
 
 /// SMC's or SOSMC's settings: the method sets the order, and `variant` must name an SMC
 /// variant.
-fn read_smc(base: SmcSettings, table: toml::Table) -> Result<SmcSettings, (String, String)> {
+fn read_smc(base: SmcSettings, table: toml::Table) -> Result<SmcSettings, SettingsKeyError> {
     if table.contains_key("order") {
-        return Err((
-            "optimizer.order".into(),
-            "is set by the method: \"smc\" or \"sosmc\"".into(),
+        return Err(SettingsKeyError::new(
+            "optimizer.order",
+            SettingsCause::OrderSetByMethod,
         ));
     }
     check_variant(&table, "an SMC", &SmcVariant::ALL.map(SmcVariant::name))?;
@@ -249,7 +253,7 @@ fn read_smc(base: SmcSettings, table: toml::Table) -> Result<SmcSettings, (Strin
 }
 
 /// RJMCMC's settings, `variant` naming an RJMCMC variant.
-fn read_mcmc(base: McmcSettings, table: toml::Table) -> Result<McmcSettings, (String, String)> {
+fn read_mcmc(base: McmcSettings, table: toml::Table) -> Result<McmcSettings, SettingsKeyError> {
     check_variant(
         &table,
         "an RJMCMC",
@@ -263,9 +267,9 @@ fn read_mcmc(base: McmcSettings, table: toml::Table) -> Result<McmcSettings, (St
 fn read_hybrid(
     base: HybridSettings,
     mut table: toml::Table,
-) -> Result<HybridSettings, (String, String)> {
+) -> Result<HybridSettings, SettingsKeyError> {
     let own: toml::Table = toml::Table::try_from(base)
-        .map_err(|err| (String::from("optimizer"), err.to_string()))?
+        .map_err(|err| SettingsKeyError::new("optimizer", err))?
         .into_iter()
         .filter(|(k, _)| k != "ga")
         .filter_map(|(k, _)| table.remove_entry(&k))
@@ -276,42 +280,48 @@ fn read_hybrid(
 
 /// Checks the GA's keys whose serde errors would not name them: `operators` must name an
 /// operator variant and `cross_array_index` be a boolean.
-fn check_ga_keys(table: &toml::Table) -> Result<(), (String, String)> {
+fn check_ga_keys(table: &toml::Table) -> Result<(), SettingsKeyError> {
     let names = OperatorVariant::ALL.map(OperatorVariant::name);
     match table.get("operators") {
         None => {}
         Some(toml::Value::String(v)) if names.contains(&v.as_str()) => {}
         Some(other) => {
-            return Err((
-                "optimizer.operators".into(),
-                format!(
-                    "{other} is not an operator variant; the variants are \"{}\"",
-                    names.join("\" and \"")
-                ),
+            return Err(SettingsKeyError::new(
+                "optimizer.operators",
+                SettingsCause::UnknownVariant {
+                    value: other.clone(),
+                    what: "an operator",
+                    variants: names.to_vec(),
+                },
             ));
         }
     }
     match table.get("cross_array_index") {
         None | Some(toml::Value::Boolean(_)) => Ok(()),
-        Some(other) => Err((
-            "optimizer.cross_array_index".into(),
-            format!("{other} must be true or false"),
+        Some(other) => Err(SettingsKeyError::new(
+            "optimizer.cross_array_index",
+            SettingsCause::NotABool(other.clone()),
         )),
     }
 }
 
 /// Checks that `variant`, whose serde error would not name it, is one of `names`, the
 /// variants of `what` method.
-fn check_variant(table: &toml::Table, what: &str, names: &[&str]) -> Result<(), (String, String)> {
+fn check_variant(
+    table: &toml::Table,
+    what: &'static str,
+    names: &[&'static str],
+) -> Result<(), SettingsKeyError> {
     match table.get("variant") {
         None => Ok(()),
         Some(toml::Value::String(v)) if names.contains(&v.as_str()) => Ok(()),
-        Some(other) => Err((
-            "optimizer.variant".into(),
-            format!(
-                "{other} is not {what} variant; the variants are \"{}\"",
-                names.join("\" and \"")
-            ),
+        Some(other) => Err(SettingsKeyError::new(
+            "optimizer.variant",
+            SettingsCause::UnknownVariant {
+                value: other.clone(),
+                what,
+                variants: names.to_vec(),
+            },
         )),
     }
 }
