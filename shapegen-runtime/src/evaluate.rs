@@ -15,56 +15,108 @@ use crate::genome::Genome;
 #[error("evaluation failed: {0}")]
 pub struct EvaluateError(pub String);
 
-/// Scores a whole population at once (the scene scorers batch it onto the CPU or the GPU).
-///
-/// Fitness is higher-is-better. A NaN fitness is the worst of all values: it ranks last,
-/// has zero selection weight and is never accepted by a Metropolis test; `+inf` and
-/// `-inf` are ordinary extremes (see the module documentation of
-/// [`optimize`](crate::optimize) for each method's exact treatment).
-///
-/// Optimizers that breed new genomes from a population they have scored (the GA, the
-/// multi-objective GA, RJMCMC) call [`evaluate_bred`](Self::evaluate_bred), which says
-/// which genome each child was bred from, so that an evaluator can score a child from
-/// what it kept of its parent (see [`score::retained`](crate::score::retained)).
-pub trait Evaluator<G: Grammar> {
-    /// Writes the fitness of `genomes[i]` to `out[i]` (higher is better). `out` has the
-    /// length of `genomes`.
-    fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError>;
+/// Declares a trait scoring whole populations of genomes, `pub trait $name<G: Grammar>`,
+/// with `evaluate(&mut self, genomes, out)`, `evaluate_bred(&mut self, genomes, parents,
+/// from, out)`, whose default ignores the lineage and calls `evaluate`, and the `&self`
+/// methods of its own listed after them (declared first), each with the documentation
+/// given; and implements the trait for `&mut E` by forwarding every method.
+macro_rules! population_evaluator {
+    (
+        $(#[$doc:meta])*
+        pub trait $name:ident {
+            $(#[$evaluate_doc:meta])*
+            fn evaluate;
+            $(#[$bred_doc:meta])*
+            fn evaluate_bred;
+            $(
+                $(#[$own_doc:meta])*
+                fn $own:ident(&self) -> $own_out:ty;
+            )*
+        }
+    ) => {
+        $(#[$doc])*
+        pub trait $name<G: Grammar> {
+            $(
+                $(#[$own_doc])*
+                fn $own(&self) -> $own_out;
+            )*
 
-    /// As [`evaluate`](Self::evaluate), for children bred from `parents`: `genomes[i]`
-    /// was made from `parents[from[i]]` by a few operators (a mutation, or a crossover
-    /// that put another parent's subtree into it), and `parents` is the population the
-    /// optimizer breeds from, which it scored earlier. The fitness must be exactly what
-    /// `evaluate` gives: lineage only lets an evaluator do less work. An evaluator that
-    /// keeps state between calls may drop whatever is of neither `parents` nor
-    /// `genomes`. The default ignores the lineage.
-    ///
-    /// `from` has the length of `genomes`, and each entry indexes `parents`.
-    fn evaluate_bred(
-        &mut self,
-        genomes: &[Genome<G>],
-        parents: &[Genome<G>],
-        from: &[u32],
-        out: &mut [f64],
-    ) -> Result<(), EvaluateError> {
-        let _ = (parents, from);
-        self.evaluate(genomes, out)
-    }
+            $(#[$evaluate_doc])*
+            fn evaluate(
+                &mut self,
+                genomes: &[Genome<G>],
+                out: &mut [f64],
+            ) -> Result<(), EvaluateError>;
+
+            $(#[$bred_doc])*
+            fn evaluate_bred(
+                &mut self,
+                genomes: &[Genome<G>],
+                parents: &[Genome<G>],
+                from: &[u32],
+                out: &mut [f64],
+            ) -> Result<(), EvaluateError> {
+                let _ = (parents, from);
+                self.evaluate(genomes, out)
+            }
+        }
+
+        impl<G: Grammar, E: $name<G> + ?Sized> $name<G> for &mut E {
+            $(
+                fn $own(&self) -> $own_out {
+                    (**self).$own()
+                }
+            )*
+
+            fn evaluate(
+                &mut self,
+                genomes: &[Genome<G>],
+                out: &mut [f64],
+            ) -> Result<(), EvaluateError> {
+                (**self).evaluate(genomes, out)
+            }
+
+            fn evaluate_bred(
+                &mut self,
+                genomes: &[Genome<G>],
+                parents: &[Genome<G>],
+                from: &[u32],
+                out: &mut [f64],
+            ) -> Result<(), EvaluateError> {
+                (**self).evaluate_bred(genomes, parents, from, out)
+            }
+        }
+    };
 }
 
-impl<G: Grammar, E: Evaluator<G> + ?Sized> Evaluator<G> for &mut E {
-    fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError> {
-        (**self).evaluate(genomes, out)
-    }
+population_evaluator! {
+    /// Scores a whole population at once (the scene scorers batch it onto the CPU or the
+    /// GPU).
+    ///
+    /// Fitness is higher-is-better. A NaN fitness is the worst of all values: it ranks
+    /// last, has zero selection weight and is never accepted by a Metropolis test; `+inf`
+    /// and `-inf` are ordinary extremes (see the module documentation of
+    /// [`optimize`](crate::optimize) for each method's exact treatment).
+    ///
+    /// Optimizers that breed new genomes from a population they have scored (the GA, the
+    /// multi-objective GA, RJMCMC) call [`evaluate_bred`](Self::evaluate_bred), which says
+    /// which genome each child was bred from, so that an evaluator can score a child from
+    /// what it kept of its parent (see [`score::retained`](crate::score::retained)).
+    pub trait Evaluator {
+        /// Writes the fitness of `genomes[i]` to `out[i]` (higher is better). `out` has the
+        /// length of `genomes`.
+        fn evaluate;
 
-    fn evaluate_bred(
-        &mut self,
-        genomes: &[Genome<G>],
-        parents: &[Genome<G>],
-        from: &[u32],
-        out: &mut [f64],
-    ) -> Result<(), EvaluateError> {
-        (**self).evaluate_bred(genomes, parents, from, out)
+        /// As [`evaluate`](Self::evaluate), for children bred from `parents`: `genomes[i]`
+        /// was made from `parents[from[i]]` by a few operators (a mutation, or a crossover
+        /// that put another parent's subtree into it), and `parents` is the population the
+        /// optimizer breeds from, which it scored earlier. The fitness must be exactly what
+        /// `evaluate` gives: lineage only lets an evaluator do less work. An evaluator that
+        /// keeps state between calls may drop whatever is of neither `parents` nor
+        /// `genomes`. The default ignores the lineage.
+        ///
+        /// `from` has the length of `genomes`, and each entry indexes `parents`.
+        fn evaluate_bred;
     }
 }
 
@@ -98,47 +150,20 @@ impl<G: Grammar, F: FnMut(&Genome<G>) -> f64> Evaluator<G> for FnEvaluator<F> {
     }
 }
 
-/// Scores a whole population on `k` objectives at once.
-pub trait MultiEvaluator<G: Grammar> {
-    /// The `k` objectives' senses (at least one).
-    fn senses(&self) -> &[Sense];
+population_evaluator! {
+    /// Scores a whole population on `k` objectives at once.
+    pub trait MultiEvaluator {
+        /// Writes the `k` raw objective values of `genomes[i]` to
+        /// `out[i * k..(i + 1) * k]`. `out` holds `genomes.len() * k` values.
+        fn evaluate;
 
-    /// Writes the `k` raw objective values of `genomes[i]` to `out[i * k..(i + 1) * k]`.
-    /// `out` holds `genomes.len() * k` values.
-    fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError>;
+        /// As [`evaluate`](Self::evaluate), for children bred from `parents`, with the
+        /// lineage and the promises of [`Evaluator::evaluate_bred`]. The default ignores
+        /// the lineage.
+        fn evaluate_bred;
 
-    /// As [`evaluate`](Self::evaluate), for children bred from `parents`, with the
-    /// lineage and the promises of [`Evaluator::evaluate_bred`]. The default ignores the
-    /// lineage.
-    fn evaluate_bred(
-        &mut self,
-        genomes: &[Genome<G>],
-        parents: &[Genome<G>],
-        from: &[u32],
-        out: &mut [f64],
-    ) -> Result<(), EvaluateError> {
-        let _ = (parents, from);
-        self.evaluate(genomes, out)
-    }
-}
-
-impl<G: Grammar, E: MultiEvaluator<G> + ?Sized> MultiEvaluator<G> for &mut E {
-    fn senses(&self) -> &[Sense] {
-        (**self).senses()
-    }
-
-    fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError> {
-        (**self).evaluate(genomes, out)
-    }
-
-    fn evaluate_bred(
-        &mut self,
-        genomes: &[Genome<G>],
-        parents: &[Genome<G>],
-        from: &[u32],
-        out: &mut [f64],
-    ) -> Result<(), EvaluateError> {
-        (**self).evaluate_bred(genomes, parents, from, out)
+        /// The `k` objectives' senses (at least one).
+        fn senses(&self) -> &[Sense];
     }
 }
 

@@ -664,19 +664,11 @@ impl<'a> SceneEvaluator<'a> {
             *slot = scorer.fitness(counts, genome.len());
         }
     }
-
-    /// Derives `genomes` into the batch.
-    fn derive<G: Grammar>(&mut self, genomes: &[Genome<G>]) {
-        self.batch.clear();
-        for genome in genomes {
-            self.batch.push_genome(genome);
-        }
-    }
 }
 
 impl<G: Grammar> Evaluator<G> for SceneEvaluator<'_> {
     fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError> {
-        self.derive(genomes);
+        self.batch.set_genomes(genomes);
         self.backend
             .count(&self.batch, &mut self.counts)
             .map_err(|err| EvaluateError(err.to_string()))?;
@@ -691,9 +683,8 @@ impl<G: Grammar> Evaluator<G> for SceneEvaluator<'_> {
         from: &[u32],
         out: &mut [f64],
     ) -> Result<(), EvaluateError> {
-        if self.gpu_retention.is_some() {
-            self.derive(genomes);
-            let retention = self.gpu_retention.as_mut().expect("checked above");
+        if let Some(retention) = &mut self.gpu_retention {
+            self.batch.set_genomes(genomes);
             let (batch, counts) = (&self.batch, &mut self.counts);
             self.backend
                 .count_bred(retention, genomes, batch, parents, from, counts)
@@ -704,7 +695,7 @@ impl<G: Grammar> Evaluator<G> for SceneEvaluator<'_> {
         if self.retention.is_none() {
             return self.evaluate(genomes, out);
         }
-        self.derive(genomes);
+        self.batch.set_genomes(genomes);
         let scorer = self.backend.scorer();
         let scorers = scorer.scorers();
         let k = scorers.len();

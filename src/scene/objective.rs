@@ -174,14 +174,6 @@ impl<'a> ObjectiveEvaluator<'a> {
     pub fn meshes(&self) -> &BoundMeshes {
         &self.meshes
     }
-
-    /// Derives `genomes` into the batch.
-    fn derive<G: Grammar>(&mut self, genomes: &[Genome<G>]) {
-        self.batch.clear();
-        for genome in genomes {
-            self.batch.push_genome(genome);
-        }
-    }
 }
 
 impl<G: Grammar> MultiEvaluator<G> for ObjectiveEvaluator<'_> {
@@ -190,7 +182,7 @@ impl<G: Grammar> MultiEvaluator<G> for ObjectiveEvaluator<'_> {
     }
 
     fn evaluate(&mut self, genomes: &[Genome<G>], out: &mut [f64]) -> Result<(), EvaluateError> {
-        self.derive(genomes);
+        self.batch.set_genomes(genomes);
         self.set.measure_batch(&self.batch, &self.meshes, out);
         Ok(())
     }
@@ -202,7 +194,7 @@ impl<G: Grammar> MultiEvaluator<G> for ObjectiveEvaluator<'_> {
         from: &[u32],
         out: &mut [f64],
     ) -> Result<(), EvaluateError> {
-        self.derive(genomes);
+        self.batch.set_genomes(genomes);
         match &mut self.bred {
             Some(bred) => bred.measure_bred(genomes, &self.batch, parents, from, out),
             None => self.set.measure_batch(&self.batch, &self.meshes, out),

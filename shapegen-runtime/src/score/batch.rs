@@ -63,6 +63,15 @@ impl InstanceBatch {
         self.push_with(|out| genome.derive_append(out));
     }
 
+    /// Empties the batch, keeping its memory, and appends the model each of `genomes`
+    /// derives into, in order: a population's batch for an evaluator.
+    pub fn set_genomes<G: Grammar>(&mut self, genomes: &[Genome<G>]) {
+        self.clear();
+        for genome in genomes {
+            self.push_genome(genome);
+        }
+    }
+
     /// Number of models.
     pub fn len(&self) -> usize {
         self.starts.len().saturating_sub(1)

@@ -318,10 +318,7 @@ impl WeightedObjectives {
         lineage: Option<(&[Genome<G>], &[u32])>,
         out: &mut [f64],
     ) {
-        self.batch.clear();
-        for genome in genomes {
-            self.batch.push_genome(genome);
-        }
+        self.batch.set_genomes(genomes);
         let k = self.set.len();
         self.values.resize(genomes.len() * k, 0.0);
         match (&mut self.bred, lineage) {

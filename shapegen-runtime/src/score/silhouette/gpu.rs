@@ -4,9 +4,11 @@
 use std::ops::Range;
 
 use bytemuck::{Pod, Zeroable};
-use wgpu::util::DeviceExt;
 
 use super::counts::{SilhouetteCounts, TargetCounts};
+use super::gpu_draw::{
+    Counters, GpuMeshes, GpuTarget, Passes, Program, TargetIndex, View, counter_bytes, rows,
+};
 use super::scorer::SilhouetteScorer;
 use crate::gpu::{GpuContext, GpuError};
 use crate::score::InstanceBatch;
@@ -15,15 +17,13 @@ use crate::score::InstanceBatch;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 struct Params {
-    view_projection: [[f32; 4]; 4],
-    width: u32,
-    height: u32,
+    view: View,
+    /// 32-bit words per bitset row, and per model's bitset.
     row_words: u32,
     image_words: u32,
+    /// Index of the first model whose bitset is at the start of the coverage buffer.
     first_model: u32,
-    targets: u32,
-    target_index: u32,
-    _pad: u32,
+    index: TargetIndex,
 }
 const _: () = assert!(size_of::<Params>() == 96);
 
@@ -38,35 +38,8 @@ struct GpuInstance {
 }
 const _: () = assert!(size_of::<GpuInstance>() == 64);
 
-/// Counts of one (model, target) as the shader accumulates them: covered, on target,
-/// grey-level sum, unused.
-const COUNT_WORDS: usize = 4;
-
-/// The attachment's format; nothing is ever written to it.
-const ATTACHMENT: wgpu::TextureFormat = wgpu::TextureFormat::R8Unorm;
-
 /// Most models whose bitsets share one coverage buffer, whatever the binding limit.
 const MAX_CHUNK: u64 = 256;
-
-/// One target as the GPU sees it.
-#[derive(Debug)]
-pub(super) struct GpuTarget {
-    params: Params,
-    pub(super) pixels: wgpu::Buffer,
-    pub(super) attachment: wgpu::TextureView,
-}
-
-impl GpuTarget {
-    /// The camera's view-projection matrix, by columns.
-    pub(super) fn view_projection(&self) -> [[f32; 4]; 4] {
-        self.params.view_projection
-    }
-
-    /// Width and height in pixels.
-    pub(super) fn size(&self) -> (u32, u32) {
-        (self.params.width, self.params.height)
-    }
-}
 
 /// The [`SilhouetteScorer`] on the GPU: the same counts, up to pixels whose centres lie
 /// within rounding of a triangle edge (the hardware transforms and rasterizes in its own
@@ -95,11 +68,8 @@ impl GpuTarget {
 #[derive(Debug)]
 pub struct GpuSilhouetteScorer<'a> {
     pub(super) gpu: &'a GpuContext,
-    pipeline: wgpu::RenderPipeline,
-    layout: wgpu::BindGroupLayout,
-    pub(super) vertices: wgpu::Buffer,
-    /// Vertex range of each mesh in `vertices`, indexed by mesh id.
-    pub(super) mesh_vertices: Vec<Range<u32>>,
+    program: Program,
+    pub(super) meshes: GpuMeshes,
     pub(super) targets: Vec<GpuTarget>,
     coverage: wgpu::Buffer,
     /// Models per chunk.
@@ -153,89 +123,24 @@ impl<'a> GpuSilhouetteScorer<'a> {
         chunk: usize,
     ) -> Self {
         let device = &gpu.device;
-        let mut positions: Vec<[f32; 3]> = Vec::new();
-        let mut mesh_vertices = Vec::new();
-        for mesh in &scorer.meshes {
-            let first = positions.len() as u32;
-            for tri in &mesh.triangles {
-                positions.extend(tri.map(|i| mesh.positions[i as usize].to_array()));
-            }
-            mesh_vertices.push(first..positions.len() as u32);
-        }
-        if positions.is_empty() {
-            positions.push([0.0; 3]);
-        }
-        let vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("silhouette vertices"),
-            contents: bytemuck::cast_slice(&positions),
-            usage: wgpu::BufferUsages::VERTEX,
-        });
-        let count = scorer.targets().len() as u32;
-        let targets = scorer
-            .targets()
-            .iter()
-            .enumerate()
-            .map(|(k, t)| {
-                let pixels: Vec<u32> = (0..t.height())
-                    .flat_map(|y| (0..t.width()).map(move |x| (x, y)))
-                    .map(|(x, y)| u32::from(t.level(x, y)) | u32::from(t.is_target(x, y)) << 8)
-                    .collect();
-                let pixels = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("silhouette target pixels"),
-                    contents: bytemuck::cast_slice(&pixels),
-                    usage: wgpu::BufferUsages::STORAGE,
-                });
-                let texture = device.create_texture(&wgpu::TextureDescriptor {
-                    label: Some("silhouette attachment"),
-                    size: wgpu::Extent3d {
-                        width: t.width(),
-                        height: t.height(),
-                        depth_or_array_layers: 1,
-                    },
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format: ATTACHMENT,
-                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-                    view_formats: &[],
-                });
-                let row_words = row_words32(t.width());
-                GpuTarget {
-                    params: Params {
-                        view_projection: t.view_projection().to_cols_array_2d(),
-                        width: t.width(),
-                        height: t.height(),
-                        row_words,
-                        image_words: row_words * t.height(),
-                        first_model: 0,
-                        targets: count,
-                        target_index: k as u32,
-                        _pad: 0,
-                    },
-                    pixels,
-                    attachment: texture.create_view(&wgpu::TextureViewDescriptor::default()),
-                }
-            })
-            .collect();
+        let meshes = GpuMeshes::upload(device, &scorer.meshes);
+        let targets = GpuTarget::upload(device, scorer.targets());
         let coverage = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("silhouette coverage"),
             size: image_words * 4 * chunk as u64,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let (pipeline, layout) = pipeline(
+        let program = Program::new::<GpuInstance>(
             gpu,
             "silhouette",
             shapegen_shaders::SILHOUETTE,
-            size_of::<GpuInstance>() as u64,
             &wgpu::vertex_attr_array![4 => Uint32],
         );
         GpuSilhouetteScorer {
             gpu,
-            pipeline,
-            layout,
-            vertices,
-            mesh_vertices,
+            program,
+            meshes,
             targets,
             coverage,
             chunk,
@@ -272,22 +177,20 @@ impl<'a> GpuSilhouetteScorer<'a> {
         if batch.is_empty() {
             return Ok(());
         }
-        let count_bytes = (batch.len() * targets * COUNT_WORDS * 4) as u64;
         let (instances, mesh_ranges) = self.sort_instances(batch);
         let counts = self
             .gpu
-            .checked(|| self.encode(batch.len(), &instances, &mesh_ranges, count_bytes))?;
-        let bytes = self.gpu.read_back(&counts, count_bytes)?;
-        let words: &[u32] = bytemuck::cast_slice(&bytes);
+            .checked(|| self.encode(batch.len(), &instances, &mesh_ranges))?;
+        let counters = Counters::read(self.gpu, &counts, batch.len(), targets)?;
         for (i, slot) in out.iter_mut().enumerate() {
             let mut counts = SilhouetteCounts::zeroed(targets);
             for (k, c) in counts.targets_mut().iter_mut().enumerate() {
-                let w = &words[(i * targets + k) * COUNT_WORDS..][..COUNT_WORDS];
+                let [covered, on_target, level_sum] = counters.get::<u32>(i, k);
                 *c = TargetCounts {
-                    covered: w[0],
-                    on_target: w[1],
-                    off_target: w[0] - w[1],
-                    level_sum: u64::from(w[2]),
+                    covered,
+                    on_target,
+                    off_target: covered - on_target,
+                    level_sum: u64::from(level_sum),
                 };
             }
             *slot = counts;
@@ -298,7 +201,7 @@ impl<'a> GpuSilhouetteScorer<'a> {
     /// Every instance of `batch` whose mesh the scorer has, sorted by mesh and then by
     /// model, with each mesh's range of them.
     fn sort_instances(&self, batch: &InstanceBatch) -> (Vec<GpuInstance>, Vec<Range<u32>>) {
-        let meshes = self.mesh_vertices.len();
+        let meshes = self.meshes.len();
         let mut starts = vec![0u32; meshes + 1];
         for instance in batch.instances() {
             let m = instance.mesh.0 as usize;
@@ -335,78 +238,41 @@ impl<'a> GpuSilhouetteScorer<'a> {
         models: usize,
         instances: &[GpuInstance],
         mesh_ranges: &[Range<u32>],
-        count_bytes: u64,
     ) -> wgpu::Buffer {
-        let device = &self.gpu.device;
-        let instance_buffer = instance_buffer(device, "silhouette instances", instances);
-        let counts = result_buffer(device, "silhouette counts", count_bytes);
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("silhouette"),
-        });
+        let count_bytes = counter_bytes(models, self.targets.len());
+        let mut passes = Passes::new(
+            self.gpu,
+            &self.program,
+            &self.meshes,
+            instances,
+            count_bytes,
+        );
         for first in (0..models).step_by(self.chunk) {
             let chunk = first..(first + self.chunk).min(models);
             for target in &self.targets {
+                let row_words = row_words32(target.view.width);
                 let params = Params {
+                    view: target.view,
+                    row_words,
+                    image_words: row_words * target.view.height,
                     first_model: first as u32,
-                    ..target.params
+                    index: target.index,
                 };
-                let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("silhouette params"),
-                    contents: bytemuck::bytes_of(&params),
-                    usage: wgpu::BufferUsages::UNIFORM,
-                });
-                let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("silhouette"),
-                    layout: &self.layout,
-                    entries: &[
-                        entry(0, &uniform),
-                        entry(1, &target.pixels),
-                        entry(2, &self.coverage),
-                        entry(3, &counts),
-                    ],
-                });
                 let used = u64::from(params.image_words) * 4 * chunk.len() as u64;
-                encoder.clear_buffer(&self.coverage, 0, Some(used));
-                let draws = self
-                    .mesh_vertices
+                passes.encoder.clear_buffer(&self.coverage, 0, Some(used));
+                let draws = mesh_ranges
                     .iter()
-                    .zip(mesh_ranges)
-                    .map(|(vertices, range)| {
-                        (vertices.clone(), self.chunk_range(instances, range, &chunk))
-                    });
-                draw_pass(
-                    &mut encoder,
-                    &target.attachment,
-                    &self.pipeline,
-                    &bind_group,
-                    &self.vertices,
-                    &instance_buffer,
-                    draws,
-                );
+                    .map(|range| chunk_range(instances, range, &chunk));
+                passes.draw(target, &params, &self.coverage, draws);
             }
         }
-        self.gpu.queue.submit([encoder.finish()]);
-        counts
-    }
-
-    /// The part of one mesh's instance range (sorted by model) whose models lie in
-    /// `chunk`.
-    fn chunk_range(
-        &self,
-        instances: &[GpuInstance],
-        range: &Range<u32>,
-        chunk: &Range<usize>,
-    ) -> Range<u32> {
-        let of_mesh = &instances[range.start as usize..range.end as usize];
-        let lo = of_mesh.partition_point(|i| (i.model as usize) < chunk.start);
-        let hi = of_mesh.partition_point(|i| (i.model as usize) < chunk.end);
-        range.start + lo as u32..range.start + hi as u32
+        passes.submit()
     }
 
     /// The most models one batch may hold: as many as the largest storage binding holds
     /// counts of, for every target.
     pub fn max_batch(&self) -> usize {
-        let per_model = (self.targets.len().max(1) * COUNT_WORDS * 4) as u64;
+        let per_model = counter_bytes(1, self.targets.len().max(1));
         (self.gpu.max_binding() / per_model) as usize
     }
 
@@ -421,196 +287,10 @@ impl<'a> GpuSilhouetteScorer<'a> {
     }
 }
 
-/// A vertex buffer of per-instance records (one zeroed record when there are none, as
-/// a buffer may not be empty).
-pub(super) fn instance_buffer<T: Pod>(
-    device: &wgpu::Device,
-    label: &str,
-    instances: &[T],
-) -> wgpu::Buffer {
-    let empty = vec![0u8; size_of::<T>()];
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some(label),
-        contents: if instances.is_empty() {
-            &empty
-        } else {
-            bytemuck::cast_slice(instances)
-        },
-        usage: wgpu::BufferUsages::VERTEX,
-    })
-}
-
-/// A storage buffer of `bytes` the shader accumulates counters in, to be read back.
-pub(super) fn result_buffer(device: &wgpu::Device, label: &str, bytes: u64) -> wgpu::Buffer {
-    device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some(label),
-        size: bytes,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    })
-}
-
-/// The rows of an affine transform, as the vertex shaders read them.
-pub(super) fn rows(t: &glam::Affine3A) -> [[f32; 4]; 3] {
-    let (x, y, z, p) = (
-        t.matrix3.x_axis,
-        t.matrix3.y_axis,
-        t.matrix3.z_axis,
-        t.translation,
-    );
-    [
-        [x.x, y.x, z.x, p.x],
-        [x.y, y.y, z.y, p.y],
-        [x.z, y.z, z.z, p.z],
-    ]
-}
-
-pub(super) fn entry(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
-    wgpu::BindGroupEntry {
-        binding,
-        resource: buffer.as_entire_binding(),
-    }
-}
-
-fn storage(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
-
-/// A silhouette shader's render pipeline and bind group layout. Both shaders bind a
-/// uniform (0), the target's pixels (1) and two read-write buffers (2, 3), read the
-/// mesh's vertex positions at location 0 and the instance's transform rows at
-/// locations 1 to 3, followed by `instance_tail` (locations from 4, offsets from the
-/// end of the rows, as `wgpu::vertex_attr_array!` gives them).
-pub(super) fn pipeline(
-    gpu: &GpuContext,
-    label: &str,
-    source: &str,
-    instance_stride: u64,
-    instance_tail: &[wgpu::VertexAttribute],
-) -> (wgpu::RenderPipeline, wgpu::BindGroupLayout) {
-    let device = &gpu.device;
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    });
-    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some(label),
-        entries: &[
-            wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-                count: None,
-            },
-            storage(1, true),
-            storage(2, false),
-            storage(3, false),
-        ],
-    });
-    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(label),
-        bind_group_layouts: &[Some(&layout)],
-        immediate_size: 0,
-    });
-    let rows = wgpu::vertex_attr_array![1 => Float32x4, 2 => Float32x4, 3 => Float32x4];
-    let rows_bytes = size_of::<[[f32; 4]; 3]>() as u64;
-    let tail = instance_tail.iter().map(|a| wgpu::VertexAttribute {
-        offset: a.offset + rows_bytes,
-        ..*a
-    });
-    let instance_attributes: Vec<wgpu::VertexAttribute> = rows.into_iter().chain(tail).collect();
-    let buffers = [
-        Some(wgpu::VertexBufferLayout {
-            array_stride: 12,
-            step_mode: wgpu::VertexStepMode::Vertex,
-            attributes: &wgpu::vertex_attr_array![0 => Float32x3],
-        }),
-        Some(wgpu::VertexBufferLayout {
-            array_stride: instance_stride,
-            step_mode: wgpu::VertexStepMode::Instance,
-            attributes: &instance_attributes,
-        }),
-    ];
-    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some(label),
-        layout: Some(&pipeline_layout),
-        vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some("vs_main"),
-            compilation_options: Default::default(),
-            buffers: &buffers,
-        },
-        primitive: wgpu::PrimitiveState {
-            topology: wgpu::PrimitiveTopology::TriangleList,
-            cull_mode: None,
-            ..Default::default()
-        },
-        depth_stencil: None,
-        multisample: wgpu::MultisampleState::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("fs_main"),
-            compilation_options: Default::default(),
-            targets: &[Some(wgpu::ColorTargetState {
-                format: ATTACHMENT,
-                blend: None,
-                write_mask: wgpu::ColorWrites::empty(),
-            })],
-        }),
-        multiview_mask: None,
-        cache: None,
-    });
-    (pipeline, layout)
-}
-
-/// Records one render pass into `attachment` (cleared, never stored) with `pipeline`,
-/// `bind_group`, the meshes' `vertices` and `instances`, drawing for each
-/// `(vertex range, instance range)` of `draws`.
-pub(super) fn draw_pass(
-    encoder: &mut wgpu::CommandEncoder,
-    attachment: &wgpu::TextureView,
-    pipeline: &wgpu::RenderPipeline,
-    bind_group: &wgpu::BindGroup,
-    vertices: &wgpu::Buffer,
-    instances: &wgpu::Buffer,
-    draws: impl IntoIterator<Item = (Range<u32>, Range<u32>)>,
-) {
-    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: Some("silhouette"),
-        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-            view: attachment,
-            depth_slice: None,
-            resolve_target: None,
-            ops: wgpu::Operations {
-                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                store: wgpu::StoreOp::Discard,
-            },
-        })],
-        depth_stencil_attachment: None,
-        timestamp_writes: None,
-        occlusion_query_set: None,
-        multiview_mask: None,
-    });
-    pass.set_pipeline(pipeline);
-    pass.set_bind_group(0, bind_group, &[]);
-    pass.set_vertex_buffer(0, vertices.slice(..));
-    pass.set_vertex_buffer(1, instances.slice(..));
-    for (vertices, instances) in draws {
-        if !vertices.is_empty() && !instances.is_empty() {
-            pass.draw(vertices, instances);
-        }
-    }
+/// The part of one mesh's instance range (sorted by model) whose models lie in `chunk`.
+fn chunk_range(instances: &[GpuInstance], range: &Range<u32>, chunk: &Range<usize>) -> Range<u32> {
+    let of_mesh = &instances[range.start as usize..range.end as usize];
+    let lo = of_mesh.partition_point(|i| (i.model as usize) < chunk.start);
+    let hi = of_mesh.partition_point(|i| (i.model as usize) < chunk.end);
+    range.start + lo as u32..range.start + hi as u32
 }

@@ -15,12 +15,10 @@ use std::ops::Range;
 use std::sync::Arc;
 
 use bytemuck::{Pod, Zeroable};
-use wgpu::util::DeviceExt;
 
 use super::counts::{SilhouetteCounts, TargetCounts};
-use super::gpu::{
-    GpuSilhouetteScorer, draw_pass, entry, instance_buffer, pipeline, result_buffer, rows,
-};
+use super::gpu::GpuSilhouetteScorer;
+use super::gpu_draw::{Counters, Passes, Program, TargetIndex, View, counter_bytes, rows};
 use crate::geometry::Instance;
 use crate::gpu::GpuError;
 use crate::score::InstanceBatch;
@@ -31,15 +29,13 @@ use crate::{Genome, Grammar};
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 struct Params {
-    view_projection: [[f32; 4]; 4],
-    width: u32,
-    height: u32,
+    view: View,
+    /// Words from the start of a slot to this target's image, and words per slot.
     image_offset: u32,
     slot_words: u32,
+    /// The first slot of the bound page.
     first_slot: u32,
-    targets: u32,
-    target_index: u32,
-    _pad: u32,
+    index: TargetIndex,
 }
 const _: () = assert!(size_of::<Params>() == 96);
 
@@ -55,9 +51,6 @@ struct GpuInstance {
     _pad: u32,
 }
 const _: () = assert!(size_of::<GpuInstance>() == 64);
-
-/// Words of one (entry, target)'s changes: covered, on target, grey-level sum, unused.
-const CHANGE_WORDS: usize = 4;
 
 /// Most slots of one page (one buffer), whatever the binding limit: pages are allocated
 /// as slots are needed, so that a small search holds little more than it uses.
@@ -103,8 +96,7 @@ struct Draw<'a> {
 /// # Ok(()) }
 /// ```
 pub struct GpuRetention {
-    pipeline: wgpu::RenderPipeline,
-    layout: wgpu::BindGroupLayout,
+    program: Program,
     /// Words from a slot's start to each target's image.
     offsets: Vec<u32>,
     /// 32-bit words of one slot.
@@ -145,8 +137,7 @@ impl GpuRetention {
         let mut words = 0u64;
         for target in &scorer.targets {
             offsets.push(words as u32);
-            let (width, height) = target.size();
-            words += u64::from(width) * u64::from(height);
+            words += u64::from(target.view.width) * u64::from(target.view.height);
         }
         let slot_bytes = words * 4;
         let slots_per_page = (scorer.gpu.max_binding() / slot_bytes.max(4)).min(MAX_PAGE_SLOTS);
@@ -156,18 +147,16 @@ impl GpuRetention {
                 scorer.gpu.max_binding()
             )));
         }
-        let (pipeline, layout) = scorer.gpu.checked(|| {
-            pipeline(
+        let program = scorer.gpu.checked(|| {
+            Program::new::<GpuInstance>(
                 scorer.gpu,
                 "silhouette retained",
                 shapegen_shaders::SILHOUETTE_RETAINED,
-                size_of::<GpuInstance>() as u64,
                 &wgpu::vertex_attr_array![4 => Uint32, 5 => Uint32, 6 => Uint32],
             )
         })?;
         Ok(GpuRetention {
-            pipeline,
-            layout,
+            program,
             offsets,
             slot_words: words as u32,
             slots_per_page: slots_per_page as u32,
@@ -465,7 +454,7 @@ impl GpuRetention {
             return Ok(Vec::new());
         }
         let targets = scorer.targets.len();
-        let change_bytes = (draws.len() * targets * CHANGE_WORDS * 4) as u64;
+        let change_bytes = counter_bytes(draws.len(), targets);
         if change_bytes > scorer.gpu.max_binding() {
             return Err(GpuError::Unsupported(format!(
                 "the counts of {} models take {change_bytes} bytes; this device binds at most {}",
@@ -478,15 +467,11 @@ impl GpuRetention {
         let changes = scorer
             .gpu
             .checked(|| self.encode(scorer, draws, &instances, &ranges, change_bytes))?;
-        let bytes = scorer.gpu.read_back(&changes, change_bytes)?;
-        let words: &[i32] = bytemuck::cast_slice(&bytes);
+        let changes = Counters::read(scorer.gpu, &changes, draws.len(), targets)?;
         Ok((0..draws.len())
             .map(|e| {
                 (0..targets)
-                    .map(|k| {
-                        let w = &words[(e * targets + k) * CHANGE_WORDS..][..CHANGE_WORDS];
-                        [i64::from(w[0]), i64::from(w[1]), i64::from(w[2])]
-                    })
+                    .map(|k| changes.get::<i32>(e, k).map(i64::from))
                     .collect()
             })
             .collect())
@@ -499,7 +484,7 @@ impl GpuRetention {
         scorer: &GpuSilhouetteScorer<'_>,
         draws: &[&Draw],
     ) -> (Vec<GpuInstance>, Vec<Range<u32>>) {
-        let meshes = scorer.mesh_vertices.len();
+        let meshes = scorer.meshes.len();
         let mut keyed: Vec<(usize, GpuInstance)> = Vec::new();
         for (e, draw) in draws.iter().enumerate() {
             let (page, _) = self.place(draw.slot);
@@ -543,14 +528,16 @@ impl GpuRetention {
         ranges: &[Range<u32>],
         change_bytes: u64,
     ) -> wgpu::Buffer {
-        let device = &scorer.gpu.device;
-        let instance_buffer = instance_buffer(device, "silhouette changed instances", instances);
-        let changes = result_buffer(device, "silhouette changes", change_bytes);
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("silhouette retained"),
-        });
+        let mut passes = Passes::new(
+            scorer.gpu,
+            &self.program,
+            &scorer.meshes,
+            instances,
+            change_bytes,
+        );
         let bounce = self.bounce.as_ref().expect("allocated before encoding");
         let size = self.slot_bytes();
+        let encoder = &mut passes.encoder;
         for draw in draws {
             let (page, offset) = self.place(draw.slot);
             match draw.from {
@@ -563,58 +550,24 @@ impl GpuRetention {
                 None => encoder.clear_buffer(&self.pages[page], offset, Some(size)),
             }
         }
-        let meshes = scorer.mesh_vertices.len();
+        let meshes = scorer.meshes.len();
         for (p, page) in self.pages.iter().enumerate() {
             let of_page = &ranges[p * meshes..(p + 1) * meshes];
             if of_page.iter().all(Range::is_empty) {
                 continue;
             }
             for (k, target) in scorer.targets.iter().enumerate() {
-                let (width, height) = target.size();
                 let params = Params {
-                    view_projection: target.view_projection(),
-                    width,
-                    height,
+                    view: target.view,
                     image_offset: self.offsets[k],
                     slot_words: self.slot_words,
                     first_slot: p as u32 * self.slots_per_page,
-                    targets: scorer.targets.len() as u32,
-                    target_index: k as u32,
-                    _pad: 0,
+                    index: target.index,
                 };
-                let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("silhouette retained params"),
-                    contents: bytemuck::bytes_of(&params),
-                    usage: wgpu::BufferUsages::UNIFORM,
-                });
-                let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("silhouette retained"),
-                    layout: &self.layout,
-                    entries: &[
-                        entry(0, &uniform),
-                        entry(1, &target.pixels),
-                        entry(2, page),
-                        entry(3, &changes),
-                    ],
-                });
-                let draws = scorer
-                    .mesh_vertices
-                    .iter()
-                    .cloned()
-                    .zip(of_page.iter().cloned());
-                draw_pass(
-                    &mut encoder,
-                    &target.attachment,
-                    &self.pipeline,
-                    &bind_group,
-                    &scorer.vertices,
-                    &instance_buffer,
-                    draws,
-                );
+                passes.draw(target, &params, page, of_page.iter().cloned());
             }
         }
-        scorer.gpu.queue.submit([encoder.finish()]);
-        changes
+        passes.submit()
     }
 }
 

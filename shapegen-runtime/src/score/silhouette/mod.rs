@@ -48,6 +48,7 @@
 mod camera;
 mod counts;
 mod gpu;
+mod gpu_draw;
 mod gpu_retained;
 mod meshes;
 pub(in crate::score) mod raster;
