@@ -7,7 +7,10 @@ use std::collections::BTreeMap;
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use support::{fails, interrupt_when, ok, s};
+use support::{chart, fails, interrupt_when, ok, s};
+
+/// What the lines and the shading of every comparison chart show, in its legend.
+const QUARTILES: &str = "line: median, shaded: first to third quartile";
 
 /// A city scene at 160 x 90 whose target is the silhouette of a sampled city, with the
 /// paper's settings for every method.
@@ -184,11 +187,21 @@ fn a_comparison_writes_every_run_on_shared_seeds() {
         );
     }
 
-    let picture = image::open(out.join("compare.png")).unwrap();
-    assert_eq!((picture.width(), picture.height()), (800, 500));
+    let texts = [
+        "skyline: best fitness against time",
+        "wall time (seconds)",
+        "best fitness (median and quartiles over runs)",
+        "rjmcmc",
+        "ga",
+        "sosmc",
+        QUARTILES,
+    ];
+    chart(&out, "compare.png", (800, 500), &texts);
     // The scene gives no optimum: no gaps to it.
     assert_eq!(summary["optimum"], serde_json::Value::Null);
-    assert!(!out.join("targets.csv").exists() && !out.join("gap-time.png").exists());
+    for file in ["targets.csv", "gap-time.png", "gap-time.svg"] {
+        assert!(!out.join(file).exists(), "{file}");
+    }
 }
 
 #[test]
@@ -293,10 +306,27 @@ fn a_known_optimum_gives_the_gaps_and_the_times_to_its_fractions() {
             assert_eq!(row[6].is_empty(), want < 2, "{row:?}");
         }
     }
-    for plot in ["gap-time.png", "gap-evaluations.png", "compare.png"] {
-        let picture = image::open(out.join(plot)).unwrap();
-        assert_eq!((picture.width(), picture.height()), (800, 500), "{plot}");
+    let y = "optimum - best (median and quartiles over runs)";
+    for (plot, against, x) in [
+        ("gap-time.png", "time", "wall time (seconds)"),
+        ("gap-evaluations.png", "evaluations", "evaluations"),
+    ] {
+        let title = format!("Gap to the optimum (1) against {against}");
+        let svg = chart(
+            &out,
+            plot,
+            (800, 500),
+            &[&title, x, y, "ga", "hybrid", QUARTILES],
+        );
+        // The gaps on a log scale, with powers of ten as ticks.
+        assert!(svg.contains(">\n1e-"), "{plot}");
     }
+    chart(
+        &out,
+        "compare.png",
+        (800, 500),
+        &["ga", "hybrid", QUARTILES],
+    );
     // An optimum below what the runs reach is wrong, and said so once they show it.
     let low = dir.path().join("low");
     let args = compare("0.000001", &low);

@@ -7,7 +7,7 @@ mod support;
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use support::{fails, interrupt_when, ok, s, shapegen, timeless_summary, timeless_table};
+use support::{chart, fails, interrupt_when, ok, s, shapegen, timeless_summary, timeless_table};
 
 /// A tiny multi-objective building scene: a 16 x 16 footprint target (the lot's left
 /// half), distinct normals and a height of 20; population 16 for 5 generations.
@@ -117,14 +117,14 @@ fn a_front_run_writes_the_whole_front_at_any_thread_count() {
         Some("generation,elapsed_s,evaluations,front,best_top,best_facets,best_height")
     );
     assert_eq!(history.lines().count(), 1 + 6);
-    for file in [
-        "contact_sheet.png",
-        "scatter_top_facets.png",
-        "scatter_top_height.png",
-        "scatter_facets_height.png",
-        "overlay_top.png",
-    ] {
+    for file in ["contact_sheet.png", "overlay_top.png"] {
         image::open(one.join(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
+    }
+    let members = format!("front members ({front})");
+    for (a, b) in [("top", "facets"), ("top", "height"), ("facets", "height")] {
+        let title = format!("Multi-objective front: {b} against {a}");
+        let file = format!("scatter_{a}_{b}.png");
+        chart(&one, &file, (640, 480), &[&title, a, b, &members]);
     }
     assert_eq!(
         image::open(one.join("overlay_top.png")).unwrap().width(),
@@ -133,6 +133,17 @@ fn a_front_run_writes_the_whole_front_at_any_thread_count() {
 
     // Threads change nothing.
     assert_eq!(summary, timeless_summary(&two));
+    for file in [
+        "contact_sheet.png",
+        "scatter_top_facets.png",
+        "scatter_top_facets.svg",
+    ] {
+        assert_eq!(
+            fs::read(one.join(file)).unwrap(),
+            fs::read(two.join(file)).unwrap(),
+            "{file}"
+        );
+    }
     assert_eq!(read(&one, "front.csv"), read(&two, "front.csv"));
     assert_eq!(
         read(&one, "front.genomes.json"),

@@ -9,7 +9,8 @@ use std::path::Path;
 use shapegen::scene::Method;
 
 use support::{
-    interrupt_when, ok, s, shapegen, skyline_scene as scene, timeless_curve, timeless_summary,
+    chart, interrupt_when, ok, s, shapegen, skyline_scene as scene, timeless_curve,
+    timeless_summary,
 };
 
 #[test]
@@ -50,6 +51,7 @@ fn a_run_writes_everything_and_does_not_depend_on_threads() {
         "best.genome.json",
         "fitness.csv",
         "fitness.png",
+        "fitness.svg",
         "summary.json",
         "checkpoint.json",
     ] {
@@ -81,6 +83,22 @@ fn a_run_writes_everything_and_does_not_depend_on_threads() {
     assert!(best[8] > best[0], "{best:?}");
     let overlay = image::open(one.join("overlay.png")).unwrap();
     assert_eq!((overlay.width(), overlay.height()), (160, 90));
+    let texts = [
+        "city with ga: fitness per generation",
+        "generations",
+        "fitness",
+        "best",
+        "mean",
+    ];
+    chart(&one, "fitness.png", (640, 400), &texts);
+    // The chart is drawn from the generations alone: the same at any thread count.
+    for file in ["fitness.png", "fitness.svg"] {
+        assert_eq!(
+            fs::read(one.join(file)).unwrap(),
+            fs::read(two.join(file)).unwrap(),
+            "{file}"
+        );
+    }
 }
 
 #[test]
@@ -102,10 +120,13 @@ fn a_resumed_run_ends_as_an_uninterrupted_one() {
     assert_eq!(timeless_summary(&parts)["generations"], 3);
     ok(&["run", "--resume", s(&parts), "--cpu", "--generations", "8"]);
     assert_eq!(timeless_summary(&parts), timeless_summary(&whole));
-    assert_eq!(
-        fs::read_to_string(parts.join("best.genome.json")).unwrap(),
-        fs::read_to_string(whole.join("best.genome.json")).unwrap()
-    );
+    for file in ["best.genome.json", "fitness.png", "fitness.svg"] {
+        assert_eq!(
+            fs::read(parts.join(file)).unwrap(),
+            fs::read(whole.join(file)).unwrap(),
+            "{file}"
+        );
+    }
 }
 
 #[test]

@@ -8,7 +8,7 @@ mod support;
 use std::fs;
 use std::path::Path;
 
-use support::{cube_ship_scene, fails, interrupt_when, ok, s, sweep_rows_without_seconds};
+use support::{chart, cube_ship_scene, fails, interrupt_when, ok, s, sweep_rows_without_seconds};
 
 /// A 2 x 2 study of 2 runs each (8 cells) at 300 evaluations per run, in `out`, with
 /// `extra` arguments.
@@ -128,14 +128,48 @@ fn a_sweep_writes_every_cell_its_tables_and_its_plots() {
     assert!(summary.contains("8 of 8 cells done"), "{summary}");
     assert_eq!(summary.matches("| 2 of 2 |").count(), 4, "{summary}");
     assert_eq!(summary.matches("| **best** |").count(), 1, "{summary}");
-    for plot in [
+    let y = "final best fitness (mean +- std over runs)";
+    let bars = "dot: mean, bar: mean +- std";
+    let population = [
+        "Final best fitness against optimizer.population",
+        "optimizer.population",
+        y,
+        "optimizer.selection=tournament",
+        "optimizer.selection=random",
+        bars,
+    ];
+    chart(
+        &out,
         "final-optimizer.population.png",
+        (800, 500),
+        &population,
+    );
+    let selection = [
+        "Final best fitness against optimizer.selection",
+        "optimizer.selection",
+        y,
+        "optimizer.population=40",
+        "optimizer.population=60",
+        bars,
+        // The names on the x axis.
+        "tournament",
+        "random",
+    ];
+    chart(
+        &out,
         "final-optimizer.selection.png",
-        "curves.png",
-    ] {
-        let image = image::open(out.join(plot)).unwrap();
-        assert_eq!((image.width(), image.height()), (800, 500), "{plot}");
-    }
+        (800, 500),
+        &selection,
+    );
+    let curves = [
+        "Best fitness against evaluations: the best and the worst grid point",
+        "evaluations",
+        "best fitness so far (mean +- std over runs)",
+        "line: mean, shaded: mean +- std",
+    ];
+    let svg = chart(&out, "curves.png", (800, 500), &curves);
+    // The best grid point (and the worst, where they differ) named.
+    assert!(svg.contains(">\nbest: optimizer.population="), "{svg}");
     let plan: serde_json::Value =
         serde_json::from_str(&fs::read_to_string(out.join("plan.json")).unwrap()).unwrap();
     assert_eq!(plan["runs"], 2);
@@ -365,8 +399,11 @@ fn slurm_cells_run_by_hand_and_collected_equal_the_local_sweep() {
     );
     for plot in [
         "final-optimizer.population.png",
+        "final-optimizer.population.svg",
         "final-optimizer.selection.png",
+        "final-optimizer.selection.svg",
         "curves.png",
+        "curves.svg",
     ] {
         assert_eq!(
             fs::read(planned.join(plot)).unwrap(),
@@ -425,6 +462,19 @@ fn an_interrupted_sweep_keeps_its_finished_cells_and_goes_on() {
         sweep_rows_without_seconds(&whole)
     );
     assert_eq!(genomes(&out), genomes(&whole));
+    // The plots are drawn from the finished cells alone, whichever process ran them.
+    for plot in [
+        "final-optimizer.population.png",
+        "final-optimizer.population.svg",
+        "curves.png",
+        "curves.svg",
+    ] {
+        assert_eq!(
+            fs::read(out.join(plot)).unwrap(),
+            fs::read(whole.join(plot)).unwrap(),
+            "{plot}"
+        );
+    }
 }
 
 #[test]
@@ -459,8 +509,8 @@ fn a_known_optimum_gives_each_point_its_gaps_and_times() {
         "{targets}"
     );
     for plot in ["gap-time.png", "gap-evaluations.png"] {
-        let image = image::open(out.join(plot)).unwrap();
-        assert_eq!((image.width(), image.height()), (800, 500), "{plot}");
+        let names = ["optimizer.population=40", "optimizer.population=60"];
+        chart(&out, plot, (800, 500), &names);
     }
     // Every grid point is measured against one optimum.
     let err = fails(&[

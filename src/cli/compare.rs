@@ -39,19 +39,19 @@ use shapegen::scene::{Method, OptimizerGoal, Overrides, Scene, SceneEvaluator, S
 
 use super::backend::{BackendArgs, check_batches};
 use super::dispatch::{Generators, Visit};
-use super::files::{atomic_write, csv_bytes, save_png};
+use super::files::{atomic_write, csv_bytes, save_figure};
 use super::folder::{Existing, Folder, Kind};
 use super::gap::{self, Group, Reached};
 use super::interrupt;
 use super::memory::{MemoryArgs, MemoryCheck};
-use super::plot::{self, Spread, YScale};
+use super::plot::{self, Spread, Titles, YScale};
 use super::search::SessionRun;
 use super::stats::{mean_std, quartile_curve, quartiles};
 use crate::registry::Entry;
 
 /// Points of the common time grid the curves are sampled on.
 const GRID_POINTS: usize = 400;
-/// Size of `compare.png`.
+/// Size of `compare.png` (and `compare.svg`).
 const PLOT_SIZE: (u32, u32) = (800, 500);
 
 /// Arguments of `shapegen compare`.
@@ -323,7 +323,7 @@ impl Visit for Compare<'_> {
             }
         }
         let gaps = if self.scene.optimum.is_some() {
-            ", targets.csv, gap-time.png, gap-evaluations.png"
+            ", targets.csv, gap-time.png, gap-evaluations.png (each PNG with its SVG)"
         } else {
             ""
         };
@@ -458,15 +458,22 @@ impl Outputs<'_> {
                 high: &q.q3,
             })
             .collect();
-        let picture = plot::spreads(
-            PLOT_SIZE.0,
-            PLOT_SIZE.1,
+        let scene = self.args.scene.file_stem().unwrap_or_default();
+        let title = format!("{}: best fitness against time", scene.to_string_lossy());
+        let titles = Titles {
+            title: &title,
+            x: "wall time (seconds)",
+            y: "best fitness (median and quartiles over runs)",
+        };
+        let figure = plot::spreads(
+            PLOT_SIZE,
+            &titles,
             self.args.seconds,
-            ("seconds", "best fitness (median and quartiles over runs)"),
             &spreads,
             YScale::Linear,
-        );
-        save_png(&dir.join("compare.png"), &picture)?;
+            gap::QUARTILES,
+        )?;
+        save_figure(&dir.join("compare.png"), &figure)?;
         match self.optimum {
             Some(optimum) => gap::check_optimum(optimum, &groups),
             None => Ok(()),

@@ -5,6 +5,8 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use image::RgbImage;
 
+use super::plot::Figure;
+
 /// The text of `path`, or an error naming it.
 pub fn read(path: &Path) -> anyhow::Result<String> {
     std::fs::read_to_string(path).with_context(|| format!("cannot read `{}`", path.display()))
@@ -14,6 +16,14 @@ pub fn read(path: &Path) -> anyhow::Result<String> {
 pub fn save_png(path: &Path, image: &RgbImage) -> anyhow::Result<()> {
     let mut files = Files::new();
     files.png(path, image)?;
+    files.commit()
+}
+
+/// Writes `figure` as a PNG file at `path` and as an SVG file beside it (the same name
+/// with `.svg`), atomically and together.
+pub fn save_figure(path: &Path, figure: &Figure) -> anyhow::Result<()> {
+    let mut files = Files::new();
+    files.figure(path, figure)?;
     files.commit()
 }
 
@@ -74,6 +84,13 @@ impl Files {
             image::ImageFormat::Png,
         )?;
         self.write(path, &bytes)
+    }
+
+    /// Writes `figure` as a PNG file to `path`'s temporary file and as an SVG file to
+    /// the temporary file of `path` with `.svg`.
+    pub fn figure(&mut self, path: &Path, figure: &Figure) -> anyhow::Result<()> {
+        self.png(path, &figure.png)?;
+        self.write(&path.with_extension("svg"), figure.svg.as_bytes())
     }
 
     /// Renames every file written into place, in the order written.

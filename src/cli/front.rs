@@ -20,11 +20,11 @@ use shapegen::{BoundMeshes, Grammar, Instance};
 
 use super::backend::Incremental;
 use super::checkpoint::Checkpoint;
-use super::files::{Files, atomic_write, csv_bytes, save_png};
+use super::files::{Files, atomic_write, csv_bytes, save_figure, save_png};
 use super::interrupt;
 use super::memory::{MemoryArgs, check_resumed};
 use super::overlay::{projection_overlay, projections};
-use super::plot;
+use super::plot::{self, Titles};
 use super::progress::ProgressLine;
 
 /// Most models drawn on the contact sheet; a larger front is shown evenly thinned.
@@ -33,6 +33,8 @@ const SHEET_MODELS: usize = 100;
 const SHEET_COLUMNS: usize = 10;
 /// Side of one contact-sheet picture, in pixels.
 const SHEET_CELL: u32 = 200;
+/// The colour of the front's points in the scatter charts.
+const FRONT: Rgb<u8> = Rgb([30, 60, 140]);
 
 /// One objective in `summary.json`.
 #[derive(Serialize)]
@@ -189,7 +191,7 @@ impl FrontRun<'_> {
         println!(
             "{} non-dominated models after {} generations and {} evaluations ({stopped}); wrote \
              front/ (one .glb each), front.csv, front.genomes.json, contact_sheet.png, \
-             scatter_*.png, history.csv and summary.json to {}",
+             scatter_*.png with their SVGs, history.csv and summary.json to {}",
             front.len(),
             result.generations,
             result.evaluations,
@@ -363,7 +365,7 @@ impl Outputs<'_> {
         );
         for (k, (i, instances)) in shown.iter().enumerate() {
             let mut cell = preview.render(instances, &self.meshes, &self.palette)?;
-            plot::label(&mut cell, &i.to_string());
+            plot::label(&mut cell, &i.to_string())?;
             let (x, y) = ((k % columns) as u32, (k / columns) as u32);
             image::imageops::replace(
                 &mut sheet,
@@ -375,19 +377,25 @@ impl Outputs<'_> {
         save_png(&dir.join("contact_sheet.png"), &sheet)
     }
 
-    /// `scatter_A_B.png` for every pair of objectives: the front's values, A across and B
-    /// up.
+    /// `scatter_A_B.png` with `scatter_A_B.svg` for every pair of objectives: the front's
+    /// values, A across and B up.
     fn scatters<G>(&self, dir: &Path, front: &[&Member<G>]) -> anyhow::Result<()> {
         let names: Vec<&str> = self.set.names().collect();
         for a in 0..names.len() {
             for b in a + 1..names.len() {
                 let points: Vec<(f64, f64)> =
                     front.iter().map(|m| (m.values[a], m.values[b])).collect();
-                let picture =
-                    plot::scatter(640, 480, (names[a], names[b]), &points, Rgb([30, 60, 140]));
-                save_png(
+                let title = format!("Multi-objective front: {} against {}", names[b], names[a]);
+                let titles = Titles {
+                    title: &title,
+                    x: names[a],
+                    y: names[b],
+                };
+                let name = format!("front members ({})", points.len());
+                let figure = plot::scatter((640, 480), &titles, &points, FRONT, &name)?;
+                save_figure(
                     &dir.join(format!("scatter_{}_{}.png", names[a], names[b])),
-                    &picture,
+                    &figure,
                 )?;
             }
         }

@@ -2,7 +2,8 @@
 //! give one (`fitness.optimum`, a reachable target's own score): how long each group of
 //! runs took to reach 90 %, 99 % and 99.9 % of the optimum (`targets.csv`), and the gap
 //! `optimum - best` against time and against evaluations on a log scale
-//! (`gap-time.png`, `gap-evaluations.png`), as the median with its quartile band.
+//! (`gap-time.png`, `gap-evaluations.png`, each with its SVG), as the median with its
+//! quartile band.
 //!
 //! A run that never reached a level counts as infinitely slow, so a group's median time
 //! is "not reached" once fewer than half its runs got there; `reached` says how many did.
@@ -13,8 +14,8 @@ use image::Rgb;
 use serde::Serialize;
 use shapegen::optimize::HistoryEntry;
 
-use super::files::{atomic_write, csv_bytes, save_png};
-use super::plot::{self, Spread, YScale};
+use super::files::{atomic_write, csv_bytes, save_figure};
+use super::plot::{self, Spread, Titles, YScale};
 use super::stats::{first_reaching, quartile_curve, quartiles};
 
 /// The fractions of the optimum whose times are measured.
@@ -29,6 +30,9 @@ const POINTS: usize = 400;
 
 /// Size of the plots.
 const SIZE: (u32, u32) = (800, 500);
+
+/// What the lines and the shading of a median-and-quartiles chart show, in its legend.
+pub const QUARTILES: &str = "line: median, shaded: first to third quartile";
 
 /// The x value of a history entry: its seconds or its evaluations.
 type XOf = fn(&HistoryEntry) -> f64;
@@ -142,8 +146,8 @@ pub fn check_optimum(optimum: f64, groups: &[Group<'_>]) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Writes `targets.csv`, `gap-time.png` and `gap-evaluations.png` into `dir` for
-/// `groups`, and returns each group's [`reached`].
+/// Writes `targets.csv`, `gap-time.png` and `gap-evaluations.png` (each with its SVG)
+/// into `dir` for `groups`, and returns each group's [`reached`].
 pub fn write(
     dir: &Path,
     key: &str,
@@ -161,15 +165,21 @@ pub fn write(
             .flat_map(|g| g.runs.iter().filter_map(|h| h.last().map(f)))
             .fold(0.0, f64::max)
     };
-    let axes: [(&str, XOf, &str); 2] = [
-        ("gap-time.png", |h| h.elapsed_s, "seconds"),
+    let axes: [(&str, XOf, &str, &str); 2] = [
+        (
+            "gap-time.png",
+            |h| h.elapsed_s,
+            "time",
+            "wall time (seconds)",
+        ),
         (
             "gap-evaluations.png",
             |h| h.evaluations as f64,
             "evaluations",
+            "evaluations",
         ),
     ];
-    for (file, x, label) in axes {
+    for (file, x, against, label) in axes {
         let x_max = last(x);
         let curves: Vec<[Vec<f64>; 3]> = groups
             .iter()
@@ -186,15 +196,14 @@ pub fn write(
                 high,
             })
             .collect();
-        let picture = plot::spreads(
-            SIZE.0,
-            SIZE.1,
-            x_max,
-            (label, "optimum - best (median and quartiles over runs)"),
-            &spreads,
-            YScale::Log,
-        );
-        save_png(&dir.join(file), &picture)?;
+        let title = format!("Gap to the optimum ({optimum}) against {against}");
+        let titles = Titles {
+            title: &title,
+            x: label,
+            y: "optimum - best (median and quartiles over runs)",
+        };
+        let figure = plot::spreads(SIZE, &titles, x_max, &spreads, YScale::Log, QUARTILES)?;
+        save_figure(&dir.join(file), &figure)?;
     }
     Ok(rows.into_iter().map(|(_, r)| r).collect())
 }

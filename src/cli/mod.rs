@@ -231,7 +231,7 @@ enum Command {
     /// +- std and median of the final best per grid point, the best marked),
     /// final-KEY.png per swept key (final best against the key's values with error bars,
     /// one line per value of a second key) and curves.png (the mean curves of the best
-    /// and the worst grid points against evaluations).
+    /// and the worst grid points against evaluations), each chart also as SVG.
     ///
     /// Run the same command again to go on after an interruption; --plan-only writes a
     /// Slurm job array instead (`sbatch DIR/sweep.sbatch` runs it and collects it).

@@ -26,7 +26,7 @@ use super::front::FrontRun;
 use super::interrupt;
 use super::memory::{MemoryArgs, MemoryCheck, check_resumed};
 use super::overlay::overlay;
-use super::plot;
+use super::plot::{self, Line, Titles};
 use super::processes::Processes;
 use super::progress::ProgressLine;
 
@@ -330,7 +330,7 @@ impl Run<'_> {
         )?;
         println!(
             "best fitness {:.4} after {} generations and {} evaluations ({}); wrote best.obj, \
-             best.glb, best.png{}, best.genome.json, fitness.csv, fitness.png and summary.json to {}",
+             best.glb, best.png{}, best.genome.json, fitness.csv, fitness.png, fitness.svg and summary.json to {}",
             result.best_fitness,
             result.generations,
             result.evaluations,
@@ -349,6 +349,8 @@ impl Run<'_> {
 /// Writes the run's files.
 struct Outputs<'a> {
     scorer: &'a SceneScorer,
+    /// The fitness chart's title: the generator and the method.
+    title: String,
     meshes: shapegen::BoundMeshes,
     palette: Palette,
 }
@@ -357,6 +359,11 @@ impl<'a> Outputs<'a> {
     fn new<G: Grammar>(scene: &Scene, scorer: &'a SceneScorer) -> anyhow::Result<Outputs<'a>> {
         Ok(Outputs {
             scorer,
+            title: format!(
+                "{} with {}: fitness per generation",
+                scene.generator,
+                scene.optimizer.method().name()
+            ),
             meshes: scene.meshes.bind(G::GRAPH)?,
             palette: Palette::new(),
         })
@@ -414,7 +421,8 @@ impl<'a> Outputs<'a> {
         Ok(())
     }
 
-    /// `fitness.csv` and `fitness.png` (best in dark blue, mean in orange).
+    /// `fitness.csv`, and `fitness.png` with `fitness.svg`: best (dark blue) and mean
+    /// (orange) fitness against generations.
     fn curves<G>(
         &self,
         files: &mut Files,
@@ -441,14 +449,28 @@ impl<'a> Outputs<'a> {
             ]
         });
         files.write(&dir.join("fitness.csv"), &csv_bytes(&header, rows)?)?;
+        let generations: Vec<f64> = result.history.iter().map(|h| h.generation as f64).collect();
         let best: Vec<f64> = result.history.iter().map(|h| h.best).collect();
         let mean: Vec<f64> = result.history.iter().map(|h| h.mean).collect();
-        let picture = plot::curves(
-            640,
-            400,
-            &[(Rgb([230, 140, 40]), &mean), (Rgb([30, 60, 140]), &best)],
-        );
-        files.png(&dir.join("fitness.png"), &picture)
+        let lines = [
+            Line {
+                name: "best",
+                colour: Rgb([30, 60, 140]),
+                values: &best,
+            },
+            Line {
+                name: "mean",
+                colour: Rgb([230, 140, 40]),
+                values: &mean,
+            },
+        ];
+        let titles = Titles {
+            title: &self.title,
+            x: "generations",
+            y: "fitness",
+        };
+        let figure = plot::curves((640, 400), &titles, &generations, &lines)?;
+        files.figure(&dir.join("fitness.png"), &figure)
     }
 }
 

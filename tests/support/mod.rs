@@ -119,6 +119,28 @@ pub fn timeless_table(dir: &Path, file: &str) -> Vec<String> {
         .collect()
 }
 
+/// Checks the chart `name` (`compare.png`, say) in `dir`: a PNG of `size` pixels and,
+/// beside it, its SVG (`compare.svg`) holding each of `texts` (a title, an axis title,
+/// a legend entry) as text. Returns the SVG.
+pub fn chart(dir: &Path, name: &str, size: (u32, u32), texts: &[&str]) -> String {
+    let png = image::open(dir.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert_eq!((png.width(), png.height()), size, "{name}");
+    let svg_name = name.replace(".png", ".svg");
+    let svg = fs::read_to_string(dir.join(&svg_name)).unwrap_or_else(|e| panic!("{svg_name}: {e}"));
+    assert!(svg.starts_with("<svg"), "{svg_name}");
+    for text in texts {
+        let escaped = text
+            .replace('&', "&amp;")
+            .replace('<', "&lt;")
+            .replace('>', "&gt;");
+        assert!(
+            svg.contains(&format!(">\n{escaped}\n<")),
+            "no `{text}` in {svg_name}"
+        );
+    }
+    svg
+}
+
 /// The JSON lines `shapegen score` prints.
 pub fn score(scene: &Path, genomes: &Path, backend: &str) -> Vec<serde_json::Value> {
     ok(&["score", s(scene), "--genomes", s(genomes), backend])

@@ -1,4 +1,5 @@
-//! A study's plots, made from its finished cells alone:
+//! A study's plots, made from its finished cells alone, each as a PNG file and an SVG
+//! file beside it:
 //! - `final-KEY.png` for each swept key: final best fitness against the key's values
 //!   (placed by value when all are numbers, in the order given otherwise), mean +- std
 //!   over runs as error bars, one line per value of a second swept key when there is one
@@ -13,11 +14,9 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use image::RgbImage;
-
-use super::super::files::save_png;
+use super::super::files::save_figure;
 use super::super::gap::{self, Group};
-use super::super::plot::{self, Band, XValues};
+use super::super::plot::{self, Band, Figure, Titles, XValues};
 use super::super::stats::{curve, mean_std};
 use super::cell::Finished;
 use super::plan::Plan;
@@ -31,12 +30,12 @@ const CURVE_POINTS: usize = 400;
 /// Writes every plot of the study for the finished cells `done`.
 pub fn write(plan: &Plan, dir: &Path, done: &BTreeMap<u64, Finished>) -> anyhow::Result<()> {
     for (k, axis) in plan.grid.iter().enumerate() {
-        save_png(
+        save_figure(
             &dir.join(final_file(&axis.key)),
-            &finals_against(plan, done, k),
+            &finals_against(plan, done, k)?,
         )?;
     }
-    save_png(&dir.join("curves.png"), &curves(plan, done))?;
+    save_figure(&dir.join("curves.png"), &curves(plan, done)?)?;
     match plan.optimum {
         Some(optimum) => {
             let groups: Vec<Group<'_>> = (0..plan.points())
@@ -73,7 +72,7 @@ pub fn final_file(key: &str) -> String {
 }
 
 /// Final best fitness against the values of swept key `k`.
-fn finals_against(plan: &Plan, done: &BTreeMap<u64, Finished>, k: usize) -> RgbImage {
+fn finals_against(plan: &Plan, done: &BTreeMap<u64, Finished>, k: usize) -> anyhow::Result<Figure> {
     let axis = &plan.grid[k];
     let lines = (0..plan.grid.len()).find(|&j| j != k);
     let line_count = lines.map_or(1, |j| plan.grid[j].values.len());
@@ -89,9 +88,10 @@ fn finals_against(plan: &Plan, done: &BTreeMap<u64, Finished>, k: usize) -> RgbI
         .collect();
     let names: Vec<String> = (0..line_count)
         .map(|i| {
-            lines.map_or_else(String::new, |j| {
-                format!("{}={}", plan.grid[j].key, plan.grid[j].values[i])
-            })
+            lines.map_or_else(
+                || "final best of each value".to_owned(),
+                |j| format!("{}={}", plan.grid[j].key, plan.grid[j].values[i]),
+            )
         })
         .collect();
     let bands: Vec<Band<'_>> = stats
@@ -119,11 +119,17 @@ fn finals_against(plan: &Plan, done: &BTreeMap<u64, Finished>, k: usize) -> RgbI
     } else {
         "final best fitness (mean +- std over runs)"
     };
-    plot::error_bars(SIZE.0, SIZE.1, (&axis.key, y), &x, &bands)
+    let title = format!("Final best fitness against {}", axis.key);
+    let titles = Titles {
+        title: &title,
+        x: &axis.key,
+        y,
+    };
+    plot::error_bars(SIZE, &titles, &x, &bands)
 }
 
 /// The mean curves of the best and the worst grid points.
-fn curves(plan: &Plan, done: &BTreeMap<u64, Finished>) -> RgbImage {
+fn curves(plan: &Plan, done: &BTreeMap<u64, Finished>) -> anyhow::Result<Figure> {
     let points = summarize(plan, done);
     let shown: Vec<(&str, u64)> = match best_and_worst(&points) {
         None => Vec::new(),
@@ -163,13 +169,12 @@ fn curves(plan: &Plan, done: &BTreeMap<u64, Finished>) -> RgbImage {
             std,
         })
         .collect();
-    plot::bands(
-        SIZE.0,
-        SIZE.1,
-        x_max,
-        ("evaluations", "best fitness so far (mean +- std over runs)"),
-        &bands,
-    )
+    let titles = Titles {
+        title: "Best fitness against evaluations: the best and the worst grid point",
+        x: "evaluations",
+        y: "best fitness so far (mean +- std over runs)",
+    };
+    plot::bands(SIZE, &titles, x_max, &bands)
 }
 
 #[cfg(test)]

@@ -426,7 +426,7 @@ fn run_local(plan: &Plan, dir: &Path, jobs: usize, tool: &Generators) -> anyhow:
         dir.display()
     );
     println!(
-        "swept {total} cells; wrote sweep.csv, summary.md, {} and curves.png to {}",
+        "swept {total} cells; wrote sweep.csv, summary.md, {} and curves.png (each chart with its SVG) to {}",
         plan.grid
             .iter()
             .map(|a| figures::final_file(&a.key))
