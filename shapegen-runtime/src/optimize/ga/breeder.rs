@@ -82,17 +82,17 @@ impl<G: Grammar> Breeder<G> {
         }
     }
 
-    /// Grows and evaluates the initial population of a run on one fitness, counting its
-    /// evaluations in `progress`.
-    pub(crate) fn start<R>(
+    /// Grows every island's initial population (see [`grow`](Self::grow)) and evaluates
+    /// them on one fitness.
+    pub(crate) fn start(
         &mut self,
         settings: &GaSettings,
-        progress: &mut Progress<R>,
+        seed: u64,
+        first: usize,
         evaluator: &mut (dyn Evaluator<G> + '_),
     ) -> Result<(), OptimizeError> {
-        self.grow(settings, progress.seed, 0);
+        self.grow(settings, seed, first);
         evaluator.evaluate(&self.population, &mut self.scores)?;
-        progress.evaluations += self.population.len() as u64;
         Ok(())
     }
 

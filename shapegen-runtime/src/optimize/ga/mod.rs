@@ -161,7 +161,9 @@ impl<G: Grammar> Optimizer<G> for Ga<G> {
     fn start(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
         let core = &mut self.core;
         self.breeder
-            .start(&core.settings, &mut core.progress, evaluator)
+            .start(&core.settings, core.progress.seed, 0, evaluator)?;
+        core.progress.evaluations += u64::from(core.settings.population);
+        Ok(())
     }
 
     fn step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {

@@ -299,7 +299,10 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
     fn start(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
         let (settings, progress) = (&self.core.settings, &mut self.core.progress);
         if settings.seed_steps == 0 {
-            return self.breeder.start(&settings.ga, progress, evaluator);
+            self.breeder
+                .start(&settings.ga, progress.seed, 0, evaluator)?;
+            progress.evaluations += u64::from(settings.ga.population);
+            return Ok(());
         }
         let mut smc = Smc::new(
             settings.seeding(),

@@ -569,9 +569,8 @@ impl<G: Grammar> Optimizer<G> for IslandGa<G> {
 
     fn start(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
         let (settings, progress) = (&self.core.settings, &mut self.core.progress);
-        let b = &mut self.breeder;
-        b.grow(&settings.ga, progress.seed, self.first);
-        evaluator.evaluate(&b.population, &mut b.scores)?;
+        self.breeder
+            .start(&settings.ga, progress.seed, self.first, evaluator)?;
         progress.evaluations +=
             u64::from(settings.islands.count) * u64::from(settings.ga.population);
         self.share()
