@@ -16,8 +16,8 @@ use shapegen::scene::Overrides;
 use shapegen_runtime::optimize::islands::IslandGa;
 use shapegen_runtime::optimize::multi::MultiGa;
 use shapegen_runtime::optimize::{
-    Best, Budget, EvaluateError, FnEvaluator, Ga, Mcmc, MultiEvaluator, Optimizer, Sense, Session,
-    Smc,
+    Best, Budget, Checkpoint as _, EvaluateError, FnEvaluator, Ga, Mcmc, MultiEvaluator,
+    Optimizer, Sense, Session, Smc,
 };
 use shapegen_runtime::{Genome, Grammar};
 
@@ -41,7 +41,7 @@ where
     O::State: DeserializeOwned,
 {
     let checkpoint: Checkpoint<O::State> = serde_json::from_slice(json).ok()?;
-    let held = O::genomes_held(O::state_settings(&checkpoint.search));
+    let held = O::genomes_held(checkpoint.search.settings());
     if held.iter().map(|h| h.genomes).sum::<u64>() > MAX_GENOMES {
         return None;
     }

@@ -308,7 +308,8 @@ fn multi_ga_breeds_with_the_original_rules() {
         ga.checkpoint()
     };
     let (a, b) = (threads(1, run), threads(2, run));
-    assert!(a.population == b.population && a.archive.len() == b.archive.len());
+    let (fa, fb) = (&a.progress.record, &b.progress.record);
+    assert!(a.population == b.population && fa.archive.len() == fb.archive.len());
     assert!(a.population.iter().all(|g| (4..14).contains(&g.len())));
     assert!(a.population.iter().any(|g| g.len() == 13));
 }

@@ -1,13 +1,15 @@
 //! A method written outside the crate: a (1+λ) hill climber implementing the public
-//! `Optimizer` trait with the public operators, run by the crate's own driver and
-//! `Session`: budgets stop it, a checkpointed and resumed session ends as an
-//! uninterrupted one, and the stop flag interrupts it.
+//! `Optimizer` trait with the public operators, its checkpoint declared with the public
+//! `checkpoint!` macro, run by the crate's own driver and `Session`: budgets stop it, a
+//! checkpointed and resumed session ends as an uninterrupted one, and the stop flag
+//! interrupts it.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use rand::RngExt;
 use serde::{Deserialize, Serialize};
+use shapegen_runtime::checkpoint;
 use shapegen_runtime::optimize::*;
 use shapegen_runtime::prelude::*;
 
@@ -52,16 +54,13 @@ impl Settings for ClimbSettings {
     }
 }
 
-/// Its checkpoint.
-#[derive(Serialize, Deserialize)]
-#[serde(bound(serialize = "", deserialize = ""))]
-struct ClimbState {
-    settings: ClimbSettings,
-    limits: Limits,
-    progress: Progress<Best<Chain>>,
-    parent: Genome<Chain>,
-    #[serde(with = "bits")]
-    parent_fitness: f64,
+checkpoint! {
+    /// Its checkpoint: the parent and its fitness.
+    struct ClimbState<G>: ClimbSettings, Best<G> {
+        parent: Genome<G>,
+        #[serde(with = "bits")]
+        parent_fitness: f64,
+    }
 }
 
 /// Fitness values as exact bits.
@@ -81,9 +80,8 @@ mod bits {
 /// alter, drawn uniformly) and keeps the best child if it is not worse. The population
 /// the driver records is the parent and its children.
 struct Climb {
-    settings: ClimbSettings,
+    core: Core<ClimbSettings, Best<Chain>>,
     ops: Operators<Chain>,
-    progress: Progress<Best<Chain>>,
     /// The parent first, then the children.
     population: Vec<Genome<Chain>>,
     fitness: Vec<f64>,
@@ -91,7 +89,7 @@ struct Climb {
 
 impl Optimizer<Chain> for Climb {
     type Settings = ClimbSettings;
-    type State = ClimbState;
+    type State = ClimbState<Chain>;
     type Record = Best<Chain>;
 
     /// The parent and its children; a checkpoint saves the parent.
@@ -109,62 +107,50 @@ impl Optimizer<Chain> for Climb {
         let mut rng = stream(seed, 0, 0);
         let axiom = Genome::<Chain>::axiom(&mut rng);
         Ok(Climb {
-            settings,
+            core: Core::new(settings, limits, seed),
             ops: Operators::new(limits)?,
-            progress: Progress::new(seed),
             population: vec![axiom; n],
             fitness: vec![f64::NAN; n],
         })
     }
 
-    fn resume(state: ClimbState) -> Result<Self, OptimizeError> {
-        let mut climb = Climb::new(state.settings, state.limits, state.progress.seed)?;
-        climb.population[0] = state.parent;
-        climb.fitness[0] = state.parent_fitness;
-        climb.progress = state.progress;
-        Ok(climb)
+    fn core(&self) -> &Core<ClimbSettings, Best<Chain>> {
+        &self.core
     }
 
-    fn checkpoint(&self) -> ClimbState {
-        ClimbState {
-            settings: self.settings,
-            limits: *self.ops.limits(),
-            progress: self.progress.clone(),
-            parent: self.population[0].clone(),
-            parent_fitness: self.fitness[0],
-        }
+    fn parts(
+        &mut self,
+    ) -> (
+        &mut Core<ClimbSettings, Best<Chain>>,
+        &[Genome<Chain>],
+        &[f64],
+    ) {
+        (&mut self.core, &self.population, &self.fitness)
     }
 
-    fn settings(&self) -> &ClimbSettings {
-        &self.settings
+    fn save_body(&self) -> (Genome<Chain>, f64) {
+        (self.population[0].clone(), self.fitness[0])
     }
 
-    fn state_settings(state: &ClimbState) -> &ClimbSettings {
-        &state.settings
-    }
-
-    fn state_limits(state: &ClimbState) -> &Limits {
-        &state.limits
-    }
-
-    fn progress(&self) -> &Progress<Best<Chain>> {
-        &self.progress
-    }
-
-    fn parts(&mut self) -> (&mut Progress<Best<Chain>>, &[Genome<Chain>], &[f64]) {
-        (&mut self.progress, &self.population, &self.fitness)
+    fn restore_body(&mut self, (parent, f): (Genome<Chain>, f64)) -> Result<(), OptimizeError> {
+        self.population[0] = parent;
+        self.fitness[0] = f;
+        Ok(())
     }
 
     fn step_cost(&self) -> u64 {
-        u64::from(self.settings.lambda)
+        u64::from(self.core.settings.lambda)
     }
 
     fn start(&mut self, evaluator: &mut (dyn Evaluator<Chain> + '_)) -> Result<(), OptimizeError> {
-        let rng = &mut stream(self.progress.seed, 0, 1);
-        self.ops
-            .random_into(self.settings.initial_length, &mut self.population[0], rng);
+        let rng = &mut stream(self.core.progress.seed, 0, 1);
+        self.ops.random_into(
+            self.core.settings.initial_length,
+            &mut self.population[0],
+            rng,
+        );
         evaluator.evaluate(&self.population[..1], &mut self.fitness[..1])?;
-        self.progress.evaluations += 1;
+        self.core.progress.evaluations += 1;
         let (parent, children) = self.population.split_first_mut().unwrap();
         children.iter_mut().for_each(|c| c.clone_from(parent));
         let f = self.fitness[0];
@@ -173,7 +159,7 @@ impl Optimizer<Chain> for Climb {
     }
 
     fn step(&mut self, evaluator: &mut (dyn Evaluator<Chain> + '_)) -> Result<(), OptimizeError> {
-        let (seed, generation) = (self.progress.seed, self.progress.generation + 1);
+        let (seed, generation) = (self.core.progress.seed, self.core.progress.generation + 1);
         let (parent, children) = self.population.split_first_mut().unwrap();
         for (i, child) in children.iter_mut().enumerate() {
             let rng = &mut stream(seed, generation, i as u64);
@@ -185,7 +171,7 @@ impl Optimizer<Chain> for Climb {
             };
         }
         evaluator.evaluate(children, &mut self.fitness[1..])?;
-        self.progress.evaluations += children.len() as u64;
+        self.core.progress.evaluations += children.len() as u64;
         let best = (1..self.fitness.len())
             .max_by(|&a, &b| self.fitness[a].total_cmp(&self.fitness[b]).then(b.cmp(&a)))
             .unwrap();
@@ -301,7 +287,7 @@ fn a_resumed_session_ends_as_an_uninterrupted_one() {
         (first.stopped, first.generations),
         (StopReason::Observer, 13)
     );
-    let state: ClimbState = serde_json::from_str(&saved.unwrap()).unwrap();
+    let state: ClimbState<Chain> = serde_json::from_str(&saved.unwrap()).unwrap();
     let resumed = Session::<Chain, Climb>::resume(state, budget)
         .unwrap()
         .run(&mut fifteen())

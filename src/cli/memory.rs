@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use shapegen::Grammar;
-use shapegen::optimize::Optimizer;
+use shapegen::optimize::{Checkpoint, Optimizer};
 use shapegen::scene::{OptimizerGoal, RunShape, Scene};
 
 use super::backend::BackendArgs;
@@ -83,8 +83,8 @@ pub fn check_resumed<G: Grammar, O: Optimizer<G>>(
 ) -> anyhow::Result<()> {
     let shape = RunShape {
         graph: G::GRAPH,
-        held: O::genomes_held(O::state_settings(state)),
-        max_len: O::state_limits(state).max_len,
+        held: O::genomes_held(state.settings()),
+        max_len: state.limits().max_len,
         threads: rayon::current_num_threads(),
         incremental,
         gpu,

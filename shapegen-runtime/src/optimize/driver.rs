@@ -6,15 +6,22 @@
 //!
 //! A method is one type implementing [`Optimizer`]: it builds and evaluates its initial
 //! population ([`start`](Optimizer::start)), runs one generation
-//! ([`step`](Optimizer::step)), says how many evaluations the next generation may use at
-//! most ([`step_cost`](Optimizer::step_cost)), and converts itself to and from a serde
-//! checkpoint ([`checkpoint`](Optimizer::checkpoint), [`resume`](Optimizer::resume)).
+//! ([`step`](Optimizer::step)) and says how many evaluations the next generation may use
+//! at most ([`step_cost`](Optimizer::step_cost)). What every method has, its settings,
+//! the genome limits and its [`Progress`], is one [`Core`] that the method holds and
+//! hands out ([`core`](Optimizer::core), [`parts`](Optimizer::parts)); a checkpoint is
+//! that core and the method's own fields, its body, in a struct declared with
+//! [`checkpoint!`](crate::checkpoint) ([`Checkpoint`]). The method only saves, checks and
+//! restores its body ([`save_body`](Optimizer::save_body),
+//! [`check_body`](Optimizer::check_body), [`restore_body`](Optimizer::restore_body)):
+//! the provided [`checkpoint`](Optimizer::checkpoint) and [`resume`](Optimizer::resume)
+//! do the rest, and the settings and progress accessors are provided too.
 //! Everything else (budgets, generation counting, wall time across resumes, the history,
 //! the best so far, the observer, the stop reasons) lives once, in [`drive`] and in the
-//! method's [`Record`]. Adding a method is one file with one `impl Optimizer`, plus its
-//! registration where the command-line tool lists the methods; nothing in the trait is
-//! private to this crate, so other crates can add methods too (see
-//! `tests/toy_optimizer.rs`).
+//! method's [`Record`]. Adding a method is one file with one `impl Optimizer` and one
+//! `checkpoint!`, plus its registration where the command-line tool lists the methods;
+//! nothing in the trait is private to this crate, so other crates can add methods too
+//! (see `tests/toy_optimizer.rs`).
 //!
 //! What a run records is the associated type [`Optimizer::Record`]: [`Best`] for one
 //! fitness per individual (best genome, best / mean / std history, [`RunResult`](super::RunResult)) or
@@ -30,9 +37,7 @@
 
 use std::time::Instant;
 
-use serde::Serialize;
-use serde::de::DeserializeOwned;
-
+use super::core::{Checkpoint, Core};
 use super::run::{Budget, Control, Progress, StopReason};
 use super::{OptimizeError, Settings};
 use crate::derive::Grammar;
@@ -44,7 +49,7 @@ use crate::genome::{Genome, Limits};
 ///
 /// The record is the part of an optimizer's [`Progress`] that is not a counter; it holds
 /// the per-generation history, and serializes inline with the counters.
-pub trait Record<G: Grammar>: Default + Sized {
+pub trait Record<G: Grammar>: Clone + Default {
     /// The evaluator kind of this record's runs (a trait object).
     type Evaluator<'e>: ?Sized;
     /// The observer kind of this record's runs (a trait object), called after every
@@ -100,9 +105,10 @@ pub struct Held {
 
 /// A search method, as the driver ([`drive`], [`Session`](super::Session)) runs it.
 ///
-/// Implementations keep a [`Progress`] of their [`Record`]: the driver advances the
-/// generation counter and the wall time and records each generation; the method counts
-/// its evaluations in [`start`](Self::start) and [`step`](Self::step). Random choices
+/// Implementations keep a [`Core`] holding the [`Progress`] of their [`Record`]: the
+/// driver advances the generation counter and the wall time and records each
+/// generation; the method counts its evaluations in [`start`](Self::start) and
+/// [`step`](Self::step). Random choices
 /// should come from [`stream`](super::stream) (seed, generation, index), so that a
 /// resumed run ends exactly as an uninterrupted one.
 ///
@@ -145,8 +151,9 @@ pub trait Optimizer<G: Grammar>: Sized {
     /// The settings, as scene files give them.
     type Settings: Settings;
     /// A checkpoint, from which [`resume`](Self::resume) goes on exactly as an
-    /// uninterrupted run would.
-    type State: Serialize + DeserializeOwned;
+    /// uninterrupted run would: the [`Core`] and the method's own fields, its body
+    /// (declare it with [`checkpoint!`](crate::checkpoint)).
+    type State: Checkpoint<Settings = Self::Settings, Record = Self::Record>;
     /// What the run records: [`Best`](super::Best) or [`Front`](super::multi::Front).
     type Record: Record<G>;
 
@@ -154,37 +161,65 @@ pub trait Optimizer<G: Grammar>: Sized {
     /// sets their number: populations and their next generations, chains and their
     /// proposals, archives, and the copies a checkpoint takes. With the genome limits
     /// they bound the run's memory before it allocates anything (see
-    /// `shapegen::scene::MemoryEstimate`).
+    /// `shapegen::scene::MemoryEstimate`); for a checkpoint, with the settings of
+    /// [`Checkpoint::settings`].
     fn genomes_held(settings: &Self::Settings) -> Vec<Held>;
 
     /// An optimizer with these settings, keeping genomes within `limits`, seeded with
     /// `seed`; fails if the settings are out of range or do not fit the limits.
     fn new(settings: Self::Settings, limits: Limits, seed: u64) -> Result<Self, OptimizeError>;
 
-    /// Resumes from a checkpoint; fails if it does not fit its own settings.
-    fn resume(state: Self::State) -> Result<Self, OptimizeError>;
+    /// The settings, the genome limits and the progress.
+    fn core(&self) -> &CoreOf<G, Self>;
 
-    /// The state to resume from.
-    fn checkpoint(&self) -> Self::State;
-
-    /// The settings.
-    fn settings(&self) -> &Self::Settings;
-
-    /// The settings a checkpoint `state` was saved with: with
-    /// [`genomes_held`](Self::genomes_held), what resuming it will hold, known before
-    /// [`resume`](Self::resume) allocates anything.
-    fn state_settings(state: &Self::State) -> &Self::Settings;
-
-    /// The genome limits of a checkpoint, which resuming it keeps to.
-    fn state_limits(state: &Self::State) -> &Limits;
-
-    /// The counters and the record.
-    fn progress(&self) -> &Progress<Self::Record>;
-
-    /// The progress, mutably, with the current population and its scores (one value per
+    /// The core, mutably, with the current population and its scores (one value per
     /// individual for one fitness, `k` for objective vectors), as the driver records a
     /// generation.
-    fn parts(&mut self) -> (&mut Progress<Self::Record>, &[Genome<G>], &[f64]);
+    fn parts(&mut self) -> (&mut CoreOf<G, Self>, &[Genome<G>], &[f64]);
+
+    /// The method's own fields of a checkpoint: copies of what [`restore_body`](
+    /// Self::restore_body) puts back.
+    fn save_body(&self) -> <Self::State as Checkpoint>::Body;
+
+    /// Puts back the fields [`save_body`](Self::save_body) gave, into an optimizer just
+    /// made by [`new`](Self::new) with the checkpoint's settings, limits and seed; called
+    /// only for checkpoints of started runs, after [`check_body`](Self::check_body).
+    fn restore_body(
+        &mut self,
+        body: <Self::State as Checkpoint>::Body,
+    ) -> Result<(), OptimizeError>;
+
+    /// Checks the body of a checkpoint of a started run against its settings (the sizes
+    /// of its populations, say) before [`new`](Self::new) allocates anything for them,
+    /// so that settings disagreeing with the checkpoint cannot make a resumed run
+    /// allocate more than the checkpoint holds, nor restore buffers of the wrong size. By
+    /// default there is nothing to check.
+    fn check_body(state: &Self::State) -> Result<(), OptimizeError> {
+        let _ = state;
+        Ok(())
+    }
+
+    /// Resumes from a checkpoint; fails if it does not fit its own settings. By default:
+    /// [`check_body`](Self::check_body) if the run had started, [`new`](Self::new),
+    /// [`restore_body`](Self::restore_body) if it had started, and the progress put back.
+    fn resume(state: Self::State) -> Result<Self, OptimizeError> {
+        resume_with(state, Self::new)
+    }
+
+    /// The state to resume from: a copy of the core, and [`save_body`](Self::save_body).
+    fn checkpoint(&self) -> Self::State {
+        Self::State::from_parts(self.core().clone(), self.save_body())
+    }
+
+    /// The settings.
+    fn settings(&self) -> &Self::Settings {
+        &self.core().settings
+    }
+
+    /// The counters and the record.
+    fn progress(&self) -> &Progress<Self::Record> {
+        &self.core().progress
+    }
 
     /// Evaluations the next [`step`](Self::step) may use at most.
     fn step_cost(&self) -> u64;
@@ -194,8 +229,8 @@ pub trait Optimizer<G: Grammar>: Sized {
     /// record takes in the population and scores of [`parts`](Self::parts); an optimizer
     /// spread over several processes records what they hold together.
     fn record(&mut self) {
-        let (progress, population, scores) = self.parts();
-        Self::Record::record(progress, population, scores);
+        let (core, population, scores) = self.parts();
+        Self::Record::record(&mut core.progress, population, scores);
     }
 
     /// Agrees with the other processes of a run spread over several on what happens
@@ -255,6 +290,10 @@ pub trait Optimizer<G: Grammar>: Sized {
     }
 }
 
+/// The [`Core`] of an optimizer `O` searching grammar `G`: its settings, the genome
+/// limits and its progress.
+pub type CoreOf<G, O> = Core<<O as Optimizer<G>>::Settings, <O as Optimizer<G>>::Record>;
+
 /// A decision the processes of a run take together between generations
 /// ([`Optimizer::agree`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -293,7 +332,7 @@ where
     let base = optimizer.progress().elapsed_s;
     let elapsed = || base + t0.elapsed().as_secs_f64();
     let mut record = |optimizer: &mut O| {
-        optimizer.parts().0.elapsed_s = elapsed();
+        optimizer.parts().0.progress.elapsed_s = elapsed();
         optimizer.record();
         after(optimizer)
     };
@@ -311,13 +350,37 @@ where
             save: false,
         };
         if let Some(reason) = optimizer.agree(local)?.stop {
-            optimizer.parts().0.elapsed_s = elapsed();
+            optimizer.parts().0.progress.elapsed_s = elapsed();
             return Ok(reason);
         }
         optimizer.step(evaluator)?;
-        optimizer.parts().0.generation += 1;
+        optimizer.parts().0.progress.generation += 1;
         if record(optimizer)? == Control::Stop {
             return Ok(StopReason::Observer);
         }
     }
+}
+
+/// Resumes `state` as [`Optimizer::resume`] does, with the optimizer `new` makes from
+/// the checkpoint's settings, limits and seed: for a method whose `new` takes more (the
+/// processes an island model is spread over).
+pub(crate) fn resume_with<G, O>(
+    state: O::State,
+    new: impl FnOnce(O::Settings, Limits, u64) -> Result<O, OptimizeError>,
+) -> Result<O, OptimizeError>
+where
+    G: Grammar,
+    O: Optimizer<G>,
+{
+    let started = state.progress().record.started();
+    if started {
+        O::check_body(&state)?;
+    }
+    let (core, body) = state.into_parts();
+    let mut optimizer = new(core.settings, core.limits, core.progress.seed)?;
+    if started {
+        optimizer.restore_body(body)?;
+    }
+    optimizer.parts().0.progress = core.progress;
+    Ok(optimizer)
 }

@@ -4,10 +4,11 @@
 //! tempering ([`Mcmc`]); and, in [`multi`], the multi-objective GA ([`multi::MultiGa`]) with
 //! its selection on several objectives (Pareto fronts, summed rank, weighted sum).
 //!
-//! Every method implements one public trait, [`Optimizer`] (settings and checkpoint as
-//! serde types; start, step, step cost, checkpoint, resume), and one loop, [`drive`],
-//! runs them all; see the `driver` module's design notes on [`Optimizer`] and
-//! [`Record`]. A method's [`Record`] says what a run keeps: one fitness per individual
+//! Every method implements one public trait, [`Optimizer`] (settings as a serde type;
+//! start, step, step cost; its settings, limits and progress in one [`Core`]; the fields
+//! of its own that a checkpoint saves), and one loop, [`drive`], runs them all; see the
+//! `driver` module's design notes on [`Optimizer`] and [`Record`]. A method's
+//! [`Record`] says what a run keeps: one fitness per individual
 //! ([`Best`]: best genome, best / mean / std history, [`RunResult`]) or an objective
 //! vector ([`multi::Front`]: per-objective best and archive front,
 //! [`multi::MultiResult`]). They share:
@@ -19,9 +20,11 @@
 //!   [`Snapshot`], which can stop the run;
 //! - determinism: every random choice comes from a ChaCha8 [`stream`] fixed by the seed,
 //!   the generation and the individual, so results never depend on the thread count;
-//! - checkpoints ([`GaState`], [`SmcState`], [`McmcState`], [`multi::MultiGaState`];
-//!   serde) from which a resumed run ends exactly as an uninterrupted one, with the
-//!   shared counters in [`Progress`];
+//! - checkpoints ([`GaState`], [`SmcState`], [`McmcState`], [`HybridState`],
+//!   [`multi::MultiGaState`], [`islands::IslandGaState`]; serde) from which a resumed
+//!   run ends exactly as an uninterrupted one: each a [`Checkpoint`], the method's
+//!   [`Core`] (settings, limits, and the shared counters in [`Progress`]) and its own
+//!   fields, declared with [`checkpoint!`](crate::checkpoint);
 //! - the island model ([`islands::IslandGa`]): GA populations on a ring, on one
 //!   process or spread over several;
 //! - a [`Session`] running one optimizer to its budget with a stop flag, a progress hook
@@ -35,6 +38,7 @@
 //! statistics (mean, std) are over the finite values.
 
 mod best;
+mod core;
 mod driver;
 mod error;
 mod fitness;
@@ -49,9 +53,10 @@ mod session;
 mod settings;
 mod smc;
 
+pub use self::core::{Checkpoint, Core};
 pub use crate::evaluate::{EvaluateError, Evaluator, FnEvaluator, MultiEvaluator, Sense};
 pub use best::Best;
-pub use driver::{Agreement, Held, Optimizer, Record, drive};
+pub use driver::{Agreement, CoreOf, Held, Optimizer, Record, drive};
 pub use error::{OptimizeError, SettingsError};
 pub use ga::{Ga, GaSettings, GaState, ParentSelection};
 pub use hybrid::{Hybrid, HybridSettings, HybridState};

@@ -228,19 +228,22 @@ pub struct RunResult<G> {
 
 /// Implements `Clone`, `PartialEq` and `Debug` for a struct generic over a grammar `G`,
 /// field by field, without asking `G` itself for them (grammars are bare marker types).
+/// Exported for [`checkpoint!`](crate::checkpoint)'s expansion; not a public API.
+#[doc(hidden)]
+#[macro_export]
 macro_rules! grammar_struct_traits {
     ($name:ident { $($field:ident),* $(,)? }) => {
-        impl<G> Clone for $name<G> {
+        impl<G: $crate::Grammar> Clone for $name<G> {
             fn clone(&self) -> Self {
                 $name { $($field: self.$field.clone()),* }
             }
         }
-        impl<G> PartialEq for $name<G> {
+        impl<G: $crate::Grammar> PartialEq for $name<G> {
             fn eq(&self, other: &Self) -> bool {
                 true $(&& self.$field == other.$field)*
             }
         }
-        impl<G: $crate::derive::Grammar> std::fmt::Debug for $name<G> {
+        impl<G: $crate::Grammar> std::fmt::Debug for $name<G> {
             fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
                 f.debug_struct(stringify!($name))
                     $(.field(stringify!($field), &self.$field))*
@@ -249,7 +252,7 @@ macro_rules! grammar_struct_traits {
         }
     };
 }
-pub(crate) use grammar_struct_traits;
+pub(crate) use crate::grammar_struct_traits;
 
 grammar_struct_traits!(RunResult {
     best,

@@ -7,12 +7,14 @@ mod refine;
 use serde::{Deserialize, Serialize};
 
 use super::best::Best;
+use super::core::Core;
 use super::error::check_range;
 use super::fitness::bits_vec;
-use super::run::{Progress, derived_seed, grammar_struct_traits};
+use super::ga::{Breeder, check_population};
+use super::run::derived_seed;
 use super::{
-    Evaluator, Ga, GaSettings, GaState, Held, OptimizeError, Optimizer, Order, Record, Settings,
-    SettingsError, Smc, SmcSettings, SmcState, SmcVariant,
+    Evaluator, GaSettings, Held, OptimizeError, Optimizer, Order, Record, Settings, SettingsError,
+    Smc, SmcSettings, SmcState, SmcVariant,
 };
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
@@ -95,36 +97,18 @@ impl HybridSettings {
     }
 }
 
-/// A checkpoint of a [`Hybrid`], resumed by [`Hybrid::resume`].
-#[derive(Serialize, Deserialize)]
-#[serde(
-    deny_unknown_fields,
-    bound(serialize = "G: Grammar", deserialize = "G: Grammar")
-)]
-pub struct HybridState<G> {
-    /// The settings.
-    pub settings: HybridSettings,
-    /// The genome limits.
-    pub limits: Limits,
-    /// Generation, evaluations, best so far, history.
-    pub progress: Progress<Best<G>>,
-    /// The population (empty while it is being seeded).
-    pub population: Vec<Genome<G>>,
-    /// Its fitness.
-    #[serde(with = "bits_vec")]
-    pub fitness: Vec<f64>,
-    /// The SOSMC seeding the first population, while it runs.
-    pub seeding: Option<SmcState<G>>,
+crate::checkpoint! {
+    /// A checkpoint of a [`Hybrid`], resumed by [`Hybrid::resume`].
+    pub struct HybridState<G>: HybridSettings, Best<G> {
+        /// The population (empty while it is being seeded).
+        pub population: Vec<Genome<G>>,
+        /// Its fitness.
+        #[serde(with = "bits_vec")]
+        pub fitness: Vec<f64>,
+        /// The SOSMC seeding the first population, while it runs.
+        pub seeding: Option<SmcState<G>>,
+    }
 }
-
-grammar_struct_traits!(HybridState {
-    settings,
-    limits,
-    progress,
-    population,
-    fitness,
-    seeding
-});
 
 /// The hybrid method: the paper's GA ([`Ga`](super::Ga)) with two additions, each of
 /// which its settings can turn off (with both off it is the GA, to the bit). Each was
@@ -182,9 +166,9 @@ grammar_struct_traits!(HybridState {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub struct Hybrid<G> {
-    settings: HybridSettings,
-    /// The GA that breeds every generation; its progress is the hybrid's.
-    ga: Ga<G>,
+    core: Core<HybridSettings, Best<G>>,
+    /// What the GA breeds with every generation.
+    breeder: Breeder<G>,
     /// The refinement's operators (the tempered RJMCMC's, keeping to the limits).
     moves: Operators<G>,
     seeding: Option<Smc<G>>,
@@ -193,46 +177,30 @@ pub struct Hybrid<G> {
 
 impl<G: Grammar> std::fmt::Debug for Hybrid<G> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Hybrid")
-            .field("settings", &self.settings)
-            .field("progress", self.ga.progress())
-            .finish_non_exhaustive()
+        self.core.debug(f, "Hybrid").finish_non_exhaustive()
     }
 }
 
 impl<G: Grammar> Hybrid<G> {
-    /// A hybrid of these settings around `ga`, a GA of `settings.ga` keeping to `limits`.
-    fn around(settings: HybridSettings, ga: Ga<G>, limits: Limits) -> Result<Self, OptimizeError> {
-        settings.validate()?;
-        Ok(Hybrid {
-            settings,
-            ga,
-            moves: Operators::new(limits)?,
-            seeding: None,
-            chains: refine::Chains::new(settings.refine as usize),
-        })
-    }
-
     /// One SOSMC step of the population being seeded; the last puts it in place.
     fn seed_step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
         let smc = self.seeding.as_mut().expect("seeding");
         smc.step(evaluator)?;
         let (seeding, particles, particle_fitness) = smc.parts();
-        seeding.generation += 1;
-        let (progress, population, fitness) = self.ga.parts_mut();
-        progress.evaluations += particles.len() as u64;
-        if seeding.generation >= u64::from(self.settings.seed_steps) {
-            population.clone_from_slice(particles);
-            fitness.copy_from_slice(particle_fitness);
+        seeding.progress.generation += 1;
+        self.core.progress.evaluations += particles.len() as u64;
+        if seeding.progress.generation >= u64::from(self.core.settings.seed_steps) {
+            self.breeder.population.clone_from_slice(particles);
+            self.breeder.scores.copy_from_slice(particle_fitness);
             self.seeding = None;
         }
         Ok(())
     }
 
-    /// The evaluations of one generation of the GA with its refinement.
-    fn generation_cost(&self) -> u64 {
-        let s = &self.settings;
-        self.ga.step_cost() + u64::from(s.refine) * u64::from(s.refine_moves)
+    /// The evaluations of one refinement.
+    fn refine_cost(&self) -> u64 {
+        let s = &self.core.settings;
+        u64::from(s.refine) * u64::from(s.refine_moves)
     }
 }
 
@@ -259,115 +227,92 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
 
     fn new(settings: HybridSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {
         settings.validate()?;
-        Hybrid::around(settings, Ga::new(settings.ga, limits, seed)?, limits)
+        Ok(Hybrid {
+            breeder: Breeder::new(&settings.ga, limits, 1, 1)?,
+            moves: Operators::new(limits)?,
+            seeding: None,
+            chains: refine::Chains::new(settings.refine as usize),
+            core: Core::new(settings, limits, seed),
+        })
     }
 
-    fn resume(state: HybridState<G>) -> Result<Self, OptimizeError> {
-        let HybridState {
-            settings,
-            limits,
-            progress,
-            population,
-            fitness,
-            seeding,
-        } = state;
-        settings.validate()?;
-        let seeding = match progress.record.started() {
-            true => seeding.map(Smc::resume).transpose()?,
-            false => None,
-        };
-        // While the first population is seeded, the GA's own is not there yet.
-        let ga = match seeding {
-            Some(_) => {
-                let mut ga = Ga::new(settings.ga, limits, progress.seed)?;
-                *ga.parts_mut().0 = progress;
-                ga
-            }
-            None => Ga::resume(GaState {
-                settings: settings.ga,
-                limits,
-                progress,
-                population,
-                fitness,
-            })?,
-        };
-        let mut hybrid = Hybrid::around(settings, ga, limits)?;
-        hybrid.seeding = seeding;
-        Ok(hybrid)
+    fn core(&self) -> &Core<HybridSettings, Best<G>> {
+        &self.core
     }
 
-    fn checkpoint(&self) -> HybridState<G> {
-        let GaState {
-            limits,
-            progress,
-            mut population,
-            mut fitness,
-            ..
-        } = self.ga.checkpoint();
-        if self.seeding.is_some() {
-            population.clear();
-            fitness.clear();
-        }
-        HybridState {
-            settings: self.settings,
-            limits,
-            progress,
-            population,
-            fitness,
-            seeding: self.seeding.as_ref().map(Smc::checkpoint),
-        }
-    }
-
-    fn settings(&self) -> &HybridSettings {
-        &self.settings
-    }
-
-    fn state_settings(state: &HybridState<G>) -> &HybridSettings {
-        &state.settings
-    }
-
-    fn state_limits(state: &HybridState<G>) -> &Limits {
-        &state.limits
-    }
-
-    fn progress(&self) -> &Progress<Best<G>> {
-        self.ga.progress()
-    }
-
-    /// The progress, with the population, or the particles of the population being
-    /// seeded.
-    fn parts(&mut self) -> (&mut Progress<Best<G>>, &[Genome<G>], &[f64]) {
+    /// The core, with the population, or the particles of the population being seeded.
+    fn parts(&mut self) -> (&mut Core<HybridSettings, Best<G>>, &[Genome<G>], &[f64]) {
         match &mut self.seeding {
             Some(smc) => {
                 let (_, particles, fitness) = smc.parts();
-                (self.ga.parts_mut().0, particles, fitness)
+                (&mut self.core, particles, fitness)
             }
-            None => self.ga.parts(),
+            None => (
+                &mut self.core,
+                &self.breeder.population,
+                &self.breeder.scores,
+            ),
         }
     }
 
+    /// The population and its fitness, or while it is seeded none and the SOSMC's
+    /// checkpoint.
+    fn save_body(&self) -> (Vec<Genome<G>>, Vec<f64>, Option<SmcState<G>>) {
+        match &self.seeding {
+            Some(smc) => (Vec::new(), Vec::new(), Some(smc.checkpoint())),
+            None => {
+                let (population, fitness) = self.breeder.save();
+                (population, fitness, None)
+            }
+        }
+    }
+
+    fn check_body(state: &HybridState<G>) -> Result<(), OptimizeError> {
+        match &state.seeding {
+            Some(smc) if smc.progress.record.started() => Smc::<G>::check_body(smc),
+            Some(_) => Ok(()),
+            None => check_population(&state.settings.ga, &state.population, &state.fitness, None),
+        }
+    }
+
+    fn restore_body(
+        &mut self,
+        (population, fitness, seeding): (Vec<Genome<G>>, Vec<f64>, Option<SmcState<G>>),
+    ) -> Result<(), OptimizeError> {
+        match seeding {
+            // While the first population is seeded, the GA's own is not there yet.
+            Some(smc) => self.seeding = Some(Smc::resume(smc)?),
+            None => self.breeder.restore((population, fitness)),
+        }
+        Ok(())
+    }
+
     fn step_cost(&self) -> u64 {
+        let ga = &self.core.settings.ga;
         if self.seeding.is_some() {
-            u64::from(self.settings.ga.population)
+            u64::from(ga.population)
         } else {
-            self.generation_cost()
+            ga.children() + self.refine_cost()
         }
     }
 
     fn start(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
-        if self.settings.seed_steps == 0 {
-            return self.ga.start(evaluator);
+        let (settings, progress) = (&self.core.settings, &mut self.core.progress);
+        if settings.seed_steps == 0 {
+            self.breeder
+                .start(&settings.ga, progress.seed, 0, evaluator)?;
+            progress.evaluations += u64::from(settings.ga.population);
+            return Ok(());
         }
-        let progress = self.ga.parts_mut().0;
         let mut smc = Smc::new(
-            self.settings.seeding(),
-            *self.moves.limits(),
+            settings.seeding(),
+            self.core.limits,
             derived_seed(progress.seed, 1 << 32),
         )?;
         smc.start(evaluator)?;
         // Marks its progress started, so that a checkpoint keeps its particles.
         smc.record();
-        progress.evaluations += u64::from(self.settings.ga.population);
+        progress.evaluations += u64::from(settings.ga.population);
         self.seeding = Some(smc);
         Ok(())
     }
@@ -376,9 +321,10 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
         if self.seeding.is_some() {
             return self.seed_step(evaluator);
         }
-        self.ga.step(evaluator)?;
-        let settings = &self.settings;
-        let (progress, population, fitness) = self.ga.parts_mut();
+        let cost = self.refine_cost();
+        let (settings, progress) = (&self.core.settings, &mut self.core.progress);
+        let b = &mut self.breeder;
+        b.generation(&settings.ga, progress, evaluator)?;
         self.chains.refine(
             refine::Refinement {
                 count: settings.refine as usize,
@@ -389,9 +335,9 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
                 generation: progress.generation + 1,
             },
             evaluator,
-            (population, fitness),
+            (&mut b.population, &mut b.scores),
         )?;
-        progress.evaluations += u64::from(settings.refine) * u64::from(settings.refine_moves);
+        progress.evaluations += cost;
         Ok(())
     }
 }

@@ -38,17 +38,18 @@ use serde::{Deserialize, Serialize};
 pub use exchange::{Alone, Exchange, ExchangeError};
 
 use super::best::Best;
+use super::core::Core;
+use super::driver::resume_with;
 use super::error::check_sizes;
-use super::fitness::{Roulette, bits_vec, compare, rank};
-use super::ga::{Generation, Parents, random_population};
-use super::run::{Progress, StopReason, derived_seed, grammar_struct_traits};
+use super::fitness::{bits_vec, compare, rank};
+use super::ga::{Breeder, Generation, Parents, check_population};
+use super::run::{StopReason, derived_seed, grammar_struct_traits};
 use super::{
     Agreement, Evaluator, GaSettings, Held, OptimizeError, Optimizer, Record, Settings,
     SettingsError,
 };
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
-use crate::ops::Operators;
 use wire::{Reader, Writer};
 
 /// How many islands, and how they migrate: the scene's `[islands]` table. Missing
@@ -155,32 +156,16 @@ grammar_struct_traits!(Island {
     fitness
 });
 
-/// A checkpoint of an [`IslandGa`]: serialize it and give it to [`IslandGa::resume`]
-/// (or [`IslandGa::resume_on`], on any number of processes that divides the islands) to
-/// go on exactly as an uninterrupted run would.
-#[derive(Serialize, Deserialize)]
-#[serde(
-    deny_unknown_fields,
-    bound(serialize = "G: Grammar", deserialize = "G: Grammar")
-)]
-pub struct IslandGaState<G> {
-    /// The settings.
-    pub settings: IslandGaSettings,
-    /// The genome limits.
-    pub limits: Limits,
-    /// Generation, evaluations, best so far, history (over all islands).
-    pub progress: Progress<Best<G>>,
-    /// Every island, in order; empty before the first generation. On processes other
-    /// than rank 0 of a run spread over several, only this process's islands.
-    pub islands: Vec<Island<G>>,
+crate::checkpoint! {
+    /// A checkpoint of an [`IslandGa`]: serialize it and give it to [`IslandGa::resume`]
+    /// (or [`IslandGa::resume_on`], on any number of processes that divides the islands)
+    /// to go on exactly as an uninterrupted run would. Its progress is over all islands.
+    pub struct IslandGaState<G>: IslandGaSettings, Best<G> {
+        /// Every island, in order; empty before the first generation. On processes other
+        /// than rank 0 of a run spread over several, only this process's islands.
+        pub islands: Vec<Island<G>>,
+    }
 }
-
-grammar_struct_traits!(IslandGaState {
-    settings,
-    limits,
-    progress,
-    islands
-});
 
 /// The island model (see the [module documentation](self)): `K` GA populations on a
 /// ring, migrating their best every few generations.
@@ -219,24 +204,16 @@ grammar_struct_traits!(IslandGaState {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub struct IslandGa<G> {
-    settings: IslandGaSettings,
-    ops: Operators<G>,
-    progress: Progress<Best<G>>,
+    core: Core<IslandGaSettings, Best<G>>,
+    /// This process's islands, one after the other, with their fitness; its `from`
+    /// indexes the whole population.
+    breeder: Breeder<G>,
     exchange: Box<dyn Exchange>,
     /// The first island this process holds.
     first: usize,
-    /// This process's islands, one after the other, and their fitness.
-    population: Vec<Genome<G>>,
-    fitness: Vec<f64>,
-    next: Vec<Genome<G>>,
-    next_fitness: Vec<f64>,
-    /// This process's children of a generation, island after island, their fitness and
-    /// the index of each one's parent in `population`.
+    /// This process's children of a generation, island after island, and their fitness.
     children: Vec<Genome<G>>,
     child_fitness: Vec<f64>,
-    from: Vec<u32>,
-    order: Vec<u32>,
-    roulette: Roulette,
     /// What the last generation was over all islands, as every process records it.
     whole: Whole<G>,
 }
@@ -250,11 +227,10 @@ struct Whole<G> {
 
 impl<G: Grammar> fmt::Debug for IslandGa<G> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_struct("IslandGa")
-            .field("settings", &self.settings)
+        self.core
+            .debug(f, "IslandGa")
             .field("rank", &self.exchange.rank())
             .field("processes", &self.exchange.size())
-            .field("progress", &self.progress)
             .finish_non_exhaustive()
     }
 }
@@ -280,28 +256,20 @@ impl<G: Grammar> IslandGa<G> {
             .into());
         }
         let local = count / processes;
-        let n = settings.ga.population as usize;
-        let children = n - settings.ga.elitism as usize;
-        let empty = |k| (0..k).map(|_| Genome::from_parts(Vec::new(), 0)).collect();
+        let children = local * settings.ga.children() as usize;
         Ok(IslandGa {
-            ops: settings.ga.build_operators(limits)?,
-            progress: Progress::new(seed),
+            breeder: Breeder::new(&settings.ga, limits, local, 1)?,
+            core: Core::new(settings, limits, seed),
             first: exchange.rank() * local,
             exchange,
-            population: empty(local * n),
-            fitness: vec![f64::NAN; local * n],
-            next: empty(local * n),
-            next_fitness: vec![f64::NAN; local * n],
-            children: empty(local * children),
-            child_fitness: vec![f64::NAN; local * children],
-            from: vec![0; local * children],
-            order: Vec::with_capacity(n),
-            roulette: Roulette::default(),
+            children: (0..children)
+                .map(|_| Genome::from_parts(Vec::new(), 0))
+                .collect(),
+            child_fitness: vec![f64::NAN; children],
             whole: Whole {
                 fitness: Vec::new(),
                 best: None,
             },
-            settings,
         })
     }
 
@@ -311,52 +279,24 @@ impl<G: Grammar> IslandGa<G> {
         state: IslandGaState<G>,
         exchange: Box<dyn Exchange>,
     ) -> Result<Self, OptimizeError> {
-        // The sizes are checked before the run is made, so that settings disagreeing with
-        // the checkpoint's islands cannot make it allocate more than they hold.
-        if state.progress.record.started() {
-            let count = state.settings.islands.count as usize;
-            let n = state.settings.ga.population as usize;
-            check_sizes(
-                &[(state.islands.len(), count, "islands")],
-                format_args!("a run of {count} islands"),
-            )?;
-            for (k, island) in state.islands.iter().enumerate() {
-                check_sizes(
-                    &[
-                        (island.population.len(), n, "genomes"),
-                        (island.fitness.len(), n, "fitness values"),
-                    ],
-                    format_args!("island {k}, a population of {n}"),
-                )?;
-            }
-        }
-        let mut run =
-            IslandGa::new_on(state.settings, state.limits, state.progress.seed, exchange)?;
-        if state.progress.record.started() {
-            let mine = &state.islands[run.first..run.first + run.islands()];
-            run.population = mine.iter().flat_map(|i| i.population.clone()).collect();
-            run.fitness = mine.iter().flat_map(|i| i.fitness.clone()).collect();
-        }
-        run.progress = state.progress;
-        Ok(run)
+        resume_with(state, |settings, limits, seed| {
+            IslandGa::new_on(settings, limits, seed, exchange)
+        })
     }
 
     /// The number of islands this process holds.
     fn islands(&self) -> usize {
-        self.settings.islands.count as usize / self.exchange.size()
-    }
-
-    /// The seed of island `k`'s random streams: the run's seed for island 0.
-    fn island_seed(&self, k: usize) -> u64 {
-        derived_seed(self.progress.seed, k as u64)
+        self.core.settings.islands.count as usize / self.exchange.size()
     }
 
     /// Island `k` of this process (from 0): its genomes and their fitness.
     fn island(&self, k: usize) -> Parents<'_, G> {
-        let n = self.settings.ga.population as usize;
+        let n = self.core.settings.ga.population as usize;
+        let fitness = &self.breeder.scores[k * n..(k + 1) * n];
         Parents {
-            population: &self.population[k * n..(k + 1) * n],
-            fitness: &self.fitness[k * n..(k + 1) * n],
+            population: &self.breeder.population[k * n..(k + 1) * n],
+            fitness,
+            scores: fitness,
         }
     }
 
@@ -365,8 +305,8 @@ impl<G: Grammar> IslandGa<G> {
     /// the first of the next process.
     fn migrate(&mut self) -> Result<(), OptimizeError> {
         let (m, n) = (
-            self.settings.islands.migrants as usize,
-            self.settings.ga.population as usize,
+            self.core.settings.islands.migrants as usize,
+            self.core.settings.ga.population as usize,
         );
         let local = self.islands();
         // Each island's ranking, best first, before any migrant lands.
@@ -409,8 +349,8 @@ impl<G: Grammar> IslandGa<G> {
         arriving.extend((0..local - 1).map(emigrants));
         for (k, (migrants, order)) in arriving.into_iter().zip(&ranked).enumerate() {
             for ((genome, f), &i) in migrants.into_iter().zip(&order[n - m..]) {
-                self.population[k * n + i as usize] = genome;
-                self.fitness[k * n + i as usize] = f;
+                self.breeder.population[k * n + i as usize] = genome;
+                self.breeder.scores[k * n + i as usize] = f;
             }
         }
         Ok(())
@@ -418,13 +358,13 @@ impl<G: Grammar> IslandGa<G> {
 
     /// Gathers the generation over all islands from every process into `whole`.
     fn share(&mut self) -> Result<(), OptimizeError> {
-        let record = &self.progress.record;
-        let local_best = super::fitness::best_index(&self.fitness).filter(|&i| {
-            record.best.is_none() || compare(self.fitness[i], record.best_fitness).is_gt()
-        });
+        let record = &self.core.progress.record;
+        let (population, fitness) = (&self.breeder.population, &self.breeder.scores);
+        let local_best = super::fitness::best_index(fitness)
+            .filter(|&i| record.best.is_none() || compare(fitness[i], record.best_fitness).is_gt());
         let mut message = Writer::default();
-        message.f64s(&self.fitness);
-        message.genomes(local_best.map(|i| &self.population[i]).into_iter());
+        message.f64s(fitness);
+        message.genomes(local_best.map(|i| &population[i]).into_iter());
         let gathered = self.exchange.all_gather(message.finish())?;
         self.whole.fitness.clear();
         self.whole.best = None;
@@ -451,7 +391,8 @@ impl<G: Grammar> IslandGa<G> {
         check_sizes(
             &[(
                 self.whole.fitness.len(),
-                self.settings.islands.count as usize * self.settings.ga.population as usize,
+                self.core.settings.islands.count as usize
+                    * self.core.settings.ga.population as usize,
                 "fitness values",
             )],
             "all islands",
@@ -486,7 +427,7 @@ impl<G: Grammar> IslandGa<G> {
         let Some(all) = self.exchange.gather(message.finish())? else {
             return Ok(own);
         };
-        let mut islands = Vec::with_capacity(self.settings.islands.count as usize);
+        let mut islands = Vec::with_capacity(self.core.settings.islands.count as usize);
         for bytes in &all {
             let mut reader = Reader::new(bytes);
             for _ in 0..self.islands() {
@@ -516,63 +457,78 @@ impl<G: Grammar> Optimizer<G> for IslandGa<G> {
         IslandGa::new_on(settings, limits, seed, Box::new(Alone))
     }
 
-    fn resume(state: IslandGaState<G>) -> Result<Self, OptimizeError> {
-        IslandGa::resume_on(state, Box::new(Alone))
+    fn core(&self) -> &Core<IslandGaSettings, Best<G>> {
+        &self.core
     }
 
-    /// The state to resume from: every island at rank 0 (see [`IslandGaState`]).
+    /// The core, with this process's islands and their fitness.
+    fn parts(&mut self) -> (&mut Core<IslandGaSettings, Best<G>>, &[Genome<G>], &[f64]) {
+        (
+            &mut self.core,
+            &self.breeder.population,
+            &self.breeder.scores,
+        )
+    }
+
+    /// Every island at rank 0 (see [`IslandGaState`]).
     ///
     /// On a run spread over several processes this gathers the islands, so every
     /// process must call it at the same point, as a [`Session`](super::Session) does.
     ///
     /// # Panics
     /// If the exchange fails while gathering (an MPI error ends the processes anyway).
-    fn checkpoint(&self) -> IslandGaState<G> {
-        let started = self.progress.record.started();
-        let islands = if started {
-            self.gather_islands()
-                .unwrap_or_else(|err| panic!("gathering the islands for a checkpoint: {err}"))
-        } else {
-            Vec::new()
-        };
-        IslandGaState {
-            settings: self.settings,
-            limits: *self.ops.limits(),
-            progress: self.progress.clone(),
-            islands,
+    fn save_body(&self) -> (Vec<Island<G>>,) {
+        if !self.core.progress.record.started() {
+            return (Vec::new(),);
         }
+        let islands = self
+            .gather_islands()
+            .unwrap_or_else(|err| panic!("gathering the islands for a checkpoint: {err}"));
+        (islands,)
     }
 
-    fn settings(&self) -> &IslandGaSettings {
-        &self.settings
+    /// Counts the islands first, then each one's genomes and fitness values.
+    fn check_body(state: &IslandGaState<G>) -> Result<(), OptimizeError> {
+        let count = state.settings.islands.count as usize;
+        check_sizes(
+            &[(state.islands.len(), count, "islands")],
+            format_args!("a run of {count} islands"),
+        )?;
+        state
+            .islands
+            .iter()
+            .enumerate()
+            .try_for_each(|(k, island)| {
+                let ga = &state.settings.ga;
+                check_population(ga, &island.population, &island.fitness, Some(k))
+            })
     }
 
-    fn state_settings(state: &IslandGaState<G>) -> &IslandGaSettings {
-        &state.settings
+    /// Takes this process's islands.
+    fn restore_body(&mut self, (islands,): (Vec<Island<G>>,)) -> Result<(), OptimizeError> {
+        let mine = islands.into_iter().skip(self.first).take(self.islands());
+        let (population, fitness) = (&mut self.breeder.population, &mut self.breeder.scores);
+        population.clear();
+        fitness.clear();
+        for island in mine {
+            population.extend(island.population);
+            fitness.extend(island.fitness);
+        }
+        Ok(())
     }
 
-    fn state_limits(state: &IslandGaState<G>) -> &Limits {
-        &state.limits
-    }
-
-    fn progress(&self) -> &Progress<Best<G>> {
-        &self.progress
-    }
-
-    /// The progress, with this process's islands and their fitness.
-    fn parts(&mut self) -> (&mut Progress<Best<G>>, &[Genome<G>], &[f64]) {
-        (&mut self.progress, &self.population, &self.fitness)
+    fn resume(state: IslandGaState<G>) -> Result<Self, OptimizeError> {
+        IslandGa::resume_on(state, Box::new(Alone))
     }
 
     fn step_cost(&self) -> u64 {
-        let ga = &self.settings.ga;
-        u64::from(self.settings.islands.count) * u64::from(ga.population - ga.elitism)
+        u64::from(self.core.settings.islands.count) * self.core.settings.ga.children()
     }
 
     /// Records the generation over all islands, as gathered after it.
     fn record(&mut self) {
         let best = self.whole.best.as_ref().map(|(g, f)| (g, *f));
-        Best::record_generation(&mut self.progress, best, &self.whole.fitness);
+        Best::record_generation(&mut self.core.progress, best, &self.whole.fitness);
     }
 
     /// Stops if any process stops (the first reason by rank); saves when rank 0 saves
@@ -612,48 +568,49 @@ impl<G: Grammar> Optimizer<G> for IslandGa<G> {
     }
 
     fn start(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
-        let n = self.settings.ga.population as usize;
-        for k in 0..self.islands() {
-            let seed = self.island_seed(self.first + k);
-            let island = &mut self.population[k * n..(k + 1) * n];
-            random_population(&self.ops, &self.settings.ga, seed, island);
-        }
-        evaluator.evaluate(&self.population, &mut self.fitness)?;
-        self.progress.evaluations += u64::from(self.settings.islands.count) * n as u64;
+        let (settings, progress) = (&self.core.settings, &mut self.core.progress);
+        self.breeder
+            .start(&settings.ga, progress.seed, self.first, evaluator)?;
+        progress.evaluations +=
+            u64::from(settings.islands.count) * u64::from(settings.ga.population);
         self.share()
     }
 
     fn step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
-        let ga = self.settings.ga;
+        let ga = self.core.settings.ga;
         let (n, e) = (ga.population as usize, ga.elitism as usize);
         let c = n - e;
-        let generation = self.progress.generation + 1;
-        for k in 0..self.islands() {
-            let seed = self.island_seed(self.first + k);
-            let (elites, _) = self.next[k * n..(k + 1) * n].split_at_mut(e);
-            let from = &mut self.from[k * c..(k + 1) * c];
+        let (seed, generation) = (self.core.progress.seed, self.core.progress.generation + 1);
+        let local = self.islands();
+        let b = &mut self.breeder;
+        for k in 0..local {
+            let seed = derived_seed(seed, (self.first + k) as u64);
+            let (elites, _) = b.next[k * n..(k + 1) * n].split_at_mut(e);
+            let from = &mut b.from[k * c..(k + 1) * c];
+            let fitness = &b.scores[k * n..(k + 1) * n];
             Generation {
                 settings: &ga,
-                ops: &self.ops,
+                ops: &b.ops,
                 seed,
                 generation,
             }
             .breed(
                 Parents {
-                    population: &self.population[k * n..(k + 1) * n],
-                    fitness: &self.fitness[k * n..(k + 1) * n],
+                    population: &b.population[k * n..(k + 1) * n],
+                    fitness,
+                    scores: fitness,
                 },
-                &mut self.order,
-                &mut self.roulette,
-                (elites, &mut self.next_fitness[k * n..k * n + e]),
+                &mut b.order,
+                &mut b.roulette,
+                (elites, &mut b.next_scores[k * n..k * n + e]),
                 (&mut self.children[k * c..(k + 1) * c], from),
             )?;
             from.iter_mut().for_each(|f| *f += (k * n) as u32);
         }
         evaluator.evaluate_bred(
             &self.children,
-            &self.population,
-            &self.from,
+            &b.population,
+            &b.from,
             &mut self.child_fitness,
         )?;
         for (i, (child, f)) in self
@@ -663,13 +620,12 @@ impl<G: Grammar> Optimizer<G> for IslandGa<G> {
             .enumerate()
         {
             let at = (i / c) * n + e + i % c;
-            std::mem::swap(&mut self.next[at], child);
-            self.next_fitness[at] = *f;
+            std::mem::swap(&mut b.next[at], child);
+            b.next_scores[at] = *f;
         }
-        self.progress.evaluations += self.step_cost();
-        std::mem::swap(&mut self.population, &mut self.next);
-        std::mem::swap(&mut self.fitness, &mut self.next_fitness);
-        let islands = &self.settings.islands;
+        self.core.progress.evaluations += self.step_cost();
+        self.breeder.advance();
+        let islands = &self.core.settings.islands;
         if islands.count > 1 && islands.migrants > 0 && generation.is_multiple_of(islands.interval)
         {
             self.migrate()?;

@@ -14,10 +14,10 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::best::Best;
-use super::driver::Record;
+use super::core::Core;
 use super::error::{check_range, check_sizes};
 use super::fitness::bits_vec;
-use super::run::{Progress, grammar_struct_traits, stream};
+use super::run::stream;
 use super::{Evaluator, Held, OptimizeError, Optimizer, Settings, SettingsError};
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
@@ -281,42 +281,23 @@ impl McmcSettings {
     }
 }
 
-/// A checkpoint of an [`Mcmc`], resumed by [`Mcmc::resume`].
-#[derive(Serialize, Deserialize)]
-#[serde(
-    deny_unknown_fields,
-    bound(serialize = "G: Grammar", deserialize = "G: Grammar")
-)]
-pub struct McmcState<G> {
-    /// The settings.
-    pub settings: McmcSettings,
-    /// The genome limits.
-    pub limits: Limits,
-    /// Generation, evaluations, best so far, history.
-    pub progress: Progress<Best<G>>,
-    /// The chains' current states, by position.
-    pub chains: Vec<Genome<G>>,
-    /// Their fitness.
-    #[serde(with = "bits_vec")]
-    pub fitness: Vec<f64>,
-    /// Each position's temperature: see [`Mcmc::temperatures`].
-    #[serde(with = "bits_vec")]
-    pub temperatures: Vec<f64>,
-    /// Original variant: each chain's stored log prior, read by its tempering swaps
-    /// (`f32` values); empty for the tempered variant.
-    #[serde(default, with = "bits_vec")]
-    pub log_priors: Vec<f64>,
+crate::checkpoint! {
+    /// A checkpoint of an [`Mcmc`], resumed by [`Mcmc::resume`].
+    pub struct McmcState<G>: McmcSettings, Best<G> {
+        /// The chains' current states, by position.
+        pub chains: Vec<Genome<G>>,
+        /// Their fitness.
+        #[serde(with = "bits_vec")]
+        pub fitness: Vec<f64>,
+        /// Each position's temperature: see [`Mcmc::temperatures`].
+        #[serde(with = "bits_vec")]
+        pub temperatures: Vec<f64>,
+        /// Original variant: each chain's stored log prior, read by its tempering swaps
+        /// (`f32` values); empty for the tempered variant.
+        #[serde(default, with = "bits_vec")]
+        pub log_priors: Vec<f64>,
+    }
 }
-
-grammar_struct_traits!(McmcState {
-    settings,
-    limits,
-    progress,
-    chains,
-    fitness,
-    temperatures,
-    log_priors
-});
 
 /// Reversible-jump MCMC over derivation trees, in the [`McmcVariant`] its settings
 /// name.
@@ -357,10 +338,8 @@ grammar_struct_traits!(McmcState {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub struct Mcmc<G> {
-    settings: McmcSettings,
-    limits: Limits,
+    core: Core<McmcSettings, Best<G>>,
     ops: Operators<G>,
-    progress: Progress<Best<G>>,
     chains: Vec<Genome<G>>,
     fitness: Vec<f64>,
     temperatures: Vec<f64>,
@@ -385,9 +364,8 @@ pub struct Mcmc<G> {
 
 impl<G: Grammar> std::fmt::Debug for Mcmc<G> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Mcmc")
-            .field("settings", &self.settings)
-            .field("progress", &self.progress)
+        self.core
+            .debug(f, "Mcmc")
             .field("temperatures", &self.temperatures)
             .finish_non_exhaustive()
     }
@@ -409,14 +387,14 @@ impl<G: Grammar> Mcmc<G> {
         &mut self,
         evaluator: &mut E,
     ) -> Result<(), OptimizeError> {
-        let (seed, len) = (self.progress.seed, self.settings.initial_length);
+        let (seed, len) = (self.core.progress.seed, self.core.settings.initial_length);
         let ops = &self.ops;
         self.chains.par_iter_mut().enumerate().for_each_init(
             || ops.clone(),
             |ops, (i, g)| ops.random_into(len, g, &mut stream(seed, 0, i as u64)),
         );
         evaluator.evaluate(&self.chains, &mut self.fitness)?;
-        self.progress.evaluations += self.chains.len() as u64;
+        self.core.progress.evaluations += self.chains.len() as u64;
         Ok(())
     }
 
@@ -432,7 +410,7 @@ impl<G: Grammar> Mcmc<G> {
             &self.own_chain,
             &mut self.proposal_fitness,
         )?;
-        self.progress.evaluations += self.chains.len() as u64;
+        self.core.progress.evaluations += self.chains.len() as u64;
         Ok(())
     }
 }
@@ -469,14 +447,12 @@ impl<G: Grammar> Optimizer<G> for Mcmc<G> {
             limits
         };
         Ok(Mcmc {
-            settings,
-            limits,
+            core: Core::new(settings, limits, seed),
             ops: Operators::new(op_limits)?.with_variant(if original {
                 OperatorVariant::Original
             } else {
                 OperatorVariant::Weighted
             }),
-            progress: Progress::new(seed),
             chains: (0..n).map(|_| empty()).collect(),
             fitness: vec![f64::NAN; n],
             temperatures: vec![1.0; n],
@@ -501,89 +477,74 @@ impl<G: Grammar> Optimizer<G> for Mcmc<G> {
         })
     }
 
-    fn resume(state: McmcState<G>) -> Result<Self, OptimizeError> {
-        // The chains are counted before the run is made, so that settings disagreeing
-        // with the checkpoint cannot make it allocate more than that holds.
-        if state.progress.record.started() {
-            let n = state.settings.chains as usize;
-            check_sizes(
-                &[(state.chains.len(), n, "chains")],
-                format_args!("{n} chains"),
-            )?;
-        }
-        let mut mcmc = Mcmc::new(state.settings, state.limits, state.progress.seed)?;
-        if state.progress.record.started() {
-            let (n, priors) = (mcmc.chains.len(), mcmc.log_priors.len());
-            check_sizes(
-                &[
-                    (state.chains.len(), n, "chains"),
-                    (state.fitness.len(), n, "fitness values"),
-                    (state.temperatures.len(), n, "temperatures"),
-                    (state.log_priors.len(), priors, "log priors"),
-                ],
-                format_args!(
-                    "{n} chains of the {} variant",
-                    state.settings.variant.name()
-                ),
-            )?;
-            mcmc.chains = state.chains;
-            mcmc.fitness = state.fitness;
-            mcmc.temperatures = state.temperatures;
-            mcmc.log_priors = state.log_priors;
-        }
-        mcmc.progress = state.progress;
-        Ok(mcmc)
+    fn core(&self) -> &Core<McmcSettings, Best<G>> {
+        &self.core
     }
 
-    fn checkpoint(&self) -> McmcState<G> {
-        McmcState {
-            settings: self.settings,
-            limits: self.limits,
-            progress: self.progress.clone(),
-            chains: self.chains.clone(),
-            fitness: self.fitness.clone(),
-            temperatures: self.temperatures.clone(),
-            log_priors: self.log_priors.clone(),
-        }
+    fn parts(&mut self) -> (&mut Core<McmcSettings, Best<G>>, &[Genome<G>], &[f64]) {
+        (&mut self.core, &self.chains, &self.fitness)
     }
 
-    fn settings(&self) -> &McmcSettings {
-        &self.settings
+    fn save_body(&self) -> (Vec<Genome<G>>, Vec<f64>, Vec<f64>, Vec<f64>) {
+        (
+            self.chains.clone(),
+            self.fitness.clone(),
+            self.temperatures.clone(),
+            self.log_priors.clone(),
+        )
     }
 
-    fn state_settings(state: &McmcState<G>) -> &McmcSettings {
-        &state.settings
+    /// Counts the chains first, then, as many as the settings', their fitness values,
+    /// temperatures and (original variant) log priors.
+    fn check_body(state: &McmcState<G>) -> Result<(), OptimizeError> {
+        let s = &state.settings;
+        let n = s.chains as usize;
+        let priors = if s.variant == McmcVariant::Original {
+            n
+        } else {
+            0
+        };
+        let chains = (state.chains.len(), n, "chains");
+        check_sizes(&[chains], format_args!("{n} chains"))?;
+        check_sizes(
+            &[
+                chains,
+                (state.fitness.len(), n, "fitness values"),
+                (state.temperatures.len(), n, "temperatures"),
+                (state.log_priors.len(), priors, "log priors"),
+            ],
+            format_args!("{n} chains of the {} variant", s.variant.name()),
+        )
     }
 
-    fn state_limits(state: &McmcState<G>) -> &Limits {
-        &state.limits
-    }
-
-    fn progress(&self) -> &Progress<Best<G>> {
-        &self.progress
-    }
-
-    fn parts(&mut self) -> (&mut Progress<Best<G>>, &[Genome<G>], &[f64]) {
-        (&mut self.progress, &self.chains, &self.fitness)
+    fn restore_body(
+        &mut self,
+        (chains, fitness, temperatures, log_priors): (Vec<Genome<G>>, Vec<f64>, Vec<f64>, Vec<f64>),
+    ) -> Result<(), OptimizeError> {
+        self.chains = chains;
+        self.fitness = fitness;
+        self.temperatures = temperatures;
+        self.log_priors = log_priors;
+        Ok(())
     }
 
     fn step_cost(&self) -> u64 {
-        let tries = match self.settings.variant {
+        let tries = match self.core.settings.variant {
             McmcVariant::Original => 1,
-            McmcVariant::Tempered => 1 + u64::from(self.settings.delayed_rejection),
+            McmcVariant::Tempered => 1 + u64::from(self.core.settings.delayed_rejection),
         };
-        u64::from(self.settings.chains) * tries
+        u64::from(self.core.settings.chains) * tries
     }
 
     fn start(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
-        match self.settings.variant {
+        match self.core.settings.variant {
             McmcVariant::Original => self.start_original(evaluator),
             McmcVariant::Tempered => self.start_tempered(evaluator),
         }
     }
 
     fn step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
-        match self.settings.variant {
+        match self.core.settings.variant {
             McmcVariant::Original => self.step_original(evaluator),
             McmcVariant::Tempered => self.step_tempered(evaluator),
         }

@@ -81,12 +81,12 @@ impl<G: Grammar> Mcmc<G> {
         &mut self,
         evaluator: &mut E,
     ) -> Result<(), OptimizeError> {
-        let (seed, generation) = (self.progress.seed, self.progress.generation + 1);
+        let (seed, generation) = (self.core.progress.seed, self.core.progress.generation + 1);
         for (i, r) in self.rngs.iter_mut().enumerate() {
             *r = stream(seed, generation, i as u64);
         }
         // The original's `basic_prob`, in percent.
-        let basic_prob = (self.settings.jump_probability * 100.0) as f32;
+        let basic_prob = (self.core.settings.jump_probability * 100.0) as f32;
         let (ops, chains, priors) = (&self.ops, &self.chains, &self.log_priors);
         self.proposals
             .par_iter_mut()

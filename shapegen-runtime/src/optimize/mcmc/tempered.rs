@@ -42,8 +42,8 @@ impl<G: Grammar> Mcmc<G> {
         self.start_chains(evaluator)?;
         let (_, s) = mean_std(&self.fitness);
         let s = if s > 0.0 && s.is_finite() { s } else { 1.0 };
-        let cold = -s / self.settings.cold_acceptance.ln();
-        let hot = -s / self.settings.hot_acceptance.ln();
+        let cold = -s / self.core.settings.cold_acceptance.ln();
+        let hot = -s / self.core.settings.hot_acceptance.ln();
         let n = self.temperatures.len();
         for (k, t) in self.temperatures.iter_mut().enumerate() {
             let x = if n > 1 {
@@ -61,11 +61,11 @@ impl<G: Grammar> Mcmc<G> {
         &mut self,
         evaluator: &mut E,
     ) -> Result<(), OptimizeError> {
-        let (seed, generation) = (self.progress.seed, self.progress.generation + 1);
+        let (seed, generation) = (self.core.progress.seed, self.core.progress.generation + 1);
         for (i, r) in self.rngs.iter_mut().enumerate() {
             *r = stream(seed, generation, i as u64);
         }
-        let (settings, ops, chains) = (&self.settings, &self.ops, &self.chains);
+        let (settings, ops, chains) = (&self.core.settings, &self.ops, &self.chains);
         self.proposals
             .par_iter_mut()
             .zip(self.moves.par_iter_mut())
@@ -89,7 +89,7 @@ impl<G: Grammar> Mcmc<G> {
                 self.retry.push(i as u32);
             }
         }
-        for _ in 0..self.settings.delayed_rejection {
+        for _ in 0..self.core.settings.delayed_rejection {
             if self.retry.is_empty() {
                 break;
             }
@@ -109,7 +109,7 @@ impl<G: Grammar> Mcmc<G> {
                 &self.retry,
                 &mut self.retry_fitness[..n],
             )?;
-            self.progress.evaluations += n as u64;
+            self.core.progress.evaluations += n as u64;
             let mut kept = 0;
             for k in 0..n {
                 let i = self.retry[k] as usize;
@@ -131,9 +131,9 @@ impl<G: Grammar> Mcmc<G> {
             self.retry.truncate(kept);
         }
         self.swap_temperatures(&mut stream(seed, generation, 1 << 31));
-        if generation.is_multiple_of(self.settings.anneal_interval) {
+        if generation.is_multiple_of(self.core.settings.anneal_interval) {
             for t in &mut self.temperatures {
-                *t /= self.settings.anneal_factor;
+                *t /= self.core.settings.anneal_factor;
             }
         }
         Ok(())

@@ -7,15 +7,15 @@ use serde::{Deserialize, Serialize};
 
 use super::rank::{Fronts, RankScratch, crowding, first_of_equals, selection_fitness};
 use super::settings::MultiGaSettings;
+use super::state::MultiGaState;
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
-use crate::ops::Operators;
 use crate::optimize::error::check_sizes;
-use crate::optimize::fitness::{Roulette, bits_vec, rank};
-use crate::optimize::ga::{Breed, random_population};
+use crate::optimize::fitness::bits_vec;
+use crate::optimize::ga::Breeder;
 use crate::optimize::run::grammar_struct_traits;
 use crate::optimize::{
-    Control, EvaluateError, Held, MultiEvaluator, OptimizeError, Optimizer, Progress, Record,
+    Control, Core, EvaluateError, Held, MultiEvaluator, OptimizeError, Optimizer, Progress, Record,
     Sense, Settings, Silent, StopReason,
 };
 
@@ -199,57 +199,6 @@ impl<G: Grammar> Record<G> for Front<G> {
     }
 }
 
-/// A checkpoint of a [`MultiGa`]: serialize it (e.g. with `serde_json`) and give it to
-/// [`MultiGa::resume`] to go on exactly as an uninterrupted run would.
-#[derive(Serialize, Deserialize)]
-#[serde(
-    deny_unknown_fields,
-    bound(serialize = "G: Grammar", deserialize = "G: Grammar")
-)]
-pub struct MultiGaState<G> {
-    /// The settings.
-    pub settings: MultiGaSettings,
-    /// The genome limits.
-    pub limits: Limits,
-    /// The seed.
-    pub seed: u64,
-    /// Generations done after the initial population.
-    pub generation: u64,
-    /// Evaluations done.
-    pub evaluations: u64,
-    /// Wall time spent, in seconds.
-    pub elapsed_s: f64,
-    /// The objectives' senses (empty before the first run).
-    pub senses: Vec<Sense>,
-    /// The current population.
-    pub population: Vec<Genome<G>>,
-    /// Its objective values, row-major.
-    #[serde(with = "bits_vec")]
-    pub values: Vec<f64>,
-    /// The archive.
-    pub archive: Vec<Member<G>>,
-    /// Per objective, the best value so far.
-    #[serde(with = "bits_vec")]
-    pub best: Vec<f64>,
-    /// Per-generation history.
-    pub history: Vec<MultiHistoryEntry>,
-}
-
-grammar_struct_traits!(MultiGaState {
-    settings,
-    limits,
-    seed,
-    generation,
-    evaluations,
-    elapsed_s,
-    senses,
-    population,
-    values,
-    archive,
-    best,
-    history
-});
-
 /// Buffers of the archive update.
 #[derive(Clone, Debug, Default)]
 struct ArchiveScratch {
@@ -318,29 +267,23 @@ struct ArchiveScratch {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub struct MultiGa<G> {
-    settings: MultiGaSettings,
-    ops: Operators<G>,
-    progress: Progress<Front<G>>,
-    population: Vec<Genome<G>>,
-    values: Vec<f64>,
-    next: Vec<Genome<G>>,
-    next_values: Vec<f64>,
-    /// The parent each child of `next` was bred from, by index into `population`.
-    from: Vec<u32>,
+    core: Core<MultiGaSettings, Front<G>>,
+    /// The GA's breeding; the scores are the objective values, row-major.
+    breeder: Breeder<G>,
+    /// The selection fitness of the population.
     fitness: Vec<f64>,
-    order: Vec<u32>,
-    roulette: Roulette,
     rank_scratch: RankScratch,
     archive_scratch: ArchiveScratch,
 }
 
 impl<G: Grammar> std::fmt::Debug for MultiGa<G> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let p = &self.core.progress;
         f.debug_struct("MultiGa")
-            .field("settings", &self.settings)
-            .field("generation", &self.progress.generation)
-            .field("evaluations", &self.progress.evaluations)
-            .field("archive", &self.progress.record.archive.len())
+            .field("settings", &self.core.settings)
+            .field("generation", &p.generation)
+            .field("evaluations", &p.evaluations)
+            .field("archive", &p.record.archive.len())
             .finish_non_exhaustive()
     }
 }
@@ -348,15 +291,15 @@ impl<G: Grammar> std::fmt::Debug for MultiGa<G> {
 impl<G: Grammar> MultiGa<G> {
     /// The archive: the non-dominated models found so far.
     pub fn front(&self) -> &[Member<G>] {
-        &self.progress.record.archive
+        &self.core.progress.record.archive
     }
 
     /// Takes the population's individuals from `from` on (the newly evaluated) into the
     /// best values and the archive.
     fn update(&mut self, from: usize) {
-        let record = &mut self.progress.record;
+        let record = &mut self.core.progress.record;
         let k = record.senses.len();
-        let fresh = &self.values[from * k..];
+        let fresh = &self.breeder.scores[from * k..];
         for row in fresh.chunks_exact(k) {
             for ((b, &v), s) in record.best.iter_mut().zip(row).zip(&record.senses) {
                 if b.is_nan() || s.better(v, *b) {
@@ -385,7 +328,7 @@ impl<G: Grammar> MultiGa<G> {
                     first[i] && !values[i * k..(i + 1) * k].iter().any(|v| v.is_nan())
                 }));
         }
-        let cap = self.settings.archive as usize;
+        let cap = self.core.settings.archive as usize;
         if s.keep.len() > cap {
             s.crowd.clear();
             s.crowd.resize(s.keep.len(), 0.0);
@@ -425,7 +368,7 @@ impl<G: Grammar> MultiGa<G> {
                 }
             } else {
                 Member {
-                    genome: self.population[from + i - old].clone(),
+                    genome: self.breeder.population[from + i - old].clone(),
                     values: s.values[i * k..(i + 1) * k].to_vec(),
                 }
             };
@@ -457,108 +400,60 @@ impl<G: Grammar> Optimizer<G> for MultiGa<G> {
     /// with `seed`.
     fn new(settings: MultiGaSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {
         settings.validate()?;
-        let n = settings.ga.population as usize;
-        let empty = || Genome::from_parts(Vec::new(), 0);
         Ok(MultiGa {
-            ops: settings.ga.build_operators(limits)?,
-            progress: Progress::new(seed),
-            population: (0..n).map(|_| empty()).collect(),
-            values: Vec::new(),
-            next: (0..n).map(|_| empty()).collect(),
-            next_values: Vec::new(),
-            from: vec![0; n - settings.ga.elitism as usize],
-            fitness: vec![f64::NAN; n],
-            order: Vec::with_capacity(n),
-            roulette: Roulette::default(),
+            // The number of objectives is known once the evaluator is.
+            breeder: Breeder::new(&settings.ga, limits, 1, 0)?,
+            fitness: vec![f64::NAN; settings.ga.population as usize],
             rank_scratch: RankScratch::default(),
             archive_scratch: ArchiveScratch::default(),
-            settings,
+            core: Core::new(settings, limits, seed),
         })
     }
 
-    fn resume(state: MultiGaState<G>) -> Result<Self, OptimizeError> {
-        // The population is counted before the GA is made, so that settings disagreeing
-        // with the checkpoint cannot make it allocate more than that holds.
-        if !state.history.is_empty() {
-            let n = state.settings.ga.population as usize;
-            check_sizes(
-                &[(state.population.len(), n, "genomes")],
-                format_args!("a population of {n}"),
-            )?;
-        }
-        let mut ga = MultiGa::new(state.settings, state.limits, state.seed)?;
-        let record = Front {
-            senses: state.senses,
-            archive: state.archive,
-            best: state.best,
-            history: state.history,
-        };
-        if record.started() {
-            let (n, k) = (ga.population.len(), record.senses.len());
-            let odd = record.archive.iter().filter(|m| m.values.len() != k);
-            check_sizes(
-                &[
-                    (k.min(1), 1, "objectives (at least)"),
-                    (state.population.len(), n, "genomes"),
-                    (state.values.len(), n * k, "values"),
-                    (record.best.len(), k, "best values"),
-                    (odd.count(), 0, "archive members of another size"),
-                ],
-                format_args!("a population of {n} on {k} objectives"),
-            )?;
-            ga.population = state.population;
-            ga.values = state.values;
-        }
-        ga.progress = Progress {
-            seed: state.seed,
-            generation: state.generation,
-            evaluations: state.evaluations,
-            elapsed_s: state.elapsed_s,
-            record,
-        };
-        Ok(ga)
+    fn core(&self) -> &Core<MultiGaSettings, Front<G>> {
+        &self.core
     }
 
-    fn checkpoint(&self) -> MultiGaState<G> {
-        let (p, r) = (&self.progress, &self.progress.record);
-        MultiGaState {
-            settings: self.settings.clone(),
-            limits: *self.ops.limits(),
-            seed: p.seed,
-            generation: p.generation,
-            evaluations: p.evaluations,
-            elapsed_s: p.elapsed_s,
-            senses: r.senses.clone(),
-            population: self.population.clone(),
-            values: self.values.clone(),
-            archive: r.archive.clone(),
-            best: r.best.clone(),
-            history: r.history.clone(),
-        }
+    fn parts(&mut self) -> (&mut Core<MultiGaSettings, Front<G>>, &[Genome<G>], &[f64]) {
+        (
+            &mut self.core,
+            &self.breeder.population,
+            &self.breeder.scores,
+        )
     }
 
-    fn settings(&self) -> &MultiGaSettings {
-        &self.settings
+    fn save_body(&self) -> (Vec<Genome<G>>, Vec<f64>) {
+        self.breeder.save()
     }
 
-    fn state_settings(state: &MultiGaState<G>) -> &MultiGaSettings {
-        &state.settings
+    /// Counts the population first, then checks the objective values, the best values
+    /// and the archive against the objectives.
+    fn check_body(state: &MultiGaState<G>) -> Result<(), OptimizeError> {
+        let n = state.settings.ga.population as usize;
+        let genomes = (state.population.len(), n, "genomes");
+        check_sizes(&[genomes], format_args!("a population of {n}"))?;
+        let record = &state.progress.record;
+        let k = record.senses.len();
+        let odd = record.archive.iter().filter(|m| m.values.len() != k);
+        check_sizes(
+            &[
+                (k.min(1), 1, "objectives (at least)"),
+                genomes,
+                (state.values.len(), n * k, "values"),
+                (record.best.len(), k, "best values"),
+                (odd.count(), 0, "archive members of another size"),
+            ],
+            format_args!("a population of {n} on {k} objectives"),
+        )
     }
 
-    fn state_limits(state: &MultiGaState<G>) -> &Limits {
-        &state.limits
-    }
-
-    fn progress(&self) -> &Progress<Front<G>> {
-        &self.progress
-    }
-
-    fn parts(&mut self) -> (&mut Progress<Front<G>>, &[Genome<G>], &[f64]) {
-        (&mut self.progress, &self.population, &self.values)
+    fn restore_body(&mut self, body: (Vec<Genome<G>>, Vec<f64>)) -> Result<(), OptimizeError> {
+        self.breeder.restore(body);
+        Ok(())
     }
 
     fn step_cost(&self) -> u64 {
-        u64::from(self.settings.ga.population - self.settings.ga.elitism)
+        self.core.settings.ga.children()
     }
 
     /// Fails if the evaluator has no objectives, if its senses differ from those of
@@ -568,75 +463,58 @@ impl<G: Grammar> Optimizer<G> for MultiGa<G> {
         if senses.is_empty() {
             return Err(EvaluateError("the evaluator has no objectives".into()).into());
         }
-        let record = &self.progress.record;
+        let record = &self.core.progress.record;
         if record.started() && record.senses != senses {
             return Err(OptimizeError::Checkpoint(format!(
                 "objectives {:?} for a run on {:?}",
                 senses, record.senses
             )));
         }
-        self.settings.selection.check_objectives(senses.len())?;
+        self.core
+            .settings
+            .selection
+            .check_objectives(senses.len())?;
         Ok(())
     }
 
     /// Grows and evaluates the initial population.
     fn start(&mut self, evaluator: &mut (dyn MultiEvaluator<G> + '_)) -> Result<(), OptimizeError> {
         let senses = evaluator.senses().to_vec();
-        let (n, k) = (self.population.len(), senses.len());
-        let seed = self.progress.seed;
-        random_population(&self.ops, &self.settings.ga, seed, &mut self.population);
-        self.values.clear();
-        self.values.resize(n * k, f64::NAN);
-        evaluator.evaluate(&self.population, &mut self.values)?;
-        self.progress.evaluations += n as u64;
-        self.progress.record.senses = senses;
-        self.progress.record.best = vec![f64::NAN; k];
+        let k = senses.len();
+        let (b, progress) = (&mut self.breeder, &mut self.core.progress);
+        let n = b.population.len();
+        b.grow(&self.core.settings.ga, progress.seed, 0);
+        b.scores.clear();
+        b.scores.resize(n * k, f64::NAN);
+        evaluator.evaluate(&b.population, &mut b.scores)?;
+        progress.evaluations += n as u64;
+        progress.record.senses = senses;
+        progress.record.best = vec![f64::NAN; k];
         self.update(0);
         Ok(())
     }
 
     /// One generation: selection fitness, elites, breeding, evaluation of the children.
     fn step(&mut self, evaluator: &mut (dyn MultiEvaluator<G> + '_)) -> Result<(), OptimizeError> {
-        let senses = &self.progress.record.senses;
-        let k = senses.len();
-        let elite = self.settings.ga.elitism as usize;
+        let (settings, progress) = (&self.core.settings, &self.core.progress);
+        let senses = &progress.record.senses;
         selection_fitness(
-            &self.settings.selection,
-            &self.values,
-            k,
+            &settings.selection,
+            &self.breeder.scores,
+            senses.len(),
             senses,
             &mut self.fitness,
             &mut self.rank_scratch,
         );
-        rank(&self.fitness, &mut self.order);
-        self.roulette.build(&self.fitness);
-        self.next_values.clear();
-        self.next_values.resize(self.values.len(), f64::NAN);
-        for (e, &i) in self.order[..elite].iter().enumerate() {
-            let i = i as usize;
-            self.next[e].clone_from(&self.population[i]);
-            self.next_values[e * k..(e + 1) * k].copy_from_slice(&self.values[i * k..(i + 1) * k]);
-        }
-        let breed = Breed {
-            settings: &self.settings.ga,
-            population: &self.population,
-            fitness: &self.fitness,
-            roulette: &self.roulette,
-            worst: *self.order.last().expect("a population of at least 2"),
-        };
-        let (seed, generation) = (self.progress.seed, self.progress.generation + 1);
-        let children = &mut self.next[elite..];
-        breed.children(&self.ops, seed, generation, children, &mut self.from)?;
-        evaluator.evaluate_bred(
-            &self.next[elite..],
-            &self.population,
-            &self.from,
-            &mut self.next_values[elite * k..],
+        self.breeder.step(
+            &settings.ga,
+            progress.seed,
+            progress.generation + 1,
+            Some(&self.fitness),
+            |children, parents, from, out| evaluator.evaluate_bred(children, parents, from, out),
         )?;
-        self.progress.evaluations += self.step_cost();
-        std::mem::swap(&mut self.population, &mut self.next);
-        std::mem::swap(&mut self.values, &mut self.next_values);
-        self.update(elite);
+        self.core.progress.evaluations += self.step_cost();
+        self.update(self.core.settings.ga.elitism as usize);
         Ok(())
     }
 }

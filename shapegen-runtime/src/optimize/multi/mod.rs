@@ -31,14 +31,15 @@
 mod ga;
 mod rank;
 mod settings;
+mod state;
 
 pub use crate::evaluate::MultiEvaluator;
 pub use ga::{
-    Front, Member, MultiGa, MultiGaState, MultiHistoryEntry, MultiObserver, MultiResult,
-    MultiSnapshot,
+    Front, Member, MultiGa, MultiHistoryEntry, MultiObserver, MultiResult, MultiSnapshot,
 };
 pub use rank::{
     Fronts, RankScratch, crowding, dominates, pareto_fitness, penalize_clones, selection_fitness,
     summed_rank, weighted_sum,
 };
 pub use settings::{MultiGaSettings, Ranking, Selection};
+pub use state::MultiGaState;

@@ -12,10 +12,10 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::best::Best;
-use super::driver::Record;
+use super::core::Core;
 use super::error::{check_range, check_sizes};
 use super::fitness::{Roulette, bits_vec};
-use super::run::{Progress, grammar_struct_traits, stream};
+use super::run::stream;
 use super::{Evaluator, Held, OptimizeError, Optimizer, Settings, SettingsError};
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
@@ -230,37 +230,19 @@ pub struct Cursor {
     pub emitted: u32,
 }
 
-/// A checkpoint of an [`Smc`], resumed by [`Smc::resume`].
-#[derive(Serialize, Deserialize)]
-#[serde(
-    deny_unknown_fields,
-    bound(serialize = "G: Grammar", deserialize = "G: Grammar")
-)]
-pub struct SmcState<G> {
-    /// The settings.
-    pub settings: SmcSettings,
-    /// The genome limits.
-    pub limits: Limits,
-    /// Generation, evaluations, best so far, history.
-    pub progress: Progress<Best<G>>,
-    /// The particles as last grown and evaluated.
-    pub particles: Vec<Genome<G>>,
-    /// Their growth bookkeeping: one per particle in the generative variant, none in the
-    /// original one.
-    pub cursors: Vec<Cursor>,
-    /// Their fitness.
-    #[serde(with = "bits_vec")]
-    pub fitness: Vec<f64>,
+crate::checkpoint! {
+    /// A checkpoint of an [`Smc`], resumed by [`Smc::resume`].
+    pub struct SmcState<G>: SmcSettings, Best<G> {
+        /// The particles as last grown and evaluated.
+        pub particles: Vec<Genome<G>>,
+        /// Their growth bookkeeping: one per particle in the generative variant, none in
+        /// the original one.
+        pub cursors: Vec<Cursor>,
+        /// Their fitness.
+        #[serde(with = "bits_vec")]
+        pub fitness: Vec<f64>,
+    }
 }
-
-grammar_struct_traits!(SmcState {
-    settings,
-    limits,
-    progress,
-    particles,
-    cursors,
-    fitness
-});
 
 /// Sequential Monte Carlo (ALGORITHMS.md, section 5), SMC or SOSMC by [`Order`], in the
 /// [`SmcVariant`] its settings name (see there for the rules).
@@ -297,9 +279,7 @@ grammar_struct_traits!(SmcState {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub struct Smc<G> {
-    settings: SmcSettings,
-    limits: Limits,
-    progress: Progress<Best<G>>,
+    core: Core<SmcSettings, Best<G>>,
     particles: Vec<Genome<G>>,
     cursors: Vec<Cursor>,
     fitness: Vec<f64>,
@@ -312,10 +292,7 @@ pub struct Smc<G> {
 
 impl<G: Grammar> std::fmt::Debug for Smc<G> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Smc")
-            .field("settings", &self.settings)
-            .field("progress", &self.progress)
-            .finish_non_exhaustive()
+        self.core.debug(f, "Smc").finish_non_exhaustive()
     }
 }
 
@@ -331,9 +308,9 @@ impl<G: Grammar> Smc<G> {
     /// Grows every particle once as the original does, particle `i` from the stream
     /// (seed, `generation`, `i`), first replacing it by the axiom if `from_axiom`.
     fn grow_original(&mut self, generation: u64, from_axiom: bool) {
-        let seed = self.progress.seed;
-        let s = &self.settings;
-        let (order, max_depth) = (s.order, self.limits.max_depth);
+        let seed = self.core.progress.seed;
+        let s = &self.core.settings;
+        let (order, max_depth) = (s.order, self.core.limits.max_depth);
         let step_back = (100.0 * s.step_back_probability) as f32;
         self.particles.par_iter_mut().enumerate().for_each_init(
             original::Scratch::default,
@@ -350,7 +327,7 @@ impl<G: Grammar> Smc<G> {
     /// Resamples the particles as the original does, draw `j` from the stream (seed,
     /// `generation`, 2^31 + `j`), best first.
     fn resample_original(&mut self, generation: u64) {
-        let seed = self.progress.seed;
+        let seed = self.core.progress.seed;
         self.wheel.build(&self.fitness);
         let wheel = &self.wheel;
         self.picks.clear();
@@ -390,9 +367,7 @@ impl<G: Grammar> Optimizer<G> for Smc<G> {
         let empty = || Genome::from_parts(Vec::new(), 0);
         let cursors = Smc::<G>::cursors(&settings);
         Ok(Smc {
-            settings,
-            limits,
-            progress: Progress::new(seed),
+            core: Core::new(settings, limits, seed),
             particles: (0..n).map(|_| empty()).collect(),
             cursors: vec![Cursor::default(); cursors],
             fitness: vec![f64::NAN; n],
@@ -404,78 +379,58 @@ impl<G: Grammar> Optimizer<G> for Smc<G> {
         })
     }
 
-    fn resume(state: SmcState<G>) -> Result<Self, OptimizeError> {
-        // The particles are counted before the run is made, so that settings disagreeing
-        // with the checkpoint cannot make it allocate more than that holds.
-        if state.progress.record.started() {
-            let n = state.settings.particles as usize;
-            check_sizes(
-                &[(state.particles.len(), n, "particles")],
-                format_args!("{n} particles"),
-            )?;
-        }
-        let mut smc = Smc::new(state.settings, state.limits, state.progress.seed)?;
-        if state.progress.record.started() {
-            let (n, cursors) = (smc.particles.len(), smc.cursors.len());
-            check_sizes(
-                &[
-                    (state.particles.len(), n, "particles"),
-                    (state.cursors.len(), cursors, "cursors"),
-                    (state.fitness.len(), n, "fitness values"),
-                ],
-                format_args!(
-                    "{n} particles of the {} variant",
-                    state.settings.variant.name()
-                ),
-            )?;
-            smc.particles = state.particles;
-            smc.cursors = state.cursors;
-            smc.fitness = state.fitness;
-        }
-        smc.progress = state.progress;
-        Ok(smc)
+    fn core(&self) -> &Core<SmcSettings, Best<G>> {
+        &self.core
     }
 
-    fn checkpoint(&self) -> SmcState<G> {
-        SmcState {
-            settings: self.settings,
-            limits: self.limits,
-            progress: self.progress.clone(),
-            particles: self.particles.clone(),
-            cursors: self.cursors.clone(),
-            fitness: self.fitness.clone(),
-        }
+    fn parts(&mut self) -> (&mut Core<SmcSettings, Best<G>>, &[Genome<G>], &[f64]) {
+        (&mut self.core, &self.particles, &self.fitness)
     }
 
-    fn settings(&self) -> &SmcSettings {
-        &self.settings
+    fn save_body(&self) -> (Vec<Genome<G>>, Vec<Cursor>, Vec<f64>) {
+        (
+            self.particles.clone(),
+            self.cursors.clone(),
+            self.fitness.clone(),
+        )
     }
 
-    fn state_settings(state: &SmcState<G>) -> &SmcSettings {
-        &state.settings
+    /// Counts the particles first, then, as many as the settings', their cursors and
+    /// fitness values.
+    fn check_body(state: &SmcState<G>) -> Result<(), OptimizeError> {
+        let s = &state.settings;
+        let (n, cursors) = (s.particles as usize, Smc::<G>::cursors(s));
+        let particles = (state.particles.len(), n, "particles");
+        check_sizes(&[particles], format_args!("{n} particles"))?;
+        check_sizes(
+            &[
+                particles,
+                (state.cursors.len(), cursors, "cursors"),
+                (state.fitness.len(), n, "fitness values"),
+            ],
+            format_args!("{n} particles of the {} variant", s.variant.name()),
+        )
     }
 
-    fn state_limits(state: &SmcState<G>) -> &Limits {
-        &state.limits
-    }
-
-    fn progress(&self) -> &Progress<Best<G>> {
-        &self.progress
-    }
-
-    fn parts(&mut self) -> (&mut Progress<Best<G>>, &[Genome<G>], &[f64]) {
-        (&mut self.progress, &self.particles, &self.fitness)
+    fn restore_body(
+        &mut self,
+        (particles, cursors, fitness): (Vec<Genome<G>>, Vec<Cursor>, Vec<f64>),
+    ) -> Result<(), OptimizeError> {
+        self.particles = particles;
+        self.cursors = cursors;
+        self.fitness = fitness;
+        Ok(())
     }
 
     fn step_cost(&self) -> u64 {
-        u64::from(self.settings.particles)
+        u64::from(self.core.settings.particles)
     }
 
     fn start(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
-        match self.settings.variant {
+        match self.core.settings.variant {
             SmcVariant::Original => self.grow_original(0, true),
             SmcVariant::Generative => {
-                let seed = self.progress.seed;
+                let seed = self.core.progress.seed;
                 let mut instances = Vec::new();
                 for (i, (g, c)) in self.particles.iter_mut().zip(&mut self.cursors).enumerate() {
                     g.reset_to_axiom(&mut stream(seed, 0, i as u64));
@@ -488,13 +443,13 @@ impl<G: Grammar> Optimizer<G> for Smc<G> {
             }
         }
         evaluator.evaluate(&self.particles, &mut self.fitness)?;
-        self.progress.evaluations += self.step_cost();
+        self.core.progress.evaluations += self.step_cost();
         Ok(())
     }
 
     fn step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
-        let (seed, generation) = (self.progress.seed, self.progress.generation + 1);
-        match self.settings.variant {
+        let (seed, generation) = (self.core.progress.seed, self.core.progress.generation + 1);
+        match self.core.settings.variant {
             SmcVariant::Original => {
                 if generation > 1 {
                     self.resample_original(generation);
@@ -512,7 +467,7 @@ impl<G: Grammar> Optimizer<G> for Smc<G> {
                 }
                 std::mem::swap(&mut self.particles, &mut self.next);
                 std::mem::swap(&mut self.cursors, &mut self.next_cursors);
-                let (settings, limits) = (&self.settings, &self.limits);
+                let (settings, limits) = (&self.core.settings, &self.core.limits);
                 self.particles
                     .par_iter_mut()
                     .zip(self.cursors.par_iter_mut())
@@ -524,7 +479,7 @@ impl<G: Grammar> Optimizer<G> for Smc<G> {
             }
         }
         evaluator.evaluate(&self.particles, &mut self.fitness)?;
-        self.progress.evaluations += self.step_cost();
+        self.core.progress.evaluations += self.step_cost();
         Ok(())
     }
 }

@@ -1,498 +1,38 @@
-//! The genetic algorithm, the paper's Algorithm 1.
+//! Breeding one generation of a GA population: parents chosen by tournament and
+//! roulette (or as [`ParentSelection`] says), mutated or crossed over, pair by pair in
+//! parallel, each pair from its own random stream.
 
 use rand::{Rng, RngExt};
 use rayon::prelude::*;
-use serde::{Deserialize, Serialize};
 
-use super::best::Best;
-use super::error::{check_range, check_sizes};
-use super::fitness::{Roulette, bits_vec, compare, rank};
-use super::run::{Progress, grammar_struct_traits, stream};
-use super::{Evaluator, Held, OptimizeError, Optimizer, Record, Settings, SettingsError};
+use super::{GaSettings, ParentSelection};
 use crate::derive::Grammar;
-use crate::genome::{Genome, Limits};
+use crate::genome::Genome;
 use crate::ops::{OperatorVariant, Operators};
+use crate::optimize::fitness::{Roulette, compare, rank};
+use crate::optimize::run::stream;
+use crate::optimize::{OptimizeError, SettingsError};
 
 /// With the original's breeding, how many breeding events a pair of slots may take to
 /// fill with children within the length window before the GA gives up with an error
 /// (the original would loop forever).
 const ORIGINAL_BREEDS_PER_PAIR: u32 = 10_000;
 
-/// Settings of the [`Ga`]. Loads from scene files with serde; missing fields take the
-/// [`Default`] values, unknown fields are errors.
-///
-/// The default is the good setting of the CESCG study (ALGORITHMS.md, section 4):
-/// population 200, elitism 30, initial length 20, 50 generations, mutation 30% with
-/// uniform grow / cut / alter, tournament of 10, with the weighted operators. The
-/// published generators carry the original's settings for their paper scenes
-/// (`generators::spaceship::paper_ga`, ...), with the original's operators and breeding.
-///
-/// ```
-/// use shapegen_runtime::ops::OperatorVariant;
-/// use shapegen_runtime::optimize::GaSettings;
-///
-/// let s: GaSettings = serde_json::from_str(r#"{"operators": "original", "population": 50}"#)?;
-/// assert_eq!(s.operators, OperatorVariant::Original);
-/// assert!(!s.cross_array_index);
-/// # Ok::<(), serde_json::Error>(())
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct GaSettings {
-    /// Individuals per generation; at least 2.
-    pub population: u32,
-    /// Best individuals copied unchanged into the next generation (their fitness is
-    /// kept, not recomputed); less than `population`.
-    pub elitism: u32,
-    /// Initial genomes are grown from the axiom: with the weighted operators to a length
-    /// drawn uniformly from `[L/2, 3L/2]` around this `L` (within the limits), with the
-    /// original's to exactly `L` genes, as the original does; at least 1.
-    pub initial_length: u32,
-    /// Generations after the initial one, the default generation budget.
-    pub generations: u64,
-    /// Chance that a pair of parents is mutated instead of crossed over; in `[0, 1]`.
-    pub mutation_probability: f64,
-    /// Relative weight of grow among mutations; finite and not negative.
-    pub grow_weight: f64,
-    /// Relative weight of cut among mutations; finite and not negative.
-    pub cut_weight: f64,
-    /// Relative weight of alter among mutations; finite and not negative. The three
-    /// weights must not all be 0.
-    pub alter_weight: f64,
-    /// Size of the tournaments that choose parents (see
-    /// [`selection`](Self::selection)); at least 1.
-    pub tournament: u32,
-    /// How the two parents of a pair are chosen (scene key `selection`:
-    /// `"tournament_roulette"`, the default and the paper's, `"tournament"`,
-    /// `"roulette"` or `"random"`); see [`ParentSelection`].
-    pub selection: ParentSelection,
-    /// The rules of the operators and of the breeding around them (scene key
-    /// `operators`: `"weighted"`, the default, or `"original"`); see
-    /// [`OperatorVariant`] and [`Ga`].
-    pub operators: OperatorVariant,
-    /// Whether crossover may exchange subtrees hanging from different indices of an array
-    /// slot, which moves, say, a city lot's building to another lot (scene key
-    /// `cross_array_index`). `false`, the default: `lots[i]` meets only `lots[i]`, as
-    /// the original's one symbol per lot does.
-    pub cross_array_index: bool,
-}
-
-impl Default for GaSettings {
-    fn default() -> Self {
-        GaSettings {
-            population: 200,
-            elitism: 30,
-            initial_length: 20,
-            generations: 50,
-            mutation_probability: 0.3,
-            grow_weight: 1.0,
-            cut_weight: 1.0,
-            alter_weight: 1.0,
-            tournament: 10,
-            selection: ParentSelection::TournamentRoulette,
-            operators: OperatorVariant::Weighted,
-            cross_array_index: false,
-        }
-    }
-}
-
-/// How the [`Ga`] chooses the two parents of each pair it breeds. Tournaments are of
-/// [`GaSettings::tournament`] entrants; the roulette wheel weighs each individual by its
-/// fitness above the population's worst (see [`Ga`] for NaN and infinities).
-///
-/// The CESCG study compared these schemes (ALGORITHMS.md, section 4); the paper's GA and
-/// the original implementation use the first.
-///
-/// ```
-/// use shapegen_runtime::optimize::{GaSettings, ParentSelection};
-///
-/// let s: GaSettings = serde_json::from_str(r#"{"selection": "roulette"}"#)?;
-/// assert_eq!(s.selection, ParentSelection::Roulette);
-/// assert_eq!(GaSettings::default().selection, ParentSelection::TournamentRoulette);
-/// # Ok::<(), serde_json::Error>(())
-/// ```
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ParentSelection {
-    /// Parent 1 by tournament, parent 2 by roulette (`"tournament_roulette"`): the
-    /// paper's Algorithm 1 and the original's `createNewGeneration`.
-    #[default]
-    TournamentRoulette,
-    /// Both parents by tournament (`"tournament"`).
-    Tournament,
-    /// Both parents by roulette (`"roulette"`).
-    Roulette,
-    /// Both parents drawn uniformly from the population, ignoring fitness (`"random"`).
-    Random,
-}
-
-impl Settings for GaSettings {
-    const GENERATIONS: &'static str = "generations";
-
-    fn generations(&self) -> u64 {
-        self.generations
-    }
-
-    fn set_generations(&mut self, generations: u64) {
-        self.generations = generations;
-    }
-
-    /// Checks every field; the error names the first one out of range.
-    ///
-    /// ```
-    /// use shapegen_runtime::optimize::{GaSettings, Settings};
-    ///
-    /// let bad = GaSettings { elitism: 200, ..GaSettings::default() };
-    /// assert_eq!(bad.validate().unwrap_err().field, "elitism");
-    /// ```
-    fn validate(&self) -> Result<(), SettingsError> {
-        if self.population < 2 {
-            return Err(SettingsError::new(
-                "population",
-                self.population,
-                "at least 2",
-            ));
-        }
-        if self.elitism >= self.population {
-            return Err(SettingsError::new(
-                "elitism",
-                self.elitism,
-                "less than the population",
-            ));
-        }
-        if self.initial_length == 0 {
-            return Err(SettingsError::new("initial_length", 0, "at least 1"));
-        }
-        check_range(
-            "mutation_probability",
-            self.mutation_probability,
-            0.0,
-            1.0,
-            "between 0 and 1",
-        )?;
-        let valid = "finite and not negative";
-        check_range("grow_weight", self.grow_weight, 0.0, f64::MAX, valid)?;
-        check_range("cut_weight", self.cut_weight, 0.0, f64::MAX, valid)?;
-        check_range("alter_weight", self.alter_weight, 0.0, f64::MAX, valid)?;
-        let total = self.grow_weight + self.cut_weight + self.alter_weight;
-        if !(total > 0.0 && total.is_finite()) {
-            return Err(SettingsError::new(
-                "alter_weight",
-                self.alter_weight,
-                "positive when grow_weight and cut_weight are 0 (the weights' sum must be finite and positive)",
-            ));
-        }
-        if self.tournament == 0 {
-            return Err(SettingsError::new("tournament", 0, "at least 1"));
-        }
-        Ok(())
-    }
-}
-
-impl GaSettings {
-    /// The genomes `populations` GAs of these settings hold: each its population, the
-    /// next generation and a checkpoint's copy.
-    pub(crate) fn held(&self, populations: u64) -> Held {
-        Held {
-            genomes: 3 * u64::from(self.population) * populations,
-            saved: u64::from(self.population) * populations,
-            setting: "optimizer.population",
-            value: self.population.into(),
-        }
-    }
-
-    /// Checks the settings against the genome limits: the original's breeding keeps only
-    /// children within `[min_len, max_len)`, which must not be empty.
-    pub(crate) fn check_limits(&self, limits: &Limits) -> Result<(), SettingsError> {
-        if self.operators == OperatorVariant::Original && limits.min_len.max(1) >= limits.max_len {
-            return Err(SettingsError::new(
-                "limits.max_len",
-                limits.max_len,
-                "above limits.min_len with operators = \"original\", whose GA keeps only \
-                 children shorter than max_len",
-            ));
-        }
-        Ok(())
-    }
-
-    /// The operators these settings breed with, keeping to `limits`.
-    pub(crate) fn build_operators<G: Grammar>(
-        &self,
-        limits: Limits,
-    ) -> Result<Operators<G>, OptimizeError> {
-        self.check_limits(&limits)?;
-        Ok(Operators::new(limits)?
-            .with_variant(self.operators)
-            .with_cross_array_index(self.cross_array_index))
-    }
-}
-
-/// A checkpoint of a [`Ga`]: serialize it (e.g. with `serde_json`) and give it to
-/// [`Ga::resume`] to go on exactly as an uninterrupted run would.
-///
-/// The random streams are fixed by the seed and the generation number, so the state
-/// holds no generator positions beyond those.
-#[derive(Serialize, Deserialize)]
-#[serde(
-    deny_unknown_fields,
-    bound(serialize = "G: Grammar", deserialize = "G: Grammar")
-)]
-pub struct GaState<G> {
-    /// The settings.
-    pub settings: GaSettings,
-    /// The genome limits.
-    pub limits: Limits,
-    /// Generation, evaluations, best so far, history.
-    pub progress: Progress<Best<G>>,
-    /// The current population, best first after the first generation.
-    pub population: Vec<Genome<G>>,
-    /// Its cached fitness.
-    #[serde(with = "bits_vec")]
-    pub fitness: Vec<f64>,
-}
-
-grammar_struct_traits!(GaState {
-    settings,
-    limits,
-    progress,
-    population,
-    fitness
-});
-
-/// The genetic algorithm (ALGORITHMS.md, section 4): each generation keeps the
-/// `elitism` best unchanged, with their cached fitness, and fills the rest in pairs:
-/// parent 1 by k-tournament, parent 2 by roulette on shifted fitness (see below), or as
-/// another [`ParentSelection`] says; with
-/// the mutation probability both are copied and mutated once each (grow, cut or alter
-/// by their weights), otherwise they are crossed over. Only the new children are
-/// evaluated.
-///
-/// How a pair is bred depends on [`GaSettings::operators`]:
-/// - `weighted`: the operators keep genomes within the limits (a mutation the limits
-///   forbid leaves the copy as it is), a failed crossover gives copies of the parents,
-///   and every pair of slots takes the first two children it breeds.
-/// - `original`, as the original's `createNewGeneration`: the original's operators,
-///   which ignore the limits; a child is kept only if `min_len <= len < max_len` (max
-///   excluded) and a failed crossover gives no children; breeding goes on until the
-///   generation is full. The tournament never draws the worst-ranked individual (the
-///   original draws its entrants among all but the last of the population sorted best
-///   first). Initial genomes have exactly `initial_length` genes, unfiltered.
-///
-/// Fitness: NaN loses every tournament and has roulette weight 0; roulette weights are
-/// `f - f_min` over finite values, or uniform over the `+inf` individuals if any. When
-/// all weights are 0 (equal fitness) the wheel is uniform; the original's then always
-/// gives the best individual.
-///
-/// Breeding runs in parallel with rayon; every pair of slots draws from its own stream
-/// (seed, generation, pair), so results never depend on the thread count. With the
-/// original's breeding a pair breeds again from its stream until both its slots hold
-/// accepted children. Every child is then, as in the original, an accepted child of a
-/// breeding event drawn as the original draws one, independently of all other events;
-/// only the grouping of siblings differs: where a pair needs one more child and an event
-/// gives two acceptable ones, the second is dropped, while the original's sequential
-/// fill keeps both children of every event, and so may end a generation one individual
-/// over the population size, which never happens here. A pair that 10 000 events do not
-/// fill stops the run with a settings error (the original would loop forever).
-///
-/// Evaluations: elites keep their cached fitness and are not evaluated again, so every
-/// generation after the first costs `population - elitism` evaluations, with either
-/// operators; the original evaluates the whole population every generation, elites
-/// included, so its evaluation counts are higher by `elitism` per generation.
-///
-/// ```
-/// use shapegen_runtime::optimize::{Budget, FnEvaluator, Ga, GaSettings, Optimizer, Silent};
-/// use shapegen_runtime::prelude::*;
-///
-/// generator! {
-///     /// A chain of blocks.
-///     pub Chain {
-///         axiom Seg;
-///         node Seg {
-///             children { next: Seg = 0.5 }
-///             derive(s) {
-///                 s.emit(CUBE);
-///                 if let Some(next) = next { s.translate(vec3(0.0, 1.0, 0.0)).derive(next); }
-///             }
-///         }
-///     }
-/// }
-///
-/// // Look for chains of 12 blocks.
-/// let settings = GaSettings { population: 20, elitism: 4, initial_length: 4, ..GaSettings::default() };
-/// let mut ga = Ga::<Chain>::new(settings, Limits::new(1, 30, 30)?, 7)?;
-/// let mut eval = FnEvaluator(|g: &Genome<Chain>| -(g.len() as f64 - 12.0).abs());
-/// let result = ga.run(&mut eval, &Budget::generations(30), &mut Silent)?;
-/// assert_eq!(result.best.len(), 12);
-/// # Ok::<(), Box<dyn std::error::Error>>(())
-/// ```
-pub struct Ga<G> {
-    settings: GaSettings,
-    ops: Operators<G>,
-    progress: Progress<Best<G>>,
-    population: Vec<Genome<G>>,
-    fitness: Vec<f64>,
-    next: Vec<Genome<G>>,
-    next_fitness: Vec<f64>,
-    /// The parent each child of `next` was bred from, by index into `population`.
-    from: Vec<u32>,
-    order: Vec<u32>,
-    roulette: Roulette,
-}
-
-impl<G: Grammar> std::fmt::Debug for Ga<G> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Ga")
-            .field("settings", &self.settings)
-            .field("progress", &self.progress)
-            .finish_non_exhaustive()
-    }
-}
-
-impl<G: Grammar> Ga<G> {
-    /// The progress, the population and its fitness, for a method that changes
-    /// individuals between the GA's generations (the hybrid's seeding and refinement).
-    pub(super) fn parts_mut(&mut self) -> (&mut Progress<Best<G>>, &mut [Genome<G>], &mut [f64]) {
-        (&mut self.progress, &mut self.population, &mut self.fitness)
-    }
-}
-
-impl<G: Grammar> Optimizer<G> for Ga<G> {
-    type Settings = GaSettings;
-    type State = GaState<G>;
-    type Record = Best<G>;
-
-    /// The population, the next generation bred beside it, and the checkpoint's copy.
-    fn genomes_held(settings: &GaSettings) -> Vec<Held> {
-        vec![settings.held(1)]
-    }
-
-    /// A GA with these settings, keeping genomes within `limits` (the weighted operators)
-    /// or its children within `[min_len, max_len)` (the original's), seeded with `seed`.
-    fn new(settings: GaSettings, limits: Limits, seed: u64) -> Result<Self, OptimizeError> {
-        settings.validate()?;
-        let n = settings.population as usize;
-        let empty = || Genome::from_parts(Vec::new(), 0);
-        Ok(Ga {
-            settings,
-            ops: settings.build_operators(limits)?,
-            progress: Progress::new(seed),
-            population: (0..n).map(|_| empty()).collect(),
-            fitness: vec![f64::NAN; n],
-            next: (0..n).map(|_| empty()).collect(),
-            next_fitness: vec![f64::NAN; n],
-            from: vec![0; n - settings.elitism as usize],
-            order: Vec::with_capacity(n),
-            roulette: Roulette::default(),
-        })
-    }
-
-    fn resume(state: GaState<G>) -> Result<Self, OptimizeError> {
-        // The sizes are checked before the GA is made, so that settings disagreeing with
-        // the checkpoint's population cannot make it allocate more than that holds.
-        if state.progress.record.started() {
-            let n = state.settings.population as usize;
-            check_sizes(
-                &[
-                    (state.population.len(), n, "genomes"),
-                    (state.fitness.len(), n, "fitness values"),
-                ],
-                format_args!("a population of {n}"),
-            )?;
-        }
-        let mut ga = Ga::new(state.settings, state.limits, state.progress.seed)?;
-        if state.progress.record.started() {
-            ga.population = state.population;
-            ga.fitness = state.fitness;
-        }
-        ga.progress = state.progress;
-        Ok(ga)
-    }
-
-    fn checkpoint(&self) -> GaState<G> {
-        GaState {
-            settings: self.settings,
-            limits: *self.ops.limits(),
-            progress: self.progress.clone(),
-            population: self.population.clone(),
-            fitness: self.fitness.clone(),
-        }
-    }
-
-    fn settings(&self) -> &GaSettings {
-        &self.settings
-    }
-
-    fn state_settings(state: &GaState<G>) -> &GaSettings {
-        &state.settings
-    }
-
-    fn state_limits(state: &GaState<G>) -> &Limits {
-        &state.limits
-    }
-
-    fn progress(&self) -> &Progress<Best<G>> {
-        &self.progress
-    }
-
-    fn parts(&mut self) -> (&mut Progress<Best<G>>, &[Genome<G>], &[f64]) {
-        (&mut self.progress, &self.population, &self.fitness)
-    }
-
-    fn step_cost(&self) -> u64 {
-        u64::from(self.settings.population - self.settings.elitism)
-    }
-
-    fn start(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
-        let seed = self.progress.seed;
-        random_population(&self.ops, &self.settings, seed, &mut self.population);
-        evaluator.evaluate(&self.population, &mut self.fitness)?;
-        self.progress.evaluations += self.population.len() as u64;
-        Ok(())
-    }
-
-    fn step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
-        let elite = self.settings.elitism as usize;
-        let (elites, children) = self.next.split_at_mut(elite);
-        Generation {
-            settings: &self.settings,
-            ops: &self.ops,
-            seed: self.progress.seed,
-            generation: self.progress.generation + 1,
-        }
-        .breed(
-            Parents {
-                population: &self.population,
-                fitness: &self.fitness,
-            },
-            &mut self.order,
-            &mut self.roulette,
-            (elites, &mut self.next_fitness[..elite]),
-            (children, &mut self.from),
-        )?;
-        evaluator.evaluate_bred(
-            &self.next[elite..],
-            &self.population,
-            &self.from,
-            &mut self.next_fitness[elite..],
-        )?;
-        self.progress.evaluations += self.step_cost();
-        std::mem::swap(&mut self.population, &mut self.next);
-        std::mem::swap(&mut self.fitness, &mut self.next_fitness);
-        Ok(())
-    }
-}
-
-/// One population and its fitness, as a generation is bred from them.
+/// One population, the fitness it is selected on and the scores its elites keep, as a
+/// generation is bred from them.
 pub(crate) struct Parents<'a, G> {
     /// The population.
     pub(crate) population: &'a [Genome<G>],
-    /// Its fitness, one value per genome.
+    /// The higher-is-better fitness it is selected on, one value per genome.
     pub(crate) fitness: &'a [f64],
+    /// Its scores, the same number per genome: the fitness itself, or the objective
+    /// vectors a multi-objective selection fitness is computed from.
+    pub(crate) scores: &'a [f64],
 }
 
 /// What breeding one generation of a GA population needs besides the population: the
 /// settings and operators, and the seed and number of the generation being bred. The
-/// [`Ga`] breeds its one population with it, the island model each of its islands.
+/// [`Ga`](super::Ga) breeds its one population with it, the island model each of its islands.
 pub(crate) struct Generation<'a, G> {
     /// The GA's settings.
     pub(crate) settings: &'a GaSettings,
@@ -506,21 +46,24 @@ pub(crate) struct Generation<'a, G> {
 
 impl<G: Grammar> Generation<'_, G> {
     /// Breeds the next generation of `parents`: copies its `elitism` best, with their
-    /// fitness, into `elites`, and breeds `children` (see [`Breed::children`]), each
+    /// scores, into `elites`, and breeds `children` (see [`Breed::children`]), each
     /// child's parent index into `from`. `order` and `roulette` are scratch.
     pub(crate) fn breed(
         &self,
         parents: Parents<'_, G>,
         order: &mut Vec<u32>,
         roulette: &mut Roulette,
-        (elites, elite_fitness): (&mut [Genome<G>], &mut [f64]),
+        (elites, elite_scores): (&mut [Genome<G>], &mut [f64]),
         (children, from): (&mut [Genome<G>], &mut [u32]),
     ) -> Result<(), OptimizeError> {
         rank(parents.fitness, order);
         roulette.build(parents.fitness);
-        for ((elite, f), &i) in elites.iter_mut().zip(elite_fitness).zip(order.iter()) {
-            elite.clone_from(&parents.population[i as usize]);
-            *f = parents.fitness[i as usize];
+        let k = parents.scores.len() / parents.population.len();
+        let kept = elite_scores.chunks_exact_mut(k);
+        for ((elite, kept), &i) in elites.iter_mut().zip(kept).zip(order.iter()) {
+            let i = i as usize;
+            elite.clone_from(&parents.population[i]);
+            kept.copy_from_slice(&parents.scores[i * k..(i + 1) * k]);
         }
         Breed {
             settings: self.settings,
@@ -531,22 +74,6 @@ impl<G: Grammar> Generation<'_, G> {
         }
         .children(self.ops, self.seed, self.generation, children, from)
     }
-}
-
-/// Grows the initial population in parallel: genome `i` from stream (seed, 0, `i`), to a
-/// length around the settings' initial length (exactly that length with the original's
-/// operators).
-pub(crate) fn random_population<G: Grammar>(
-    ops: &Operators<G>,
-    settings: &GaSettings,
-    seed: u64,
-    population: &mut [Genome<G>],
-) {
-    let len = settings.initial_length;
-    population.par_iter_mut().enumerate().for_each_init(
-        || ops.clone(),
-        |ops, (i, g)| ops.random_into(len, g, &mut stream(seed, 0, i as u64)),
-    );
 }
 
 /// What breeding reads: the current generation, the higher-is-better fitness it is
@@ -764,6 +291,7 @@ enum Mutation {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::genome::Limits;
 
     crate::generator! {
         /// A chain of blocks.
