@@ -5,6 +5,7 @@ extern crate self as shapegen;
 
 pub use shapegen_runtime::*;
 
+#[cfg(feature = "cli")]
 pub mod cli;
 pub mod registry;
 pub mod scene;

@@ -4,11 +4,11 @@
 //!
 //! [`Registry::published`] holds the four published generators with the original's
 //! settings; a user's own generators are added with [`Registry::add`] (the command-line
-//! tool's [`Cli::generator`](crate::cli::Cli::generator) does it).
+//! tool's `Cli::generator` does it).
 //!
 //! ```
 //! use shapegen::prelude::*;
-//! use shapegen::registry::{Defaults, Registry};
+//! use shapegen::registry::{AddGrammar, Defaults, Registry};
 //!
 //! generator! {
 //!     /// A stack of blocks.
@@ -128,6 +128,42 @@ pub enum RegistryError {
         "`{0}` cannot name a generator: use letters, digits, `_` and `-`, starting with a letter"
     )]
     BadName(String),
+    /// No generator has the name.
+    #[error("unknown generator `{name}`; the generators are {known}")]
+    Unknown {
+        /// The name looked up.
+        name: String,
+        /// The names there are ([`Registry::names`]).
+        known: String,
+    },
+}
+
+/// Something generators are added to, each with its grammar type: a [`Registry`], or
+/// the command-line tool's registry of runnable generators.
+pub trait AddGrammar {
+    /// Adds grammar `G` under `name` with `defaults`.
+    ///
+    /// # Errors
+    /// When `name` is taken (names compare without case) or is not a plain identifier.
+    fn add<G: Grammar>(&mut self, name: &str, defaults: Defaults) -> Result<(), RegistryError>;
+}
+
+/// Adds the published generators to `to`, each under its grammar's key (`spaceship`,
+/// `tree`, `city`, `building`), with its own meshes, its paper scene's limits and the
+/// original's settings of every method (the building, which has no paper scene, takes the
+/// thesis's GA).
+///
+/// # Errors
+/// When a published generator's name is taken in `to`.
+pub fn add_published(to: &mut impl AddGrammar) -> Result<(), RegistryError> {
+    let meshes = generators::default_meshes();
+    for generator in Published::ALL {
+        generator.visit(Add {
+            to: &mut *to,
+            defaults: published_defaults(generator, &meshes),
+        })?;
+    }
+    Ok(())
 }
 
 /// The generators a run can name; see the [module documentation](self).
@@ -147,40 +183,8 @@ impl Registry {
     /// (the building, which has no paper scene, takes the thesis's GA).
     pub fn published() -> Self {
         let mut registry = Registry::new();
-        let meshes = generators::default_meshes();
-        for generator in Published::ALL {
-            let added = generator.visit(Add {
-                registry: &mut registry,
-                name: generator.name(),
-                defaults: published_defaults(generator, &meshes),
-            });
-            added.expect("the published generators have distinct plain names");
-        }
+        add_published(&mut registry).expect("the published generators have distinct plain names");
         registry
-    }
-
-    /// Adds grammar `G` under `name` with `defaults`.
-    ///
-    /// # Errors
-    /// When `name` is taken (names compare without case) or is not a plain identifier.
-    pub fn add<G: Grammar>(&mut self, name: &str, defaults: Defaults) -> Result<(), RegistryError> {
-        let plain = name.chars().next().is_some_and(|c| c.is_ascii_alphabetic())
-            && name
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
-        if !plain {
-            return Err(RegistryError::BadName(name.to_owned()));
-        }
-        if self.get(name).is_some() {
-            return Err(RegistryError::Taken(name.to_owned()));
-        }
-        self.entries.push(Entry {
-            name: name.to_owned(),
-            grammar: G::GRAPH.name,
-            key: G::GRAPH.key,
-            defaults,
-        });
-        Ok(())
     }
 
     /// The generator registered as `name` (without regard to case).
@@ -193,12 +197,18 @@ impl Registry {
     /// The generator named `name`, or whose grammar is `name` in either spelling
     /// (genome files record `"spaceship"`, older ones `"Spaceship"`), without regard to
     /// case.
-    pub fn find(&self, name: &str) -> Option<&Entry> {
-        self.get(name).or_else(|| {
-            self.entries
-                .iter()
-                .find(|e| e.grammar.eq_ignore_ascii_case(name) || e.key.eq_ignore_ascii_case(name))
-        })
+    ///
+    /// # Errors
+    /// [`RegistryError::Unknown`], naming the generators there are.
+    pub fn find(&self, name: &str) -> Result<&Entry, RegistryError> {
+        let by_grammar =
+            |e: &&Entry| e.grammar.eq_ignore_ascii_case(name) || e.key.eq_ignore_ascii_case(name);
+        self.get(name)
+            .or_else(|| self.entries.iter().find(by_grammar))
+            .ok_or_else(|| RegistryError::Unknown {
+                name: name.to_owned(),
+                known: self.names(),
+            })
     }
 
     /// Every generator, in the order they were added.
@@ -217,10 +227,32 @@ impl Registry {
     }
 }
 
+impl AddGrammar for Registry {
+    fn add<G: Grammar>(&mut self, name: &str, defaults: Defaults) -> Result<(), RegistryError> {
+        let plain = name.chars().next().is_some_and(|c| c.is_ascii_alphabetic())
+            && name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+        if !plain {
+            return Err(RegistryError::BadName(name.to_owned()));
+        }
+        if self.get(name).is_some() {
+            return Err(RegistryError::Taken(name.to_owned()));
+        }
+        self.entries.push(Entry {
+            name: name.to_owned(),
+            grammar: G::GRAPH.name,
+            key: G::GRAPH.key,
+            defaults,
+        });
+        Ok(())
+    }
+}
+
 /// What published `generator` brings: `meshes` (the published generators' own,
 /// [`generators::default_meshes`]), its paper scene's limits, and the original's settings of
 /// every method for that scene.
-pub fn published_defaults(generator: Published, meshes: &MeshLibrary) -> Defaults {
+fn published_defaults(generator: Published, meshes: &MeshLibrary) -> Defaults {
     Defaults {
         meshes: meshes.clone(),
         limits: generator.paper_limits(),
@@ -262,17 +294,16 @@ fn paper_presets(generator: Published) -> Presets {
     }
 }
 
-/// Adds the grammar a [`Published`] generator visits with to a registry.
-struct Add<'a> {
-    registry: &'a mut Registry,
-    name: &'static str,
+/// Adds the grammar a [`Published`] generator visits with, under its key.
+struct Add<'a, A> {
+    to: &'a mut A,
     defaults: Defaults,
 }
 
-impl GeneratorVisitor for Add<'_> {
+impl<A: AddGrammar> GeneratorVisitor for Add<'_, A> {
     type Output = Result<(), RegistryError>;
 
     fn visit<G: Grammar>(self, _: Limits) -> Self::Output {
-        self.registry.add::<G>(self.name, self.defaults)
+        self.to.add::<G>(G::GRAPH.key, self.defaults)
     }
 }

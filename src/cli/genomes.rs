@@ -7,8 +7,7 @@ use anyhow::Context;
 use shapegen::genome::{GenomeSet, JsonLayout};
 use shapegen::{Genome, Grammar};
 
-use super::dispatch::Generators;
-use crate::registry::Entry;
+use crate::registry::{Entry, Registry};
 
 /// A genome file read into memory, with what its top-level keys tell: the generator it
 /// names, whether it is a set (`genomes`) and whether it is in the nested form (`tree`).
@@ -33,7 +32,7 @@ impl GenomeFile {
     }
 
     /// The generator of `tool` the file names (as `"spaceship"`, or `"Spaceship"`).
-    pub fn generator<'t>(&self, tool: &'t Generators) -> anyhow::Result<&'t Entry> {
+    pub fn generator<'r>(&self, registry: &'r Registry) -> anyhow::Result<&'r Entry> {
         let name = self.layout.generator.as_deref().with_context(|| {
             format!(
                 "`{}` names no generator; a genome file names it as `\"generator\": \
@@ -41,7 +40,8 @@ impl GenomeFile {
                 self.path.display()
             )
         })?;
-        tool.find(name)
+        registry
+            .find(name)
             .with_context(|| format!("`{}`", self.path.display()))
     }
 

@@ -12,7 +12,7 @@ use shapegen::optimize::{Checkpoint, Optimizer};
 use shapegen::scene::{OptimizerGoal, RunShape, Scene};
 
 use super::backend::BackendArgs;
-use super::dispatch::Visit;
+use super::generators::Visit;
 use crate::registry::Entry;
 
 /// The `--max-memory` flag of the commands that search.

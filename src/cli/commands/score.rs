@@ -12,9 +12,9 @@ use shapegen::scene::{ObjectiveEvaluator, Overrides, Scene, SceneCounts, SceneSc
 use shapegen::score::InstanceBatch;
 use shapegen::{Genome, Grammar};
 
-use super::backend::BackendArgs;
-use super::dispatch::{Generators, Visit};
-use super::genomes::load_genomes;
+use crate::cli::backend::BackendArgs;
+use crate::cli::generators::{Generators, Jobs, Visit};
+use crate::cli::genomes::load_genomes;
 use crate::registry::Entry;
 
 /// Arguments of `shapegen score`.
@@ -41,7 +41,10 @@ struct Line<'a> {
 }
 
 /// Runs `shapegen score`.
-pub fn run(args: &ScoreArgs, tool: &Generators) -> anyhow::Result<()> {
+pub fn run<J: Jobs>(args: &ScoreArgs, tool: &Generators<J>) -> anyhow::Result<()>
+where
+    for<'a> J::Job<'a>: From<Score<'a>>,
+{
     let scene = Scene::open(&args.scene, tool.registry(), &Overrides::default())?;
     tool.visit(
         &scene.generator,

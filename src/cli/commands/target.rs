@@ -12,10 +12,10 @@ use shapegen::scene::{Overrides, Scene, SceneScorer};
 use shapegen::score::Scorer;
 use shapegen::score::objective::{ObjectiveSet, Surface};
 
-use super::dispatch::{Generators, Visit};
-use super::genomes::load_genome;
-use super::overlay::{numbered, projections};
-use super::voxels::voxel_surface_obj;
+use crate::cli::generators::{Generators, Jobs, Visit};
+use crate::cli::genomes::load_genome;
+use crate::cli::overlay::{numbered, projections};
+use crate::cli::voxels::voxel_surface_obj;
 use crate::registry::Entry;
 
 /// Arguments of `shapegen target`.
@@ -38,7 +38,10 @@ pub struct TargetArgs {
 }
 
 /// Runs `shapegen target`.
-pub fn run(args: &TargetArgs, tool: &Generators) -> anyhow::Result<()> {
+pub fn run<J: Jobs>(args: &TargetArgs, tool: &Generators<J>) -> anyhow::Result<()>
+where
+    for<'a> J::Job<'a>: From<Target<'a>>,
+{
     let scene = Scene::open(&args.scene, tool.registry(), &Overrides::default())?;
     tool.visit(
         &scene.generator,

@@ -14,8 +14,8 @@ use serde::{Deserialize, Serialize};
 use shapegen::optimize::Budget;
 use shapegen::scene::{Method, Overrides, Scene};
 
-use super::super::backend::BackendArgs;
-use super::super::files::{atomic_write, read};
+use crate::cli::backend::BackendArgs;
+use crate::cli::files::{atomic_write, read};
 use crate::registry::Registry;
 
 /// The file a study's plan is saved in, in the study's folder.

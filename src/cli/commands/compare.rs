@@ -24,7 +24,7 @@
 //! also writes each method's time and evaluations to 90 %, 99 % and 99.9 % of it
 //! (`targets.csv`, and in `summary.json`) and its gap to the optimum against time and
 //! against evaluations on a log scale (`gap-time.png`, `gap-evaluations.png`); see
-//! [`gap`](super::gap).
+//! [`gap`](crate::cli::gap).
 
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -37,16 +37,16 @@ use shapegen::Grammar;
 use shapegen::optimize::{Budget, HistoryEntry, StopReason};
 use shapegen::scene::{Method, OptimizerGoal, Overrides, Scene, SceneEvaluator, SceneScorer};
 
-use super::backend::{BackendArgs, check_batches};
-use super::dispatch::{Generators, Visit};
-use super::files::{atomic_write, csv_bytes, save_figure};
-use super::folder::{Existing, Folder, Kind};
-use super::gap::{self, Group, Reached};
-use super::interrupt;
-use super::memory::{MemoryArgs, MemoryCheck};
-use super::plot::{self, Spread, Titles, YScale};
-use super::search::SessionRun;
-use super::stats::{mean_std, quartile_curve, quartiles};
+use crate::cli::backend::{BackendArgs, check_batches};
+use crate::cli::files::{atomic_write, csv_bytes, save_figure};
+use crate::cli::folder::{Existing, Folder, Kind};
+use crate::cli::gap::{self, Group, Reached};
+use crate::cli::generators::{Generators, Jobs, Visit};
+use crate::cli::interrupt;
+use crate::cli::memory::{MemoryArgs, MemoryCheck};
+use crate::cli::method::SessionRun;
+use crate::cli::plot::{self, Spread, Titles, YScale};
+use crate::cli::stats::{mean_std, quartile_curve, quartiles};
 use crate::registry::Entry;
 
 /// Points of the common time grid the curves are sampled on.
@@ -61,7 +61,7 @@ pub struct CompareArgs {
     scene: PathBuf,
     /// The methods to compare, comma-separated, in the order they run and are listed
     /// (default: every method).
-    #[arg(long, value_delimiter = ',', help = super::method_help(
+    #[arg(long, value_delimiter = ',', help = crate::cli::method::method_help(
         "The methods to compare, comma-separated, in the order they run and are listed \
          (default: all of them)"
     ))]
@@ -93,7 +93,10 @@ pub struct CompareArgs {
 }
 
 /// Runs `shapegen compare`.
-pub fn run(args: &CompareArgs, tool: &Generators) -> anyhow::Result<()> {
+pub fn run<J: Jobs>(args: &CompareArgs, tool: &Generators<J>) -> anyhow::Result<()>
+where
+    for<'a> J::Job<'a>: From<Compare<'a>> + From<MemoryCheck<'a>>,
+{
     let methods = match &args.methods {
         Some(names) => parse_methods(names)?,
         None => Method::ALL.to_vec(),

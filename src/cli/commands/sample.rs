@@ -13,7 +13,7 @@ use shapegen::genome::{GenomeSet, Limits};
 use shapegen::ops::Operators;
 use shapegen::{Genome, Grammar};
 
-use super::dispatch::{Generators, Visit};
+use crate::cli::generators::{Generators, Jobs, Visit};
 use crate::registry::Entry;
 
 /// Arguments of `shapegen sample`.
@@ -47,7 +47,10 @@ pub struct SampleArgs {
 }
 
 /// Runs `shapegen sample`.
-pub fn run(args: &SampleArgs, tool: &Generators) -> anyhow::Result<()> {
+pub fn run<J: Jobs>(args: &SampleArgs, tool: &Generators<J>) -> anyhow::Result<()>
+where
+    for<'a> J::Job<'a>: From<Sample<'a>>,
+{
     tool.visit(&args.generator, Sample { args })
 }
 

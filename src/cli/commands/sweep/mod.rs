@@ -24,12 +24,12 @@ use anyhow::Context;
 use clap::Args;
 use shapegen::scene::{Method, Scene};
 
-use super::backend::BackendArgs;
-use super::dispatch::Generators;
-use super::folder::{Existing, Folder, Kind};
-use super::interrupt;
-use super::memory::{MemoryArgs, MemoryCheck, threads_per_job};
-use cell::Finished;
+use crate::cli::backend::BackendArgs;
+use crate::cli::folder::{Existing, Folder, Kind};
+use crate::cli::generators::{Generators, Jobs};
+use crate::cli::interrupt;
+use crate::cli::memory::{MemoryArgs, MemoryCheck, threads_per_job};
+use cell::{CellRun, Finished};
 use plan::{Axis, Plan, StudyBudget};
 use slurm::SlurmArgs;
 
@@ -65,7 +65,7 @@ pub struct SweepArgs {
     seed: Option<u64>,
     /// The search method of every run (overrides `optimizer.method`; or sweep
     /// `--grid optimizer.method=..`).
-    #[arg(long, help = super::method_help(
+    #[arg(long, help = crate::cli::method::method_help(
         "The search method of every run (overrides `optimizer.method`; or sweep \
          `--grid optimizer.method=..`)"
     ))]
@@ -108,7 +108,10 @@ pub struct SweepArgs {
 }
 
 /// Runs `shapegen sweep`.
-pub fn run(args: &SweepArgs, tool: &Generators) -> anyhow::Result<()> {
+pub fn run<J: Jobs>(args: &SweepArgs, tool: &Generators<J>) -> anyhow::Result<()>
+where
+    for<'a> J::Job<'a>: From<CellRun<'a>> + From<MemoryCheck<'a>>,
+{
     if let Some(cell) = &args.cell {
         refuse_study_flags(args, "--cell")?;
         let dir = Path::new(&cell[0]);
@@ -170,12 +173,15 @@ pub fn run(args: &SweepArgs, tool: &Generators) -> anyhow::Result<()> {
 /// Refuses a study whose cells, `jobs` at a time, each with its share of the worker
 /// threads, would not fit in memory: each grid point's, as if all `jobs` cells at once
 /// were of that point.
-fn check_memory(
+fn check_memory<J: Jobs>(
     plan: &Plan,
-    tool: &Generators,
+    tool: &Generators<J>,
     jobs: usize,
     limit: MemoryArgs,
-) -> anyhow::Result<()> {
+) -> anyhow::Result<()>
+where
+    for<'a> J::Job<'a>: From<CellRun<'a>> + From<MemoryCheck<'a>>,
+{
     let jobs = jobs.max(1);
     for point in 0..plan.points() {
         let scene = Scene::open(
@@ -236,7 +242,7 @@ fn plan_only(plan: &Plan, dir: &Path, slurm: &SlurmArgs) -> anyhow::Result<()> {
         .with_context(|| format!("cannot create `{}`", logs.display()))?;
     let exe = std::env::current_exe().context("cannot find the running shapegen binary")?;
     let script = dir.join("sweep.sbatch");
-    super::files::atomic_write(&script, slurm.script(plan.cells(), &dir, &exe).as_bytes())?;
+    crate::cli::files::atomic_write(&script, slurm.script(plan.cells(), &dir, &exe).as_bytes())?;
     println!(
         "wrote plan.json ({} cells: {} grid points x {} runs) and sweep.sbatch to {}; \
          submit the study with\n    sbatch {}",
@@ -250,7 +256,15 @@ fn plan_only(plan: &Plan, dir: &Path, slurm: &SlurmArgs) -> anyhow::Result<()> {
 }
 
 /// `--cell DIR I`: runs cell `index` of the study in `dir`, unless it is done.
-fn run_cell(dir: &Path, index: u64, tool: &Generators, limit: MemoryArgs) -> anyhow::Result<()> {
+fn run_cell<J: Jobs>(
+    dir: &Path,
+    index: u64,
+    tool: &Generators<J>,
+    limit: MemoryArgs,
+) -> anyhow::Result<()>
+where
+    for<'a> J::Job<'a>: From<CellRun<'a>> + From<MemoryCheck<'a>>,
+{
     let plan = Plan::load(dir)?;
     anyhow::ensure!(
         index < plan.cells(),
@@ -337,7 +351,15 @@ fn outcome(finished: &Finished) -> String {
 
 /// Runs the study's unfinished cells here, `jobs` at a time, each with its share of the
 /// worker threads, rewriting the tables and plots after each.
-fn run_local(plan: &Plan, dir: &Path, jobs: usize, tool: &Generators) -> anyhow::Result<()> {
+fn run_local<J: Jobs>(
+    plan: &Plan,
+    dir: &Path,
+    jobs: usize,
+    tool: &Generators<J>,
+) -> anyhow::Result<()>
+where
+    for<'a> J::Job<'a>: From<CellRun<'a>> + From<MemoryCheck<'a>>,
+{
     let done = cell::load_all(plan, dir)?;
     let pending: Vec<u64> = (0..plan.cells())
         .filter(|i| !done.contains_key(i))

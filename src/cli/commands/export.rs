@@ -10,9 +10,9 @@ use shapegen::MeshLibrary;
 use shapegen::export::{Palette, glb_bytes, write_mtl, write_obj};
 use shapegen::scene::{Overrides, Scene};
 
-use super::dispatch::{Generators, Visit};
-use super::files::atomic_write;
-use super::genomes::GenomeFile;
+use crate::cli::files::atomic_write;
+use crate::cli::generators::{Generators, Jobs, Visit};
+use crate::cli::genomes::GenomeFile;
 use crate::registry::Entry;
 
 /// Arguments of `shapegen export`.
@@ -60,7 +60,10 @@ impl Format {
 }
 
 /// Runs `shapegen export`.
-pub fn run(args: &ExportArgs, tool: &Generators) -> anyhow::Result<()> {
+pub fn run<J: Jobs>(args: &ExportArgs, tool: &Generators<J>) -> anyhow::Result<()>
+where
+    for<'a> J::Job<'a>: From<Export<'a>>,
+{
     let format = Format::of(&args.out)?;
     let scene = args
         .scene
@@ -78,7 +81,7 @@ pub fn run(args: &ExportArgs, tool: &Generators) -> anyhow::Result<()> {
         }
         (Some(scene), _) => scene.generator.as_str(),
         (None, Some(generator)) => generator.as_str(),
-        (None, None) => file.generator(tool)?.name.as_str(),
+        (None, None) => file.generator(tool.registry())?.name.as_str(),
     };
     tool.visit(
         generator,

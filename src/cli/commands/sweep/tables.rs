@@ -6,10 +6,10 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;
 
-use super::super::files::{atomic_write, csv_bytes};
-use super::super::stats::{mean_std, median};
 use super::cell::Finished;
 use super::plan::Plan;
+use crate::cli::files::{atomic_write, csv_bytes};
+use crate::cli::stats::{mean_std, median};
 
 /// The fractions of the way from the sweep's lowest initial best to its highest final
 /// best whose evaluations `sweep.csv` gives, in percent.
@@ -240,8 +240,8 @@ fn cell_text(text: &str) -> String {
 mod tests {
     use super::*;
     use crate::cli::backend::BackendArgs;
-    use crate::cli::sweep::cell::Record;
-    use crate::cli::sweep::plan::{Axis, StudyBudget};
+    use super::super::cell::Record;
+    use super::super::plan::{Axis, StudyBudget};
     use shapegen::optimize::HistoryEntry;
 
     fn plan() -> Plan {

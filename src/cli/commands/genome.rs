@@ -7,9 +7,9 @@ use clap::{Args, Subcommand, ValueEnum};
 use shapegen::genome::GenomeSet;
 use shapegen::{Genome, Grammar};
 
-use super::dispatch::{Generators, Visit};
-use super::files::atomic_write;
-use super::genomes::GenomeFile;
+use crate::cli::files::atomic_write;
+use crate::cli::generators::{Generators, Jobs, Visit};
+use crate::cli::genomes::GenomeFile;
 use crate::registry::Entry;
 
 /// Arguments of `shapegen genome`.
@@ -60,13 +60,19 @@ impl Form {
 }
 
 /// Runs `shapegen genome`.
-pub fn run(args: &GenomeArgs, tool: &Generators) -> anyhow::Result<()> {
+pub fn run<J: Jobs>(args: &GenomeArgs, tool: &Generators<J>) -> anyhow::Result<()>
+where
+    for<'a> J::Job<'a>: From<Convert<'a>>,
+{
     match &args.command {
         GenomeCommand::Convert(args) => convert(args, tool),
     }
 }
 
-fn convert(args: &ConvertArgs, tool: &Generators) -> anyhow::Result<()> {
+fn convert<J: Jobs>(args: &ConvertArgs, tool: &Generators<J>) -> anyhow::Result<()>
+where
+    for<'a> J::Job<'a>: From<Convert<'a>>,
+{
     let file = GenomeFile::read(&args.input)?;
     let to = args.to.unwrap_or(if file.layout.nested {
         Form::Packed
@@ -74,7 +80,7 @@ fn convert(args: &ConvertArgs, tool: &Generators) -> anyhow::Result<()> {
         Form::Nested
     });
     tool.visit(
-        &file.generator(tool)?.name,
+        &file.generator(tool.registry())?.name,
         Convert {
             args,
             file: &file,

@@ -22,11 +22,11 @@ use shapegen::gpu::GpuContext;
 use shapegen::optimize::{HistoryEntry, StopReason};
 use shapegen::scene::{Scene, SceneEvaluator, SceneScorer};
 
-use super::super::backend::check_batches;
-use super::super::dispatch::{Generators, Visit};
-use super::super::files::{csv_bytes, read};
-use super::super::search::SessionRun;
 use super::plan::Plan;
+use crate::cli::backend::check_batches;
+use crate::cli::files::{csv_bytes, read};
+use crate::cli::generators::{Generators, Jobs, Visit};
+use crate::cli::method::SessionRun;
 use crate::registry::Entry;
 
 /// The files of a cell's folder.
@@ -96,14 +96,17 @@ fn name(plan: &Plan, index: u64) -> String {
 
 /// Runs cell `index` of `plan` (counting on `gpu` where the plan's backend may) and
 /// writes its folder into `dir`. `None` when `stop` interrupted it: nothing is written.
-pub fn run(
+pub fn run<J: Jobs>(
     plan: &Plan,
     dir: &Path,
     index: u64,
-    tool: &Generators,
+    tool: &Generators<J>,
     gpu: Option<&GpuContext>,
     stop: &AtomicBool,
-) -> anyhow::Result<Option<Finished>> {
+) -> anyhow::Result<Option<Finished>>
+where
+    for<'a> J::Job<'a>: From<CellRun<'a>>,
+{
     let cell = plan.cell(index);
     let scene = Scene::open(&plan.scene, tool.registry(), &plan.overrides(cell))?;
     let mut outcome = None;

@@ -10,9 +10,9 @@ use shapegen::export::{Palette, Preview};
 use shapegen::scene::{Overrides, Scene, SceneScorer};
 use shapegen::score::objective::Surface;
 
-use super::dispatch::{Generators, Visit};
-use super::genomes::load_genomes;
-use super::overlay::{numbered, overlay, projection_overlay, projections};
+use crate::cli::generators::{Generators, Jobs, Visit};
+use crate::cli::genomes::load_genomes;
+use crate::cli::overlay::{numbered, overlay, projection_overlay, projections};
 use crate::registry::Entry;
 
 /// Arguments of `shapegen render`.
@@ -35,7 +35,10 @@ pub struct RenderArgs {
 }
 
 /// Runs `shapegen render`.
-pub fn run(args: &RenderArgs, tool: &Generators) -> anyhow::Result<()> {
+pub fn run<J: Jobs>(args: &RenderArgs, tool: &Generators<J>) -> anyhow::Result<()>
+where
+    for<'a> J::Job<'a>: From<Render<'a>>,
+{
     anyhow::ensure!(
         args.width > 0 && args.height > 0,
         "--width and --height must be at least 1"

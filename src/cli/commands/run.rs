@@ -17,18 +17,18 @@ use shapegen::{Genome, Grammar};
 
 use crate::registry::Entry;
 
-use super::backend::{BackendArgs, Incremental, check_batches};
-use super::checkpoint::{Checkpoint, Head};
-use super::dispatch::{Generators, Visit};
-use super::files::{Files, atomic_write, csv_bytes};
-use super::folder::{Existing, Folder, Kind};
-use super::front::FrontRun;
-use super::interrupt;
-use super::memory::{MemoryArgs, MemoryCheck, check_resumed};
-use super::overlay::overlay;
-use super::plot::{self, Line, Titles};
-use super::processes::Processes;
-use super::progress::ProgressLine;
+use crate::cli::backend::{BackendArgs, Incremental, check_batches};
+use crate::cli::checkpoint::{Checkpoint, Head};
+use crate::cli::files::{Files, atomic_write, csv_bytes};
+use crate::cli::folder::{Existing, Folder, Kind};
+use crate::cli::front::FrontRun;
+use crate::cli::generators::{Generators, Jobs, Visit};
+use crate::cli::interrupt;
+use crate::cli::memory::{MemoryArgs, MemoryCheck, check_resumed};
+use crate::cli::overlay::overlay;
+use crate::cli::plot::{self, Line, Titles};
+use crate::cli::processes::Processes;
+use crate::cli::progress::ProgressLine;
 
 /// Arguments of `shapegen run`.
 #[derive(Debug, Args)]
@@ -37,7 +37,7 @@ pub struct RunArgs {
     #[arg(required_unless_present = "resume", conflicts_with = "resume")]
     scene: Option<PathBuf>,
     /// The search method (overrides `optimizer.method`).
-    #[arg(long, help = super::method_help("The search method (overrides `optimizer.method`)"))]
+    #[arg(long, help = crate::cli::method::method_help("The search method (overrides `optimizer.method`)"))]
     method: Option<Method>,
     /// Seed of the run (overrides `optimizer.seed`).
     #[arg(long)]
@@ -106,7 +106,10 @@ struct Summary<'a> {
 }
 
 /// Runs `shapegen run`.
-pub fn run(args: &RunArgs, tool: &Generators) -> anyhow::Result<()> {
+pub fn run<J: Jobs>(args: &RunArgs, tool: &Generators<J>) -> anyhow::Result<()>
+where
+    for<'a> J::Job<'a>: From<Run<'a>> + From<MemoryCheck<'a>>,
+{
     let given = Overrides {
         method: args.method,
         seed: args.seed,

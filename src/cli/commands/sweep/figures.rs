@@ -9,18 +9,18 @@
 //! - for a scene with a known optimum, `gap-time.png` and `gap-evaluations.png` (every
 //!   grid point's gap to it, median and quartiles on a log scale) and `targets.csv`
 //!   (each point's time and evaluations to 90 %, 99 % and 99.9 % of it), as `compare`
-//!   writes them ([`gap`](super::super::gap)).
+//!   writes them ([`gap`](crate::cli::gap)).
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use super::super::files::save_figure;
-use super::super::gap::{self, Group};
-use super::super::plot::{self, Band, Figure, Titles, XValues};
-use super::super::stats::{curve, mean_std};
 use super::cell::Finished;
 use super::plan::Plan;
 use super::tables::{best_and_worst, summarize};
+use crate::cli::files::save_figure;
+use crate::cli::gap::{self, Group};
+use crate::cli::plot::{self, Band, Figure, Titles, XValues};
+use crate::cli::stats::{curve, mean_std};
 
 /// Size of every plot.
 const SIZE: (u32, u32) = (800, 500);
