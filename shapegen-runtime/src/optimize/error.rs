@@ -60,7 +60,7 @@ pub enum OptimizeError {
     Checkpoint(String),
     /// The processes a run is spread over could not exchange what it needs.
     #[error(transparent)]
-    Exchange(#[from] super::islands::ExchangeError),
+    Exchange(#[from] super::islands::exchange::ExchangeError),
 }
 
 /// Checks the buffers of a started checkpoint against the run it must fit: each

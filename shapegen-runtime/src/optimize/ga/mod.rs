@@ -32,7 +32,7 @@ crate::checkpoint! {
     }
 }
 
-/// The genetic algorithm (ALGORITHMS.md, section 4): each generation keeps the
+/// The genetic algorithm (the paper's Algorithm 1): each generation keeps the
 /// `elitism` best unchanged, with their cached fitness, and fills the rest in pairs:
 /// parent 1 by k-tournament, parent 2 by roulette on shifted fitness (see below), or as
 /// another [`ParentSelection`] says; with

@@ -12,7 +12,7 @@ use crate::optimize::{Held, OptimizeError, Settings, SettingsError};
 /// Settings of the [`Ga`](super::Ga). Loads from scene files with serde; missing fields take the
 /// [`Default`] values, unknown fields are errors.
 ///
-/// The default is the good setting of the CESCG study (ALGORITHMS.md, section 4):
+/// The default is the good setting of the CESCG study (Haubenwallner, CESCG 2017):
 /// population 200, elitism 30, initial length 20, 50 generations, mutation 30% with
 /// uniform grow / cut / alter, tournament of 10, with the weighted operators. The
 /// published generators carry the original's settings for their paper scenes
@@ -91,7 +91,7 @@ impl Default for GaSettings {
 /// [`GaSettings::tournament`] entrants; the roulette wheel weighs each individual by its
 /// fitness above the population's worst (see [`Ga`](super::Ga) for NaN and infinities).
 ///
-/// The CESCG study compared these schemes (ALGORITHMS.md, section 4); the paper's GA and
+/// The CESCG study compared these schemes (Haubenwallner, CESCG 2017); the paper's GA and
 /// the original implementation use the first.
 ///
 /// ```

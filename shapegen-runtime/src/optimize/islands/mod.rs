@@ -28,7 +28,7 @@
 //! every record is computed over all islands in island order, so a run gives the same
 //! result on any number of processes that divides `K`, and at any thread count.
 
-mod exchange;
+pub(super) mod exchange;
 mod wire;
 
 use std::fmt;

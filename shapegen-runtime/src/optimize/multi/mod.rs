@@ -1,6 +1,7 @@
-//! Multi-objective search (the thesis's scoring, ALGORITHMS.md section 7): models are
-//! scored on `k` objectives at once, each maximized or minimized ([`Sense`]), and
-//! selected on one scalar computed from the whole population's objective vectors.
+//! Multi-objective search (the scoring of the thesis that evolved CGA building programs):
+//! models are scored on `k` objectives at once, each maximized or minimized
+//! ([`Sense`]), and selected on one scalar computed from the whole population's objective
+//! vectors.
 //!
 //! - [`rank`](self#functions): dominance, non-dominated [`Fronts`], [`crowding`]
 //!   distance, [`summed_rank`] (optionally normalized), [`weighted_sum`], the clone
@@ -30,16 +31,16 @@
 
 mod ga;
 mod rank;
+mod record;
 mod settings;
 mod state;
 
 pub use crate::evaluate::MultiEvaluator;
-pub use ga::{
-    Front, Member, MultiGa, MultiHistoryEntry, MultiObserver, MultiResult, MultiSnapshot,
-};
+pub use ga::MultiGa;
 pub use rank::{
     Fronts, RankScratch, crowding, dominates, pareto_fitness, penalize_clones, selection_fitness,
     summed_rank, weighted_sum,
 };
+pub use record::{Front, Member, MultiHistoryEntry, MultiObserver, MultiResult, MultiSnapshot};
 pub use settings::{MultiGaSettings, Ranking, Selection};
 pub use state::MultiGaState;

@@ -234,7 +234,7 @@ impl Settings for MultiGaSettings {
 }
 
 impl MultiGaSettings {
-    /// The thesis's GP settings (ALGORITHMS.md, section 7) in this GA: population 300,
+    /// The thesis's GP settings in this GA: population 300,
     /// 30 generations, tournament 3, elitism 2% (6), mutation instead of crossover for
     /// 10% of the pairs (crossover 0.9) with uniform grow / cut / alter, initial length
     /// 20; Pareto ranking with a diversity penalty of 20; an archive of 300.

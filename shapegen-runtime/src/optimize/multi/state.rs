@@ -6,7 +6,7 @@ use serde::de::Deserializer;
 use serde::ser::{SerializeStruct, Serializer};
 use serde::{Deserialize, Serialize};
 
-use super::ga::{Front, Member, MultiHistoryEntry};
+use super::record::{Front, Member, MultiHistoryEntry};
 use super::settings::MultiGaSettings;
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};

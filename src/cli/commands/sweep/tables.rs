@@ -238,10 +238,10 @@ fn cell_text(text: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
-    use crate::cli::backend::BackendArgs;
     use super::super::cell::Record;
     use super::super::plan::{Axis, StudyBudget};
+    use super::*;
+    use crate::cli::backend::BackendArgs;
     use shapegen::optimize::HistoryEntry;
 
     fn plan() -> Plan {
