@@ -2,7 +2,7 @@
 
 use crate::genome::LimitsError;
 
-use super::EvaluateError;
+use super::{EvaluateError, Sense};
 
 /// A settings field outside its valid range.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -55,29 +55,68 @@ pub enum OptimizeError {
     /// The evaluator failed.
     #[error(transparent)]
     Evaluate(#[from] EvaluateError),
-    /// A checkpoint does not fit its settings (population size, fitness count, ...).
+    /// A checkpoint does not fit its settings (population size, fitness count, ...) or
+    /// the evaluator it is resumed with.
     #[error("checkpoint: {0}")]
-    Checkpoint(String),
+    Checkpoint(CheckpointError),
     /// The processes a run is spread over could not exchange what it needs.
     #[error(transparent)]
     Exchange(#[from] super::islands::exchange::ExchangeError),
 }
 
+/// Why a checkpoint does not fit the run it is resumed into.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum CheckpointError {
+    /// Its buffers do not have the sizes its settings make.
+    #[error("{} for {run}", buffers.iter().map(ToString::to_string).collect::<Vec<_>>().join(", "))]
+    Sizes {
+        /// Every buffer checked, the wrong ones and the right ones.
+        buffers: Vec<BufferSize>,
+        /// The run the settings make, in words (`a population of 100`).
+        run: String,
+    },
+    /// The evaluator scores other objectives than the run did before it was saved.
+    #[error("objectives {found:?} for a run on {saved:?}")]
+    Objectives {
+        /// The evaluator's objectives' senses.
+        found: Vec<Sense>,
+        /// The saved run's.
+        saved: Vec<Sense>,
+    },
+}
+
+/// One buffer of a checkpoint: how many items it holds and how many the settings make.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{found} {what} (expected {expected})")]
+pub struct BufferSize {
+    /// What the buffer holds (`genomes`, `fitness values`, ...).
+    pub what: &'static str,
+    /// Items in the checkpoint.
+    pub found: usize,
+    /// Items the settings make.
+    pub expected: usize,
+}
+
 /// Checks the buffers of a started checkpoint against the run it must fit: each
 /// `(found, expected, what)`; the error lists every buffer, then `run`.
 pub(crate) fn check_sizes(
-    sizes: &[(usize, usize, &str)],
+    sizes: &[(usize, usize, &'static str)],
     run: impl std::fmt::Display,
 ) -> Result<(), OptimizeError> {
     if sizes.iter().all(|&(found, expected, _)| found == expected) {
         return Ok(());
     }
-    let found: Vec<String> = sizes
+    let buffers = sizes
         .iter()
-        .map(|(found, expected, what)| format!("{found} {what} (expected {expected})"))
+        .map(|&(found, expected, what)| BufferSize {
+            what,
+            found,
+            expected,
+        })
         .collect();
-    Err(OptimizeError::Checkpoint(format!(
-        "{} for {run}",
-        found.join(", ")
-    )))
+    Err(OptimizeError::Checkpoint(CheckpointError::Sizes {
+        buffers,
+        run: run.to_string(),
+    }))
 }

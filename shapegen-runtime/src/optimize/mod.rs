@@ -57,7 +57,7 @@ pub use self::core::{Checkpoint, Core};
 pub use crate::evaluate::{EvaluateError, Evaluator, FnEvaluator, MultiEvaluator, Sense};
 pub use best::Best;
 pub use driver::{Agreement, CoreOf, Held, Optimizer, Record, drive};
-pub use error::{OptimizeError, SettingsError};
+pub use error::{BufferSize, CheckpointError, OptimizeError, SettingsError};
 pub use ga::{Ga, GaSettings, GaState, ParentSelection};
 pub use hybrid::{Hybrid, HybridSettings, HybridState};
 pub use mcmc::{Mcmc, McmcSettings, McmcState, McmcVariant};

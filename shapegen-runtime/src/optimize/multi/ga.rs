@@ -7,7 +7,7 @@ use super::settings::MultiGaSettings;
 use super::state::MultiGaState;
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
-use crate::optimize::error::check_sizes;
+use crate::optimize::error::{CheckpointError, check_sizes};
 use crate::optimize::ga::Breeder;
 use crate::optimize::{
     Core, EvaluateError, Held, MultiEvaluator, OptimizeError, Optimizer, Record, Settings,
@@ -279,10 +279,10 @@ impl<G: Grammar> Optimizer<G> for MultiGa<G> {
         }
         let record = &self.core.progress.record;
         if record.started() && record.senses != senses {
-            return Err(OptimizeError::Checkpoint(format!(
-                "objectives {:?} for a run on {:?}",
-                senses, record.senses
-            )));
+            return Err(OptimizeError::Checkpoint(CheckpointError::Objectives {
+                found: senses.to_vec(),
+                saved: record.senses.clone(),
+            }));
         }
         self.core
             .settings
