@@ -227,7 +227,11 @@ fn equal_evaluation_budgets_give_equal_results_at_any_thread_count() {
         ]);
         let rows = rows(&out);
         let runs = by_run(&rows);
-        assert_eq!(runs.len(), 10);
+        assert_eq!(
+            runs.len(),
+            2 * shapegen::scene::Method::ALL.len(),
+            "every method twice"
+        );
         runs.into_iter()
             .map(|(k, v)| {
                 let last = v.last().unwrap();

@@ -27,8 +27,8 @@ use serde::{Deserialize, Serialize};
 use shapegen_runtime::Grammar;
 use shapegen_runtime::ops::OperatorVariant;
 use shapegen_runtime::optimize::{
-    Best, Ga, GaSettings, Hybrid, HybridSettings, Mcmc, McmcSettings, McmcVariant, Optimizer,
-    Order, Settings, Smc, SmcSettings, SmcVariant,
+    self, Best, GaSettings, HybridSettings, McmcSettings, McmcVariant, Optimizer, Order, Settings,
+    SmcSettings, SmcVariant,
 };
 
 use crate::registry::Presets;
@@ -52,7 +52,7 @@ type Read<S> = fn(S, toml::Table) -> Result<S, SettingsKeyError>;
 ///
 /// ```text
 /// /// docs
-/// Variant("name"): Optimizer, Settings, colour [r, g, b],
+/// Variant("name"): path::to::Optimizer, Settings, colour [r, g, b],
 ///     preset |presets| settings where a scene leaves them out, read a Read<Settings>;
 /// ```
 ///
@@ -62,7 +62,7 @@ type Read<S> = fn(S, toml::Table) -> Result<S, SettingsKeyError>;
 macro_rules! methods {
     ($(
         $(#[doc = $doc:literal])*
-        $variant:ident($name:literal): $optimizer:ident, $settings:ty, colour $colour:expr,
+        $variant:ident($name:literal): $($optimizer:ident)::+, $settings:ty, colour $colour:expr,
             preset |$p:ident| $preset:expr, read $read:expr;
     )*) => {
         /// A search method.
@@ -146,7 +146,7 @@ macro_rules! methods {
             /// Runs `job` with the method's optimizer and these settings.
             pub fn run<G: Grammar, J: MethodJob<G>>(self, job: J) -> J::Output {
                 match self {
-                    $(MethodSettings::$variant(s) => job.run::<$optimizer<G>>(s),)*
+                    $(MethodSettings::$variant(s) => job.run::<$($optimizer)::+<G>>(s),)*
                 }
             }
         }
@@ -328,19 +328,26 @@ fn check_variant(
 
 methods! {
     /// The genetic algorithm.
-    Ga("ga"): Ga, GaSettings, colour [30, 80, 200],
+    Ga("ga"): optimize::Ga, GaSettings, colour [30, 80, 200],
         preset |p| p.ga, read read_ga;
     /// Sequential Monte Carlo, growing in chromosome order.
-    Smc("smc"): Smc, SmcSettings, colour [230, 120, 20],
+    Smc("smc"): optimize::Smc, SmcSettings, colour [230, 120, 20],
         preset |p| SmcSettings { order: Order::Chromosome, ..p.smc }, read read_smc;
     /// Sequential Monte Carlo with stochastic futures.
-    Sosmc("sosmc"): Smc, SmcSettings, colour [30, 150, 60],
+    Sosmc("sosmc"): optimize::Smc, SmcSettings, colour [30, 150, 60],
         preset |p| SmcSettings { order: Order::Stochastic, ..p.sosmc }, read read_smc;
     /// Reversible-jump MCMC with parallel tempering.
-    Rjmcmc("rjmcmc"): Mcmc, McmcSettings, colour [200, 30, 40],
+    Rjmcmc("rjmcmc"): optimize::Mcmc, McmcSettings, colour [200, 30, 40],
         preset |p| p.rjmcmc, read read_mcmc;
     /// The GA with its first population seeded by SOSMC and its best refined by short
     /// RJMCMC chains.
-    Hybrid("hybrid"): Hybrid, HybridSettings, colour [130, 60, 170],
+    Hybrid("hybrid"): optimize::Hybrid, HybridSettings, colour [130, 60, 170],
         preset |p| HybridSettings { ga: p.ga, ..HybridSettings::default() }, read read_hybrid;
+    /// Plain random search, the baseline: models drawn from the generator's own
+    /// distribution, as many each generation as the GA scores, the best kept.
+    Random("random"): optimize::RandomSearch, optimize::RandomSearchSettings, colour [120, 120, 120],
+        preset |p| optimize::RandomSearchSettings {
+            samples: p.ga.population - p.ga.elitism,
+            generations: p.ga.generations,
+        }, read merged;
 }

@@ -72,7 +72,7 @@ impl<G: Grammar> std::fmt::Debug for MultiSnapshot<'_, G> {
     }
 }
 
-/// Called after every generation of a [`MultiGa`] (the initial population's included).
+/// Called after every generation of a [`MultiGa`](super::MultiGa) (the initial population's included).
 pub trait MultiObserver<G: Grammar> {
     /// Sees a snapshot; returns whether to go on.
     fn observe(&mut self, snapshot: &MultiSnapshot<'_, G>) -> Control;
