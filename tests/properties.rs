@@ -218,7 +218,7 @@ fn operator_sequences(
     // its 300).
     let max_len = generator.paper_limits().max_len as usize;
     assert!(tally.longest > max_len / 3, "{tally:?}");
-    eprintln!("{generator}: {tally:?}");
+    eprintln!("{generator:?}: {tally:?}");
 }
 
 // With the counts below the three generators see 106 000 weighted operations and

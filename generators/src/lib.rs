@@ -3,17 +3,15 @@
 //! original implementation, so that the paper's targets and cameras line up with them;
 //! and a CGA-style building generator whose genomes are building programs.
 //!
-//! [`Published`] names them at run time (for command-line tools) and hands the chosen
-//! one, as a type, to a [`GeneratorVisitor`].
+//! [`Published`] lists them and hands each, as a type, to a [`GeneratorVisitor`]: code
+//! that works on every published generator (the facade's registry, which names them at
+//! run time by their grammars' keys, benchmarks, tests).
 
 pub mod building;
 pub mod city;
 mod meshes;
 pub mod spaceship;
 pub mod tree;
-
-use std::fmt;
-use std::str::FromStr;
 
 use shapegen_runtime::Grammar;
 use shapegen_runtime::genome::Limits;
@@ -55,17 +53,6 @@ impl Published {
         Published::Building,
     ];
 
-    /// The generator's name on the command line and in files: `spaceship`, `tree`,
-    /// `city`, `building`.
-    pub const fn name(self) -> &'static str {
-        match self {
-            Published::Spaceship => "spaceship",
-            Published::Tree => "tree",
-            Published::City => "city",
-            Published::Building => "building",
-        }
-    }
-
     /// The genome limits of the generator's paper scene ([`building::LIMITS`] for the
     /// building, which has none).
     pub const fn paper_limits(self) -> Limits {
@@ -86,27 +73,5 @@ impl Published {
             Published::City => visitor.visit::<City>(limits),
             Published::Building => visitor.visit::<Building>(limits),
         }
-    }
-}
-
-impl fmt::Display for Published {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-/// The name given is not that of a published generator.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("unknown generator `{0}`; the published generators are spaceship, tree, city and building")]
-pub struct UnknownGenerator(pub String);
-
-impl FromStr for Published {
-    type Err = UnknownGenerator;
-
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Published::ALL
-            .into_iter()
-            .find(|g| g.name().eq_ignore_ascii_case(s))
-            .ok_or_else(|| UnknownGenerator(s.to_owned()))
     }
 }
