@@ -2,6 +2,7 @@
 //! draws fresh models from the generator's own distribution and scores them, and the run
 //! keeps the best it has seen.
 
+use crate::optimize::settings::generations_field;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -34,15 +35,7 @@ impl Default for RandomSearchSettings {
 }
 
 impl Settings for RandomSearchSettings {
-    const GENERATIONS: &'static str = "generations";
-
-    fn generations(&self) -> u64 {
-        self.generations
-    }
-
-    fn set_generations(&mut self, generations: u64) {
-        self.generations = generations;
-    }
+    generations_field!("generations", generations);
 
     fn validate(&self) -> Result<(), SettingsError> {
         match self.samples {

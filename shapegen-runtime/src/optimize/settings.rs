@@ -45,3 +45,23 @@ pub trait Settings: Clone + Debug + PartialEq + Serialize + DeserializeOwned {
         Budget::generations(self.generations())
     }
 }
+
+/// Writes the generation items of a [`Settings`] impl for settings whose generations are
+/// counted by the field at `$path`, named `$name` in scene files:
+/// `generations_field!("steps", steps);` or, for settings that wrap the GA's,
+/// `generations_field!("generations", ga.generations);`.
+macro_rules! generations_field {
+    ($name:literal, $($path:ident).+) => {
+        const GENERATIONS: &'static str = $name;
+
+        fn generations(&self) -> u64 {
+            self.$($path).+
+        }
+
+        fn set_generations(&mut self, generations: u64) {
+            self.$($path).+ = generations;
+        }
+    };
+}
+
+pub(crate) use generations_field;

@@ -1,6 +1,7 @@
 //! The settings of the GA ([`GaSettings`]) and its parent selection
 //! ([`ParentSelection`]).
 
+use crate::optimize::settings::generations_field;
 use serde::{Deserialize, Serialize};
 
 use crate::derive::Grammar;
@@ -118,15 +119,7 @@ pub enum ParentSelection {
 }
 
 impl Settings for GaSettings {
-    const GENERATIONS: &'static str = "generations";
-
-    fn generations(&self) -> u64 {
-        self.generations
-    }
-
-    fn set_generations(&mut self, generations: u64) {
-        self.generations = generations;
-    }
+    generations_field!("generations", generations);
 
     /// Checks every field; the error names the first one out of range.
     ///

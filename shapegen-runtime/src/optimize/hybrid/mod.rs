@@ -4,6 +4,7 @@
 
 mod refine;
 
+use crate::optimize::settings::generations_field;
 use serde::{Deserialize, Serialize};
 
 use super::best::Best;
@@ -54,15 +55,7 @@ impl Default for HybridSettings {
 }
 
 impl Settings for HybridSettings {
-    const GENERATIONS: &'static str = "generations";
-
-    fn generations(&self) -> u64 {
-        self.ga.generations
-    }
-
-    fn set_generations(&mut self, generations: u64) {
-        self.ga.generations = generations;
-    }
+    generations_field!("generations", ga.generations);
 
     /// Checks every field; the error names the first one out of range.
     fn validate(&self) -> Result<(), SettingsError> {

@@ -31,6 +31,7 @@
 pub(super) mod exchange;
 mod wire;
 
+use crate::optimize::settings::generations_field;
 use std::fmt;
 
 use serde::{Deserialize, Serialize};
@@ -95,15 +96,7 @@ pub struct IslandGaSettings {
 }
 
 impl Settings for IslandGaSettings {
-    const GENERATIONS: &'static str = "generations";
-
-    fn generations(&self) -> u64 {
-        self.ga.generations
-    }
-
-    fn set_generations(&mut self, generations: u64) {
-        self.ga.generations = generations;
-    }
+    generations_field!("generations", ga.generations);
 
     /// Checks every field; the error names the first one out of range (the islands'
     /// under `islands.`).

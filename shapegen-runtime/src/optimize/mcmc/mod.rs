@@ -9,6 +9,7 @@ mod tempered;
 
 pub(crate) use tempered::{Scratch as MoveScratch, propose};
 
+use crate::optimize::settings::generations_field;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -209,15 +210,7 @@ impl Default for McmcSettings {
 }
 
 impl Settings for McmcSettings {
-    const GENERATIONS: &'static str = "iterations";
-
-    fn generations(&self) -> u64 {
-        self.iterations
-    }
-
-    fn set_generations(&mut self, generations: u64) {
-        self.iterations = generations;
-    }
+    generations_field!("iterations", iterations);
 
     /// Checks every field the variant reads; the error names the first one out of
     /// range.

@@ -1,5 +1,6 @@
 //! Settings of the multi-objective GA, as scene files give them.
 
+use crate::optimize::settings::generations_field;
 use serde::{Deserialize, Serialize};
 
 use crate::optimize::error::check_range;
@@ -203,15 +204,7 @@ impl Default for MultiGaSettings {
 }
 
 impl Settings for MultiGaSettings {
-    const GENERATIONS: &'static str = "generations";
-
-    fn generations(&self) -> u64 {
-        self.ga.generations
-    }
-
-    fn set_generations(&mut self, generations: u64) {
-        self.ga.generations = generations;
-    }
+    generations_field!("generations", ga.generations);
 
     /// Checks every field; the error names the first one out of range (the GA's fields
     /// by their names in [`GaSettings`]).

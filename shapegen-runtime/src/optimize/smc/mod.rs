@@ -8,6 +8,7 @@
 mod generative;
 mod original;
 
+use crate::optimize::settings::generations_field;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -186,15 +187,7 @@ impl Default for SmcSettings {
 }
 
 impl Settings for SmcSettings {
-    const GENERATIONS: &'static str = "steps";
-
-    fn generations(&self) -> u64 {
-        self.steps
-    }
-
-    fn set_generations(&mut self, generations: u64) {
-        self.steps = generations;
-    }
+    generations_field!("steps", steps);
 
     /// Checks every field the variant reads; the error names the first one out of range.
     fn validate(&self) -> Result<(), SettingsError> {
