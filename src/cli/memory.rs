@@ -53,6 +53,24 @@ pub struct MemoryCheck<'a> {
     pub limit: MemoryArgs,
 }
 
+impl<'a> MemoryCheck<'a> {
+    /// The check of `jobs` runs at once of `scene`'s own goal.
+    pub fn scene(
+        scene: &'a Scene,
+        jobs: usize,
+        backend: &'a BackendArgs,
+        limit: MemoryArgs,
+    ) -> Self {
+        MemoryCheck {
+            scene,
+            goals: std::slice::from_ref(&scene.optimizer),
+            jobs,
+            backend,
+            limit,
+        }
+    }
+}
+
 /// The worker threads each of `jobs` runs at once gets: an equal share of the pool's,
 /// at least one.
 pub fn threads_per_job(jobs: usize) -> usize {

@@ -136,13 +136,7 @@ where
         processes.check(&scene)?;
         tool.visit(
             &scene.generator,
-            MemoryCheck {
-                scene: &scene,
-                goals: std::slice::from_ref(&scene.optimizer),
-                jobs: 1,
-                backend: &args.backend,
-                limit: args.memory,
-            },
+            MemoryCheck::scene(&scene, 1, &args.backend, args.memory),
         )?;
         let existing = Existing::from_flags(args.force, args.resume.is_some());
         let _folder = processes

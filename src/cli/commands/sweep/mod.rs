@@ -191,13 +191,7 @@ where
         )?;
         tool.visit(
             &scene.generator,
-            MemoryCheck {
-                scene: &scene,
-                goals: std::slice::from_ref(&scene.optimizer),
-                jobs,
-                backend: &plan.backend,
-                limit,
-            },
+            MemoryCheck::scene(&scene, jobs, &plan.backend, limit),
         )
         .with_context(|| format!("grid point {}", plan.describe(point)))?;
     }
@@ -281,13 +275,7 @@ where
     let scene = Scene::open(&plan.scene, tool.registry(), &plan.overrides(cell))?;
     tool.visit(
         &scene.generator,
-        MemoryCheck {
-            scene: &scene,
-            goals: std::slice::from_ref(&scene.optimizer),
-            jobs: 1,
-            backend: &plan.backend,
-            limit,
-        },
+        MemoryCheck::scene(&scene, 1, &plan.backend, limit),
     )?;
     let stop = interrupt::flag();
     let gpu = plan.backend.open();
