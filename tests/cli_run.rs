@@ -318,3 +318,36 @@ fn the_papers_scenes_run_from_the_repository() {
         assert!(out.join("best.genome.json").is_file(), "{name}");
     }
 }
+
+#[test]
+fn every_method_returns_a_model_within_the_limits_on_an_unreachable_sketch() {
+    // Every model that draws anything scores below the bare axiom here; the scene's
+    // min_len = 4 still holds for what each method returns once it has scored a model
+    // within the limits (the original SMC grows one gene a step from the axiom, and
+    // the hybrid's seeding starts there too, so each is given a few steps).
+    let dir = tempfile::tempdir().unwrap();
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/tree_sketch_offset.toml");
+    for method in Method::ALL {
+        let out = dir.path().join(method.name());
+        ok(&[
+            "run",
+            s(&scene),
+            "--cpu",
+            "--method",
+            method.name(),
+            "--evaluations",
+            "1500",
+            "--out",
+            s(&out),
+        ]);
+        let summary: serde_json::Value =
+            serde_json::from_str(&fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+        let (genes, instances) = (&summary["genes"], &summary["instances"]);
+        let name = method.name();
+        assert!(genes.as_u64().unwrap() >= 4, "{name}: {genes} genes");
+        assert!(
+            instances.as_u64().unwrap() > 0,
+            "{name}: {instances} instances"
+        );
+    }
+}

@@ -65,7 +65,12 @@ pub trait Record<G: Grammar>: Clone + Default {
     /// with the counters (generation, evaluations, elapsed time) already updated: takes
     /// in the current population and its scores (one value per individual, or `k`), and
     /// appends the generation's history entry.
-    fn record(progress: &mut Progress<Self>, population: &[Genome<G>], scores: &[f64]);
+    fn record(
+        progress: &mut Progress<Self>,
+        limits: &Limits,
+        population: &[Genome<G>],
+        scores: &[f64],
+    );
 
     /// Shows the last recorded generation to `observer`; returns whether to go on.
     fn observe(progress: &Progress<Self>, observer: &mut Self::Observer<'_>) -> Control;
@@ -230,7 +235,7 @@ pub trait Optimizer<G: Grammar>: Sized {
     /// spread over several processes records what they hold together.
     fn record(&mut self) {
         let (core, population, scores) = self.parts();
-        Self::Record::record(&mut core.progress, population, scores);
+        Self::Record::record(&mut core.progress, &core.limits, population, scores);
     }
 
     /// Agrees with the other processes of a run spread over several on what happens

@@ -521,7 +521,8 @@ impl<G: Grammar> Optimizer<G> for IslandGa<G> {
     /// Records the generation over all islands, as gathered after it.
     fn record(&mut self) {
         let best = self.whole.best.as_ref().map(|(g, f)| (g, *f));
-        Best::record_generation(&mut self.core.progress, best, &self.whole.fitness);
+        let (progress, limits) = (&mut self.core.progress, &self.core.limits);
+        Best::record_generation(progress, limits, best, &self.whole.fitness);
     }
 
     /// Stops if any process stops (the first reason by rank); saves when rank 0 saves

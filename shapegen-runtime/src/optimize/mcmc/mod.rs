@@ -58,6 +58,8 @@ pub enum McmcVariant {
     /// ignores the genome [`Limits`]: genomes may grow past `max_len` and `max_depth`
     /// and shrink below `min_len` (jumps stop adding genes once the tree reaches level
     /// 25, the original's only bound; [`DEPTH_CAP`](crate::genome::DEPTH_CAP) is kept).
+    /// The run's best is taken among the chains within the limits as soon as there are
+    /// any (see [`Best`](crate::optimize::Best)).
     ///
     /// Oddities of the original, reproduced:
     /// - its integer draw `getRandomValue(min, max)` truncates `min + (max - min) * U`,

@@ -19,7 +19,8 @@ pub(super) struct Scratch {
 }
 
 /// Grows one particle until it emits new geometry, `max_grows_per_step` genes were
-/// added, or nothing can grow.
+/// added, or nothing can grow; returns whether it may grow further (`false` once
+/// nothing could).
 pub(super) fn advance<G: Grammar>(
     settings: &SmcSettings,
     limits: &Limits,
@@ -27,7 +28,7 @@ pub(super) fn advance<G: Grammar>(
     c: &mut Cursor,
     s: &mut Scratch,
     rng: &mut impl Rng,
-) {
+) -> bool {
     for _ in 0..settings.max_grows_per_step {
         let grown = match settings.order {
             Order::Chromosome => next_in_order(limits, g, c, rng),
@@ -42,16 +43,17 @@ pub(super) fn advance<G: Grammar>(
             }
         };
         if !grown {
-            return;
+            return false;
         }
         g.derive_into(&mut s.instances);
         let emitted = s.instances.len() as u32;
         if emitted > c.emitted {
             c.emitted = emitted;
-            return;
+            return true;
         }
         c.emitted = emitted;
     }
+    true
 }
 
 /// Decides links in chromosome order from the cursor until one is expressed; returns

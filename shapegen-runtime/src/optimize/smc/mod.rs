@@ -97,7 +97,9 @@ pub enum SmcVariant {
     ///   value is `0 / 0`, no draw reaches one, and all new particles are copies of the
     ///   last one in rank order;
     /// - nothing bounds a genome's length: particles grow past [`Limits::max_len`] (one
-    ///   gene per step), and [`Limits::min_len`] is not enforced.
+    ///   gene per step), and [`Limits::min_len`] is not enforced (the run's best is
+    ///   taken among the particles within the limits as soon as there are any: see
+    ///   [`Best`]).
     ///
     /// As the original, the resampling works in `f32` (fitness values are converted);
     /// ties in rank keep their index order (the original's sort leaves it unspecified).
@@ -122,7 +124,8 @@ pub enum SmcVariant {
     /// link drawn uniformly among the empty ones of genes above the maximum depth with a
     /// non-zero probability. Genomes stay within [`Limits::max_len`] and
     /// [`Limits::max_depth`]; particles may be shorter than [`Limits::min_len`] while
-    /// they grow.
+    /// they grow, and one that can grow no more while shorter gets a NaN fitness, so
+    /// that it is never drawn again.
     Generative,
 }
 
@@ -281,6 +284,9 @@ pub struct Smc<G> {
     roulette: Roulette,
     wheel: original::Wheel,
     picks: Vec<usize>,
+    /// Which particles of the generative variant's last step can grow no more while
+    /// shorter than the limits' `min_len`.
+    stuck: Vec<bool>,
 }
 
 impl<G: Grammar> std::fmt::Debug for Smc<G> {
@@ -369,6 +375,7 @@ impl<G: Grammar> Optimizer<G> for Smc<G> {
             roulette: Roulette::default(),
             wheel: original::Wheel::default(),
             picks: Vec::new(),
+            stuck: vec![false; cursors],
         })
     }
 
@@ -464,11 +471,23 @@ impl<G: Grammar> Optimizer<G> for Smc<G> {
                 self.particles
                     .par_iter_mut()
                     .zip(self.cursors.par_iter_mut())
+                    .zip(self.stuck.par_iter_mut())
                     .enumerate()
-                    .for_each_init(generative::Scratch::default, |s, (i, (g, c))| {
+                    .for_each_init(generative::Scratch::default, |s, (i, ((g, c), stuck))| {
                         let rng = &mut stream(seed, generation, i as u64);
-                        generative::advance(settings, limits, g, c, s, rng);
+                        let grows = generative::advance(settings, limits, g, c, s, rng);
+                        *stuck = !grows && g.len() < limits.min_len as usize;
                     });
+                evaluator.evaluate(&self.particles, &mut self.fitness)?;
+                // A particle that can grow no more while shorter than `min_len` is
+                // never drawn again.
+                for (f, &stuck) in self.fitness.iter_mut().zip(&self.stuck) {
+                    if stuck {
+                        *f = f64::NAN;
+                    }
+                }
+                self.core.progress.evaluations += self.step_cost();
+                return Ok(());
             }
         }
         evaluator.evaluate(&self.particles, &mut self.fitness)?;
