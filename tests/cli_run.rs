@@ -336,7 +336,7 @@ fn every_method_returns_a_model_within_the_limits_on_an_unreachable_sketch() {
             "--method",
             method.name(),
             "--evaluations",
-            "1500",
+            "4000",
             "--out",
             s(&out),
         ]);
