@@ -589,6 +589,51 @@ fn masks_take_the_original_rule_or_a_threshold() {
 }
 
 #[test]
+fn silhouette_targets_are_shaped_by_distance_when_asked() {
+    let fixture = Fixture::new();
+    let shaping = |radius: &str, target: &str| {
+        SILHOUETTE
+            .replace(
+                "[[silhouette.target]]",
+                &format!("[silhouette]\nshaping_radius = {radius}\n[[silhouette.target]]"),
+            )
+            .replace(
+                "image = \"target.png\"",
+                &format!("image = \"target.png\"\n{target}"),
+            )
+    };
+    let scene = fixture.load(&shaping("2", "")).unwrap();
+    let [ScorerGoal::Silhouette(goal)] = scene.scorers() else {
+        panic!("{:?}", scene.scorers());
+    };
+    let target = &goal.targets[0];
+    assert!(target.is_shaped());
+    assert_eq!(target.target_pixels(), 4 * 6);
+    // Columns 0-3 are the target; column 4 is 1 pixel away, 5 is 2 and 6, 7 further.
+    let row: Vec<f64> = (0..8).map(|x| target.weight(x, 3)).collect();
+    assert_eq!(row[..4], [1.0; 4]);
+    assert!(row[4] < 0.0 && row[4] > -0.6 && row[5] == -1.0 && row[7] == -1.0);
+
+    let plain = fixture.load(SILHOUETTE).unwrap();
+    let [ScorerGoal::Silhouette(goal)] = plain.scorers() else {
+        panic!("{:?}", plain.scorers());
+    };
+    assert!(!goal.targets[0].is_shaped());
+
+    fixture.refuses(&shaping("0", ""), "silhouette.shaping_radius", "positive");
+    fixture.refuses(
+        &shaping("8", "kind = \"weights\""),
+        "silhouette.shaping_radius",
+        "needs a mask",
+    );
+    fixture.refuses(
+        &shaping("8", "off = 0.5"),
+        "silhouette.shaping_radius",
+        "on > 0 > off",
+    );
+}
+
+#[test]
 fn generator_meshes_are_normalized_unless_asked_otherwise() {
     let fixture = Fixture::new();
     // A 2 x 2 x 2 cube: normalized to unit extent, or kept as written.

@@ -142,6 +142,9 @@ pub(super) struct SilhouetteFile {
     pub good: f64,
     #[serde(default = "one")]
     pub bad: f64,
+    /// Opt-in distance shaping of every mask target: the distance in pixels over which
+    /// an off-target pixel's cost rises to its full weight.
+    pub shaping_radius: Option<f32>,
     #[serde(default)]
     pub target: Vec<ImageTargetFile>,
 }

@@ -38,6 +38,9 @@
 //! [silhouette]
 //! good = 1.0
 //! bad = 1.0
+//! shaping_radius = 40                # optional, opt-in: masks shaped by distance, an
+//!                                    # off-target pixel costing from ~0 beside the target
+//!                                    # to its full weight 40 px away (ImageTarget::shaped)
 //! [[silhouette.target]]
 //! image = "skyline.png"              # its size must be the camera's
 //! kind = "mask"                      # black pixels (red channel 0, the original's rule)

@@ -352,6 +352,12 @@ impl<'a> Resolver<'a> {
             .iter()
             .enumerate()
             .map(|(i, t)| self.image_target(&format!("silhouette.target[{i}]"), t))
+            .map(|target| match s.shaping_radius {
+                None => target,
+                Some(radius) => target?
+                    .shaped(radius)
+                    .map_err(|err| self.refused("silhouette.shaping_radius", err)),
+            })
             .collect::<Result<Vec<_>, _>>()?;
         let form = self.form("silhouette", form, s.good, s.bad, 0.0)?;
         Ok(SilhouetteGoal { targets, form })

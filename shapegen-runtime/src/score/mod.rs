@@ -27,6 +27,7 @@
 //! ```
 
 mod batch;
+mod distance;
 mod form;
 pub mod objective;
 pub mod retained;
@@ -34,6 +35,7 @@ pub mod silhouette;
 pub mod volume;
 
 pub use batch::{InstanceBatch, count_batch};
+pub use distance::squared_distances;
 pub use form::{Form, LengthPenalty, smoothstep};
 
 use crate::geometry::Instance;

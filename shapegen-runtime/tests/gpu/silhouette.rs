@@ -29,6 +29,10 @@ pub const TESTS: &[GpuTest] = &[
         gpu_matches_cpu_on_random_spaceships_through_a_close_camera,
     ),
     (
+        "silhouette::gpu_matches_cpu_on_random_trees_against_a_shaped_target",
+        gpu_matches_cpu_on_random_trees_against_a_shaped_target,
+    ),
+    (
         "silhouette::gpu_counts_a_batch_larger_than_one_chunk",
         gpu_counts_a_batch_larger_than_one_chunk,
     ),
@@ -126,6 +130,26 @@ fn gpu_matches_cpu_on_random_trees(gpu: &GpuContext) {
         gpu,
         &scorer,
         &population::<tree::Tree>(30, tree::PAPER_LIMITS, 150, 22),
+    );
+}
+
+fn gpu_matches_cpu_on_random_trees_against_a_shaped_target(gpu: &GpuContext) {
+    let meshes = generators::default_meshes()
+        .bind(tree::Tree::GRAPH)
+        .unwrap();
+    let target = small_target(
+        "tree_sketch1",
+        "tree_target_sketch1.png",
+        tree_camera(),
+        false,
+    )
+    .shaped(12.0)
+    .unwrap();
+    let scorer = SilhouetteScorer::new(vec![target], &meshes, SMOOTH).unwrap();
+    compare_on_gpu(
+        gpu,
+        &scorer,
+        &population::<tree::Tree>(30, tree::PAPER_LIMITS, 150, 23),
     );
 }
 

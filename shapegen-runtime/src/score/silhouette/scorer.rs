@@ -59,7 +59,9 @@ pub enum SilhouetteError {
 /// [`Form::Weighted`] fitness is the sum over targets of the weights of the covered
 /// pixels; [`Form::Smooth`] is the sum over targets of
 /// `good * S(0, T, on_target) - bad * S(0, T, off_target)`, `T` the target's
-/// [target pixels](ImageTarget::target_pixels).
+/// [target pixels](ImageTarget::target_pixels) (for a [shaped](ImageTarget::shaped)
+/// target, `off_target` is the sum of the covered off-target pixels' shares of the full
+/// cost).
 ///
 /// ```
 /// use glam::{Affine3A, Vec3};
@@ -309,7 +311,7 @@ pub(super) fn fitness(form: Form, targets: &[ImageTarget], counts: &SilhouetteCo
             Form::Smooth { good, bad } => {
                 let total = t.target_pixels() as f64;
                 good * smoothstep(0.0, total, f64::from(c.on_target))
-                    - bad * smoothstep(0.0, total, f64::from(c.off_target))
+                    - bad * smoothstep(0.0, total, t.off_target_cost(c))
             }
         })
         .sum()

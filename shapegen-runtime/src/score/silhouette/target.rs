@@ -3,7 +3,9 @@
 use glam::Mat4;
 
 use super::camera::{Camera, CameraError};
+use super::counts::TargetCounts;
 use super::raster::row_words;
+use crate::score::squared_distances;
 
 /// Most pixels one target image may have (4096 x 4096): counts of grey levels over a
 /// whole image then fit in 32 bits on every backend.
@@ -56,6 +58,14 @@ pub enum TargetError {
         /// What is wrong with the camera.
         #[source]
         source: CameraError,
+    },
+    /// [Distance shaping](ImageTarget::shaped) asked of a target that cannot take it.
+    #[error("target `{name}`: distance shaping {reason}")]
+    Shaping {
+        /// The target's name.
+        name: String,
+        /// What is wrong, and what would be valid.
+        reason: String,
     },
 }
 
@@ -148,6 +158,8 @@ pub struct ImageTarget {
     off: f32,
     levels: Vec<u8>,
     target_pixels: u64,
+    /// The level of zero weight, when the target is [shaped](Self::shaped).
+    zero_level: Option<u8>,
     /// Per 64-pixel word of a row-padded bitset: the target bits, then one word per
     /// grey-level bit plane ([`TargetKind::Mask`]: one plane, all levels 0 or 255).
     words: Vec<u64>,
@@ -196,6 +208,98 @@ impl ImageTarget {
         off: f32,
     ) -> Result<ImageTarget, TargetError> {
         Self::build(name, image, camera, on, off, Levels::Luminance)
+    }
+
+    /// The mask shaped by distance: an opt-in slope for targets a generator cannot reach
+    /// exactly. A target pixel keeps weight `on`; any other pixel, at Euclidean distance
+    /// `d` pixels from the nearest target pixel, costs in proportion to its distance,
+    /// from (nearly) nothing beside the target to the full `off` at `radius` pixels and
+    /// beyond: its share of the full cost is `s = min(1, d / radius)`, quantized to the
+    /// grey levels between the level of zero weight `z = ceil(255 on / (on - off))` and
+    /// 255 (`level = z + ceil((255 - z) s)`), so that the weighted form reads it as a
+    /// weight map. The target pixels stay those of the mask; the smoothstep form counts
+    /// each covered off-target pixel as its share `s` instead of 1 (see
+    /// [`off_target_cost`](Self::off_target_cost)).
+    ///
+    /// Fails unless the target is a mask with `on > 0 > off` (and `off` not so close to 0
+    /// that no level is left between `z` and 255), and `radius` is a positive number.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use image::{DynamicImage, GrayImage, Luma};
+    /// use shapegen_runtime::score::silhouette::{Camera, ImageTarget, OrbitCamera};
+    ///
+    /// let camera = Camera::Orbit(OrbitCamera {
+    ///     phi: 0.0, theta: 0.0, radius: 5.0, lookat: Vec3::ZERO,
+    ///     fov_degrees: 60.0, near: 0.1, far: 100.0,
+    /// });
+    /// // One black pixel at the left end of a 12 x 1 row.
+    /// let image = GrayImage::from_fn(12, 1, |x, _| Luma([if x == 0 { 0 } else { 255 }]));
+    /// let mask = ImageTarget::from_mask("m".into(), &DynamicImage::ImageLuma8(image), camera, 1.0, -1.0)?;
+    /// let shaped = mask.shaped(10.0)?;
+    /// assert_eq!(shaped.weight(0, 0), 1.0);
+    /// assert!(shaped.weight(1, 0) <= 0.0 && shaped.weight(1, 0) > -0.15);
+    /// assert!(shaped.weight(5, 0) < shaped.weight(1, 0));
+    /// assert_eq!(shaped.weight(10, 0), -1.0);
+    /// assert_eq!(shaped.weight(11, 0), -1.0);
+    /// assert_eq!(shaped.target_pixels(), 1);
+    /// # Ok::<(), shapegen_runtime::score::silhouette::TargetError>(())
+    /// ```
+    pub fn shaped(mut self, radius: f32) -> Result<ImageTarget, TargetError> {
+        let refuse = |name: String, reason: String| Err(TargetError::Shaping { name, reason });
+        if self.kind != TargetKind::Mask {
+            return refuse(self.name, "needs a mask; a weight map has its own levels".into());
+        }
+        if !(radius.is_finite() && radius > 0.0) {
+            return refuse(
+                self.name,
+                format!("radius is {radius}; it must be a positive number of pixels"),
+            );
+        }
+        let (on, off) = (f64::from(self.on), f64::from(self.off));
+        let zero = (255.0 * on / (on - off)).ceil();
+        if !(on > 0.0 && off < 0.0 && zero < 255.0) {
+            return refuse(
+                self.name,
+                format!(
+                    "needs on > 0 > off with off not near 0 (it has on = {on}, off = {off}); \
+                     for example on = 1, off = -1"
+                ),
+            );
+        }
+        let zero = zero as u8;
+        let dims = [self.height as usize, self.width as usize];
+        let distances = squared_distances(&dims, |i| self.levels[i] == 0);
+        let span = f64::from(255 - zero);
+        for (level, d2) in self.levels.iter_mut().zip(distances) {
+            if d2 > 0.0 {
+                let share = (d2.sqrt() / f64::from(radius)).min(1.0);
+                *level = zero + ((span * share).ceil() as u8).max(1);
+            }
+        }
+        self.kind = TargetKind::WeightMap;
+        self.zero_level = Some(zero);
+        self.build_words();
+        Ok(self)
+    }
+
+    /// What the covered off-target pixels cost in the smoothstep form, from one model's
+    /// counts: their number, or for a [shaped](Self::shaped) target the sum of their
+    /// shares of the full cost.
+    pub fn off_target_cost(&self, counts: &TargetCounts) -> f64 {
+        match self.zero_level {
+            None => f64::from(counts.off_target),
+            Some(zero) => {
+                let zero = u64::from(zero);
+                let above = counts.level_sum - zero * u64::from(counts.off_target);
+                above as f64 / (255 - zero) as f64
+            }
+        }
+    }
+
+    /// Whether the target is [shaped by distance](Self::shaped).
+    pub fn is_shaped(&self) -> bool {
+        self.zero_level.is_some()
     }
 
     fn build(
@@ -252,6 +356,7 @@ impl ImageTarget {
             off,
             levels,
             target_pixels: 0,
+            zero_level: None,
             words: Vec::new(),
         };
         target.build_words();

@@ -450,6 +450,62 @@ fn mask_and_weight_map_fitness_from_hand_counts() {
 }
 
 #[test]
+fn a_shaped_mask_costs_off_target_pixels_by_their_distance() {
+    // 10 x 1 pixels, columns 0 and 1 the target; the cube covers columns 0 to 4, the
+    // off-target ones 1, 2 and 3 pixels from the target.
+    let image = GrayImage::from_fn(10, 1, |x, _| Luma([if x < 2 { 0 } else { 255 }]));
+    let image = DynamicImage::ImageLuma8(image);
+    let model = [cube(vec3(1.0, 2.0, 1.0), vec3(-0.5, 0.0, 0.0))];
+    let mask = ImageTarget::from_mask("m".into(), &image, IDENTITY, 1.0, -1.0).unwrap();
+    let plain = cube_scorer(mask.clone(), SMOOTH);
+    let counts = plain.count(&model, &mut plain.scratch());
+    assert_eq!(plain.targets()[0].off_target_cost(&counts.targets()[0]), 3.0);
+
+    // Zero weight at level ceil(255 / 2) = 128; shares 1/4, 2/4, 3/4 of the 127 levels
+    // above it, rounded up: 160, 192, 224; 4 pixels and more away, 255.
+    let shaped = mask.shaped(4.0).unwrap();
+    assert!(shaped.is_shaped());
+    let levels: Vec<u8> = (0..10).map(|x| shaped.level(x, 0)).collect();
+    assert_eq!(levels, [0, 0, 160, 192, 224, 255, 255, 255, 255, 255]);
+    assert_eq!(shaped.target_pixels(), 2);
+
+    let weighted = cube_scorer(shaped.clone(), WEIGHTED);
+    let counts = weighted.count(&model, &mut weighted.scratch());
+    let t = counts.targets()[0];
+    assert_eq!((t.covered, t.on_target, t.off_target), (5, 2, 3));
+    let expected = 5.0 - 2.0 * (160.0 + 192.0 + 224.0) / 255.0;
+    assert!((weighted.fitness(&counts) - expected).abs() < 1e-12);
+
+    let smooth = cube_scorer(shaped, SMOOTH);
+    let counts = smooth.count(&model, &mut smooth.scratch());
+    let cost = (32.0 + 64.0 + 96.0) / 127.0;
+    assert!((smooth.targets()[0].off_target_cost(&counts.targets()[0]) - cost).abs() < 1e-12);
+    let expected = smoothstep(0.0, 2.0, 2.0) - smoothstep(0.0, 2.0, cost);
+    assert!((smooth.fitness(&counts) - expected).abs() < 1e-12);
+}
+
+#[test]
+fn shaping_is_refused_where_it_has_no_meaning() {
+    let image = DynamicImage::ImageLuma8(GrayImage::from_fn(4, 1, |x, _| Luma([x as u8 * 80])));
+    let mask = ImageTarget::from_mask("m".into(), &image, IDENTITY, 1.0, -1.0).unwrap();
+    let reason = |target: ImageTarget, radius: f32| target.shaped(radius).unwrap_err().to_string();
+    assert_eq!(
+        reason(mask.clone(), 0.0),
+        "target `m`: distance shaping radius is 0; it must be a positive number of pixels"
+    );
+    assert!(reason(mask.clone(), f32::NAN).contains("positive number of pixels"));
+    let map = ImageTarget::from_weight_map("w".into(), &image, IDENTITY, 1.0, -1.0).unwrap();
+    assert!(reason(map, 4.0).contains("needs a mask"));
+    for (on, off) in [(1.0, 0.0), (1.0, 0.5), (-1.0, -2.0), (1.0, -0.001)] {
+        let mask = ImageTarget::from_mask("m".into(), &image, IDENTITY, on, off).unwrap();
+        assert!(
+            reason(mask, 4.0).contains("needs on > 0 > off"),
+            "on {on}, off {off}"
+        );
+    }
+}
+
+#[test]
 fn several_targets_add_up() {
     let a = ImageTarget::from_mask("a".into(), &white(4, 2), IDENTITY, 1.0, -1.0).unwrap();
     let b = ImageTarget::from_weight_map("b".into(), &white(8, 8), IDENTITY, 1.0, -0.5).unwrap();
