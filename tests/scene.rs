@@ -634,6 +634,28 @@ fn silhouette_targets_are_shaped_by_distance_when_asked() {
 }
 
 #[test]
+fn volumes_are_shaped_by_distance_when_asked() {
+    let fixture = Fixture::new();
+    let shaping = |radius: &str| {
+        VOLUME.replace(
+            "[[volume.target]]",
+            &format!("shaping_radius = {radius}\n[[volume.target]]"),
+        )
+    };
+    let radius = |text: &str| {
+        let scene = fixture.load(text).unwrap();
+        let [ScorerGoal::Volume(goal)] = scene.scorers() else {
+            panic!("{:?}", scene.scorers());
+        };
+        goal.shaping_radius
+    };
+    assert_eq!(radius(VOLUME), None);
+    assert_eq!(radius(&shaping("2.5")), Some(2.5));
+    fixture.refuses(&shaping("0"), "volume.shaping_radius", "positive number of voxels");
+    fixture.refuses(&shaping("-1"), "volume.shaping_radius", "positive number of voxels");
+}
+
+#[test]
 fn generator_meshes_are_normalized_unless_asked_otherwise() {
     let fixture = Fixture::new();
     // A 2 x 2 x 2 cube: normalized to unit extent, or kept as written.

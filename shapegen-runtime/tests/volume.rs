@@ -171,6 +171,67 @@ fn smooth_form_reaches_good_when_filling_the_target_exactly() {
 }
 
 #[test]
+fn shaped_classes_cost_voxels_beside_the_target_by_their_distance() {
+    let smooth = Form::Smooth {
+        good: 2.0,
+        bad: 15.0,
+    };
+    // Three layers of 5 x 5 voxels at x = 5, 6, 7: 1, 2 and 3 voxels from the target,
+    // shares 1/4, 2/4 and 3/4 of the cost, rounded up to 4, 8 and 12 of 15 bands.
+    let beside = aabb(Vec3::new(5.1, 0.1, 0.1), Vec3::new(7.9, 4.9, 4.9));
+    let plain = unit_scene(smooth);
+    let shaped = unit_scene(smooth).shaped(4.0).unwrap();
+    assert_eq!(shaped.target_voxels(), 125);
+    assert_eq!(shaped.classes().weight_at([4, 4, 4]), Some(1.0));
+    assert_eq!(shaped.classes().weight_at([5, 0, 0]), Some(-(4.0 / 15.0)));
+    assert_eq!(shaped.classes().weight_at([9, 9, 9]), Some(-1.0));
+    let (c, p) = (count(&shaped, &[beside]), count(&plain, &[beside]));
+    assert_eq!(summary(&c), summary(&p));
+    assert_eq!(summary(&c), [0, 75, 0, 0, 0, 0]);
+    let cost = 25.0 * (4.0 + 8.0 + 12.0) / 15.0;
+    assert!((shaped.fitness(&c) + 15.0 * smoothstep(0.0, 250.0, cost)).abs() < 1e-12);
+    assert_eq!(plain.fitness(&p), -15.0 * smoothstep(0.0, 250.0, 75.0));
+    assert!(shaped.fitness(&c) > plain.fitness(&p));
+    // Filling the target exactly is still the optimum.
+    let exact = count(&shaped, &[aabb(Vec3::splat(0.1), Vec3::splat(4.9))]);
+    assert_eq!(shaped.fitness(&exact), 2.0);
+
+    let weighted = unit_scene(Form::Weighted { overlap: 0.0 }).shaped(4.0).unwrap();
+    let w = weighted.fitness(&count(&weighted, &[beside]));
+    assert!((w + cost).abs() < 1e-12, "{w}");
+}
+
+#[test]
+fn shaping_is_refused_where_it_has_no_meaning() {
+    let reason = |scorer: VolumeScorer, radius: f64| error_chain(&scorer.shaped(radius).unwrap_err());
+    let smooth = Form::Smooth {
+        good: 1.0,
+        bad: 1.0,
+    };
+    assert_eq!(
+        reason(unit_scene(smooth), 0.0),
+        "volume distance shaping: radius is 0; it must be a positive number of voxels"
+    );
+    assert!(reason(unit_scene(smooth), f64::NAN).contains("positive number of voxels"));
+    let grid = Grid::new(Vec3::ZERO, Vec3::splat(10.0), [10, 10, 10]).unwrap();
+    let away = target("away", block(Vec3::splat(20.0), Vec3::splat(25.0)), 1.0, -1.0);
+    let scorer = VolumeScorer::new(grid, &[away], &cubes(), smooth).unwrap();
+    assert!(reason(scorer, 2.0).contains("no voxel is a target voxel"));
+    // Ten nested shells of a 20^3 grid: 9 distinct negative weights and one positive
+    // leave 15 / 9, fewer than 2 bands each.
+    let grid = Grid::new(Vec3::ZERO, Vec3::splat(20.0), [20, 20, 20]).unwrap();
+    let nested: Vec<_> = (0..10)
+        .map(|i| {
+            let lo = Vec3::splat(i as f32);
+            target(&format!("t{i}"), block(lo, Vec3::splat(20.0) - lo), 0.5, -1.0 - i as f64)
+        })
+        .collect();
+    let scorer = VolumeScorer::new(grid, &nested, &cubes(), smooth).unwrap();
+    assert_eq!(scorer.classes().weights().len(), 10);
+    assert!(reason(scorer, 2.0).contains("at least 2 bands"));
+}
+
+#[test]
 fn weighted_form_sums_class_weights_on_hand_counts() {
     // Two overlapping targets: A = [0, 6]^3 (inside 2, outside -1) and B = [4, 10]^3
     // (inside 0.5, outside 0): weights -1 (neither), -0.5 (B only), 2 (A only), 2.5 (both).

@@ -298,7 +298,13 @@ macro_rules! scorer_kinds {
 scorer_kinds! {
     /// `[volume]`: weighted target volumes to fill or avoid on a voxel grid.
     Volume(volume): VolumeGoal => VolumeScorer, GpuVolumeScorer, VolumeCounts,
-        |goal, meshes| VolumeScorer::new(goal.grid, &goal.targets, meshes, goal.form);
+        |goal, meshes| {
+            let scorer = VolumeScorer::new(goal.grid, &goal.targets, meshes, goal.form)?;
+            match goal.shaping_radius {
+                None => Ok(scorer),
+                Some(radius) => scorer.shaped(radius),
+            }
+        };
     /// `[silhouette]`: target images seen through cameras.
     Silhouette(silhouette): SilhouetteGoal => SilhouetteScorer, GpuSilhouetteScorer, SilhouetteCounts,
         |goal, meshes| SilhouetteScorer::new(goal.targets.clone(), meshes, goal.form);

@@ -110,6 +110,9 @@ pub(super) struct VolumeFile {
     pub bad: f64,
     #[serde(default)]
     pub overlap: f64,
+    /// Opt-in distance shaping: the distance in voxels over which an off-target voxel's
+    /// cost rises to its full weight.
+    pub shaping_radius: Option<f64>,
     #[serde(default)]
     pub target: Vec<VolumeTargetFile>,
 }

@@ -30,6 +30,9 @@
 //! good = 2.0                         # smooth form weights
 //! bad = 15.0
 //! overlap = 0.0                      # weighted form: subtracted per repeated voxel hit
+//! shaping_radius = 4                 # optional, opt-in: voxels off the target cost by their
+//!                                    # distance to it, in full from 4 voxels away
+//!                                    # (VolumeScorer::shaped)
 //! [[volume.target]]
 //! mesh = "target.obj"
 //! inside = 1.0                       # weight of voxels inside (negative avoids)
@@ -196,6 +199,10 @@ pub struct VolumeGoal {
     pub targets: Vec<VolumeTarget>,
     /// How counts become fitness.
     pub form: Form,
+    /// Opt-in distance shaping ([`VolumeScorer::shaped`](shapegen_runtime::score::volume::VolumeScorer::shaped)):
+    /// the distance in voxels over which an off-target voxel's cost rises to its full
+    /// weight; `None` scores as published.
+    pub shaping_radius: Option<f64>,
 }
 
 /// The `[silhouette]` table, resolved: the target images with their cameras, and the

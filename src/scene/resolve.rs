@@ -333,10 +333,20 @@ impl<'a> Resolver<'a> {
             });
         }
         let form = self.form("volume", form, v.good, v.bad, v.overlap)?;
+        let shaping_radius = match v.shaping_radius {
+            Some(r) if !(r.is_finite() && r > 0.0) => {
+                return Err(self.invalid(
+                    "volume.shaping_radius",
+                    format!("{r} is not a positive number of voxels"),
+                ));
+            }
+            r => r,
+        };
         Ok(VolumeGoal {
             grid,
             targets,
             form,
+            shaping_radius,
         })
     }
 

@@ -123,6 +123,13 @@ fn the_gpu_counts_exactly_what_the_cpu_counts(gpu: &GpuContext) {
         assert_eq!(cpu, out);
     }
 
+    // Shaped by distance: more classes, counted the same on both.
+    let shaped = scorer.clone().shaped(3.0).unwrap();
+    assert!(shaped.classes().weights().len() > scorer.classes().weights().len());
+    let cpu = cpu_counts(&shaped, &batch);
+    assert!(cpu.iter().filter(|c| c.outside > 0).count() > 10);
+    assert_eq!(cpu, gpu_counts(gpu, &shaped, &batch));
+
     // The city, on a grid around its middle lots.
     let city = population::<City>(30, Limits::new(4, 300, 8).unwrap(), 50, 8);
     let grid = Grid::new(

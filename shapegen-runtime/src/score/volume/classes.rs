@@ -2,6 +2,7 @@
 
 use super::parity::{Bounds, Voxelizer};
 use super::{Grid, VolumeError, VolumeTarget};
+use crate::score::squared_distances;
 
 /// The most distinct voxel weights (classes) a scene may have.
 pub const MAX_CLASSES: usize = 16;
@@ -27,6 +28,9 @@ pub const MAX_CLASSES: usize = 16;
 pub struct VoxelClasses {
     grid: Grid,
     weights: Vec<f64>,
+    /// Per class, the share of the full cost a voxel of it carries (see
+    /// [`shaped`](VoxelClasses::shaped)); `None` when not shaped: every share is 1.
+    shares: Option<Vec<f64>>,
     voxels: Vec<u8>,
     sizes: Vec<u64>,
 }
@@ -112,9 +116,113 @@ impl VoxelClasses {
         Ok(VoxelClasses {
             grid: *grid,
             weights,
+            shares: None,
             voxels: classes,
             sizes,
         })
+    }
+
+    /// The classes shaped by distance: an opt-in slope for targets a generator cannot
+    /// reach exactly. A voxel of negative weight `w` at distance `d` (in voxel steps,
+    /// Euclidean, as if voxels were cubes) from the nearest target voxel carries the share
+    /// `s = min(1, d / radius)` of its cost, rounded up to one of `B` bands
+    /// (`s = ceil(B s) / B`), and weighs `w s`; target voxels and voxels of weight 0 are
+    /// unchanged. `B` is as many bands as the class limit leaves: `(MAX_CLASSES - P) / N`
+    /// for `P` classes of weight 0 or more and `N` of negative weight, at least 2. The
+    /// smoothstep form counts each such voxel as its share instead of 1
+    /// ([`shares`](Self::shares)).
+    ///
+    /// Fails when `radius` is not a positive number, when there are no target voxels to
+    /// measure from, or when the class limit leaves fewer than 2 bands.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use shapegen_runtime::Mesh;
+    /// use shapegen_runtime::score::volume::{Grid, VolumeTarget, VoxelClasses};
+    ///
+    /// let grid = Grid::new(Vec3::splat(-1.0), Vec3::splat(1.0), [8, 8, 8])?;
+    /// let target = VolumeTarget { name: "cube".into(), mesh: Mesh::unit_cube(), inside: 1.0, outside: -1.0 };
+    /// let shaped = VoxelClasses::new(&grid, &[target])?.shaped(2.0)?;
+    /// // Up to 15 bands of -1/15 .. -1 outside, of which the distances 1, √2, √3 and 2
+    /// // or more take 4, and the target's 1.
+    /// assert_eq!(shaped.weights().len(), 5);
+    /// assert_eq!(shaped.weight_at([2, 3, 3]), Some(1.0));
+    /// // 1 voxel away: the share 1/2, rounded up to 8 of the 15 bands.
+    /// assert_eq!(shaped.weight_at([1, 3, 3]), Some(-(8.0 / 15.0)));
+    /// assert_eq!(shaped.weight_at([0, 3, 3]), Some(-1.0)); // 2 voxels away
+    /// assert_eq!(shaped.target_voxels(), 64);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn shaped(&self, radius: f64) -> Result<VoxelClasses, VolumeError> {
+        let refuse = |reason: String| Err(VolumeError::Shaping { reason });
+        if !(radius.is_finite() && radius > 0.0) {
+            return refuse(format!(
+                "radius is {radius}; it must be a positive number of voxels"
+            ));
+        }
+        if self.target_voxels() == 0 {
+            return refuse("no voxel is a target voxel, so there is nothing to measure from".into());
+        }
+        let negative = self.weights.iter().filter(|&&w| w < 0.0).count();
+        let kept = self.weights.len() - negative;
+        let bands = (MAX_CLASSES - kept) / negative.max(1);
+        if bands < 2 {
+            return refuse(format!(
+                "needs at least 2 bands of distance per negative weight, and the targets' \
+                 {} distinct weights leave {bands} of the {MAX_CLASSES} classes; give the \
+                 targets fewer distinct weights",
+                self.weights.len()
+            ));
+        }
+        let [nx, ny, nz] = self.grid.resolution().map(|n| n as usize);
+        let distances = squared_distances(&[nz, ny, nx], |v| {
+            self.weights[usize::from(self.voxels[v])] > 0.0
+        });
+        let band_of = |v: usize| -> usize {
+            let w = self.weights[usize::from(self.voxels[v])];
+            if w >= 0.0 {
+                return bands;
+            }
+            let share = (distances[v].sqrt() / radius).min(1.0);
+            ((share * bands as f64).ceil() as usize).clamp(1, bands)
+        };
+        // Classes as (weight, share), ascending; equal weights of different shares stay
+        // apart.
+        let class_of = |v: usize| -> (f64, f64) {
+            let w = self.weights[usize::from(self.voxels[v])];
+            let share = band_of(v) as f64 / bands as f64;
+            if w < 0.0 { (w * share, share) } else { (w, 1.0) }
+        };
+        let order = |a: &(f64, f64), b: &(f64, f64)| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1));
+        let mut classes: Vec<(f64, f64)> = Vec::new();
+        for v in 0..self.voxels.len() {
+            let c = class_of(v);
+            if let Err(at) = classes.binary_search_by(|x| order(x, &c)) {
+                classes.insert(at, c);
+            }
+        }
+        let mut sizes = vec![0u64; classes.len()];
+        let voxels = (0..self.voxels.len())
+            .map(|v| {
+                let c = class_of(v);
+                let index = classes.partition_point(|x| order(x, &c).is_lt());
+                sizes[index] += 1;
+                index as u8
+            })
+            .collect();
+        Ok(VoxelClasses {
+            grid: self.grid,
+            weights: classes.iter().map(|c| c.0).collect(),
+            shares: Some(classes.iter().map(|c| c.1).collect()),
+            voxels,
+            sizes,
+        })
+    }
+
+    /// Per class, the share of its full cost that a voxel of it carries in the smoothstep
+    /// form: 1 for every class unless [shaped](Self::shaped).
+    pub fn shares(&self) -> Option<&[f64]> {
+        self.shares.as_deref()
     }
 
     /// The grid.

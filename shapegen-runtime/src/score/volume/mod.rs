@@ -169,6 +169,12 @@ pub enum VolumeError {
         /// How many distinct weights there are.
         classes: usize,
     },
+    /// [Distance shaping](VoxelClasses::shaped) cannot be done.
+    #[error("volume distance shaping: {reason}")]
+    Shaping {
+        /// What is wrong, and what would be valid.
+        reason: String,
+    },
 }
 
 /// What one model covers on the grid. Equal counts give equal fitness, whichever
@@ -228,26 +234,43 @@ impl VolumeScorer {
         meshes: &BoundMeshes,
         form: Form,
     ) -> Result<VolumeScorer, VolumeError> {
-        let classes = VoxelClasses::new(&grid, targets)?;
-        let class_stride = classes.weights().len() - 1;
-        let words = classes.voxels().len().div_ceil(64);
+        let mut scorer = VolumeScorer {
+            grid,
+            classes: VoxelClasses::new(&grid, targets)?,
+            class_bits: Vec::new(),
+            class_stride: 0,
+            parts: meshes.iter().map(|(_, _, m)| PartKind::of(m)).collect(),
+            meshes: meshes.clone(),
+            form,
+            outside_sum: targets.iter().map(|t| t.outside).sum(),
+        };
+        scorer.build_class_bits();
+        Ok(scorer)
+    }
+
+    /// The scorer with its classes [shaped by distance](VoxelClasses::shaped): an
+    /// opt-in slope for targets a generator cannot reach, off-target voxels costing in
+    /// proportion to their distance from the target up to `radius` voxels. Out-of-grid
+    /// hits keep their full cost.
+    pub fn shaped(mut self, radius: f64) -> Result<VolumeScorer, VolumeError> {
+        self.classes = self.classes.shaped(radius)?;
+        self.build_class_bits();
+        Ok(self)
+    }
+
+    /// Fills `class_bits` and `class_stride` from the classes.
+    fn build_class_bits(&mut self) {
+        let class_stride = self.classes.weights().len() - 1;
+        let words = self.classes.voxels().len().div_ceil(64);
         let mut class_bits = vec![0u64; words * class_stride];
-        for (v, &c) in classes.voxels().iter().enumerate() {
+        for (v, &c) in self.classes.voxels().iter().enumerate() {
             let c = usize::from(c);
             if c < class_stride {
                 class_bits[v / 64 * class_stride + c] |= 1 << (v % 64);
             }
         }
-        Ok(VolumeScorer {
-            grid,
-            classes,
-            class_bits,
-            class_stride,
-            parts: meshes.iter().map(|(_, _, m)| PartKind::of(m)).collect(),
-            meshes: meshes.clone(),
-            form,
-            outside_sum: targets.iter().map(|t| t.outside).sum(),
-        })
+        self.class_bits = class_bits;
+        self.class_stride = class_stride;
     }
 
     /// The grid.
@@ -351,10 +374,17 @@ impl Scorer for VolumeScorer {
             }
             Form::Smooth { good, bad } => {
                 let t = self.target_voxels() as f64;
-                let off = counts
-                    .outside
-                    .saturating_add(counts.overlap_voxels)
-                    .saturating_add(counts.span_out_of_grid) as f64;
+                let outside = match self.classes.shares() {
+                    None => counts.outside as f64,
+                    Some(shares) => (0..shares.len())
+                        .filter(|&c| !self.classes.is_target(c))
+                        .map(|c| shares[c] * counts.classes[c] as f64)
+                        .sum(),
+                };
+                let off = outside
+                    + counts
+                        .overlap_voxels
+                        .saturating_add(counts.span_out_of_grid) as f64;
                 good * smoothstep(0.0, t, counts.inside as f64)
                     - bad * smoothstep(0.0, 2.0 * t, off)
             }
