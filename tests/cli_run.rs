@@ -351,3 +351,38 @@ fn every_method_returns_a_model_within_the_limits_on_an_unreachable_sketch() {
         );
     }
 }
+
+#[test]
+fn a_shaped_scene_runs_and_its_best_scores_above_its_published_fitness() {
+    // Shaping only lowers what off-target pixels cost, so a model that covers any
+    // pixel beside the sketch scores higher in the shaped scene than in the plain one.
+    let dir = tempfile::tempdir().unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let shaped = root.join("scenes/tree_sketch_offset_shaped.toml");
+    let plain = root.join("scenes/tree_sketch_offset.toml");
+    let out = dir.path().join("shaped");
+    ok(&[
+        "run",
+        s(&shaped),
+        "--cpu",
+        "--method",
+        "ga",
+        "--evaluations",
+        "1000",
+        "--seed",
+        "2",
+        "--out",
+        s(&out),
+    ]);
+    let summary: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let genome = out.join("best.genome.json");
+    let score = |scene: &Path| -> f64 {
+        let line = ok(&["score", s(scene), "--cpu", "--genomes", s(&genome)]);
+        let value: serde_json::Value = serde_json::from_str(line.trim()).unwrap();
+        value["fitness"].as_f64().unwrap()
+    };
+    let (in_shaped, in_plain) = (score(&shaped), score(&plain));
+    assert_eq!(in_shaped, summary["best_fitness"].as_f64().unwrap());
+    assert!(in_plain < in_shaped, "{in_plain} < {in_shaped}");
+}
