@@ -382,6 +382,12 @@ fn a_shaped_scene_runs_and_its_best_scores_above_its_published_fitness() {
         let value: serde_json::Value = serde_json::from_str(line.trim()).unwrap();
         value["fitness"].as_f64().unwrap()
     };
+    let metrics = &summary["metrics"];
+    assert_eq!(metrics["genes"], summary["genes"]);
+    assert_eq!(metrics["instances"], summary["instances"]);
+    assert!(metrics["triangles"].as_u64().unwrap() > 0);
+    let iou = metrics["silhouette_iou"][0]["iou"].as_f64().unwrap();
+    assert!((0.0..1.0).contains(&iou), "{metrics}");
     let (in_shaped, in_plain) = (score(&shaped), score(&plain));
     assert_eq!(in_shaped, summary["best_fitness"].as_f64().unwrap());
     assert!(in_plain < in_shaped, "{in_plain} < {in_shaped}");

@@ -111,6 +111,7 @@ mod file;
 mod image;
 mod memory;
 mod method;
+mod metrics;
 mod objective;
 mod optimizer;
 mod resolve;
@@ -134,6 +135,7 @@ pub use evaluate::{
 };
 pub use image::{decode_image, read_image};
 pub use memory::{JSON_BYTES_PER_WORD, MemoryError, MemoryEstimate, MemoryPart, RunShape};
+pub use metrics::{F_SCORE_THRESHOLD, Metrics, SURFACE_SAMPLES, ViewIou};
 pub use method::{
     Method, MethodJob, MethodSettings, SettingsCause, SettingsKeyError, UnknownMethod,
 };

@@ -29,6 +29,7 @@
 mod batch;
 mod distance;
 mod form;
+pub mod metrics;
 pub mod objective;
 pub mod retained;
 pub mod silhouette;

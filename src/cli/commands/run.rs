@@ -11,7 +11,7 @@ use shapegen::export::{Palette, Preview, glb_bytes, write_mtl, write_obj};
 use shapegen::optimize::islands::{IslandGa, IslandGaSettings, IslandSettings};
 use shapegen::optimize::{Best, Control, Optimizer, RunResult, Session, Snapshot};
 use shapegen::scene::{
-    Method, MethodJob, MethodSettings, Overrides, Scene, SceneEvaluator, SceneScorer,
+    Method, MethodJob, MethodSettings, Metrics, Overrides, Scene, SceneEvaluator, SceneScorer,
 };
 use shapegen::{Genome, Grammar};
 
@@ -103,6 +103,8 @@ struct Summary<'a> {
     /// How bred children were counted; absent when every model was counted from nothing.
     #[serde(skip_serializing_if = "Option::is_none")]
     incremental: Option<Incremental>,
+    /// The best model against the scene's targets in the literature's measures.
+    metrics: Metrics,
 }
 
 /// Runs `shapegen run`.
@@ -317,6 +319,13 @@ impl Run<'_> {
             instances: instances.len(),
             stopped: result.stopped.name(),
             incremental: evaluator.retention().map(Incremental::from),
+            metrics: Metrics::of(
+                self.scene,
+                &scorer,
+                &outputs.meshes,
+                result.best.len(),
+                &instances,
+            ),
         };
         if let Some(incremental) = &summary.incremental {
             eprintln!("{incremental}");

@@ -1,0 +1,116 @@
+//! A model measured against a scene's targets in the literature's measures, whatever the
+//! scene's fitness: model size, voxel IoU, silhouette IoU per view, and Chamfer distance
+//! and F-score against the volume targets' surfaces
+//! ([`shapegen_runtime::score::metrics`] defines each).
+
+use serde::Serialize;
+use shapegen_runtime::score::Scorer;
+use shapegen_runtime::score::metrics::{
+    SurfaceDistance, Triangle, mesh_triangles, model_triangles, silhouette_iou, voxel_iou,
+};
+use shapegen_runtime::{BoundMeshes, Instance};
+
+use super::{Scene, ScorerGoal, SceneScorer};
+
+/// Points sampled on each surface for the Chamfer distance and the F-score.
+pub const SURFACE_SAMPLES: usize = 4096;
+
+/// The F-score's threshold, as a share of the diagonal of the volume targets' bounding
+/// box.
+pub const F_SCORE_THRESHOLD: f64 = 0.01;
+
+/// One model's measures against a scene's targets, as `summary.json` reports them.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Metrics {
+    /// Genes of its genome.
+    pub genes: usize,
+    /// Instances it derives.
+    pub instances: usize,
+    /// Triangles of those instances.
+    pub triangles: usize,
+    /// Intersection over union of its voxels with the target voxels, on the grid
+    /// (scenes with a `[volume]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub voxel_iou: Option<f64>,
+    /// Its surface against the surfaces of the volume targets that attract (inside
+    /// weight above 0), sampled at [`SURFACE_SAMPLES`] points each; the F-score at
+    /// [`F_SCORE_THRESHOLD`] of their bounding box's diagonal.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub surface: Option<SurfaceDistance>,
+    /// Intersection over union of its silhouette with each target image, in the scene's
+    /// order (scenes with a `[silhouette]`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub silhouette_iou: Vec<ViewIou>,
+}
+
+/// The silhouette IoU through one target's camera.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ViewIou {
+    /// The target, by its image.
+    pub target: String,
+    /// `on / (T + off)`.
+    pub iou: f64,
+}
+
+impl Metrics {
+    /// The measures of a model of `genes` genes deriving `instances` (of `meshes`,
+    /// bound to its grammar) against `scene`'s targets, counted on the CPU by `scorer`.
+    /// Deterministic: the surface samples come from a fixed seed.
+    pub fn of(
+        scene: &Scene,
+        scorer: &SceneScorer,
+        meshes: &BoundMeshes,
+        genes: usize,
+        instances: &[Instance],
+    ) -> Metrics {
+        let model = model_triangles(instances, meshes);
+        let voxel_iou = scorer
+            .volume()
+            .map(|v| voxel_iou(v, &v.count(instances, &mut v.scratch())));
+        let silhouette_iou = scorer
+            .silhouette()
+            .map(|s| {
+                let counts = s.count(instances, &mut s.scratch());
+                s.targets()
+                    .iter()
+                    .zip(counts.targets())
+                    .map(|(t, c)| ViewIou {
+                        target: t.name().to_owned(),
+                        iou: silhouette_iou(t, c),
+                    })
+                    .collect()
+            })
+            .unwrap_or_default();
+        Metrics {
+            genes,
+            instances: instances.len(),
+            triangles: model.len(),
+            voxel_iou,
+            surface: surface(scene, &model),
+            silhouette_iou,
+        }
+    }
+}
+
+/// The model's surface against the attracting volume targets'.
+fn surface(scene: &Scene, model: &[Triangle]) -> Option<SurfaceDistance> {
+    let target: Vec<Triangle> = scene
+        .scorers()
+        .iter()
+        .filter_map(|goal| match goal {
+            ScorerGoal::Volume(volume) => Some(volume),
+            _ => None,
+        })
+        .flat_map(|volume| volume.targets.iter().filter(|t| t.inside > 0.0))
+        .flat_map(|t| mesh_triangles(&t.mesh))
+        .collect();
+    let (lo, hi) = target
+        .iter()
+        .flatten()
+        .fold(None, |acc: Option<(glam::Vec3, glam::Vec3)>, &p| match acc {
+            None => Some((p, p)),
+            Some((lo, hi)) => Some((lo.min(p), hi.max(p))),
+        })?;
+    let threshold = F_SCORE_THRESHOLD * f64::from((hi - lo).length());
+    SurfaceDistance::between(model, &target, threshold, SURFACE_SAMPLES, 0)
+}
