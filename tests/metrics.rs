@@ -11,7 +11,8 @@ use shapegen::{Genome, Grammar, Instance};
 fn scene_and_target<G: Grammar>(name: &str) -> (Scene, Genome<G>) {
     let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
     let scene = Scene::load(scenes.join(format!("{name}.toml"))).unwrap();
-    let genome = Genome::<G>::load_json(scenes.join(format!("targets/{name}.genome.json"))).unwrap();
+    let genome =
+        Genome::<G>::load_json(scenes.join(format!("targets/{name}.genome.json"))).unwrap();
     (scene, genome)
 }
 

@@ -651,8 +651,16 @@ fn volumes_are_shaped_by_distance_when_asked() {
     };
     assert_eq!(radius(VOLUME), None);
     assert_eq!(radius(&shaping("2.5")), Some(2.5));
-    fixture.refuses(&shaping("0"), "volume.shaping_radius", "positive number of voxels");
-    fixture.refuses(&shaping("-1"), "volume.shaping_radius", "positive number of voxels");
+    fixture.refuses(
+        &shaping("0"),
+        "volume.shaping_radius",
+        "positive number of voxels",
+    );
+    fixture.refuses(
+        &shaping("-1"),
+        "volume.shaping_radius",
+        "positive number of voxels",
+    );
 }
 
 #[test]

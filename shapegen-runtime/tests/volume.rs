@@ -196,14 +196,17 @@ fn shaped_classes_cost_voxels_beside_the_target_by_their_distance() {
     let exact = count(&shaped, &[aabb(Vec3::splat(0.1), Vec3::splat(4.9))]);
     assert_eq!(shaped.fitness(&exact), 2.0);
 
-    let weighted = unit_scene(Form::Weighted { overlap: 0.0 }).shaped(4.0).unwrap();
+    let weighted = unit_scene(Form::Weighted { overlap: 0.0 })
+        .shaped(4.0)
+        .unwrap();
     let w = weighted.fitness(&count(&weighted, &[beside]));
     assert!((w + cost).abs() < 1e-12, "{w}");
 }
 
 #[test]
 fn shaping_is_refused_where_it_has_no_meaning() {
-    let reason = |scorer: VolumeScorer, radius: f64| error_chain(&scorer.shaped(radius).unwrap_err());
+    let reason =
+        |scorer: VolumeScorer, radius: f64| error_chain(&scorer.shaped(radius).unwrap_err());
     let smooth = Form::Smooth {
         good: 1.0,
         bad: 1.0,
@@ -214,7 +217,12 @@ fn shaping_is_refused_where_it_has_no_meaning() {
     );
     assert!(reason(unit_scene(smooth), f64::NAN).contains("positive number of voxels"));
     let grid = Grid::new(Vec3::ZERO, Vec3::splat(10.0), [10, 10, 10]).unwrap();
-    let away = target("away", block(Vec3::splat(20.0), Vec3::splat(25.0)), 1.0, -1.0);
+    let away = target(
+        "away",
+        block(Vec3::splat(20.0), Vec3::splat(25.0)),
+        1.0,
+        -1.0,
+    );
     let scorer = VolumeScorer::new(grid, &[away], &cubes(), smooth).unwrap();
     assert!(reason(scorer, 2.0).contains("no voxel is a target voxel"));
     // Ten nested shells of a 20^3 grid: 9 distinct negative weights and one positive
@@ -223,7 +231,12 @@ fn shaping_is_refused_where_it_has_no_meaning() {
     let nested: Vec<_> = (0..10)
         .map(|i| {
             let lo = Vec3::splat(i as f32);
-            target(&format!("t{i}"), block(lo, Vec3::splat(20.0) - lo), 0.5, -1.0 - i as f64)
+            target(
+                &format!("t{i}"),
+                block(lo, Vec3::splat(20.0) - lo),
+                0.5,
+                -1.0 - i as f64,
+            )
         })
         .collect();
     let scorer = VolumeScorer::new(grid, &nested, &cubes(), smooth).unwrap();

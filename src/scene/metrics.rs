@@ -10,7 +10,7 @@ use shapegen_runtime::score::metrics::{
 };
 use shapegen_runtime::{BoundMeshes, Instance};
 
-use super::{Scene, ScorerGoal, SceneScorer};
+use super::{Scene, SceneScorer, ScorerGoal};
 
 /// Points sampled on each surface for the Chamfer distance and the F-score.
 pub const SURFACE_SAMPLES: usize = 4096;
@@ -104,13 +104,13 @@ fn surface(scene: &Scene, model: &[Triangle]) -> Option<SurfaceDistance> {
         .flat_map(|volume| volume.targets.iter().filter(|t| t.inside > 0.0))
         .flat_map(|t| mesh_triangles(&t.mesh))
         .collect();
-    let (lo, hi) = target
-        .iter()
-        .flatten()
-        .fold(None, |acc: Option<(glam::Vec3, glam::Vec3)>, &p| match acc {
+    let (lo, hi) = target.iter().flatten().fold(
+        None,
+        |acc: Option<(glam::Vec3, glam::Vec3)>, &p| match acc {
             None => Some((p, p)),
             Some((lo, hi)) => Some((lo.min(p), hi.max(p))),
-        })?;
+        },
+    )?;
     let threshold = F_SCORE_THRESHOLD * f64::from((hi - lo).length());
     SurfaceDistance::between(model, &target, threshold, SURFACE_SAMPLES, 0)
 }

@@ -135,10 +135,10 @@ pub use evaluate::{
 };
 pub use image::{decode_image, read_image};
 pub use memory::{JSON_BYTES_PER_WORD, MemoryError, MemoryEstimate, MemoryPart, RunShape};
-pub use metrics::{F_SCORE_THRESHOLD, Metrics, SURFACE_SAMPLES, ViewIou};
 pub use method::{
     Method, MethodJob, MethodSettings, SettingsCause, SettingsKeyError, UnknownMethod,
 };
+pub use metrics::{F_SCORE_THRESHOLD, Metrics, SURFACE_SAMPLES, ViewIou};
 pub use objective::ObjectiveEvaluator;
 pub use optimizer::{OptimizerGoal, Overrides};
 

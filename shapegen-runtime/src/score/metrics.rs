@@ -63,9 +63,9 @@ pub fn model_triangles(instances: &[Instance], meshes: &BoundMeshes) -> Vec<Tria
     let mut out = Vec::new();
     for instance in instances {
         if let Some(mesh) = meshes.get(instance.mesh) {
-            out.extend(mesh_triangles(mesh).map(|t| {
-                t.map(|p| instance.transform.transform_point3(p))
-            }));
+            out.extend(
+                mesh_triangles(mesh).map(|t| t.map(|p| instance.transform.transform_point3(p))),
+            );
         }
     }
     out
@@ -186,35 +186,40 @@ mod tests {
 
     #[test]
     fn parallel_planes_are_their_distance_apart() {
-        let d = SurfaceDistance::between(&unit_square(0.0), &unit_square(0.5), 0.4, 400, 1)
-            .unwrap();
+        let d =
+            SurfaceDistance::between(&unit_square(0.0), &unit_square(0.5), 0.4, 400, 1).unwrap();
         // Every nearest sample is at least 0.5 away, and near it: samples of the other
         // square lie about 1/20 apart.
         assert!(d.chamfer >= 0.5 && d.chamfer < 0.52, "{}", d.chamfer);
         assert_eq!(d.f_score, 0.0);
-        let d = SurfaceDistance::between(&unit_square(0.0), &unit_square(0.5), 0.6, 400, 1)
-            .unwrap();
+        let d =
+            SurfaceDistance::between(&unit_square(0.0), &unit_square(0.5), 0.6, 400, 1).unwrap();
         assert_eq!(d.f_score, 1.0);
     }
 
     #[test]
     fn a_surface_is_near_itself_and_half_a_surface_recalls_half() {
-        let same = SurfaceDistance::between(&unit_square(0.0), &unit_square(0.0), 0.1, 500, 2)
-            .unwrap();
+        let same =
+            SurfaceDistance::between(&unit_square(0.0), &unit_square(0.0), 0.1, 500, 2).unwrap();
         assert!(same.chamfer < 0.05);
         assert_eq!(same.f_score, 1.0);
         // The model is the square's lower-right triangle, far below the threshold from
         // it: precision 1, recall about 1/2 (target samples in the other half lie up to
         // 0.7 away), so the F-score is about 2/3.
-        let half = SurfaceDistance::between(&unit_square(0.0)[..1], &unit_square(0.0), 0.02, 2000, 3)
-            .unwrap();
+        let half =
+            SurfaceDistance::between(&unit_square(0.0)[..1], &unit_square(0.0), 0.02, 2000, 3)
+                .unwrap();
         assert!((half.f_score - 2.0 / 3.0).abs() < 0.05, "{}", half.f_score);
     }
 
     #[test]
     fn sampling_is_by_area_and_seeded() {
         // A big and a tiny triangle: nearly all samples on the big one.
-        let big = [Vec3::ZERO, Vec3::new(10.0, 0.0, 0.0), Vec3::new(0.0, 10.0, 0.0)];
+        let big = [
+            Vec3::ZERO,
+            Vec3::new(10.0, 0.0, 0.0),
+            Vec3::new(0.0, 10.0, 0.0),
+        ];
         let tiny = [
             Vec3::new(0.0, 0.0, 5.0),
             Vec3::new(0.01, 0.0, 5.0),

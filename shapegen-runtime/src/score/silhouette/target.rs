@@ -248,7 +248,10 @@ impl ImageTarget {
     pub fn shaped(mut self, radius: f32) -> Result<ImageTarget, TargetError> {
         let refuse = |name: String, reason: String| Err(TargetError::Shaping { name, reason });
         if self.kind != TargetKind::Mask {
-            return refuse(self.name, "needs a mask; a weight map has its own levels".into());
+            return refuse(
+                self.name,
+                "needs a mask; a weight map has its own levels".into(),
+            );
         }
         if !(radius.is_finite() && radius > 0.0) {
             return refuse(

@@ -459,7 +459,10 @@ fn a_shaped_mask_costs_off_target_pixels_by_their_distance() {
     let mask = ImageTarget::from_mask("m".into(), &image, IDENTITY, 1.0, -1.0).unwrap();
     let plain = cube_scorer(mask.clone(), SMOOTH);
     let counts = plain.count(&model, &mut plain.scratch());
-    assert_eq!(plain.targets()[0].off_target_cost(&counts.targets()[0]), 3.0);
+    assert_eq!(
+        plain.targets()[0].off_target_cost(&counts.targets()[0]),
+        3.0
+    );
 
     // Zero weight at level ceil(255 / 2) = 128; shares 1/4, 2/4, 3/4 of the 127 levels
     // above it, rounded up: 160, 192, 224; 4 pixels and more away, 255.

@@ -161,7 +161,9 @@ impl VoxelClasses {
             ));
         }
         if self.target_voxels() == 0 {
-            return refuse("no voxel is a target voxel, so there is nothing to measure from".into());
+            return refuse(
+                "no voxel is a target voxel, so there is nothing to measure from".into(),
+            );
         }
         let negative = self.weights.iter().filter(|&&w| w < 0.0).count();
         let kept = self.weights.len() - negative;
@@ -191,7 +193,11 @@ impl VoxelClasses {
         let class_of = |v: usize| -> (f64, f64) {
             let w = self.weights[usize::from(self.voxels[v])];
             let share = band_of(v) as f64 / bands as f64;
-            if w < 0.0 { (w * share, share) } else { (w, 1.0) }
+            if w < 0.0 {
+                (w * share, share)
+            } else {
+                (w, 1.0)
+            }
         };
         let order = |a: &(f64, f64), b: &(f64, f64)| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1));
         let mut classes: Vec<(f64, f64)> = Vec::new();
