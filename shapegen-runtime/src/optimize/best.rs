@@ -125,8 +125,8 @@ impl<G: Grammar> Record<G> for Best<G> {
         !self.history.is_empty()
     }
 
-    /// Takes the best of `genomes` within `limits` if it beats the best so far (see
-    /// [`record_generation`](Best::record_generation)), and appends the generation's
+    /// Takes the best of `genomes` within `limits` if it beats the best so far (the rule
+    /// of [`Best`]), and appends the generation's
     /// best, mean and standard deviation to the history.
     fn record(
         progress: &mut Progress<Self>,
