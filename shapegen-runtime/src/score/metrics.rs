@@ -7,15 +7,15 @@
 //! use glam::Vec3;
 //! use shapegen_runtime::score::metrics::{SurfaceDistance, Triangle};
 //!
-//! // Two unit squares, one 0.01 above the other: every sample is within 0.02 of the
-//! // other surface, so the F-score at 0.02 is 1.
+//! // Two unit squares, one 0.01 above the other: every sample has one of the other
+//! // square's samples within 0.1, so the F-score at 0.1 is 1.
 //! let square = |z: f32| -> Vec<Triangle> {
 //!     let p = |x: f32, y: f32| Vec3::new(x, y, z);
 //!     vec![[p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0)], [p(0.0, 0.0), p(1.0, 1.0), p(0.0, 1.0)]]
 //! };
-//! let d = SurfaceDistance::between(&square(0.0), &square(0.01), 0.02, 500, 7).unwrap();
+//! let d = SurfaceDistance::between(&square(0.0), &square(0.01), 0.1, 500, 7).unwrap();
 //! assert_eq!(d.f_score, 1.0);
-//! assert!(d.chamfer >= 0.01 && d.chamfer < 0.02);
+//! assert!(d.chamfer >= 0.01 && d.chamfer < 0.05);
 //! ```
 
 use glam::{DVec3, Vec3};
