@@ -9,7 +9,7 @@ use std::path::Path;
 use shapegen::scene::Method;
 
 use support::{
-    chart, interrupt_when, ok, s, shapegen, skyline_scene as scene, timeless_curve,
+    chart, interrupt_when, ok, s, score, shapegen, skyline_scene as scene, timeless_curve,
     timeless_summary,
 };
 
@@ -319,6 +319,12 @@ fn the_papers_scenes_run_from_the_repository() {
     }
 }
 
+/// Runs `scene` on the CPU into `out` with `args` added; returns its `summary.json`.
+fn run_summary(scene: &Path, out: &Path, args: &[&str]) -> serde_json::Value {
+    ok(&[&["run", s(scene), "--cpu", "--out", s(out)], args].concat());
+    timeless_summary(out)
+}
+
 #[test]
 fn every_method_returns_a_model_within_the_limits_on_an_unreachable_sketch() {
     // Every model that draws anything scores below the bare axiom here; the scene's
@@ -328,22 +334,10 @@ fn every_method_returns_a_model_within_the_limits_on_an_unreachable_sketch() {
     let dir = tempfile::tempdir().unwrap();
     let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/tree_sketch_offset.toml");
     for method in Method::ALL {
-        let out = dir.path().join(method.name());
-        ok(&[
-            "run",
-            s(&scene),
-            "--cpu",
-            "--method",
-            method.name(),
-            "--evaluations",
-            "4000",
-            "--out",
-            s(&out),
-        ]);
-        let summary: serde_json::Value =
-            serde_json::from_str(&fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-        let (genes, instances) = (&summary["genes"], &summary["instances"]);
         let name = method.name();
+        let out = dir.path().join(name);
+        let summary = run_summary(&scene, &out, &["--method", name, "--evaluations", "4000"]);
+        let (genes, instances) = (&summary["genes"], &summary["instances"]);
         assert!(genes.as_u64().unwrap() >= 4, "{name}: {genes} genes");
         assert!(
             instances.as_u64().unwrap() > 0,
@@ -361,26 +355,13 @@ fn a_shaped_scene_runs_and_its_best_scores_above_its_published_fitness() {
     let shaped = root.join("scenes/tree_sketch_offset_shaped.toml");
     let plain = root.join("scenes/tree_sketch_offset.toml");
     let out = dir.path().join("shaped");
-    ok(&[
-        "run",
-        s(&shaped),
-        "--cpu",
-        "--method",
-        "ga",
-        "--evaluations",
-        "1000",
-        "--seed",
-        "2",
-        "--out",
-        s(&out),
-    ]);
-    let summary: serde_json::Value =
-        serde_json::from_str(&fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let args = ["--method", "ga", "--evaluations", "1000", "--seed", "2"];
+    let summary = run_summary(&shaped, &out, &args);
     let genome = out.join("best.genome.json");
-    let score = |scene: &Path| -> f64 {
-        let line = ok(&["score", s(scene), "--cpu", "--genomes", s(&genome)]);
-        let value: serde_json::Value = serde_json::from_str(line.trim()).unwrap();
-        value["fitness"].as_f64().unwrap()
+    let fitness = |scene: &Path| {
+        score(scene, &genome, "--cpu")[0]["fitness"]
+            .as_f64()
+            .unwrap()
     };
     let metrics = &summary["metrics"];
     assert_eq!(metrics["genes"], summary["genes"]);
@@ -388,7 +369,7 @@ fn a_shaped_scene_runs_and_its_best_scores_above_its_published_fitness() {
     assert!(metrics["triangles"].as_u64().unwrap() > 0);
     let iou = metrics["silhouette_iou"][0]["iou"].as_f64().unwrap();
     assert!((0.0..1.0).contains(&iou), "{metrics}");
-    let (in_shaped, in_plain) = (score(&shaped), score(&plain));
+    let (in_shaped, in_plain) = (fitness(&shaped), fitness(&plain));
     assert_eq!(in_shaped, summary["best_fitness"].as_f64().unwrap());
     assert!(in_plain < in_shaped, "{in_plain} < {in_shaped}");
 }

@@ -8,7 +8,7 @@ use shapegen_runtime::score::Scorer;
 use shapegen_runtime::score::metrics::{
     SurfaceDistance, Triangle, mesh_triangles, model_triangles, silhouette_iou, voxel_iou,
 };
-use shapegen_runtime::{BoundMeshes, Instance};
+use shapegen_runtime::{BoundMeshes, Instance, Mesh};
 
 use super::{Scene, SceneScorer, ScorerGoal};
 
@@ -94,7 +94,7 @@ impl Metrics {
 
 /// The model's surface against the attracting volume targets'.
 fn surface(scene: &Scene, model: &[Triangle]) -> Option<SurfaceDistance> {
-    let target: Vec<Triangle> = scene
+    let meshes: Vec<&Mesh> = scene
         .scorers()
         .iter()
         .filter_map(|goal| match goal {
@@ -102,15 +102,13 @@ fn surface(scene: &Scene, model: &[Triangle]) -> Option<SurfaceDistance> {
             _ => None,
         })
         .flat_map(|volume| volume.targets.iter().filter(|t| t.inside > 0.0))
-        .flat_map(|t| mesh_triangles(&t.mesh))
+        .map(|t| &t.mesh)
         .collect();
-    let (lo, hi) = target.iter().flatten().fold(
-        None,
-        |acc: Option<(glam::Vec3, glam::Vec3)>, &p| match acc {
-            None => Some((p, p)),
-            Some((lo, hi)) => Some((lo.min(p), hi.max(p))),
-        },
-    )?;
+    let (lo, hi) = meshes
+        .iter()
+        .filter_map(|m| m.bounds())
+        .reduce(|(lo, hi), (l, h)| (lo.min(l), hi.max(h)))?;
+    let target: Vec<Triangle> = meshes.iter().flat_map(|m| mesh_triangles(m)).collect();
     let threshold = F_SCORE_THRESHOLD * f64::from((hi - lo).length());
     SurfaceDistance::between(model, &target, threshold, SURFACE_SAMPLES, 0)
 }

@@ -115,42 +115,34 @@ fn gpu_matches_cpu_on_random_cities(gpu: &GpuContext) {
     );
 }
 
-fn gpu_matches_cpu_on_random_trees(gpu: &GpuContext) {
+/// Compares the CPU and the GPU on 30 random trees against `target`, from `seed`.
+fn compare_random_trees(gpu: &GpuContext, target: ImageTarget, seed: u64) {
     let meshes = generators::default_meshes()
         .bind(tree::Tree::GRAPH)
         .unwrap();
-    let targets = vec![small_target(
-        "tree_sketch1",
-        "tree_target_sketch1.png",
-        tree_camera(),
-        false,
-    )];
-    let scorer = SilhouetteScorer::new(targets, &meshes, SMOOTH).unwrap();
+    let scorer = SilhouetteScorer::new(vec![target], &meshes, SMOOTH).unwrap();
     compare_on_gpu(
         gpu,
         &scorer,
-        &population::<tree::Tree>(30, tree::PAPER_LIMITS, 150, 22),
+        &population::<tree::Tree>(30, tree::PAPER_LIMITS, 150, seed),
     );
 }
 
-fn gpu_matches_cpu_on_random_trees_against_a_shaped_target(gpu: &GpuContext) {
-    let meshes = generators::default_meshes()
-        .bind(tree::Tree::GRAPH)
-        .unwrap();
-    let target = small_target(
+fn tree_sketch() -> ImageTarget {
+    small_target(
         "tree_sketch1",
         "tree_target_sketch1.png",
         tree_camera(),
         false,
     )
-    .shaped(12.0)
-    .unwrap();
-    let scorer = SilhouetteScorer::new(vec![target], &meshes, SMOOTH).unwrap();
-    compare_on_gpu(
-        gpu,
-        &scorer,
-        &population::<tree::Tree>(30, tree::PAPER_LIMITS, 150, 23),
-    );
+}
+
+fn gpu_matches_cpu_on_random_trees(gpu: &GpuContext) {
+    compare_random_trees(gpu, tree_sketch(), 22);
+}
+
+fn gpu_matches_cpu_on_random_trees_against_a_shaped_target(gpu: &GpuContext) {
+    compare_random_trees(gpu, tree_sketch().shaped(12.0).unwrap(), 23);
 }
 
 fn gpu_matches_cpu_on_random_spaceships_through_a_close_camera(gpu: &GpuContext) {

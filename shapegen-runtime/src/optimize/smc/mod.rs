@@ -478,19 +478,16 @@ impl<G: Grammar> Optimizer<G> for Smc<G> {
                         let grows = generative::advance(settings, limits, g, c, s, rng);
                         *stuck = !grows && g.len() < limits.min_len as usize;
                     });
-                evaluator.evaluate(&self.particles, &mut self.fitness)?;
-                // A particle that can grow no more while shorter than `min_len` is
-                // never drawn again.
-                for (f, &stuck) in self.fitness.iter_mut().zip(&self.stuck) {
-                    if stuck {
-                        *f = f64::NAN;
-                    }
-                }
-                self.core.progress.evaluations += self.step_cost();
-                return Ok(());
             }
         }
         evaluator.evaluate(&self.particles, &mut self.fitness)?;
+        // A generative particle that can grow no more while shorter than `min_len` is
+        // never drawn again (the original variant leaves `stuck` empty).
+        for (f, &stuck) in self.fitness.iter_mut().zip(&self.stuck) {
+            if stuck {
+                *f = f64::NAN;
+            }
+        }
         self.core.progress.evaluations += self.step_cost();
         Ok(())
     }

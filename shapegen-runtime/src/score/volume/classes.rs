@@ -87,13 +87,7 @@ impl VoxelClasses {
             }
             w + 0.0 // -0 is 0
         };
-        let mut weights: Vec<f64> = Vec::new();
-        for v in 0..voxels {
-            let w = weight_of(v);
-            if let Err(at) = weights.binary_search_by(|x| x.total_cmp(&w)) {
-                weights.insert(at, w);
-            }
-        }
+        let (weights, classes, sizes) = classify(voxels, weight_of, f64::total_cmp);
         if weights.len() > MAX_CLASSES {
             return Err(VolumeError::TooManyClasses {
                 classes: weights.len(),
@@ -104,15 +98,6 @@ impl VoxelClasses {
                     .join(", "),
             });
         }
-        let mut sizes = vec![0u64; weights.len()];
-        let classes = (0..voxels)
-            .map(|v| {
-                let w = weight_of(v);
-                let c = weights.partition_point(|x| x.total_cmp(&w).is_lt());
-                sizes[c] += 1;
-                c as u8
-            })
-            .collect();
         Ok(VoxelClasses {
             grid: *grid,
             weights,
@@ -180,42 +165,20 @@ impl VoxelClasses {
         let distances = squared_distances(&[nz, ny, nx], |v| {
             self.weights[usize::from(self.voxels[v])] > 0.0
         });
-        let band_of = |v: usize| -> usize {
-            let w = self.weights[usize::from(self.voxels[v])];
-            if w >= 0.0 {
-                return bands;
-            }
-            let share = (distances[v].sqrt() / radius).min(1.0);
-            ((share * bands as f64).ceil() as usize).clamp(1, bands)
-        };
         // Classes as (weight, share), ascending; equal weights of different shares stay
         // apart.
         let class_of = |v: usize| -> (f64, f64) {
             let w = self.weights[usize::from(self.voxels[v])];
-            let share = band_of(v) as f64 / bands as f64;
-            if w < 0.0 {
-                (w * share, share)
-            } else {
-                (w, 1.0)
+            if w >= 0.0 {
+                return (w, 1.0);
             }
+            let share = (distances[v].sqrt() / radius).min(1.0);
+            let band = ((share * bands as f64).ceil() as usize).clamp(1, bands);
+            let share = band as f64 / bands as f64;
+            (w * share, share)
         };
         let order = |a: &(f64, f64), b: &(f64, f64)| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1));
-        let mut classes: Vec<(f64, f64)> = Vec::new();
-        for v in 0..self.voxels.len() {
-            let c = class_of(v);
-            if let Err(at) = classes.binary_search_by(|x| order(x, &c)) {
-                classes.insert(at, c);
-            }
-        }
-        let mut sizes = vec![0u64; classes.len()];
-        let voxels = (0..self.voxels.len())
-            .map(|v| {
-                let c = class_of(v);
-                let index = classes.partition_point(|x| order(x, &c).is_lt());
-                sizes[index] += 1;
-                index as u8
-            })
-            .collect();
+        let (classes, voxels, sizes) = classify(self.voxels.len(), class_of, order);
         Ok(VoxelClasses {
             grid: self.grid,
             weights: classes.iter().map(|c| c.0).collect(),
@@ -281,4 +244,30 @@ impl VoxelClasses {
             .map(|c| self.sizes[c])
             .sum()
     }
+}
+
+/// The distinct keys of `count` voxels (`key_of(v)`), ascending by `order`, each voxel's
+/// index among them, and the number of voxels of each.
+fn classify<K: Copy>(
+    count: usize,
+    key_of: impl Fn(usize) -> K,
+    order: impl Fn(&K, &K) -> std::cmp::Ordering,
+) -> (Vec<K>, Vec<u8>, Vec<u64>) {
+    let mut keys: Vec<K> = Vec::new();
+    for v in 0..count {
+        let k = key_of(v);
+        if let Err(at) = keys.binary_search_by(|x| order(x, &k)) {
+            keys.insert(at, k);
+        }
+    }
+    let mut sizes = vec![0u64; keys.len()];
+    let classes = (0..count)
+        .map(|v| {
+            let k = key_of(v);
+            let c = keys.partition_point(|x| order(x, &k).is_lt());
+            sizes[c] += 1;
+            c as u8
+        })
+        .collect();
+    (keys, classes, sizes)
 }
