@@ -16,8 +16,8 @@ use shapegen::scene::Overrides;
 use shapegen_runtime::optimize::islands::IslandGa;
 use shapegen_runtime::optimize::multi::MultiGa;
 use shapegen_runtime::optimize::{
-    Best, Budget, Checkpoint as _, EvaluateError, FnEvaluator, Ga, Mcmc, MultiEvaluator,
-    Optimizer, Sense, Session, Smc,
+    Best, Budget, Checkpoint as _, EvaluateError, FnEvaluator, Ga, Mcmc, MultiEvaluator, Optimizer,
+    Sense, Session, Smc,
 };
 use shapegen_runtime::{Genome, Grammar};
 

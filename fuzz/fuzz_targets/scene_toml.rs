@@ -23,6 +23,13 @@ fuzz_target!(|data: &[u8]| {
         ..Overrides::default()
     };
     // A scene in the project's `scenes/` folder, so that seeded scenes find their targets.
-    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("fuzz/ has a parent");
-    let _ = Scene::parse_in(scene, &folder.join("scenes/fuzz.toml"), &REGISTRY, &overrides);
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("fuzz/ has a parent");
+    let _ = Scene::parse_in(
+        scene,
+        &folder.join("scenes/fuzz.toml"),
+        &REGISTRY,
+        &overrides,
+    );
 });
