@@ -14,7 +14,7 @@ use shapegen_runtime::Mesh;
 use shapegen_runtime::gpu::GpuContext;
 use shapegen_runtime::prelude::Vec3;
 use shapegen_runtime::score::volume::{
-    GpuVolumeScorer, Grid, VolumeCounts, VolumeScorer, VolumeTarget,
+    Fill, GpuVolumeScorer, Grid, VolumeCounts, VolumeScorer, VolumeTarget,
 };
 use shapegen_runtime::score::{Form, InstanceBatch, count_batch};
 
@@ -35,6 +35,7 @@ fn paper_scorer() -> VolumeScorer {
         mesh,
         inside: 1.0,
         outside: -1.0,
+        fill: Fill::Parity,
     };
     let meshes = generators::default_meshes()
         .bind(Spaceship::GRAPH)

@@ -18,7 +18,7 @@ cd "$root"
 seconds="${1:?usage: scripts/fuzz.sh SECONDS [TARGET ...]}"
 shift
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(scene_toml genome_json checkpoint obj_mesh target_image)
+[ ${#targets[@]} -gt 0 ] || targets=(scene_toml genome_json checkpoint obj_mesh stl_mesh ply_mesh gltf_mesh point_cloud target_image)
 rss="${FUZZ_RSS_MB:-2048}"
 malloc="${FUZZ_MALLOC_MB:-512}"
 logs="${FUZZ_LOG:-$root/fuzz/logs}"
@@ -45,6 +45,10 @@ seed scene_toml scenes/*.toml scenes/paper/*.toml examples/*/*.toml fuzz/seeds/s
 seed genome_json scenes/targets/*.genome.json examples/*/targets/*.genome.json fuzz/seeds/genome_json/*
 seed checkpoint fuzz/seeds/checkpoint/*
 seed obj_mesh generators/meshes/*.obj scenes/targets/*.obj scenes/paper/*/*.obj fuzz/seeds/obj_mesh/*
+seed stl_mesh fuzz/seeds/stl_mesh/*
+seed ply_mesh fuzz/seeds/ply_mesh/*
+seed gltf_mesh fuzz/seeds/gltf_mesh/*
+seed point_cloud fuzz/seeds/point_cloud/*
 seed target_image scenes/targets/*.png scenes/paper/*/*.png fuzz/seeds/target_image/*
 # The original's derivations (JSON of another shape, gzip-compressed in the repository).
 golden="$(mktemp -d)"

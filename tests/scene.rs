@@ -697,3 +697,126 @@ fn generator_meshes_are_normalized_unless_asked_otherwise() {
         "not a file",
     );
 }
+
+#[test]
+fn volume_targets_load_by_extension_and_fill_by_their_rule() {
+    let fixture = Fixture::new();
+    // The fixture's cube as ASCII STL, from the OBJ's own triangles.
+    let cube = shapegen::Mesh::from_obj_str("cube", &shapegen_cube_obj()).unwrap();
+    let mut stl = "solid cube\n".to_owned();
+    for t in cube.triangles() {
+        stl += "facet normal 0 0 0\nouter loop\n";
+        for i in t {
+            let p = cube.positions[i as usize];
+            stl += &format!("vertex {} {} {}\n", p.x, p.y, p.z);
+        }
+        stl += "endloop\nendfacet\n";
+    }
+    fs::write(fixture.dir.path().join("cube.stl"), stl + "endsolid cube\n").unwrap();
+    let voxels = |text: &str| {
+        let scene = fixture.load(text).unwrap();
+        let [ScorerGoal::Volume(goal)] = scene.scorers() else {
+            panic!("{:?}", scene.scorers());
+        };
+        shapegen::score::volume::VoxelClasses::new(&goal.grid, &goal.targets)
+            .unwrap()
+            .voxels()
+            .to_vec()
+    };
+    let obj = voxels(VOLUME);
+    assert_eq!(obj.iter().filter(|&&c| c == 1).count(), 4 * 4 * 4);
+    assert_eq!(voxels(&VOLUME.replace("cube.obj", "cube.stl")), obj);
+    let winding = VOLUME.replace(
+        "mesh = \"cube.obj\"",
+        "mesh = \"cube.obj\"\nfill = \"winding\"",
+    );
+    assert_eq!(voxels(&winding), obj);
+
+    fixture.refuses(
+        &VOLUME.replace(
+            "mesh = \"cube.obj\"",
+            "mesh = \"cube.obj\"\nfill = \"flood\"",
+        ),
+        "fill",
+        "parity",
+    );
+    fs::write(fixture.dir.path().join("cube.fbx"), "").unwrap();
+    fixture.refuses(
+        &VOLUME.replace("cube.obj", "cube.fbx"),
+        "volume.target[0].mesh",
+        ".obj, .stl, .ply, .gltf, .glb",
+    );
+    fs::write(
+        fixture.dir.path().join("bad.ply"),
+        "ply\nformat ascii 1.0\nend_header\n",
+    )
+    .unwrap();
+    fixture.refuses(
+        &VOLUME.replace("cube.obj", "bad.ply"),
+        "volume.target[0].mesh",
+        "no `vertex` element",
+    );
+}
+
+#[test]
+fn masks_pick_their_pixels_by_alpha_or_by_a_background_colour() {
+    let fixture = Fixture::new();
+    // Columns 0-2: a red object, opaque; 3: the same, half transparent; 4-7: a grey
+    // backdrop (128, 128, 128) with noise of 10 on red, transparent.
+    image::RgbaImage::from_fn(8, 6, |x, _| {
+        image::Rgba(match x {
+            0..3 => [200, 20, 20, 255],
+            3 => [200, 20, 20, 100],
+            _ => [128 + 10 * (x as u8 % 2), 128, 128, 0],
+        })
+    })
+    .save(fixture.dir.path().join("photo.png"))
+    .unwrap();
+    let targets = |rule: &str| {
+        let text = SILHOUETTE.replace(
+            "image = \"target.png\"",
+            &format!("image = \"photo.png\"\n{rule}"),
+        );
+        let scene = fixture.load(&text).unwrap();
+        let [ScorerGoal::Silhouette(goal)] = scene.scorers() else {
+            panic!("{:?}", scene.scorers());
+        };
+        goal.targets[0].target_pixels()
+    };
+    assert_eq!(targets("alpha = 255"), 3 * 6);
+    assert_eq!(targets("alpha = 50"), 4 * 6);
+    assert_eq!(targets("background = [128, 128, 128]"), 4 * 6);
+    assert_eq!(
+        targets("background = [128, 128, 128]\ntolerance = 5"),
+        6 * 6
+    );
+
+    let with = |t: &str| {
+        SILHOUETTE.replace(
+            "image = \"target.png\"",
+            &format!("image = \"target.png\"\n{t}"),
+        )
+    };
+    fixture.refuses(&with("alpha = 0"), "alpha", "from 1 to 255");
+    fixture.refuses(
+        &with("alpha = 10\nthreshold = 10"),
+        "alpha",
+        "threshold and alpha are given; keep one",
+    );
+    fixture.refuses(&with("tolerance = 3"), "tolerance", "give the background");
+    fixture.refuses(
+        &with("background = [0, 300, 0]"),
+        "background",
+        "three values from 0 to 255",
+    );
+    fixture.refuses(
+        &with("background = [0, 0, 0]\ntolerance = 500"),
+        "tolerance",
+        "441",
+    );
+    fixture.refuses(
+        &with("kind = \"weights\"\nalpha = 128"),
+        "alpha",
+        "only a mask",
+    );
+}

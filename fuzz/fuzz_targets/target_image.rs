@@ -1,5 +1,5 @@
 //! Target images as a scene reads them: decoded with the size checked first, then made
-//! a silhouette target (a mask by both rules, a weight map) and a projection objective's
+//! a silhouette target (a mask by every rule, a weight map) and a projection objective's
 //! image.
 
 #![no_main]
@@ -19,15 +19,17 @@ fuzz_target!(|data: &[u8]| {
         projection: Mat4::IDENTITY,
     };
     let name = || "fuzz.png".to_owned();
-    let _ = ImageTarget::from_mask_by(name(), &image, camera(), 1.0, -1.0, MaskRule::RedZero);
-    let _ = ImageTarget::from_mask_by(
-        name(),
-        &image,
-        camera(),
-        1.0,
-        -1.0,
+    for rule in [
+        MaskRule::RedZero,
         MaskRule::DarkerThan(128),
-    );
+        MaskRule::OpaqueFrom(128),
+        MaskRule::FarFrom {
+            background: [255, 255, 255],
+            tolerance: 32,
+        },
+    ] {
+        let _ = ImageTarget::from_mask_by(name(), &image, camera(), 1.0, -1.0, rule);
+    }
     let _ = ImageTarget::from_weight_map(name(), &image, camera(), 1.0, -1.0);
     let gray = image.into_luma8();
     let _ = ProjectionMatch::from_image(View::Top, Vec2::splat(-1.0), Vec2::splat(1.0), &gray);

@@ -135,6 +135,19 @@ pub(super) struct VolumeTargetFile {
     pub inside: f64,
     #[serde(default = "minus_one")]
     pub outside: f64,
+    #[serde(default)]
+    pub fill: FillName,
+}
+
+/// `volume.target.fill`: how the mesh's inside is found.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum FillName {
+    /// Ray parity: closed meshes.
+    #[default]
+    Parity,
+    /// Generalized winding number: open or messy meshes.
+    Winding,
 }
 
 /// `[silhouette]`
@@ -162,6 +175,12 @@ pub(super) struct ImageTargetFile {
     /// Mask images: pixels darker than this grey level are the target, instead of the
     /// original's rule (red channel 0).
     pub threshold: Option<u16>,
+    /// Mask images: pixels at least this opaque (alpha 1 to 255) are the target.
+    pub alpha: Option<u16>,
+    /// Mask images: pixels farther than `tolerance` from this RGB colour are the target.
+    pub background: Option<[u16; 3]>,
+    /// Mask images with a `background`: the largest RGB distance of a backdrop pixel.
+    pub tolerance: Option<u16>,
     /// Mask images: weight of dark pixels. Weight maps: weight of black.
     pub on: Option<f32>,
     /// Mask images: weight of light pixels. Weight maps: weight of white.

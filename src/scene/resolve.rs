@@ -7,12 +7,12 @@ use glam::{Mat4, Vec3};
 use shapegen_runtime::genome::Limits;
 use shapegen_runtime::geometry::Mesh;
 use shapegen_runtime::score::silhouette::{Camera, ImageTarget, MaskRule, OrbitCamera};
-use shapegen_runtime::score::volume::{Grid, VolumeTarget};
+use shapegen_runtime::score::volume::{Fill, Grid, VolumeTarget};
 use shapegen_runtime::score::{Form, LengthPenalty};
 
 use super::file::{
-    CameraFile, FormName, ImageKind, ImageTargetFile, LengthFrom, LimitsFile, MeshFile, SceneFile,
-    SilhouetteFile, VolumeFile,
+    CameraFile, FillName, FormName, ImageKind, ImageTargetFile, LengthFrom, LimitsFile, MeshFile,
+    SceneFile, SilhouetteFile, VolumeFile,
 };
 use super::image::read_image;
 use super::{
@@ -20,6 +20,10 @@ use super::{
     SilhouetteGoal, ValueError, VolumeGoal,
 };
 use crate::registry::Registry;
+
+/// The RGB distance from a mask's `background` colour within which a pixel is backdrop,
+/// when the scene gives no `tolerance`.
+const DEFAULT_BACKGROUND_TOLERANCE: u16 = 32;
 
 pub(super) struct Resolver<'a> {
     path: &'a Path,
@@ -323,13 +327,16 @@ impl<'a> Resolver<'a> {
         for (i, t) in v.target.iter().enumerate() {
             let key = format!("volume.target[{i}]");
             let path = self.file(&format!("{key}.mesh"), &t.mesh)?;
-            let mesh =
-                Mesh::from_obj(&path).map_err(|err| self.refused(format!("{key}.mesh"), err))?;
+            let mesh = Mesh::load(&path).map_err(|err| self.refused(format!("{key}.mesh"), err))?;
             targets.push(VolumeTarget {
                 name: t.mesh.clone(),
                 mesh,
                 inside: self.finite(&format!("{key}.inside"), t.inside)?,
                 outside: self.finite(&format!("{key}.outside"), t.outside)?,
+                fill: match t.fill {
+                    FillName::Parity => Fill::Parity,
+                    FillName::Winding => Fill::Winding,
+                },
             });
         }
         let form = self.form("volume", form, v.good, v.bad, v.overlap)?;
@@ -394,27 +401,85 @@ impl<'a> Resolver<'a> {
         let on = self.finite(&format!("{key}.on"), on)? as f32;
         let off = self.finite(&format!("{key}.off"), off)? as f32;
         let name = t.image.clone();
-        let rule = match t.threshold {
-            None => MaskRule::RedZero,
-            Some(level @ 1..=255) if t.kind == ImageKind::Mask => MaskRule::DarkerThan(level as u8),
-            Some(level) if t.kind == ImageKind::Mask => {
-                return Err(self.invalid(
-                    format!("{key}.threshold"),
-                    format!("{level} is not a grey level from 1 to 255"),
-                ));
-            }
-            Some(_) => {
-                return Err(self.invalid(
-                    format!("{key}.threshold"),
-                    "only a mask has a threshold; a weight map weighs every grey level",
-                ));
-            }
-        };
+        let rule = self.mask_rule(key, t)?;
         let target = match t.kind {
             ImageKind::Mask => ImageTarget::from_mask_by(name, &image, camera, on, off, rule),
             ImageKind::Weights => ImageTarget::from_weight_map(name, &image, camera, on, off),
         };
         target.map_err(|err| self.refused(image_key, err))
+    }
+
+    /// The rule that picks a mask's target pixels: at most one of `threshold`,
+    /// `alpha` and `background` (with its `tolerance`), for masks only.
+    fn mask_rule(&self, key: &str, t: &ImageTargetFile) -> Result<MaskRule, SceneError> {
+        let given: Vec<&str> = [
+            ("threshold", t.threshold.is_some()),
+            ("alpha", t.alpha.is_some()),
+            ("background", t.background.is_some()),
+        ]
+        .into_iter()
+        .filter_map(|(field, set)| set.then_some(field))
+        .collect();
+        if t.tolerance.is_some() && t.background.is_none() {
+            return Err(self.invalid(
+                format!("{key}.tolerance"),
+                "a tolerance is the distance from a `background` colour; give the background",
+            ));
+        }
+        match given[..] {
+            [] => return Ok(MaskRule::RedZero),
+            [field] if t.kind == ImageKind::Weights => {
+                return Err(self.invalid(
+                    format!("{key}.{field}"),
+                    "only a mask picks target pixels; a weight map weighs every grey level",
+                ));
+            }
+            [_] => {}
+            _ => {
+                return Err(self.invalid(
+                    format!("{key}.{}", given[1]),
+                    format!(
+                        "a mask has one rule, but {} are given; keep one",
+                        given.join(" and ")
+                    ),
+                ));
+            }
+        }
+        let level = |field: &str, value: u16| match value {
+            1..=255 => Ok(value as u8),
+            _ => Err(self.invalid(
+                format!("{key}.{field}"),
+                format!("{value} is not a level from 1 to 255"),
+            )),
+        };
+        if let Some(threshold) = t.threshold {
+            return Ok(MaskRule::DarkerThan(level("threshold", threshold)?));
+        }
+        if let Some(alpha) = t.alpha {
+            return Ok(MaskRule::OpaqueFrom(level("alpha", alpha)?));
+        }
+        let colour = t.background.unwrap_or_default();
+        let Ok(background) = colour
+            .map(u8::try_from)
+            .into_iter()
+            .collect::<Result<Vec<u8>, _>>()
+        else {
+            return Err(self.invalid(
+                format!("{key}.background"),
+                format!("{colour:?} is not an RGB colour of three values from 0 to 255"),
+            ));
+        };
+        let tolerance = t.tolerance.unwrap_or(DEFAULT_BACKGROUND_TOLERANCE);
+        if tolerance > 441 {
+            return Err(self.invalid(
+                format!("{key}.tolerance"),
+                format!("{tolerance} is beyond the largest RGB distance, 441"),
+            ));
+        }
+        Ok(MaskRule::FarFrom {
+            background: [background[0], background[1], background[2]],
+            tolerance,
+        })
     }
 
     fn camera(&self, key: &str, c: &CameraFile) -> Result<Camera, SceneError> {

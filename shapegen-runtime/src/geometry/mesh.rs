@@ -46,6 +46,24 @@ pub enum MeshError {
         /// What was wrong.
         what: String,
     },
+    /// The file's extension is not one of a mesh format.
+    #[error("cannot read mesh file `{}`: its extension is not one of {valid}", path.display())]
+    Format {
+        /// The file.
+        path: PathBuf,
+        /// The extensions read.
+        valid: String,
+    },
+    /// A mesh file other than OBJ is malformed.
+    #[error("cannot read {format} `{name}`: {what}")]
+    Decode {
+        /// The format, as `STL`, `PLY`, `glTF`.
+        format: String,
+        /// The file or the name the bytes were given.
+        name: String,
+        /// What was wrong.
+        what: String,
+    },
     /// The mesh has no triangles.
     #[error("mesh `{name}` has no triangles")]
     Empty {

@@ -3,7 +3,7 @@
 
 use glam::{Affine3A, Quat, Vec3};
 use shapegen_runtime::score::Form;
-use shapegen_runtime::score::volume::{Grid, VolumeScorer, VolumeTarget};
+use shapegen_runtime::score::volume::{Fill, Grid, VolumeScorer, VolumeTarget};
 use shapegen_runtime::{BoundMeshes, CUBE, Grammar, Instance, Mesh, MeshLibrary};
 
 use super::city_expanded::City;
@@ -24,6 +24,7 @@ pub fn target(name: &str, mesh: Mesh, inside: f64, outside: f64) -> VolumeTarget
         mesh,
         inside,
         outside,
+        fill: Fill::Parity,
     }
 }
 

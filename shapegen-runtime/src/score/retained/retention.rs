@@ -42,7 +42,7 @@ pub struct RetentionStats {
 ///
 /// ```
 /// use shapegen_runtime::score::retained::Retention;
-/// use shapegen_runtime::score::volume::{Grid, VolumeScorer, VolumeTarget};
+/// use shapegen_runtime::score::volume::{Fill, Grid, VolumeScorer, VolumeTarget};
 /// use shapegen_runtime::score::{Form, InstanceBatch, Scorer, count_batch};
 /// use shapegen_runtime::prelude::*;
 /// use shapegen_runtime::{Mesh, MeshLibrary};
@@ -66,7 +66,7 @@ pub struct RetentionStats {
 /// }
 ///
 /// let grid = Grid::new(Vec3::splat(-4.0), Vec3::splat(4.0), [32, 32, 32])?;
-/// let target = VolumeTarget { name: "t".into(), mesh: Mesh::unit_cube(), inside: 1.0, outside: -1.0 };
+/// let target = VolumeTarget { name: "t".into(), mesh: Mesh::unit_cube(), inside: 1.0, outside: -1.0, fill: Fill::Parity };
 /// let meshes = MeshLibrary::new().bind_names("Chain", &["cube"])?;
 /// let scorer = VolumeScorer::new(grid, &[target], &meshes, Form::Smooth { good: 1.0, bad: 1.0 })?;
 ///

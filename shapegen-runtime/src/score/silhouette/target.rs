@@ -91,6 +91,18 @@ pub enum MaskRule {
     /// Pixels whose luminance is below this level: `DarkerThan(128)` takes a sketch's
     /// anti-aliased dark grey edges into the target.
     DarkerThan(u8),
+    /// Pixels whose alpha is at least this level: a cut-out on a transparent
+    /// background.
+    OpaqueFrom(u8),
+    /// Pixels whose colour lies more than `tolerance` from `background` (Euclidean
+    /// distance of the 8-bit RGB values, 0 to 441): a photograph of an object before a
+    /// plain backdrop.
+    FarFrom {
+        /// The backdrop's colour.
+        background: [u8; 3],
+        /// The largest distance from it of a backdrop pixel.
+        tolerance: u16,
+    },
 }
 
 impl MaskRule {
@@ -100,6 +112,16 @@ impl MaskRule {
         match self {
             MaskRule::RedZero => pixel[0] == 0,
             MaskRule::DarkerThan(level) => pixel.to_luma()[0] < level,
+            MaskRule::OpaqueFrom(level) => pixel[3] >= level,
+            MaskRule::FarFrom {
+                background,
+                tolerance,
+            } => {
+                let d2: u32 = (0..3)
+                    .map(|c| u32::from(pixel[c].abs_diff(background[c])).pow(2))
+                    .sum();
+                d2 > u32::from(tolerance).pow(2)
+            }
         }
     }
 }

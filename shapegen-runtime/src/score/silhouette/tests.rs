@@ -723,3 +723,32 @@ fn the_tree_meshes_take_the_hull_path_and_a_concave_mesh_does_not() {
     let hulls: Vec<bool> = prepared.iter().map(|m| m.hull.is_some()).collect();
     assert_eq!(hulls, [true, true, true, false]);
 }
+
+#[test]
+fn masks_by_alpha_and_by_distance_from_a_background_colour() {
+    use image::{Rgba, RgbaImage};
+    // A photo-like 4 x 1 strip: white backdrop, near-white noise, a red object pixel
+    // (transparent), and a grey object pixel (opaque).
+    let pixels = [
+        Rgba([255, 255, 255, 0]),
+        Rgba([250, 245, 255, 0]),
+        Rgba([200, 30, 30, 100]),
+        Rgba([90, 90, 90, 255]),
+    ];
+    let image = DynamicImage::ImageRgba8(RgbaImage::from_fn(4, 1, |x, _| pixels[x as usize]));
+    let target = |rule| ImageTarget::from_mask_by("t".into(), &image, IDENTITY, 1.0, -1.0, rule);
+    let pixels_of = |t: &ImageTarget| (0..4).filter(|&x| t.weight(x, 0) > 0.0).collect::<Vec<_>>();
+
+    let opaque = target(MaskRule::OpaqueFrom(128)).unwrap();
+    assert_eq!(pixels_of(&opaque), [3]);
+    let visible = target(MaskRule::OpaqueFrom(1)).unwrap();
+    assert_eq!(pixels_of(&visible), [2, 3]);
+
+    // The noise pixel is sqrt(25 + 100) ~ 11.2 from white: within 12, not within 11.
+    let backdrop = |tolerance| MaskRule::FarFrom {
+        background: [255, 255, 255],
+        tolerance,
+    };
+    assert_eq!(pixels_of(&target(backdrop(12)).unwrap()), [2, 3]);
+    assert_eq!(pixels_of(&target(backdrop(11)).unwrap()), [1, 2, 3]);
+}

@@ -1,7 +1,7 @@
 //! The targets combined into one grid of voxel classes.
 
 use super::parity::{Bounds, Voxelizer};
-use super::{Grid, VolumeError, VolumeTarget};
+use super::{Fill, Grid, VolumeError, VolumeTarget, winding};
 use crate::score::squared_distances;
 
 /// The most distinct voxel weights (classes) a scene may have.
@@ -13,10 +13,10 @@ pub const MAX_CLASSES: usize = 16;
 /// ```
 /// use glam::Vec3;
 /// use shapegen_runtime::Mesh;
-/// use shapegen_runtime::score::volume::{Grid, VolumeTarget, VoxelClasses};
+/// use shapegen_runtime::score::volume::{Fill, Grid, VolumeTarget, VoxelClasses};
 ///
 /// let grid = Grid::new(Vec3::splat(-1.0), Vec3::splat(1.0), [4, 4, 4])?;
-/// let target = VolumeTarget { name: "cube".into(), mesh: Mesh::unit_cube(), inside: 1.0, outside: -0.5 };
+/// let target = VolumeTarget { name: "cube".into(), mesh: Mesh::unit_cube(), inside: 1.0, outside: -0.5, fill: Fill::Parity };
 /// let classes = VoxelClasses::new(&grid, &[target])?;
 /// assert_eq!(classes.weights(), [-0.5, 1.0]);
 /// assert_eq!(classes.target_voxels(), 8); // the middle 2 x 2 x 2
@@ -36,7 +36,8 @@ pub struct VoxelClasses {
 }
 
 impl VoxelClasses {
-    /// Voxelizes `targets` on `grid` by parity and combines their weights.
+    /// Voxelizes `targets` on `grid`, each by its [`Fill`] rule, and combines their
+    /// weights.
     ///
     /// Fails when a target's mesh is malformed or a weight is not finite (naming the
     /// target), or when the combined weights take more than [`MAX_CLASSES`] values.
@@ -64,19 +65,25 @@ impl VoxelClasses {
                     source,
                 })?;
             let bits = &mut inside[t * words..(t + 1) * words];
-            let place = |p: glam::Vec3| grid.to_lattice(p.as_dvec3());
-            let run = voxelizer.run(
-                &target.mesh,
-                place,
-                Bounds::Grid(grid.resolution()),
-                |j, k, a, b| {
-                    let base = (j + ny * k) * nx;
-                    for v in (base + a) as usize..=(base + b) as usize {
-                        bits[v / 64] |= 1 << (v % 64);
-                    }
-                },
-            );
-            debug_assert!(run.is_ok(), "grid bounds have no size limit");
+            let mut set = |v: usize| bits[v / 64] |= 1 << (v % 64);
+            match target.fill {
+                Fill::Parity => {
+                    let place = |p: glam::Vec3| grid.to_lattice(p.as_dvec3());
+                    let run = voxelizer.run(
+                        &target.mesh,
+                        place,
+                        Bounds::Grid(grid.resolution()),
+                        |j, k, a, b| {
+                            let base = (j + ny * k) * nx;
+                            ((base + a) as usize..=(base + b) as usize).for_each(&mut set);
+                        },
+                    );
+                    debug_assert!(run.is_ok(), "grid bounds have no size limit");
+                }
+                Fill::Winding => winding::inside_points(&target.mesh, grid)
+                    .into_iter()
+                    .for_each(set),
+            }
         }
 
         let weight_of = |v: usize| -> f64 {
@@ -123,10 +130,10 @@ impl VoxelClasses {
     /// ```
     /// use glam::Vec3;
     /// use shapegen_runtime::Mesh;
-    /// use shapegen_runtime::score::volume::{Grid, VolumeTarget, VoxelClasses};
+    /// use shapegen_runtime::score::volume::{Fill, Grid, VolumeTarget, VoxelClasses};
     ///
     /// let grid = Grid::new(Vec3::splat(-1.0), Vec3::splat(1.0), [8, 8, 8])?;
-    /// let target = VolumeTarget { name: "cube".into(), mesh: Mesh::unit_cube(), inside: 1.0, outside: -1.0 };
+    /// let target = VolumeTarget { name: "cube".into(), mesh: Mesh::unit_cube(), inside: 1.0, outside: -1.0, fill: Fill::Parity };
     /// let shaped = VoxelClasses::new(&grid, &[target])?.shaped(2.0)?;
     /// // Up to 15 bands of -1/15 .. -1 outside, of which the distances 1, √2, √3 and 2
     /// // or more take 4, and the target's 1.

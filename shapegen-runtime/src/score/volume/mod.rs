@@ -54,7 +54,7 @@
 //! use glam::{Affine3A, Quat, Vec3};
 //! use shapegen_runtime::{CUBE, Instance, Mesh, MeshLibrary};
 //! use shapegen_runtime::score::{Form, Scorer};
-//! use shapegen_runtime::score::volume::{Grid, VolumeScorer, VolumeTarget};
+//! use shapegen_runtime::score::volume::{Fill, Grid, VolumeScorer, VolumeTarget};
 //!
 //! // A 2 x 2 x 2 block of target voxels in the middle of a 4^3 grid of voxels of 0.5.
 //! let grid = Grid::new(Vec3::splat(-1.0), Vec3::splat(1.0), [4, 4, 4])?;
@@ -63,6 +63,7 @@
 //!     mesh: Mesh::unit_cube(),
 //!     inside: 1.0,
 //!     outside: -1.0,
+//!     fill: Fill::Parity,
 //! };
 //! let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"])?;
 //! let form = Form::Smooth { good: 2.0, bad: 15.0 };
@@ -109,6 +110,7 @@ mod parts;
 mod quant;
 mod retained;
 mod span;
+mod winding;
 
 pub use classes::{MAX_CLASSES, VoxelClasses};
 pub use count::VolumeScratch;
@@ -120,7 +122,7 @@ use super::{Form, Scorer, smoothstep};
 use crate::geometry::{BoundMeshes, Instance, Mesh, MeshError, MeshId};
 use parts::PartKind;
 
-/// A volume to fill (or avoid): a mesh in world space, voxelized by parity, and the
+/// A volume to fill (or avoid): a mesh in world space, voxelized by its [`Fill`] rule, and the
 /// weights a model's voxel scores inside and outside it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct VolumeTarget {
@@ -132,6 +134,22 @@ pub struct VolumeTarget {
     pub inside: f64,
     /// Weight of a voxel outside the mesh (also of each out-of-grid hit).
     pub outside: f64,
+    /// How the mesh's inside is found.
+    pub fill: Fill,
+}
+
+/// How a [`VolumeTarget`]'s inside is found on the grid's lattice points.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Fill {
+    /// A point is inside when the ray from it along +x crosses the mesh an odd number of
+    /// times: exact for closed meshes, and the original implementation's rule.
+    #[default]
+    Parity,
+    /// A point is inside when the mesh's generalized winding number about it has a
+    /// magnitude of at least 1/2: for open or messy meshes (holes, cracks, overlapping
+    /// or inverted parts), where parity streaks. Slower: every triangle is measured from
+    /// every lattice point within the mesh's bounding box, once per target.
+    Winding,
 }
 
 /// Why a [`VolumeScorer`] cannot be made.
@@ -311,9 +329,9 @@ impl VolumeScorer {
     /// # use glam::Vec3;
     /// # use shapegen_runtime::{CUBE, Instance, Mesh, MeshLibrary};
     /// # use shapegen_runtime::score::{Form, Scorer};
-    /// # use shapegen_runtime::score::volume::{Grid, VolumeScorer, VolumeTarget};
+    /// # use shapegen_runtime::score::volume::{Fill, Grid, VolumeScorer, VolumeTarget};
     /// let grid = Grid::new(Vec3::splat(-1.0), Vec3::splat(1.0), [4, 4, 4])?;
-    /// let target = VolumeTarget { name: "t".into(), mesh: Mesh::unit_cube(), inside: 1.0, outside: -1.0 };
+    /// let target = VolumeTarget { name: "t".into(), mesh: Mesh::unit_cube(), inside: 1.0, outside: -1.0, fill: Fill::Parity };
     /// let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"])?;
     /// let scorer = VolumeScorer::new(grid, &[target], &meshes, Form::Weighted { overlap: 0.0 })?;
     /// let cube = [Instance { transform: glam::Affine3A::IDENTITY, mesh: CUBE }];
