@@ -19,7 +19,7 @@ fn scene_and_target<G: Grammar>(name: &str) -> (Scene, Genome<G>) {
 fn metrics<G: Grammar>(scene: &Scene, instances: &[Instance], genes: usize) -> Metrics {
     let scorer = SceneScorer::new::<G>(scene).unwrap();
     let meshes = scene.meshes.bind(G::GRAPH).unwrap();
-    Metrics::of(scene, &scorer, &meshes, genes, instances)
+    Metrics::of(scene, Some(&scorer), &meshes, genes, instances)
 }
 
 #[test]
@@ -65,4 +65,52 @@ fn a_silhouette_targets_own_genome_has_iou_one_per_view() {
     assert_eq!((m.voxel_iou, m.surface), (None, None));
     let trunk_only = metrics::<Tree>(&scene, &instances[..1], genome.len());
     assert!(trunk_only.silhouette_iou[0].iou < 0.5);
+}
+
+#[test]
+fn a_scan_is_nearer_to_its_own_model_than_to_others_and_measured_per_cloud() {
+    use rand::SeedableRng;
+    use shapegen::score::objective::{Objective, Surface};
+
+    let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let scene = Scene::load(scenes.join("spaceship_scan.toml")).unwrap();
+    let genome: Genome<Spaceship> =
+        Genome::load_json(scenes.join("targets/spaceship_fill2.genome.json")).unwrap();
+    let goal = scene.objectives.as_ref().unwrap();
+    let [(name, Objective::Chamfer(chamfer))] = goal.set.entries() else {
+        panic!("{:?}", goal.set.entries());
+    };
+    assert_eq!(
+        (name.as_str(), chamfer.cloud().points.len()),
+        ("scan", 4096)
+    );
+    let meshes = scene.meshes.bind(Spaceship::GRAPH).unwrap();
+    let chamfer_of = |g: &Genome<Spaceship>| {
+        let mut instances = Vec::new();
+        g.derive_into(&mut instances);
+        chamfer.measure(&Surface::from_instances(&instances, &meshes))
+    };
+    let own = chamfer_of(&genome);
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+    let mut ops = shapegen::ops::Operators::<Spaceship>::new(scene.limits).unwrap();
+    for _ in 0..50 {
+        let other = ops.random(40, &mut rng);
+        assert!(
+            own < chamfer_of(&other),
+            "{own} against {}",
+            chamfer_of(&other)
+        );
+    }
+    // The run's measures: against the whole cloud, at 1 % of its diagonal.
+    let mut instances = Vec::new();
+    genome.derive_into(&mut instances);
+    let m = Metrics::of(&scene, None, &meshes, genome.len(), &instances);
+    assert_eq!((m.voxel_iou, m.surface), (None, None));
+    let [cloud] = &m.point_clouds[..] else {
+        panic!("{:?}", m.point_clouds);
+    };
+    assert_eq!(cloud.objective, "scan");
+    // Inner faces of the model's boxes are far from the scan; its outer faces are on it.
+    assert!(cloud.distance.chamfer < 0.2, "{cloud:?}");
+    assert!(cloud.distance.f_score > 0.2, "{cloud:?}");
 }

@@ -820,3 +820,45 @@ fn masks_pick_their_pixels_by_alpha_or_by_a_background_colour() {
         "only a mask",
     );
 }
+
+#[test]
+fn chamfer_objectives_read_their_point_cloud() {
+    use shapegen::score::objective::Objective;
+
+    let fixture = Fixture::new();
+    fs::write(fixture.dir.path().join("scan.xyz"), "0 0 0\n1 0 0\n0 1 0\n").unwrap();
+    let chamfer =
+        |fields: &str| format!("{OBJECTIVES}[[objective]]\nkind = \"chamfer\"\n{fields}\n");
+    let scene = fixture.load(&chamfer("points = \"scan.xyz\"")).unwrap();
+    let goal = scene.objectives.as_ref().unwrap();
+    let (name, Objective::Chamfer(c)) = &goal.set.entries()[3] else {
+        panic!("{:?}", goal.set.entries());
+    };
+    assert_eq!(
+        (name.as_str(), c.samples(), c.cloud().points.len()),
+        ("chamfer", 512, 3)
+    );
+
+    fixture.refuses(
+        &chamfer("points = \"scan.xyz\"\nsamples = 0"),
+        "objective[3].samples",
+        "takes 1 to 8192",
+    );
+    fixture.refuses(
+        &chamfer("points = \"none.xyz\""),
+        "objective[3].points",
+        "none.xyz",
+    );
+    fs::write(fixture.dir.path().join("bad.xyz"), "0 0\n").unwrap();
+    fixture.refuses(
+        &chamfer("points = \"bad.xyz\""),
+        "objective[3].points",
+        "line 1",
+    );
+    fixture.refuses(
+        &chamfer("points = \"cube.obj\""),
+        "objective[3].points",
+        ".xyz, .txt, .ply",
+    );
+    fixture.refuses(&chamfer(""), "objective[3]", "points");
+}

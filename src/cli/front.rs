@@ -14,7 +14,7 @@ use shapegen::optimize::multi::{
     Member, MultiGa, MultiGaState, MultiResult, MultiSnapshot, Ranking,
 };
 use shapegen::optimize::{Control, Sense, Session};
-use shapegen::scene::{ObjectiveEvaluator, Overrides, Scene};
+use shapegen::scene::{Metrics, ObjectiveEvaluator, Overrides, Scene};
 use shapegen::score::objective::{ObjectiveSet, Surface};
 use shapegen::{BoundMeshes, Grammar, Instance};
 
@@ -44,6 +44,9 @@ struct ObjectiveSummary<'a> {
     sense: Sense,
     /// The best value in the front.
     best: f64,
+    /// The measures of the front's model with that value, against the scene's targets.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    metrics: Option<Metrics>,
 }
 
 /// `summary.json` of a multi-objective run.
@@ -113,10 +116,11 @@ impl FrontRun<'_> {
         let set = evaluator.set();
         let names: Vec<&str> = set.names().collect();
         eprintln!(
-            "evolving {} against {} objectives ({}) with the multi-objective GA, {} ranking, \
+            "evolving {} against {} objective{} ({}) with the multi-objective GA, {} ranking, \
              on the CPU",
             self.scene.generator,
             set.len(),
+            if set.len() == 1 { "" } else { "s" },
             names.join(", "),
             ranking,
         );
@@ -162,11 +166,25 @@ impl FrontRun<'_> {
             .iter()
             .zip(set.senses())
             .enumerate()
-            .map(|(i, ((name, objective), &sense))| ObjectiveSummary {
-                name,
-                kind: objective.name(),
-                sense,
-                best: best_by(&front, i, sense).map_or(f64::NAN, |m| m.values[i]),
+            .map(|(i, ((name, objective), &sense))| {
+                let best = best_by(&front, i, sense);
+                ObjectiveSummary {
+                    name,
+                    kind: objective.name(),
+                    sense,
+                    best: best.map_or(f64::NAN, |m| m.values[i]),
+                    metrics: best.map(|m| {
+                        let mut instances = Vec::new();
+                        m.genome.derive_into(&mut instances);
+                        Metrics::of(
+                            self.scene,
+                            None,
+                            &outputs.meshes,
+                            m.genome.len(),
+                            &instances,
+                        )
+                    }),
+                }
             })
             .collect();
         let summary = Summary {

@@ -244,6 +244,18 @@ pub(super) enum ObjectiveFile {
     TopMatch(ProjectionFile),
     /// An image matched by the view from the front.
     FrontMatch(ProjectionFile),
+    /// A point cloud approached by the model's surface.
+    Chamfer {
+        /// The cloud's file (`.xyz`, `.txt` or `.ply`).
+        points: String,
+        #[serde(default = "chamfer_samples")]
+        samples: usize,
+    },
+}
+
+/// Default samples a side of a `chamfer` objective.
+fn chamfer_samples() -> usize {
+    512
 }
 
 /// Default tolerance between normals counted as one, in degrees.

@@ -8,6 +8,7 @@ use shapegen_runtime::score::Scorer;
 use shapegen_runtime::score::metrics::{
     SurfaceDistance, Triangle, mesh_triangles, model_triangles, silhouette_iou, voxel_iou,
 };
+use shapegen_runtime::score::objective::Objective;
 use shapegen_runtime::{BoundMeshes, Instance, Mesh};
 
 use super::{Scene, SceneScorer, ScorerGoal};
@@ -37,10 +38,25 @@ pub struct Metrics {
     /// [`F_SCORE_THRESHOLD`] of their bounding box's diagonal.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub surface: Option<SurfaceDistance>,
+    /// Its surface against the point cloud of each `chamfer` objective, in the scene's
+    /// order: [`SURFACE_SAMPLES`] points of each side, the F-score at
+    /// [`F_SCORE_THRESHOLD`] of the cloud's bounding box's diagonal.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub point_clouds: Vec<CloudDistance>,
     /// Intersection over union of its silhouette with each target image, in the scene's
     /// order (scenes with a `[silhouette]`).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub silhouette_iou: Vec<ViewIou>,
+}
+
+/// The surface distance to one point cloud.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CloudDistance {
+    /// The objective whose cloud it is, by its name.
+    pub objective: String,
+    /// Chamfer distance and F-score.
+    #[serde(flatten)]
+    pub distance: SurfaceDistance,
 }
 
 /// The silhouette IoU through one target's camera.
@@ -54,21 +70,22 @@ pub struct ViewIou {
 
 impl Metrics {
     /// The measures of a model of `genes` genes deriving `instances` (of `meshes`,
-    /// bound to its grammar) against `scene`'s targets, counted on the CPU by `scorer`.
+    /// bound to its grammar) against `scene`'s targets, counted on the CPU by `scorer`
+    /// (none for a multi-objective scene, which has no scorers: no IoU then).
     /// Deterministic: the surface samples come from a fixed seed.
     pub fn of(
         scene: &Scene,
-        scorer: &SceneScorer,
+        scorer: Option<&SceneScorer>,
         meshes: &BoundMeshes,
         genes: usize,
         instances: &[Instance],
     ) -> Metrics {
         let model = model_triangles(instances, meshes);
         let voxel_iou = scorer
-            .volume()
+            .and_then(SceneScorer::volume)
             .map(|v| voxel_iou(v, &v.count(instances, &mut v.scratch())));
         let silhouette_iou = scorer
-            .silhouette()
+            .and_then(SceneScorer::silhouette)
             .map(|s| {
                 let counts = s.count(instances, &mut s.scratch());
                 s.targets()
@@ -87,6 +104,7 @@ impl Metrics {
             triangles: model.len(),
             voxel_iou,
             surface: surface(scene, &model),
+            point_clouds: point_clouds(scene, &model),
             silhouette_iou,
         }
     }
@@ -111,4 +129,29 @@ fn surface(scene: &Scene, model: &[Triangle]) -> Option<SurfaceDistance> {
     let target: Vec<Triangle> = meshes.iter().flat_map(|m| mesh_triangles(m)).collect();
     let threshold = F_SCORE_THRESHOLD * f64::from((hi - lo).length());
     SurfaceDistance::between(model, &target, threshold, SURFACE_SAMPLES, 0)
+}
+
+/// The model's surface against each `chamfer` objective's whole cloud.
+fn point_clouds(scene: &Scene, model: &[Triangle]) -> Vec<CloudDistance> {
+    let Some(goal) = scene.objectives.as_ref() else {
+        return Vec::new();
+    };
+    goal.set
+        .entries()
+        .iter()
+        .filter_map(|(name, objective)| match objective {
+            Objective::Chamfer(chamfer) => Some((name, chamfer.cloud())),
+            _ => None,
+        })
+        .filter_map(|(name, cloud)| {
+            let (lo, hi) = cloud.bounds();
+            let threshold = F_SCORE_THRESHOLD * f64::from((hi - lo).length());
+            let distance =
+                SurfaceDistance::to_points(model, &cloud.points, threshold, SURFACE_SAMPLES, 0)?;
+            Some(CloudDistance {
+                objective: name.clone(),
+                distance,
+            })
+        })
+        .collect()
 }

@@ -34,9 +34,11 @@
 //!                                    # distance to it, in full from 4 voxels away
 //!                                    # (VolumeScorer::shaped)
 //! [[volume.target]]
-//! mesh = "target.obj"
+//! mesh = "target.obj"                # .obj, .stl (ASCII or binary), .ply, .gltf or .glb
 //! inside = 1.0                       # weight of voxels inside (negative avoids)
 //! outside = -1.0                     # weight of voxels outside
+//! fill = "parity"                    # closed meshes (the original's rule); "winding":
+//!                                    # open or messy meshes, by generalized winding number
 //!
 //! [silhouette]
 //! good = 1.0
@@ -50,6 +52,9 @@
 //!                                    # weigh `on` (1), the others `off` (-1); "weights": grey
 //!                                    # levels from `on` (black) to `off` (white)
 //! threshold = 128                    # optional, masks: pixels darker than this are the target
+//! # alpha = 128                      # or: pixels at least this opaque are the target
+//! # background = [255, 255, 255]     # or: pixels farther than `tolerance` (RGB distance,
+//! # tolerance = 32                   #   default 32) from this colour are the target
 //! camera = { phi = -3.05, theta = 0.05, radius = 12.4, lookat = [1.8, 4.7, -0.6],
 //!            fov = 60, near = 0.1, far = 100, width = 800, height = 600 }
 //! # or: camera = { view = [[..], [..], [..], [..]], projection = [..], width = .., height = .. }
@@ -89,6 +94,10 @@
 //! kind = "footprint_excess"          # how far the x/z extent leaves [min, max], minimized
 //! min = [-5, -5]
 //! max = [5, 5]
+//! [[objective]]
+//! kind = "chamfer"                   # Chamfer distance to a point cloud, minimized
+//! points = "scan.xyz"                # .xyz or .txt (x y z per line) or .ply (its vertices)
+//! samples = 512                      # points a side (default 512)
 //!
 //! [selection]
 //! ranking = "pareto"                 # or summed_rank, normalized_summed_rank, weighted_sum

@@ -3,11 +3,12 @@
 
 use glam::Vec2;
 use shapegen_runtime::geometry::BoundMeshes;
+use shapegen_runtime::geometry::PointCloud;
 use shapegen_runtime::optimize::multi::MultiEvaluator;
 use shapegen_runtime::optimize::{EvaluateError, Sense};
 use shapegen_runtime::score::InstanceBatch;
 use shapegen_runtime::score::objective::{
-    BredObjectives, Objective, ObjectiveSet, ProjectionMatch, View,
+    BredObjectives, ChamferMatch, Objective, ObjectiveSet, ProjectionMatch, View,
 };
 use shapegen_runtime::score::retained::RetentionStats;
 use shapegen_runtime::{Genome, Grammar};
@@ -39,6 +40,9 @@ impl Resolver<'_> {
                 },
                 ObjectiveFile::TopMatch(p) => self.projection(&image, View::Top, &p)?,
                 ObjectiveFile::FrontMatch(p) => self.projection(&image, View::Front, &p)?,
+                ObjectiveFile::Chamfer { points, samples } => {
+                    self.chamfer(&format!("objective[{i}]"), &points, samples)?
+                }
             };
             entries.push((
                 name.unwrap_or_else(|| objective.name().to_owned()),
@@ -80,6 +84,16 @@ impl Resolver<'_> {
                 }
             })?;
         Ok((name, file))
+    }
+
+    /// A Chamfer objective toward the point cloud `points` of the table `key`.
+    fn chamfer(&self, key: &str, points: &str, samples: usize) -> Result<Objective, SceneError> {
+        let points_key = format!("{key}.points");
+        let path = self.file(&points_key, points)?;
+        let cloud = PointCloud::load(&path).map_err(|err| self.refused(&points_key, err))?;
+        let chamfer = ChamferMatch::new(&cloud, samples)
+            .map_err(|err| self.refused(format!("{key}.samples"), err))?;
+        Ok(Objective::Chamfer(chamfer))
     }
 
     /// A projection objective through `view`, its image read as `key`.

@@ -108,24 +108,81 @@ impl SurfaceDistance {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let a = sample(model, samples, &mut rng)?;
         let b = sample(target, samples, &mut rng)?;
-        let (a_to_b, precision) = nearest(&a, &b, threshold);
-        let (b_to_a, recall) = nearest(&b, &a, threshold);
+        Some(Self::of_samples(&a, &b, threshold))
+    }
+
+    /// The distance between `model` and the point cloud `points`: the model sampled at
+    /// `samples` points as in [`between`](Self::between), the cloud taken whole when it
+    /// has at most `samples` points and otherwise `samples` of them drawn without
+    /// replacement from the same seeded stream. `None` when the model has no area or
+    /// either side is empty.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use shapegen_runtime::score::metrics::SurfaceDistance;
+    ///
+    /// let square = [
+    ///     [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0)],
+    ///     [Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0), Vec3::Y],
+    /// ];
+    /// // A scan of the square 0.2 above it.
+    /// let scan: Vec<Vec3> = (0..100)
+    ///     .map(|i| Vec3::new((i % 10) as f32 / 9.0, (i / 10) as f32 / 9.0, 0.2))
+    ///     .collect();
+    /// let d = SurfaceDistance::to_points(&square, &scan, 0.25, 1000, 0).unwrap();
+    /// assert_eq!(d.f_score, 1.0);
+    /// assert!(d.chamfer >= 0.2 && d.chamfer < 0.25);
+    /// ```
+    pub fn to_points(
+        model: &[Triangle],
+        points: &[Vec3],
+        threshold: f64,
+        samples: usize,
+        seed: u64,
+    ) -> Option<SurfaceDistance> {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let a = sample(model, samples, &mut rng)?;
+        let b = subsample(points, samples, &mut rng);
+        if b.is_empty() {
+            return None;
+        }
+        Some(Self::of_samples(&a, &b, threshold))
+    }
+
+    /// The measures of two sets of samples.
+    fn of_samples(a: &[DVec3], b: &[DVec3], threshold: f64) -> SurfaceDistance {
+        let (a_to_b, precision) = nearest(a, b, threshold);
+        let (b_to_a, recall) = nearest(b, a, threshold);
         let f_score = if precision + recall > 0.0 {
             2.0 * precision * recall / (precision + recall)
         } else {
             0.0
         };
-        Some(SurfaceDistance {
+        SurfaceDistance {
             chamfer: (a_to_b + b_to_a) / 2.0,
             f_score,
             threshold,
-            samples,
-        })
+            samples: a.len(),
+        }
     }
 }
 
+/// `points` whole when there are at most `n`, else `n` of them drawn without
+/// replacement (a partial Fisher-Yates shuffle) from `rng`.
+pub(crate) fn subsample(points: &[Vec3], n: usize, rng: &mut ChaCha8Rng) -> Vec<DVec3> {
+    let mut all: Vec<DVec3> = points.iter().map(|p| p.as_dvec3()).collect();
+    if all.len() > n {
+        for i in 0..n {
+            let j = rng.random_range(i..all.len());
+            all.swap(i, j);
+        }
+        all.truncate(n);
+    }
+    all
+}
+
 /// `n` points uniformly by area on `triangles`; `None` when they have no area or `n` is 0.
-fn sample(triangles: &[Triangle], n: usize, rng: &mut ChaCha8Rng) -> Option<Vec<DVec3>> {
+pub(crate) fn sample(triangles: &[Triangle], n: usize, rng: &mut ChaCha8Rng) -> Option<Vec<DVec3>> {
     let mut cumulative = Vec::with_capacity(triangles.len());
     let mut total = 0.0;
     for t in triangles {
@@ -157,7 +214,7 @@ fn sample(triangles: &[Triangle], n: usize, rng: &mut ChaCha8Rng) -> Option<Vec<
 
 /// The mean distance from each point of `from` to its nearest point of `to`, and the
 /// share of `from` within `threshold` of `to`.
-fn nearest(from: &[DVec3], to: &[DVec3], threshold: f64) -> (f64, f64) {
+pub(crate) fn nearest(from: &[DVec3], to: &[DVec3], threshold: f64) -> (f64, f64) {
     let distances: Vec<f64> = from
         .par_iter()
         .map(|p| {

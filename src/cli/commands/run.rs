@@ -321,7 +321,7 @@ impl Run<'_> {
             incremental: evaluator.retention().map(Incremental::from),
             metrics: Metrics::of(
                 self.scene,
-                &scorer,
+                Some(&scorer),
                 &outputs.meshes,
                 result.best.len(),
                 &instances,

@@ -3,6 +3,7 @@
 use glam::{Vec2, Vec3};
 
 use super::ObjectiveError;
+use super::chamfer::ChamferMatch;
 use super::normals::{NormalGrid, cluster, spread};
 use super::projection::{ProjectionMatch, View};
 use super::surface::Surface;
@@ -71,6 +72,9 @@ pub enum Objective {
     /// Fraction of the pixels of an orthographic projection that match a target image,
     /// in `[0, 1]` ([`Sense::Maximize`]); see [`ProjectionMatch`].
     Projection(ProjectionMatch),
+    /// Symmetric Chamfer distance to a point cloud, in world units
+    /// ([`Sense::Minimize`]); see [`ChamferMatch`].
+    Chamfer(ChamferMatch),
 }
 
 /// Reusable working memory for measuring [objectives](Objective): one per worker.
@@ -108,7 +112,9 @@ impl Objective {
     /// The direction in which the objective's value is better.
     pub fn sense(&self) -> Sense {
         match self {
-            Objective::Height { .. } | Objective::FootprintExcess { .. } => Sense::Minimize,
+            Objective::Height { .. }
+            | Objective::FootprintExcess { .. }
+            | Objective::Chamfer(_) => Sense::Minimize,
             Objective::UniqueNormals { .. }
             | Objective::NormalSpread { .. }
             | Objective::Projection(_) => Sense::Maximize,
@@ -116,7 +122,7 @@ impl Objective {
     }
 
     /// The kind of objective, in snake case: `height`, `unique_normals`,
-    /// `normal_spread`, `footprint_excess`, `top_match` or `front_match`.
+    /// `normal_spread`, `footprint_excess`, `top_match`, `front_match` or `chamfer`.
     pub fn name(&self) -> &'static str {
         match self {
             Objective::Height { .. } => "height",
@@ -127,6 +133,7 @@ impl Objective {
                 View::Top => "top_match",
                 View::Front => "front_match",
             },
+            Objective::Chamfer(_) => "chamfer",
         }
     }
 
@@ -191,6 +198,7 @@ impl Objective {
                     + excess(max.y, hi.y)
             }),
             Objective::Projection(p) => p.score_with(surface, &mut scratch.coverage),
+            Objective::Chamfer(c) => c.measure(surface),
         }
     }
 }

@@ -6,7 +6,8 @@
 //! distance of the model's top to a target height, the number of distinct face normals,
 //! how far apart those normals are, how far the footprint exceeds a rectangle, and how
 //! well a top-down or front orthographic projection matches a black-and-white target
-//! image ([`ProjectionMatch`], rasterized as the silhouette scorer does).
+//! image ([`ProjectionMatch`], rasterized as the silhouette scorer does), and how close
+//! the surface comes to a scanned point cloud ([`ChamferMatch`]).
 //!
 //! An [`ObjectiveSet`] names the objectives of a search and measures whole populations
 //! ([`InstanceBatch`](crate::score::InstanceBatch)es) on the rayon pool, one row of
@@ -33,6 +34,7 @@
 //! ```
 
 mod bred;
+mod chamfer;
 mod kind;
 mod normals;
 mod projection;
@@ -41,6 +43,7 @@ mod set;
 mod surface;
 
 pub use bred::BredObjectives;
+pub use chamfer::{ChamferMatch, MAX_CHAMFER_SAMPLES};
 pub use kind::{Objective, ObjectiveScratch};
 pub use projection::{ProjectionMatch, View};
 pub use retained::{ProjectionCounts, ProjectionScorer, ProjectionScratch, ProjectionState};
@@ -53,6 +56,17 @@ use glam::Vec2;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum ObjectiveError {
+    /// A Chamfer objective's sample count is out of range.
+    #[error("{samples} samples; a chamfer objective takes 1 to {max}")]
+    Samples {
+        /// Samples asked for.
+        samples: usize,
+        /// [`MAX_CHAMFER_SAMPLES`].
+        max: usize,
+    },
+    /// A Chamfer objective's point cloud has no point.
+    #[error("the point cloud has no points")]
+    EmptyCloud,
     /// A projection target image has no pixel.
     #[error("the projection image is {width} x {height}; it must have at least one pixel")]
     EmptyImage {
