@@ -40,7 +40,7 @@ pub const MAX_CHAMFER_SAMPLES: usize = 8192;
 ///     let model = [Instance { transform: Affine3A::from_translation(Vec3::Y * y), mesh: CUBE }];
 ///     chamfer.measure(&Surface::from_instances(&model, &meshes))
 /// };
-/// assert!(at(0.0) < at(1.0));
+/// assert!(at(0.0) < at(2.0));
 /// assert_eq!(chamfer.measure(&Surface::new()), 2f64.sqrt());
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
