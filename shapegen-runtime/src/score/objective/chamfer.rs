@@ -41,7 +41,7 @@ pub const MAX_CHAMFER_SAMPLES: usize = 8192;
 ///     chamfer.measure(&Surface::from_instances(&model, &meshes))
 /// };
 /// assert!(at(0.0) < at(2.0));
-/// assert_eq!(chamfer.measure(&Surface::new()), 2f64.sqrt());
+/// assert_eq!(chamfer.measure(&Surface::new()), f64::from(2f32.sqrt())); // the diagonal
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Clone, Debug, PartialEq)]
