@@ -25,6 +25,10 @@ const TESTS: &[GpuTest] = &[
         the_gpu_counts_as_the_cpu_does,
     ),
     (
+        "the_gpu_counts_several_views_as_the_cpu_does",
+        the_gpu_counts_several_views_as_the_cpu_does,
+    ),
+    (
         "a_population_beyond_the_gpus_bindings_is_refused_before_it_runs",
         a_population_beyond_the_gpus_bindings_is_refused_before_it_runs,
     ),
@@ -84,6 +88,45 @@ fn the_gpu_counts_as_the_cpu_does() {
         .map(|l| serde_json::from_str(l).unwrap())
         .collect();
     assert_eq!(cpu, gpu, "exact voxel counts and equal fitness");
+}
+
+/// The three views of `scenes/spaceship_views.toml` on random spaceships and on the
+/// target's own genome: each view's pixel counts agree up to pixels whose centres lie
+/// within rounding of an edge (0.5 % of the CPU's count plus 2 pixels per instance, as
+/// the runtime's GPU tests allow), and the target's genome covers every view exactly.
+fn the_gpu_counts_several_views_as_the_cpu_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let project = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let scene = project.join("scenes/spaceship_views.toml");
+    let own = project.join("scenes/targets/spaceship_fill2.genome.json");
+    let random = sample("spaceship", "12", &dir.path().join("ships"));
+    for genomes in [&random, &own] {
+        let cpu = score(&scene, genomes, "--cpu");
+        let gpu = score(&scene, genomes, "--gpu");
+        assert_eq!(cpu.len(), gpu.len());
+        for (c, g) in cpu.iter().zip(&gpu) {
+            let instances = c["instances"].as_f64().unwrap();
+            let (cv, gv) = (
+                c["silhouette"].as_array().unwrap(),
+                g["silhouette"].as_array().unwrap(),
+            );
+            assert_eq!((cv.len(), gv.len()), (3, 3), "{c}");
+            for (cc, gc) in cv.iter().zip(gv) {
+                for field in ["covered", "on_target", "off_target"] {
+                    let (a, b) = (cc[field].as_f64().unwrap(), gc[field].as_f64().unwrap());
+                    let tolerance = a * 0.005 + 2.0 * instances;
+                    assert!((a - b).abs() <= tolerance, "{field}: cpu {c}, gpu {g}");
+                }
+            }
+        }
+        if genomes == &own {
+            assert_eq!(
+                cpu, gpu,
+                "the target's own genome: exact counts in every view"
+            );
+            assert_eq!(cpu[0]["fitness"], 3.0);
+        }
+    }
 }
 
 /// A million models' volume counters take more than the 128 MiB a storage binding is

@@ -373,3 +373,30 @@ fn a_shaped_scene_runs_and_its_best_scores_above_its_published_fitness() {
     assert_eq!(in_shaped, summary["best_fitness"].as_f64().unwrap());
     assert!(in_plain < in_shaped, "{in_plain} < {in_shaped}");
 }
+
+#[test]
+fn a_scene_of_three_views_searches_all_three_and_measures_each() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/spaceship_views.toml");
+    let summary = run_summary(&scene, &dir.path().join("out"), &["--evaluations", "1500"]);
+    let views = summary["metrics"]["silhouette_iou"].as_array().unwrap();
+    let names: Vec<&str> = views
+        .iter()
+        .map(|v| v["target"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "targets/spaceship_views_front.png",
+            "targets/spaceship_views_side.png",
+            "targets/spaceship_views_top.png"
+        ]
+    );
+    // Each view is matched in part by 1,500 evaluations of the hybrid; the fitness sums
+    // the three terms, so it is above what any one view alone can give (1).
+    for view in views {
+        let iou = view["iou"].as_f64().unwrap();
+        assert!(iou > 0.5, "{view}");
+    }
+    assert!(summary["best_fitness"].as_f64().unwrap() > 2.0, "{summary}");
+}
