@@ -76,6 +76,18 @@ pub enum CheckpointError {
         /// The run the settings make, in words (`a population of 100`).
         run: String,
     },
+    /// A polishing strategy does not fit the genome it polishes, or holds numbers no
+    /// strategy reaches.
+    #[error(
+        "a polishing strategy of {dimensions} dimensions for a genome of {coordinates} \
+         continuous parameters, or with a step size or variance that is not a positive number"
+    )]
+    Strategy {
+        /// The strategy's dimensions.
+        dimensions: usize,
+        /// The genome's coordinates.
+        coordinates: usize,
+    },
     /// The evaluator scores other objectives than the run did before it was saved.
     #[error("objectives {found:?} for a run on {saved:?}")]
     Objectives {

@@ -48,6 +48,7 @@ mod hybrid;
 pub mod islands;
 mod mcmc;
 pub mod multi;
+mod polish;
 mod random;
 mod run;
 mod session;
@@ -62,6 +63,7 @@ pub use error::{BufferSize, CheckpointError, OptimizeError, SettingsError};
 pub use ga::{Ga, GaSettings, GaState, ParentSelection};
 pub use hybrid::{Hybrid, HybridSettings, HybridState};
 pub use mcmc::{Mcmc, McmcSettings, McmcState, McmcVariant};
+pub use polish::{Coordinate, PolishState, SepCmaEs, polish_coordinates};
 pub use random::{RandomSearch, RandomSearchSettings, RandomSearchState};
 pub use run::{
     Budget, Control, HistoryEntry, Observer, Progress, RunResult, Silent, Snapshot, StopReason,

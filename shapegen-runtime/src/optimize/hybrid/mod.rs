@@ -12,6 +12,7 @@ use super::core::Core;
 use super::error::check_range;
 use super::fitness::bits_vec;
 use super::ga::{Breeder, check_population};
+use super::polish::{Polish, PolishState, Polisher};
 use super::run::derived_seed;
 use super::{
     Evaluator, GaSettings, Held, OptimizeError, Optimizer, Order, Record, Settings, SettingsError,
@@ -40,6 +41,13 @@ pub struct HybridSettings {
     /// Chance that a refinement move is a jump (a subtree redrawn from the grammar)
     /// rather than a diffusion (one gene's parameters redrawn); in `[0, 1]`.
     pub jump_probability: f64,
+    /// Candidates a separable CMA-ES draws each generation to tune the continuous
+    /// parameters of the population's best (see [`Hybrid`]); 0 polishes nothing,
+    /// otherwise at least 2.
+    pub polish: u32,
+    /// The step size a new polishing strategy starts with, as a share of each
+    /// parameter's range; in `(0, 1]`.
+    pub polish_sigma: f64,
 }
 
 impl Default for HybridSettings {
@@ -50,6 +58,8 @@ impl Default for HybridSettings {
             refine: 4,
             refine_moves: 2,
             jump_probability: 0.5,
+            polish: 0,
+            polish_sigma: 0.1,
         }
     }
 }
@@ -67,13 +77,28 @@ impl Settings for HybridSettings {
                 "at most the population",
             ));
         }
+        if self.polish == 1 {
+            return Err(SettingsError::new(
+                "polish",
+                self.polish,
+                "0, or at least 2",
+            ));
+        }
         check_range(
             "jump_probability",
             self.jump_probability,
             0.0,
             1.0,
             "between 0 and 1",
-        )
+        )?;
+        if !(self.polish_sigma > 0.0 && self.polish_sigma <= 1.0) {
+            return Err(SettingsError::new(
+                "polish_sigma",
+                self.polish_sigma,
+                "above 0 and at most 1",
+            ));
+        }
+        Ok(())
     }
 }
 
@@ -100,6 +125,9 @@ crate::checkpoint! {
         pub fitness: Vec<f64>,
         /// The SOSMC seeding the first population, while it runs.
         pub seeding: Option<SmcState<G>>,
+        /// The polishing under way, if any.
+        #[serde(default)]
+        pub polish: Option<PolishState<G>>,
     }
 }
 
@@ -119,14 +147,22 @@ crate::checkpoint! {
 ///   tempered variant's jumps and diffusions ([`McmcVariant::Tempered`](
 ///   super::McmcVariant::Tempered)); a move is kept when it loses nothing (a chain at
 ///   temperature 0). The refined individuals take the place of those they came from.
+/// - **Polishing** (off by default): with [`polish`](HybridSettings::polish), the
+///   continuous parameters of the generation's best are then tuned by a separable
+///   CMA-ES ([`SepCmaEs`](super::SepCmaEs)) that draws that many candidates; the
+///   strategy goes on while the best keeps its structure and starts again when another
+///   structure leads. The best candidate replaces the individual when it scores at least
+///   as well. The strategy is part of the checkpoint.
 ///
 /// Random streams: the GA breeds generation `g` from (seed, `g`, pair); refinement
-/// chain `i` of generation `g` draws from (seed, `g`, 2^31 + `i`); the random first
+/// chain `i` of generation `g` draws from (seed, `g`, 2^31 + `i`), its polishing from
+/// (seed, `g`, 3 * 2^30); the random first
 /// population comes from the run's seed, its seeding from the seed derived for `2^32`.
 /// Results never depend on the thread count.
 ///
 /// Evaluations: the first population costs `population`, and each seeding step as
-/// much; a generation costs `population - elitism + refine * refine_moves`.
+/// much; a generation costs `population - elitism + refine * refine_moves + polish`
+/// (polishing makes none while the best has no continuous parameter).
 ///
 /// ```
 /// use shapegen_runtime::optimize::{Budget, FnEvaluator, GaSettings, Hybrid, HybridSettings};
@@ -166,6 +202,8 @@ pub struct Hybrid<G> {
     moves: Operators<G>,
     seeding: Option<Smc<G>>,
     chains: refine::Chains<G>,
+    polisher: Polisher<G>,
+    polishing: Option<PolishState<G>>,
 }
 
 impl<G: Grammar> std::fmt::Debug for Hybrid<G> {
@@ -215,6 +253,12 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
                 setting: "optimizer.refine",
                 value: settings.refine.into(),
             },
+            Held {
+                genomes: u64::from(settings.polish) + u64::from(settings.polish > 0),
+                saved: u64::from(settings.polish > 0),
+                setting: "optimizer.polish",
+                value: settings.polish.into(),
+            },
         ]
     }
 
@@ -225,6 +269,8 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
             moves: Operators::new(limits)?,
             seeding: None,
             chains: refine::Chains::new(settings.refine as usize),
+            polisher: Polisher::new(),
+            polishing: None,
             core: Core::new(settings, limits, seed),
         })
     }
@@ -250,17 +296,28 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
 
     /// The population and its fitness, or while it is seeded none and the SOSMC's
     /// checkpoint.
-    fn save_body(&self) -> (Vec<Genome<G>>, Vec<f64>, Option<SmcState<G>>) {
+    #[allow(clippy::type_complexity)]
+    fn save_body(
+        &self,
+    ) -> (
+        Vec<Genome<G>>,
+        Vec<f64>,
+        Option<SmcState<G>>,
+        Option<PolishState<G>>,
+    ) {
         match &self.seeding {
-            Some(smc) => (Vec::new(), Vec::new(), Some(smc.checkpoint())),
+            Some(smc) => (Vec::new(), Vec::new(), Some(smc.checkpoint()), None),
             None => {
                 let (population, fitness) = self.breeder.save();
-                (population, fitness, None)
+                (population, fitness, None, self.polishing.clone())
             }
         }
     }
 
     fn check_body(state: &HybridState<G>) -> Result<(), OptimizeError> {
+        if let Some(polish) = &state.polish {
+            polish.check()?;
+        }
         match &state.seeding {
             Some(smc) if smc.progress.record.started() => Smc::<G>::check_body(smc),
             Some(_) => Ok(()),
@@ -268,10 +325,17 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
         }
     }
 
+    #[allow(clippy::type_complexity)]
     fn restore_body(
         &mut self,
-        (population, fitness, seeding): (Vec<Genome<G>>, Vec<f64>, Option<SmcState<G>>),
+        (population, fitness, seeding, polishing): (
+            Vec<Genome<G>>,
+            Vec<f64>,
+            Option<SmcState<G>>,
+            Option<PolishState<G>>,
+        ),
     ) -> Result<(), OptimizeError> {
+        self.polishing = polishing;
         match seeding {
             // While the first population is seeded, the GA's own is not there yet.
             Some(smc) => self.seeding = Some(Smc::resume(smc)?),
@@ -285,7 +349,7 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
         if self.seeding.is_some() {
             u64::from(ga.population)
         } else {
-            ga.children() + self.refine_cost()
+            ga.children() + self.refine_cost() + u64::from(self.core.settings.polish)
         }
     }
 
@@ -331,6 +395,17 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
             (&mut b.population, &mut b.scores),
         )?;
         progress.evaluations += cost;
+        progress.evaluations += self.polisher.polish(
+            Polish {
+                candidates: settings.polish,
+                sigma: settings.polish_sigma,
+                seed: progress.seed,
+                generation: progress.generation + 1,
+            },
+            &mut self.polishing,
+            evaluator,
+            (&mut b.population, &mut b.scores),
+        )?;
         Ok(())
     }
 }
