@@ -125,6 +125,34 @@ fn a_comparison_writes_every_run_on_shared_seeds() {
     let runs = by_run(&rows);
     let methods = ["rjmcmc", "ga", "sosmc"];
     assert_eq!(runs.len(), 6, "every method and run present");
+    // runs.csv: each run's final best and its model's measures (a silhouette scene:
+    // size and silhouette IoU, no volume or surface measures).
+    let table = fs::read_to_string(out.join("runs.csv")).unwrap();
+    let lines: Vec<Vec<&str>> = table.lines().map(|l| l.split(',').collect()).collect();
+    assert_eq!(
+        lines[0].join(","),
+        "method,run,seed,evaluations,best,genes,instances,triangles,voxel_iou,\
+         silhouette_iou,chamfer,f_score"
+    );
+    assert_eq!(lines.len(), 7);
+    for line in &lines[1..] {
+        let best: f64 = line[4].parse().unwrap();
+        let last = runs[&(line[0].to_owned(), line[1].parse().unwrap())]
+            .last()
+            .unwrap();
+        assert_eq!(best, last.best, "{line:?}");
+        let iou: f64 = line[9].parse().unwrap();
+        assert!((0.0..=1.0).contains(&iou), "{line:?}");
+        assert_eq!([line[8], line[10], line[11]], ["", "", ""], "{line:?}");
+    }
+    let summary_json = summary(&out);
+    assert_eq!(
+        summary_json["methods"][0]["metrics"]
+            .as_array()
+            .unwrap()
+            .len(),
+        2
+    );
     for m in methods {
         for r in 0..2 {
             let run = &runs[&(m.to_owned(), r)];

@@ -62,7 +62,8 @@ fn a_sweep_writes_every_cell_its_tables_and_its_plots() {
     assert_eq!(
         rows[0].join(","),
         "cell,optimizer.population,optimizer.selection,run,seed,best,evaluations,\
-         generations,evaluations_to_50,evaluations_to_90,evaluations_to_99"
+         generations,evaluations_to_50,evaluations_to_90,evaluations_to_99,genes,\
+         instances,triangles,voxel_iou,silhouette_iou,chamfer,f_score"
     );
     assert_eq!(rows.len(), 9, "one row per cell");
     let points = [
@@ -92,7 +93,14 @@ fn a_sweep_writes_every_cell_its_tables_and_its_plots() {
         bests.push(row[5].parse::<f64>().unwrap());
         // The levels a run reached, within its evaluations, each no sooner than the
         // one below: a run that missed a level missed those above it.
-        let reached: Vec<Option<u64>> = row[8..].iter().map(|c| c.parse().ok()).collect();
+        let reached: Vec<Option<u64>> = row[8..11].iter().map(|c| c.parse().ok()).collect();
+        // The best model's measures: a volume scene's size, voxel IoU and surfaces.
+        let genes: u64 = row[11].parse().unwrap();
+        assert!(genes >= 1, "{row:?}");
+        let iou: f64 = row[14].parse().unwrap();
+        assert!((0.0..=1.0).contains(&iou), "{row:?}");
+        assert_eq!(row[15], "", "no silhouette: {row:?}");
+        assert!(row[16].parse::<f64>().unwrap() >= 0.0, "{row:?}");
         for pair in reached.windows(2) {
             match (pair[0], pair[1]) {
                 (Some(a), Some(b)) => assert!(a <= b && b <= evaluations, "{row:?}"),
@@ -103,7 +111,7 @@ fn a_sweep_writes_every_cell_its_tables_and_its_plots() {
     }
     let top = bests.iter().copied().fold(f64::MIN, f64::max);
     let top_row = &rows[1 + bests.iter().position(|&b| b == top).unwrap()];
-    assert!(top_row[8..].iter().all(|c| !c.is_empty()), "{top_row:?}");
+    assert!(top_row[8..11].iter().all(|c| !c.is_empty()), "{top_row:?}");
 
     for i in 0..8 {
         let cell = out.join(format!("cells/{i:04}"));

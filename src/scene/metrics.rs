@@ -3,7 +3,7 @@
 //! and F-score against the volume targets' surfaces
 //! ([`shapegen_runtime::score::metrics`] defines each).
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use shapegen_runtime::score::Scorer;
 use shapegen_runtime::score::metrics::{
     SurfaceDistance, Triangle, mesh_triangles, model_triangles, silhouette_iou, voxel_iou,
@@ -21,7 +21,8 @@ pub const SURFACE_SAMPLES: usize = 4096;
 pub const F_SCORE_THRESHOLD: f64 = 0.01;
 
 /// One model's measures against a scene's targets, as `summary.json` reports them.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Metrics {
     /// Genes of its genome.
     pub genes: usize,
@@ -31,26 +32,26 @@ pub struct Metrics {
     pub triangles: usize,
     /// Intersection over union of its voxels with the target voxels, on the grid
     /// (scenes with a `[volume]`).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub voxel_iou: Option<f64>,
     /// Its surface against the surfaces of the volume targets that attract (inside
     /// weight above 0), sampled at [`SURFACE_SAMPLES`] points each; the F-score at
     /// [`F_SCORE_THRESHOLD`] of their bounding box's diagonal.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub surface: Option<SurfaceDistance>,
     /// Its surface against the point cloud of each `chamfer` objective, in the scene's
     /// order: [`SURFACE_SAMPLES`] points of each side, the F-score at
     /// [`F_SCORE_THRESHOLD`] of the cloud's bounding box's diagonal.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub point_clouds: Vec<CloudDistance>,
     /// Intersection over union of its silhouette with each target image, in the scene's
     /// order (scenes with a `[silhouette]`).
-    #[serde(skip_serializing_if = "Vec::is_empty")]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub silhouette_iou: Vec<ViewIou>,
 }
 
 /// The surface distance to one point cloud.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CloudDistance {
     /// The objective whose cloud it is, by its name.
     pub objective: String,
@@ -60,7 +61,7 @@ pub struct CloudDistance {
 }
 
 /// The silhouette IoU through one target's camera.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ViewIou {
     /// The target, by its image.
     pub target: String,
@@ -68,7 +69,54 @@ pub struct ViewIou {
     pub iou: f64,
 }
 
+/// The names of [`Metrics::columns`], for the tables of `compare` and `sweep`.
+pub const METRIC_COLUMNS: [&str; 7] = [
+    "genes",
+    "instances",
+    "triangles",
+    "voxel_iou",
+    "silhouette_iou",
+    "chamfer",
+    "f_score",
+];
+
 impl Metrics {
+    /// The measures as table cells, named by [`METRIC_COLUMNS`]: the model's size; the
+    /// voxel IoU; the silhouette IoU, the mean over the views; the Chamfer distance and
+    /// F-score against the volume targets' surfaces, or else against the first point
+    /// cloud. A cell is empty where the scene has no such target; numbers are written
+    /// as they round-trip.
+    ///
+    /// ```
+    /// use shapegen::scene::{METRIC_COLUMNS, Metrics, ViewIou};
+    ///
+    /// let view = |iou| ViewIou { target: "front.png".into(), iou };
+    /// let m = Metrics {
+    ///     genes: 12, instances: 30, triangles: 360, voxel_iou: None, surface: None,
+    ///     point_clouds: Vec::new(), silhouette_iou: vec![view(0.5), view(0.75)],
+    /// };
+    /// assert_eq!(m.columns(), ["12", "30", "360", "", "0.625", "", ""]);
+    /// assert_eq!(METRIC_COLUMNS[4], "silhouette_iou");
+    /// ```
+    pub fn columns(&self) -> [String; METRIC_COLUMNS.len()] {
+        let number = |v: Option<f64>| v.map_or_else(String::new, |v| v.to_string());
+        let views = &self.silhouette_iou;
+        let silhouette = (!views.is_empty())
+            .then(|| views.iter().map(|v| v.iou).sum::<f64>() / views.len() as f64);
+        let surface = self
+            .surface
+            .or_else(|| self.point_clouds.first().map(|c| c.distance));
+        [
+            self.genes.to_string(),
+            self.instances.to_string(),
+            self.triangles.to_string(),
+            number(self.voxel_iou),
+            number(silhouette),
+            number(surface.map(|s| s.chamfer)),
+            number(surface.map(|s| s.f_score)),
+        ]
+    }
+
     /// The measures of a model of `genes` genes deriving `instances` (of `meshes`,
     /// bound to its grammar) against `scene`'s targets, counted on the CPU by `scorer`
     /// (none for a multi-objective scene, which has no scorers: no IoU then).

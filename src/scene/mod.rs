@@ -147,7 +147,9 @@ pub use memory::{JSON_BYTES_PER_WORD, MemoryError, MemoryEstimate, MemoryPart, R
 pub use method::{
     Method, MethodJob, MethodSettings, SettingsCause, SettingsKeyError, UnknownMethod,
 };
-pub use metrics::{F_SCORE_THRESHOLD, Metrics, SURFACE_SAMPLES, ViewIou};
+pub use metrics::{
+    CloudDistance, F_SCORE_THRESHOLD, METRIC_COLUMNS, Metrics, SURFACE_SAMPLES, ViewIou,
+};
 pub use objective::ObjectiveEvaluator;
 pub use optimizer::{OptimizerGoal, Overrides};
 

@@ -22,7 +22,7 @@ use glam::{DVec3, Vec3};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::silhouette::{ImageTarget, TargetCounts};
 use super::volume::{VolumeCounts, VolumeScorer};
@@ -78,7 +78,7 @@ pub fn mesh_triangles(mesh: &Mesh) -> impl Iterator<Item = Triangle> + '_ {
 }
 
 /// How far apart two surfaces are, measured on points sampled uniformly by area on each.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SurfaceDistance {
     /// The symmetric Chamfer distance: the mean distance from a sample of one surface to
     /// the nearest sample of the other, averaged over both directions, in world units.

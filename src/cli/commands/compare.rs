@@ -1,6 +1,8 @@
 //! `shapegen compare`: runs several search methods on one scene, each several times on
 //! the same seeds and with the same wall-time budget, and writes their results side by
-//! side: every run's history, a summary per method and a picture of the median curves.
+//! side: every run's history (`compare.csv`), every run's final best and its best
+//! model's measures (`runs.csv`: size, IoU, Chamfer distance and F-score, see
+//! [`Metrics::columns`]), a summary per method and a picture of the median curves.
 //!
 //! Each method takes its settings as `shapegen run --method M` does (the scene's
 //! `[optimizer]` table over the paper's settings for the method and the generator), with
@@ -35,7 +37,9 @@ use image::Rgb;
 use serde::Serialize;
 use shapegen::Grammar;
 use shapegen::optimize::{Budget, HistoryEntry, StopReason};
-use shapegen::scene::{Method, OptimizerGoal, Overrides, Scene, SceneEvaluator, SceneScorer};
+use shapegen::scene::{
+    METRIC_COLUMNS, Method, Metrics, OptimizerGoal, Overrides, Scene, SceneEvaluator, SceneScorer,
+};
 
 use crate::cli::backend::{BackendArgs, check_batches};
 use crate::cli::files::{atomic_write, csv_bytes, save_figure};
@@ -235,11 +239,14 @@ struct Finished {
     best: f64,
     evaluations: u64,
     history: Vec<HistoryEntry>,
+    /// Its best model's measures.
+    metrics: Metrics,
 }
 
 impl Visit for Compare<'_> {
     fn visit<G: Grammar>(self, _: &Entry) -> anyhow::Result<()> {
         let scorer = SceneScorer::new::<G>(self.scene)?;
+        let meshes = self.scene.meshes.bind(G::GRAPH)?;
         let gpu = self.args.backend.open();
         let backend = scorer.on(self.args.backend.choice(), gpu.as_ref())?;
         for goal in self.goals {
@@ -314,6 +321,15 @@ impl Visit for Compare<'_> {
                     result.evaluations,
                     done.len() + 1
                 );
+                let mut instances = Vec::new();
+                result.best.derive_into(&mut instances);
+                let metrics = Metrics::of(
+                    self.scene,
+                    Some(&scorer),
+                    &meshes,
+                    result.best.len(),
+                    &instances,
+                );
                 done.push(Finished {
                     method,
                     run: run as u64,
@@ -321,6 +337,7 @@ impl Visit for Compare<'_> {
                     best: result.best_fitness,
                     evaluations: result.evaluations,
                     history: result.history,
+                    metrics,
                 });
                 outputs.write(&done)?;
             }
@@ -331,7 +348,7 @@ impl Visit for Compare<'_> {
             ""
         };
         println!(
-            "compared {} runs; wrote compare.csv, compare.png, summary.json{gaps} and runs/ to {}",
+            "compared {} runs; wrote compare.csv, runs.csv, compare.png, summary.json{gaps} and runs/ to {}",
             done.len(),
             self.args.out.display()
         );
@@ -339,7 +356,8 @@ impl Visit for Compare<'_> {
     }
 }
 
-/// Writes `compare.csv`, `summary.json` and `compare.png` for the runs done so far.
+/// Writes `compare.csv`, `runs.csv`, `summary.json` and `compare.png` for the runs done
+/// so far.
 struct Outputs<'a> {
     args: &'a CompareArgs,
     methods: &'a [Method],
@@ -385,6 +403,8 @@ struct MethodSummary {
     evaluations: f64,
     /// Each run's final best fitness, by run.
     finals: Vec<f64>,
+    /// Each run's best model's measures, by run.
+    metrics: Vec<Metrics>,
     /// With an optimum: when the runs reached each fraction of it.
     #[serde(skip_serializing_if = "Option::is_none")]
     targets: Option<Vec<Reached>>,
@@ -408,6 +428,24 @@ impl Outputs<'_> {
             })
         });
         atomic_write(&dir.join("compare.csv"), &csv_bytes(&header, rows)?)?;
+        let header: Vec<String> = ["method", "run", "seed", "evaluations", "best"]
+            .into_iter()
+            .chain(METRIC_COLUMNS)
+            .map(str::to_owned)
+            .collect();
+        let rows = done.iter().map(|f| {
+            [
+                f.method.name().to_owned(),
+                f.run.to_string(),
+                f.seed.to_string(),
+                f.evaluations.to_string(),
+                f.best.to_string(),
+            ]
+            .into_iter()
+            .chain(f.metrics.columns())
+            .collect::<Vec<_>>()
+        });
+        atomic_write(&dir.join("runs.csv"), &csv_bytes(&header, rows)?)?;
 
         let groups: Vec<Group<'_>> = self
             .methods
@@ -504,6 +542,7 @@ fn summarize(method: Method, done: &[Finished]) -> MethodSummary {
         evaluations: runs.iter().map(|f| f.evaluations as f64).sum::<f64>()
             / runs.len().max(1) as f64,
         finals,
+        metrics: runs.iter().map(|f| f.metrics.clone()).collect(),
         targets: None,
     }
 }

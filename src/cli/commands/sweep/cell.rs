@@ -2,7 +2,7 @@
 //! wherever it runs: in a local sweep, or alone as `shapegen sweep --cell DIR I` in a
 //! cluster's job. Its folder, `DIR/cells/NNNN/` (the cell's index), holds
 //! - `result.json`: its row (grid values, run, seed, final best, evaluations,
-//!   generations, seconds, why it stopped);
+//!   generations, seconds, why it stopped, its best model's measures);
 //! - `fitness.csv`: its history, one row per generation (`generation`, `elapsed_s`,
 //!   `evaluations`, `best`, `mean`, `std`; every number as it round-trips exactly);
 //! - `best.genome.json`: the best genome found.
@@ -20,7 +20,7 @@ use serde::{Deserialize, Deserializer, Serialize};
 use shapegen::Grammar;
 use shapegen::gpu::GpuContext;
 use shapegen::optimize::{HistoryEntry, StopReason};
-use shapegen::scene::{Scene, SceneEvaluator, SceneScorer};
+use shapegen::scene::{Metrics, Scene, SceneEvaluator, SceneScorer};
 
 use super::plan::Plan;
 use crate::cli::backend::check_batches;
@@ -66,6 +66,9 @@ pub struct Record {
     pub seconds: f64,
     /// Why it stopped: "evaluations", "generations" or "time".
     pub stopped: String,
+    /// Its best model's measures against the scene's targets.
+    #[serde(default)]
+    pub metrics: Option<Metrics>,
 }
 
 /// Reads a number, or `null` (how JSON writes NaN) as NaN.
@@ -140,6 +143,7 @@ where
             generations: outcome.generations,
             seconds: outcome.history.last().map_or(0.0, |h| h.elapsed_s),
             stopped: outcome.stopped.name().to_owned(),
+            metrics: Some(outcome.metrics),
         },
         history: outcome.history,
     };
@@ -296,6 +300,8 @@ struct Outcome {
     stopped: StopReason,
     /// The best genome, as JSON.
     genome: String,
+    /// Its measures.
+    metrics: Metrics,
 }
 
 /// The run of one cell, generic over the grammar of its scene's generator.
@@ -325,6 +331,16 @@ impl Visit for CellRun<'_> {
             stop: self.stop,
             evaluator: &mut evaluator,
         })?;
+        let meshes = self.scene.meshes.bind(G::GRAPH)?;
+        let mut instances = Vec::new();
+        result.best.derive_into(&mut instances);
+        let metrics = Metrics::of(
+            self.scene,
+            Some(&scorer),
+            &meshes,
+            result.best.len(),
+            &instances,
+        );
         *self.outcome = Some(Outcome {
             best: result.best_fitness,
             evaluations: result.evaluations,
@@ -332,6 +348,7 @@ impl Visit for CellRun<'_> {
             history: result.history,
             stopped: result.stopped,
             genome: result.best.to_json(),
+            metrics,
         });
         Ok(())
     }

@@ -10,6 +10,7 @@ use super::cell::Finished;
 use super::plan::Plan;
 use crate::cli::files::{atomic_write, csv_bytes};
 use crate::cli::stats::{mean_std, median};
+use shapegen::scene::METRIC_COLUMNS;
 
 /// The fractions of the way from the sweep's lowest initial best to its highest final
 /// best whose evaluations `sweep.csv` gives, in percent.
@@ -93,8 +94,10 @@ pub fn write(plan: &Plan, dir: &Path, done: &BTreeMap<u64, Finished>) -> anyhow:
 }
 
 /// `sweep.csv`: per finished cell, in index order, its grid values, run, seed, final
-/// best, evaluations, generations, seconds, and the evaluations it took to reach each
-/// level of [`PERCENTS`] (empty when it never did).
+/// best, evaluations, generations, seconds, the evaluations it took to reach each
+/// level of [`PERCENTS`] (empty when it never did), and its best model's measures
+/// ([`Metrics::columns`](shapegen::scene::Metrics::columns); empty for a cell written
+/// without them).
 fn sweep_csv(plan: &Plan, done: &BTreeMap<u64, Finished>) -> anyhow::Result<Vec<u8>> {
     let header: Vec<String> = std::iter::once("cell".to_owned())
         .chain(plan.grid.iter().map(|a| a.key.clone()))
@@ -110,6 +113,7 @@ fn sweep_csv(plan: &Plan, done: &BTreeMap<u64, Finished>) -> anyhow::Result<Vec<
             .map(str::to_owned),
         )
         .chain(PERCENTS.map(|p| format!("evaluations_to_{p}")))
+        .chain(METRIC_COLUMNS.map(str::to_owned))
         .collect();
     let levels = levels(done);
     let rows = done.iter().map(|(&index, f)| {
@@ -130,6 +134,10 @@ fn sweep_csv(plan: &Plan, done: &BTreeMap<u64, Finished>) -> anyhow::Result<Vec<
                 r.seconds.to_string(),
             ])
             .chain(reached)
+            .chain(match &r.metrics {
+                Some(m) => m.columns(),
+                None => Default::default(),
+            })
             .collect::<Vec<String>>()
     });
     csv_bytes(&header, rows)
@@ -285,6 +293,16 @@ mod tests {
                 generations: bests.len() as u64 - 1,
                 seconds: 0.1,
                 stopped: "evaluations".into(),
+                // Cell 3 measured its model; the others were written without measures.
+                metrics: (index == 3).then(|| shapegen::scene::Metrics {
+                    genes: 7,
+                    instances: 9,
+                    triangles: 108,
+                    voxel_iou: Some(0.5),
+                    surface: None,
+                    point_clouds: Vec::new(),
+                    silhouette_iou: Vec::new(),
+                }),
             },
             history,
         }
@@ -307,11 +325,12 @@ mod tests {
         assert_eq!(
             lines[0],
             "cell,a,run,seed,best,evaluations,generations,seconds,\
-             evaluations_to_50,evaluations_to_90,evaluations_to_99"
+             evaluations_to_50,evaluations_to_90,evaluations_to_99,\
+             genes,instances,triangles,voxel_iou,silhouette_iou,chamfer,f_score"
         );
-        assert_eq!(lines[1], "0,1,0,1,1,30,2,0.1,30,,");
-        assert_eq!(lines[2], "1,1,1,2,2,30,2,0.1,20,,");
-        assert_eq!(lines[3], "3,2,1,2,3,20,1,0.1,10,20,20");
+        assert_eq!(lines[1], "0,1,0,1,1,30,2,0.1,30,,,,,,,,,");
+        assert_eq!(lines[2], "1,1,1,2,2,30,2,0.1,20,,,,,,,,,");
+        assert_eq!(lines[3], "3,2,1,2,3,20,1,0.1,10,20,20,7,9,108,0.5,,,");
         assert_eq!(lines.len(), 4);
     }
 
