@@ -235,13 +235,15 @@ mod tests {
             .collect()
     }
 
-    /// A table of `kind` with the keys it needs; `image.png` is a 4 x 4 image.
+    /// A table of `kind` with the keys it needs; `image.png` is a 4 x 4 image and
+    /// `scan.xyz` a cloud of two points.
     fn table(kind: &str) -> toml::Table {
         let keys = match kind {
             "height" => "target = 2",
             "unique_normals" | "normal_spread" => "",
             "footprint_excess" => "min = [-1, -1]\nmax = [1, 1]",
             "top_match" | "front_match" => "image = \"image.png\"\nmin = [-1, -1]\nmax = [1, 1]",
+            "chamfer" => "points = \"scan.xyz\"",
             _ => panic!("give a table of the new kind `{kind}` here"),
         };
         toml::from_str(&format!("kind = \"{kind}\"\n{keys}")).unwrap()
@@ -253,6 +255,7 @@ mod tests {
         image::GrayImage::from_fn(4, 4, |x, _| image::Luma([if x < 2 { 0 } else { 255 }]))
             .save(dir.path().join("image.png"))
             .unwrap();
+        std::fs::write(dir.path().join("scan.xyz"), "0 0 0\n1 1 1\n").unwrap();
         let path = dir.path().join("scene.toml");
         let kinds = kinds();
         assert!(kinds.len() > 1, "{kinds:?}");
