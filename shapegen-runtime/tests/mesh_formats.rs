@@ -318,3 +318,15 @@ fn point_clouds_load_from_xyz_text_and_ply_vertices() {
             .contains("no points")
     );
 }
+
+#[test]
+fn a_gltf_primitive_naming_a_missing_accessor_is_refused() {
+    let json = r#"{"asset": {"version": "2.0"}, "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}]}"#;
+    let message = Mesh::from_gltf_bytes("t.gltf", json.as_bytes(), None)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.contains("names accessor 0, but the file has 0"),
+        "{message}"
+    );
+}

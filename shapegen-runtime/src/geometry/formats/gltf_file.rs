@@ -34,14 +34,35 @@ impl Mesh {
         folder: Option<&Path>,
     ) -> Result<Mesh, MeshError> {
         let fail = |what: String| decode("glTF", name, what);
+        let (bytes, blob) = match bytes.strip_prefix(b"glTF") {
+            Some(_) => glb_chunks(bytes).map_err(&fail)?,
+            None => (bytes, None),
+        };
+        let unchecked =
+            Gltf::from_slice_without_validation(bytes).map_err(|e| fail(e.to_string()))?;
+        // gltf-json's validation indexes a primitive's POSITION accessor before it checks
+        // that the accessor exists: check every attribute's index first.
+        let accessors = unchecked.document.as_json().accessors.len();
+        for (m, mesh) in unchecked.document.as_json().meshes.iter().enumerate() {
+            for primitive in &mesh.primitives {
+                let named = primitive
+                    .attributes
+                    .values()
+                    .chain(primitive.indices.as_ref());
+                if let Some(bad) = named.map(|a| a.value()).find(|&a| a >= accessors) {
+                    return Err(fail(format!(
+                        "mesh {m} names accessor {bad}, but the file has {accessors}"
+                    )));
+                }
+            }
+        }
         let gltf = Gltf::from_slice(bytes).map_err(|e| fail(e.to_string()))?;
         let buffers = gltf
             .buffers()
             .map(|buffer| {
                 let data = match buffer.source() {
-                    gltf::buffer::Source::Bin => gltf
-                        .blob
-                        .clone()
+                    gltf::buffer::Source::Bin => blob
+                        .map(<[u8]>::to_vec)
                         .ok_or_else(|| fail("the binary chunk is missing".into()))?,
                     gltf::buffer::Source::Uri(uri) => external(uri, folder).map_err(&fail)?,
                 };
@@ -109,6 +130,47 @@ impl Mesh {
         }
         Mesh::from_triangles(name, positions, indices)
     }
+}
+
+/// The JSON chunk and the binary chunk, if any, of a binary glTF (`.glb`): a 12-byte
+/// header (`glTF`, version 2, total length), then chunks of a length, a type and the
+/// data. Read here, every length checked, rather than by the `gltf` crate's reader.
+fn glb_chunks(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>), String> {
+    let word = |at: usize| {
+        bytes
+            .get(at..at + 4)
+            .map(|w| u32::from_le_bytes([w[0], w[1], w[2], w[3]]) as usize)
+    };
+    if word(4) != Some(2) {
+        return Err("the binary glTF header is not of version 2".into());
+    }
+    let total = word(8)
+        .filter(|&n| n <= bytes.len())
+        .ok_or_else(|| "the binary glTF is shorter than its header says".to_owned())?;
+    let chunk = |at: usize| -> Result<Option<(&[u8], u32, usize)>, String> {
+        if at >= total {
+            return Ok(None);
+        }
+        let (Some(len), Some(kind)) = (word(at), word(at + 4)) else {
+            return Err("a binary glTF chunk header is cut short".into());
+        };
+        let data = (at + 8)
+            .checked_add(len)
+            .filter(|&end| end <= total)
+            .map(|end| &bytes[at + 8..end])
+            .ok_or_else(|| "a binary glTF chunk runs past the end of the file".to_owned())?;
+        Ok(Some((data, kind as u32, at + 8 + len)))
+    };
+    const JSON: u32 = 0x4E4F_534A;
+    const BIN: u32 = 0x004E_4942;
+    let Some((json, JSON, next)) = chunk(12)? else {
+        return Err("the first chunk of a binary glTF is not its JSON".into());
+    };
+    let blob = match chunk(next)? {
+        Some((data, BIN, _)) => Some(data),
+        _ => None,
+    };
+    Ok((json, blob))
 }
 
 /// The bytes of a buffer's URI: a `data:` URI's base64 payload, or a file in `folder`.
