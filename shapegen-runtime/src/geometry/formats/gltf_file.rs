@@ -147,7 +147,9 @@ fn glb_chunks(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>), String> {
     let total = word(8)
         .filter(|&n| n <= bytes.len())
         .ok_or_else(|| "the binary glTF is shorter than its header says".to_owned())?;
-    let chunk = |at: usize| -> Result<Option<(&[u8], u32, usize)>, String> {
+    // A chunk at `at`: its data, its type and where the next one starts.
+    type Chunk<'a> = Option<(&'a [u8], u32, usize)>;
+    let chunk = |at: usize| -> Result<Chunk<'_>, String> {
         if at >= total {
             return Ok(None);
         }
