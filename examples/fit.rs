@@ -32,6 +32,7 @@ use shapegen::geometry::MeshFormat;
 use shapegen::ops::Operators;
 use shapegen::optimize::{Control, Hybrid, HybridSettings, Optimizer, Settings, Snapshot};
 use shapegen::scene::{BackendChoice, Metrics, Scene, SceneEvaluator, SceneScorer, ScorerGoal};
+use shapegen::score::objective::Surface;
 use shapegen::{Grammar, Instance, Mesh, MeshLibrary};
 
 /// Random models of the generator whose bounds make its typical model.
@@ -204,7 +205,7 @@ fn typical_box<G: Grammar>(limits: Limits, seed: u64) -> anyhow::Result<(Vec3, f
     let mut instances = Vec::new();
     for _ in 0..SAMPLES {
         ops.sample(&mut rng).derive_into(&mut instances);
-        if let Some((lo, hi)) = bounds(&instances, &meshes) {
+        if let Some((lo, hi)) = Surface::from_instances(&instances, &meshes).bounds() {
             centres.push((lo + hi) / 2.0);
             sides.push((hi - lo).max_element());
         }
@@ -227,25 +228,20 @@ fn typical_box<G: Grammar>(limits: Limits, seed: u64) -> anyhow::Result<(Vec3, f
     Ok((centre, median(sides)))
 }
 
-/// The bounds of a model's vertices.
-fn bounds(instances: &[Instance], meshes: &shapegen::BoundMeshes) -> Option<(Vec3, Vec3)> {
-    instances
+/// `mesh` bound alone, and one instance of it where it stands.
+fn alone(mesh: Mesh) -> anyhow::Result<(shapegen::BoundMeshes, [Instance; 1])> {
+    let mut library = MeshLibrary::new();
+    library.register("target", mesh)?;
+    let bound = library.bind_names("Target", &["target"])?;
+    let (id, _, _) = bound
         .iter()
-        .filter_map(|i| {
-            let (lo, hi) = meshes.get(i.mesh)?.bounds()?;
-            let corners = (0..8).map(|k| {
-                let pick = |bit: u32, a: f32, b: f32| if k & bit == 0 { a } else { b };
-                i.transform.transform_point3(Vec3::new(
-                    pick(1, lo.x, hi.x),
-                    pick(2, lo.y, hi.y),
-                    pick(4, lo.z, hi.z),
-                ))
-            });
-            corners.fold(None, |acc: Option<(Vec3, Vec3)>, p| {
-                Some(acc.map_or((p, p), |(l, h)| (l.min(p), h.max(p))))
-            })
-        })
-        .reduce(|(l, h), (a, b)| (l.min(a), h.max(b)))
+        .find(|(_, name, _)| *name == "target")
+        .context("the target is bound")?;
+    let placed = [Instance {
+        transform: Affine3A::IDENTITY,
+        mesh: id,
+    }];
+    Ok((bound, placed))
 }
 
 /// Writes the target as placed and `scene.toml` into the output folder; returns the
@@ -285,19 +281,9 @@ fn volume_goal(o: &Options, centre: Vec3, side: f32) -> anyhow::Result<String> {
     for p in &mut mesh.positions {
         *p = place.transform_point3(*p);
     }
-    let mut library = MeshLibrary::new();
-    library.register("target", mesh)?;
-    let bound = library.bind_names("Target", &["target"])?;
-    let (id, _, _) = bound
-        .iter()
-        .find(|(_, name, _)| *name == "target")
-        .context("the target is bound")?;
-    let placed = [Instance {
-        transform: Affine3A::IDENTITY,
-        mesh: id,
-    }];
+    let (lo, hi) = mesh.bounds().context("the placed target has vertices")?;
+    let (bound, placed) = alone(mesh)?;
     save_obj(o.out.join("target"), &placed, &bound, &Palette::new())?;
-    let (lo, hi) = bounds(&placed, &bound).context("the placed target has a surface")?;
     let pad = (hi - lo) * 0.1 + Vec3::splat(side * 0.02);
     let (lo, hi) = (lo - pad, hi + pad);
     let cell = (hi - lo).max_element() / GRID_CELLS;
@@ -366,17 +352,7 @@ fn compare_picture(
         _ => None,
     });
     let (left, right) = if let Some(target) = volume {
-        let mut library = MeshLibrary::new();
-        library.register("target", target.clone())?;
-        let bound = library.bind_names("Target", &["target"])?;
-        let (id, _, _) = bound
-            .iter()
-            .find(|(_, name, _)| *name == "target")
-            .context("bound")?;
-        let placed = [Instance {
-            transform: Affine3A::IDENTITY,
-            mesh: id,
-        }];
+        let (bound, placed) = alone(target.clone())?;
         let preview = Preview::framing(&placed, &bound, 480, 360);
         (
             preview.render(&placed, &bound, &palette)?,

@@ -173,17 +173,8 @@ impl FrontRun<'_> {
                     kind: objective.name(),
                     sense,
                     best: best.map_or(f64::NAN, |m| m.values[i]),
-                    metrics: best.map(|m| {
-                        let mut instances = Vec::new();
-                        m.genome.derive_into(&mut instances);
-                        Metrics::of(
-                            self.scene,
-                            None,
-                            &outputs.meshes,
-                            m.genome.len(),
-                            &instances,
-                        )
-                    }),
+                    metrics: best
+                        .map(|m| Metrics::of_genome(self.scene, None, &outputs.meshes, &m.genome)),
                 }
             })
             .collect();

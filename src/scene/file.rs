@@ -2,6 +2,7 @@
 //! errors), before paths are resolved and values checked.
 
 use serde::Deserialize;
+use shapegen_runtime::score::volume::Fill;
 
 /// A whole scene file.
 #[derive(Debug, Deserialize)]
@@ -136,18 +137,7 @@ pub(super) struct VolumeTargetFile {
     #[serde(default = "minus_one")]
     pub outside: f64,
     #[serde(default)]
-    pub fill: FillName,
-}
-
-/// `volume.target.fill`: how the mesh's inside is found.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub(super) enum FillName {
-    /// Ray parity: closed meshes.
-    #[default]
-    Parity,
-    /// Generalized winding number: open or messy meshes.
-    Winding,
+    pub fill: Fill,
 }
 
 /// `[silhouette]`

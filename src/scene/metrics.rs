@@ -9,7 +9,7 @@ use shapegen_runtime::score::metrics::{
     SurfaceDistance, Triangle, mesh_triangles, model_triangles, silhouette_iou, voxel_iou,
 };
 use shapegen_runtime::score::objective::Objective;
-use shapegen_runtime::{BoundMeshes, Instance, Mesh};
+use shapegen_runtime::{BoundMeshes, Genome, Grammar, Instance, Mesh};
 
 use super::{Scene, SceneScorer, ScorerGoal};
 
@@ -81,6 +81,18 @@ pub const METRIC_COLUMNS: [&str; 7] = [
 ];
 
 impl Metrics {
+    /// The measures of `genome`'s model, derived here; see [`of`](Self::of).
+    pub fn of_genome<G: Grammar>(
+        scene: &Scene,
+        scorer: Option<&SceneScorer>,
+        meshes: &BoundMeshes,
+        genome: &Genome<G>,
+    ) -> Metrics {
+        let mut instances = Vec::new();
+        genome.derive_into(&mut instances);
+        Metrics::of(scene, scorer, meshes, genome.len(), &instances)
+    }
+
     /// The measures as table cells, named by [`METRIC_COLUMNS`]: the model's size; the
     /// voxel IoU; the silhouette IoU, the mean over the views; the Chamfer distance and
     /// F-score against the volume targets' surfaces, or else against the first point

@@ -7,12 +7,12 @@ use glam::{Mat4, Vec3};
 use shapegen_runtime::genome::Limits;
 use shapegen_runtime::geometry::Mesh;
 use shapegen_runtime::score::silhouette::{Camera, ImageTarget, MaskRule, OrbitCamera};
-use shapegen_runtime::score::volume::{Fill, Grid, VolumeTarget};
+use shapegen_runtime::score::volume::{Grid, VolumeTarget};
 use shapegen_runtime::score::{Form, LengthPenalty};
 
 use super::file::{
-    CameraFile, FillName, FormName, ImageKind, ImageTargetFile, LengthFrom, LimitsFile, MeshFile,
-    SceneFile, SilhouetteFile, VolumeFile,
+    CameraFile, FormName, ImageKind, ImageTargetFile, LengthFrom, LimitsFile, MeshFile, SceneFile,
+    SilhouetteFile, VolumeFile,
 };
 use super::image::read_image;
 use super::{
@@ -333,10 +333,7 @@ impl<'a> Resolver<'a> {
                 mesh,
                 inside: self.finite(&format!("{key}.inside"), t.inside)?,
                 outside: self.finite(&format!("{key}.outside"), t.outside)?,
-                fill: match t.fill {
-                    FillName::Parity => Fill::Parity,
-                    FillName::Winding => Fill::Winding,
-                },
+                fill: t.fill,
             });
         }
         let form = self.form("volume", form, v.good, v.bad, v.overlap)?;

@@ -321,15 +321,7 @@ impl Visit for Compare<'_> {
                     result.evaluations,
                     done.len() + 1
                 );
-                let mut instances = Vec::new();
-                result.best.derive_into(&mut instances);
-                let metrics = Metrics::of(
-                    self.scene,
-                    Some(&scorer),
-                    &meshes,
-                    result.best.len(),
-                    &instances,
-                );
+                let metrics = Metrics::of_genome(self.scene, Some(&scorer), &meshes, &result.best);
                 done.push(Finished {
                     method,
                     run: run as u64,

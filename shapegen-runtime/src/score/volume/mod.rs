@@ -138,8 +138,10 @@ pub struct VolumeTarget {
     pub fill: Fill,
 }
 
-/// How a [`VolumeTarget`]'s inside is found on the grid's lattice points.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// How a [`VolumeTarget`]'s inside is found on the grid's lattice points; scene files
+/// name it in lower case (`fill = "winding"`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Fill {
     /// A point is inside when the ray from it along +x crosses the mesh an odd number of
     /// times: exact for closed meshes, and the original implementation's rule.

@@ -332,15 +332,7 @@ impl Visit for CellRun<'_> {
             evaluator: &mut evaluator,
         })?;
         let meshes = self.scene.meshes.bind(G::GRAPH)?;
-        let mut instances = Vec::new();
-        result.best.derive_into(&mut instances);
-        let metrics = Metrics::of(
-            self.scene,
-            Some(&scorer),
-            &meshes,
-            result.best.len(),
-            &instances,
-        );
+        let metrics = Metrics::of_genome(self.scene, Some(&scorer), &meshes, &result.best);
         *self.outcome = Some(Outcome {
             best: result.best_fitness,
             evaluations: result.evaluations,
