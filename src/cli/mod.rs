@@ -47,6 +47,7 @@ mod plot;
 mod processes;
 mod progress;
 mod stats;
+pub mod view;
 mod voxels;
 
 use std::ffi::OsString;
