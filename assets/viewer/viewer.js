@@ -131,9 +131,10 @@ function render() {
   freeCamera.updateProjectionMatrix();
   renderer.render(scene, camera);
 }
-controls.addEventListener('change', () => {
+controls.addEventListener('change', render);
+// Turning the view by hand leaves the target's camera.
+controls.addEventListener('start', () => {
   if (camera !== freeCamera) useFreeCamera();
-  render();
 });
 window.addEventListener('resize', render);
 
@@ -209,7 +210,8 @@ async function loadTargets(files) {
       targetView = { width: cam.width, height: cam.height };
       $('overlay').src = URL.createObjectURL(new Blob([png], { type: 'image/png' }));
       $('snap').hidden = false;
-      if (!framed && !model) useTargetCamera();
+      // `?camera=target` opens the page looking through the target's camera.
+      if (new URLSearchParams(location.search).get('camera') === 'target') useTargetCamera();
     }
   }
 }
