@@ -18,7 +18,7 @@ cd "$root"
 seconds="${1:?usage: scripts/fuzz.sh SECONDS [TARGET ...]}"
 shift
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(scene_toml genome_json checkpoint obj_mesh target_image)
+[ ${#targets[@]} -gt 0 ] || targets=(scene_toml genome_json checkpoint obj_mesh target_image request_path)
 rss="${FUZZ_RSS_MB:-2048}"
 malloc="${FUZZ_MALLOC_MB:-512}"
 logs="${FUZZ_LOG:-$root/fuzz/logs}"
@@ -46,6 +46,7 @@ seed genome_json scenes/targets/*.genome.json examples/*/targets/*.genome.json f
 seed checkpoint fuzz/seeds/checkpoint/*
 seed obj_mesh generators/meshes/*.obj scenes/targets/*.obj scenes/paper/*/*.obj fuzz/seeds/obj_mesh/*
 seed target_image scenes/targets/*.png scenes/paper/*/*.png fuzz/seeds/target_image/*
+seed request_path fuzz/seeds/request_path/*
 # The original's derivations (JSON of another shape, gzip-compressed in the repository).
 golden="$(mktemp -d)"
 trap 'rm -rf "$golden"' EXIT

@@ -5,13 +5,13 @@
 mod support;
 
 use std::fs;
-use std::io::{BufRead, BufReader, Read, Write};
+use std::io::{Read, Write};
 use std::net::{SocketAddr, TcpStream};
 use std::path::Path;
-use std::process::{Child, Command, Stdio};
 
 use base64::Engine;
 use base64::engine::general_purpose::STANDARD;
+use support::view::serve;
 use support::{fails, ok, s, skyline_scene};
 
 /// A short run of the small skyline scene into `dir/run`.
@@ -20,46 +20,6 @@ fn short_run(dir: &Path) -> std::path::PathBuf {
     let out = dir.join("run");
     ok(&["run", s(&scene), "--cpu", "--out", s(&out)]);
     out
-}
-
-/// A `shapegen view` process and the address it listens on.
-struct Served {
-    child: Child,
-    addr: SocketAddr,
-}
-
-impl Drop for Served {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
-
-/// Starts `shapegen view` with `args` and reads its address from the line it prints.
-fn serve(args: &[&str]) -> Served {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_shapegen"))
-        .args(args)
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the shapegen binary runs");
-    let mut lines = BufReader::new(child.stderr.take().unwrap()).lines();
-    let line = lines
-        .next()
-        .expect("a line from shapegen view")
-        .expect("text");
-    let url = line
-        .split_whitespace()
-        .find(|w| w.starts_with("http://"))
-        .unwrap_or_else(|| panic!("no URL in `{line}`"));
-    let addr = url
-        .trim_start_matches("http://")
-        .trim_end_matches('/')
-        .parse()
-        .unwrap();
-    // The rest of its output is read and dropped: a closed pipe would fail its prints.
-    std::thread::spawn(move || lines.for_each(drop));
-    Served { child, addr }
 }
 
 /// A response: status, headers (names lowercased) and body.

@@ -130,6 +130,8 @@ function render() {
   freeCamera.aspect = width / Math.max(height, 1);
   freeCamera.updateProjectionMatrix();
   renderer.render(scene, camera);
+  const r = canvas.getBoundingClientRect();
+  canvas.dataset.rect = [r.left, r.top, r.width, r.height].map(Math.round).join(',');
 }
 controls.addEventListener('change', render);
 // Turning the view by hand leaves the target's camera.
@@ -247,6 +249,10 @@ $('show-target').addEventListener('change', (e) => {
 function setNumber(id, value, shown) {
   const cell = $(id);
   if (value === undefined || value === null) return;
+  // How often the page has shown a new generation: a test follows a live run by it.
+  if (id === 'generation' && cell.dataset.value !== String(value)) {
+    $('status').dataset.updates = String(Number($('status').dataset.updates || 0) + 1);
+  }
   cell.dataset.value = String(value);
   cell.textContent = shown ?? String(value);
 }
@@ -478,12 +484,30 @@ async function update() {
   return finished;
 }
 
+/**
+ * Resolves when the run next saves: the server holds a request for run.json until the
+ * file's tag changes (at most 10 s), so that a page follows a run with one request per
+ * save. Without a run.json yet, after a second.
+ */
+async function nextSave() {
+  const tag = seen.get('run.json');
+  if (!tag) return new Promise((resolve) => setTimeout(resolve, 1000));
+  try {
+    await fetch(`/files/run.json?wait=${encodeURIComponent(tag)}`, { cache: 'no-store' });
+  } catch (e) {
+    await new Promise((resolve) => setTimeout(resolve, 1000));
+  }
+  // A short pause so that a burst of saves is shown as one.
+  await new Promise((resolve) => setTimeout(resolve, 200));
+}
+
 async function loop() {
   try {
     const finished = await update();
     if (EMBEDDED) return;
     // A finished folder changes no more; it is checked less often.
-    setTimeout(loop, finished ? 5000 : 1000);
+    if (finished) setTimeout(loop, 5000);
+    else nextSave().then(loop);
   } catch (e) {
     setStatus('error', `cannot read the folder: ${e.message}; retrying`);
     if (!EMBEDDED) setTimeout(loop, 2000);

@@ -4,10 +4,13 @@
 use std::io::Read;
 use std::net::{IpAddr, SocketAddr};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::thread::JoinHandle;
-use std::time::UNIX_EPOCH;
+use std::time::{Duration, Instant, UNIX_EPOCH};
 
 use anyhow::Context;
+use percent_encoding::percent_decode_str;
 use tiny_http::{Header, Method, Request, Response, Server};
 
 use super::assets::asset;
@@ -16,6 +19,10 @@ use super::path::{Refusal, RequestPath};
 
 /// Largest file the server sends, in bytes: larger ones are refused, not read.
 const MAX_FILE: u64 = 512 << 20;
+/// Longest a request with `?wait=TAG` is held while the file still has that tag.
+const MAX_WAIT: Duration = Duration::from_secs(10);
+/// Most requests answered at once; more are answered `503` at once.
+const MAX_REQUESTS: usize = 32;
 
 /// A bound viewer server for one folder.
 pub struct Viewer {
@@ -63,12 +70,23 @@ impl Viewer {
         format!("http://{host}:{}/", self.addr.port())
     }
 
-    /// Answers requests until the process ends.
+    /// Answers requests until the process ends, each on a thread of its own (a
+    /// request may wait for a file to change), at most [`MAX_REQUESTS`] at once.
     pub fn serve(&self) {
+        let busy = Arc::new(AtomicUsize::new(0));
         for request in self.server.incoming_requests() {
-            let answer = answer(&self.root, self.addr, &request);
-            // A client that went away is no error of the server's.
-            let _ = request.respond(answer);
+            if busy.fetch_add(1, Ordering::SeqCst) >= MAX_REQUESTS {
+                busy.fetch_sub(1, Ordering::SeqCst);
+                let _ = request.respond(text(503, "too many requests at once"));
+                continue;
+            }
+            let (root, addr, busy) = (self.root.clone(), self.addr, Arc::clone(&busy));
+            std::thread::spawn(move || {
+                let answer = answer(&root, addr, &request);
+                // A client that went away is no error of the server's.
+                let _ = request.respond(answer);
+                busy.fetch_sub(1, Ordering::SeqCst);
+            });
         }
     }
 
@@ -181,22 +199,42 @@ fn serve_asset(request: &Request, name: &str) -> Answer {
     }
 }
 
-/// A file of the folder, with an entity tag from its size and modification time so
-/// that a page polling it gets `304 Not Modified` until the run replaces it.
-fn serve_file(request: &Request, path: &Path) -> Answer {
-    let meta = match std::fs::metadata(path) {
-        Ok(meta) => meta,
-        Err(_) => return text(404, &Refusal::NotFound.to_string()),
-    };
-    if meta.len() > MAX_FILE {
-        return text(413, &format!("file larger than {} MiB", MAX_FILE >> 20));
-    }
+/// The entity tag of the file at `path` (its size and modification time), `None` if
+/// it is gone.
+fn entity_tag(path: &Path) -> Option<(String, u64)> {
+    let meta = std::fs::metadata(path).ok()?;
     let modified = meta
         .modified()
         .ok()
         .and_then(|t| t.duration_since(UNIX_EPOCH).ok())
         .map_or(0, |d| d.as_nanos());
-    let etag = format!("\"{:x}-{modified:x}\"", meta.len());
+    Some((format!("\"{:x}-{modified:x}\"", meta.len()), meta.len()))
+}
+
+/// The `wait` parameter of the request's query, if any.
+fn wait_for_change(request: &Request) -> Option<String> {
+    let query = request.url().split_once('?')?.1;
+    let value = query.split('&').find_map(|kv| kv.strip_prefix("wait="))?;
+    Some(percent_decode_str(value).decode_utf8_lossy().into_owned())
+}
+
+/// A file of the folder, with an entity tag from its size and modification time so
+/// that a page polling it gets `304 Not Modified` until the run replaces it. With
+/// `?wait=TAG`, the answer waits (up to [`MAX_WAIT`]) until the file's tag is another:
+/// a page follows a run with one request per change.
+fn serve_file(request: &Request, path: &Path) -> Answer {
+    if let Some(tag) = wait_for_change(request) {
+        let start = Instant::now();
+        while entity_tag(path).is_some_and(|(t, _)| t == tag) && start.elapsed() < MAX_WAIT {
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
+    let Some((etag, len)) = entity_tag(path) else {
+        return text(404, &Refusal::NotFound.to_string());
+    };
+    if len > MAX_FILE {
+        return text(413, &format!("file larger than {} MiB", MAX_FILE >> 20));
+    }
     if request_header(request, "If-None-Match") == Some(etag.as_str()) {
         return respond(304, mime_of(path), Vec::new()).with_header(header("ETag", &etag));
     }
