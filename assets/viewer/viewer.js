@@ -409,15 +409,18 @@ async function showSweep(files) {
   const bytes = await readFile('sweep.csv');
   if (bytes) {
     const { header, rows } = parseCsv(text(bytes));
-    // The cell folders are numbered in the order of sweep.csv's rows.
-    const cells = [...new Set(files.filter((f) => f.startsWith('cells/')).map((f) => f.split('/')[1]))].sort();
-    runsTable(header, rows, (r) => {
-      const i = rows.indexOf(r);
-      const glb = cells[i] && `cells/${cells[i]}/best.glb`;
+    // Each row's cell folder is cells/NNNN, its `cell` number.
+    const cells = [...new Set(files.filter((f) => f.startsWith('cells/')).map((f) => f.split('/')[1]))];
+    const modelOf = (r) => {
+      const cell = cells.find((c) => r.cell !== undefined && r.cell !== '' && Number(c) === Number(r.cell));
+      const glb = cell && `cells/${cell}/best.glb`;
       return glb && files.includes(glb) ? glb : null;
-    });
+    };
+    runsTable(header, rows, modelOf);
+    const first = rows.map(modelOf).find((glb) => glb);
+    if (!model && first) await loadModel(first);
     chart($('curve'), 'final best of each run', 'run', ['best'],
-      [rows.map((_, i) => i), rows.map((r) => +(r.best ?? r.final_best))]);
+      [rows.map((_, i) => i), rows.map((r) => +r.best)]);
   }
   const md = await readFile('summary.md');
   if (md) $('summary-md').textContent = text(md);
@@ -474,13 +477,14 @@ async function update() {
     }
   } else {
     $('runs-panel').hidden = false;
+    $('numbers').hidden = true;
     $('runs-title').textContent = kind === 'compare' ? 'runs' : 'runs of the study';
     showNumbers(summary);
     if (kind === 'compare') await showCompare(files);
     else await showSweep(files);
   }
   if (EMBEDDED) setStatus('report', 'report');
-  else setStatus(finished ? 'finished' : 'live', finished ? 'finished' : 'live: following the run');
+  else setStatus(finished ? 'finished' : 'live', finished ? 'finished' : 'live: following the folder');
   return finished;
 }
 

@@ -5,7 +5,8 @@
 //!   generations, seconds, why it stopped);
 //! - `fitness.csv`: its history, one row per generation (`generation`, `elapsed_s`,
 //!   `evaluations`, `best`, `mean`, `std`; every number as it round-trips exactly);
-//! - `best.genome.json`: the best genome found.
+//! - `best.genome.json`: the best genome found;
+//! - `best.glb`: its model, for the run viewer (`shapegen view`).
 //!
 //! The folder is written as `cells/.NNNN.partial-PID` and renamed into place once
 //! complete, so a cell's folder exists only whole: a study killed at any moment loses the
@@ -18,6 +19,7 @@ use std::sync::atomic::AtomicBool;
 use anyhow::Context;
 use serde::{Deserialize, Deserializer, Serialize};
 use shapegen::Grammar;
+use shapegen::export::{Palette, glb_bytes};
 use shapegen::gpu::GpuContext;
 use shapegen::optimize::{HistoryEntry, StopReason};
 use shapegen::scene::{Scene, SceneEvaluator, SceneScorer};
@@ -33,6 +35,7 @@ use crate::registry::Entry;
 const RESULT: &str = "result.json";
 const HISTORY: &str = "fitness.csv";
 const GENOME: &str = "best.genome.json";
+const MODEL: &str = "best.glb";
 /// The columns of `fitness.csv`.
 const HISTORY_COLUMNS: [&str; 6] = [
     "generation",
@@ -143,13 +146,19 @@ where
         },
         history: outcome.history,
     };
-    write(plan, dir, &finished, &outcome.genome)?;
+    write(plan, dir, &finished, &outcome.genome, &outcome.model)?;
     Ok(Some(finished))
 }
 
 /// Writes `finished`'s folder: into a partial folder first, renamed into place when
 /// whole. A folder already there (the same cell, finished by another process) is kept.
-fn write(plan: &Plan, dir: &Path, finished: &Finished, genome: &str) -> anyhow::Result<()> {
+fn write(
+    plan: &Plan,
+    dir: &Path,
+    finished: &Finished,
+    genome: &str,
+    model: &[u8],
+) -> anyhow::Result<()> {
     let index = finished.record.index;
     let cells = dir.join("cells");
     let name = name(plan, index);
@@ -175,7 +184,8 @@ fn write(plan: &Plan, dir: &Path, finished: &Finished, genome: &str) -> anyhow::
             serde_json::to_string_pretty(&finished.record)?.as_bytes(),
         )?;
         write(HISTORY, &history_csv(&finished.history)?)?;
-        write(GENOME, genome.as_bytes())
+        write(GENOME, genome.as_bytes())?;
+        write(MODEL, model)
     })();
     if let Err(err) = written {
         // A full disk or a file-size limit: no partial folder is left behind.
@@ -296,6 +306,8 @@ struct Outcome {
     stopped: StopReason,
     /// The best genome, as JSON.
     genome: String,
+    /// Its model, as binary glTF.
+    model: Vec<u8>,
 }
 
 /// The run of one cell, generic over the grammar of its scene's generator.
@@ -325,6 +337,10 @@ impl Visit for CellRun<'_> {
             stop: self.stop,
             evaluator: &mut evaluator,
         })?;
+        let mut instances = Vec::new();
+        result.best.derive_into(&mut instances);
+        let meshes = self.scene.meshes.bind(G::GRAPH)?;
+        let model = glb_bytes(&instances, &meshes, &Palette::new())?;
         *self.outcome = Some(Outcome {
             best: result.best_fitness,
             evaluations: result.evaluations,
@@ -332,6 +348,7 @@ impl Visit for CellRun<'_> {
             history: result.history,
             stopped: result.stopped,
             genome: result.best.to_json(),
+            model,
         });
         Ok(())
     }
