@@ -436,7 +436,7 @@ function setStatus(state, message) {
 
 function kindOf(files) {
   if (files.includes('front.csv')) return 'front';
-  if (files.includes('fitness.csv') || files.includes('run.json')) return 'run';
+  if (files.includes('fitness.csv') || files.includes('run.json') || files.includes('best.glb')) return 'run';
   if (files.includes('compare.csv')) return 'compare';
   if (files.includes('sweep.csv')) return 'sweep';
   return null;
