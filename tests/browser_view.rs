@@ -275,3 +275,57 @@ fn the_report_shows_the_run_offline(browser: &Path) {
     let rect = attribute(&dom, "canvas", "data-rect").expect("the canvas's place");
     canvas_not_blank(browser, &url, &rect, wait);
 }
+
+fn the_page_shows_a_front_and_a_comparison(browser: &Path) {
+    let dir = tempfile::tempdir().unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let wait = "--virtual-time-budget=5000";
+
+    let front = dir.path().join("front");
+    let scene = root.join("scenes/building.toml");
+    ok(&["run", s(&scene), "--cpu", "--generations", "2", "--out", s(&front)]);
+    let served = serve(&["view", s(&front)]);
+    let dom = browse(browser, &format!("http://{}/", served.addr), "--dump-dom", wait);
+    let members = fs::read_to_string(front.join("front.csv"))
+        .unwrap()
+        .lines()
+        .count()
+        - 1;
+    assert_eq!(
+        attribute(&dom, "front", "data-points").as_deref(),
+        Some(members.to_string().as_str()),
+        "one point per member of the front"
+    );
+    assert_eq!(
+        attribute(&dom, "canvas", "data-model").as_deref(),
+        Some("front/model_000.glb")
+    );
+    drop(served);
+
+    let compare = dir.path().join("compare");
+    let scene = skyline_scene(dir.path());
+    ok(&[
+        "compare",
+        s(&scene),
+        "--methods",
+        "ga",
+        "--runs",
+        "2",
+        "--seconds",
+        "0.3",
+        "--cpu",
+        "--out",
+        s(&compare),
+    ]);
+    let served = serve(&["view", s(&compare)]);
+    let dom = browse(browser, &format!("http://{}/", served.addr), "--dump-dom", wait);
+    assert_eq!(
+        dom.matches("<button>show</button>").count(),
+        2,
+        "a model button per run"
+    );
+    assert_eq!(
+        attribute(&dom, "canvas", "data-model").as_deref(),
+        Some("runs/ga-0/best.glb")
+    );
+}

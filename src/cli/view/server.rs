@@ -90,8 +90,8 @@ impl Viewer {
         }
     }
 
-    /// Answers requests on a thread of its own, at a low priority in the sense that
-    /// it only reads files, a few small ones a second for each page open.
+    /// Answers requests on a thread of its own (as `shapegen run --view` does beside
+    /// its search); a page open costs a few small file reads per save of the run.
     pub fn spawn(self) -> JoinHandle<()> {
         std::thread::Builder::new()
             .name("shapegen-view".into())
