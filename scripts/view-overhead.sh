@@ -1,9 +1,14 @@
 #!/usr/bin/env bash
 # What watching a run costs it: the same run (scene, seed, generation budget) without a
-# viewer, and with `--view` and the viewer's page open in headless Chromium following it
-# the whole time, alternately, REPEATS times each. Prints each run's evaluations per
-# second (evaluations / elapsed_s of its summary.json) and its best fitness, which must
-# be the same in both.
+# viewer, and with the viewer's page open in headless Chromium following it the whole
+# time, alternately, REPEATS times each. Prints each run's evaluations per second
+# (evaluations / elapsed_s of its summary.json), its best fitness, which must be the same
+# in both, and for watched runs the CPU time the browser took meanwhile.
+#
+# The watched run writes into a folder that `shapegen view` serves and that the browser
+# already shows (waiting for the run's first files): a browser already open on the page,
+# as a user would have it, so that the browser's own start is not counted. The browser
+# runs in real time (kept open by --remote-debugging-port), polling as a user's would.
 #
 # Usage: scripts/view-overhead.sh [GENERATIONS] [REPEATS]
 # Environment: SHAPEGEN (default target/release/shapegen; build it with
@@ -34,29 +39,48 @@ report() {
   awk -v l="$label" -v e="$evaluations" -v t="$elapsed" -v b="$best" \
     'BEGIN { printf "%-7s %8d evaluations in %7.3f s: %9.0f evaluations/s, best %s\n", l, e, t, e / t, b }'
 }
+# The processes below process $1, its children's children too.
+descendants() {
+  local pid
+  for pid in $(ps -o pid= --ppid "$1"); do
+    echo "$pid"
+    descendants "$pid"
+  done
+}
+# CPU time (user and system, its reaped children's included, in 1/100 s) of process $1
+# and every process below it.
+browser_ticks() {
+  local total=0 pid
+  for pid in "$1" $(descendants "$1"); do
+    if [ -r "/proc/$pid/stat" ]; then
+      total=$((total + $(awk '{print $14 + $15 + $16 + $17}' "/proc/$pid/stat")))
+    fi
+  done
+  echo "$total"
+}
 run_args=(run "$scene" --cpu --seed 1 --generations "$generations" --force)
 
 for r in $(seq 1 "$repeats"); do
   "$bin" "${run_args[@]}" --out "$work/plain" >/dev/null 2>&1
   report plain "$work/plain"
 
-  rm -rf "$work/viewed" "$work/profile"
-  "$bin" "${run_args[@]}" --view --out "$work/viewed" >/dev/null 2>"$work/run.log" &
-  run_pid=$!
-  pids+=("$run_pid")
-  until url="$(grep -o 'http://[0-9.:]*/' "$work/run.log")"; do sleep 0.05; done
-  # The page follows the run until it ends: a request per save, the model reloaded and
-  # redrawn (on the CPU, SwiftShader) at each new best, the curve at each save.
+  rm -rf "$work/viewed" "$work/profile" "$work/view.log"
+  mkdir -p "$work/viewed"
+  "$bin" view "$work/viewed" 2>"$work/view.log" &
+  view_pid=$!
+  pids+=("$view_pid")
+  until url="$(grep -so 'http://[0-9.:]*/' "$work/view.log")"; do sleep 0.05; done
   "$chromium" --headless --no-sandbox --disable-gpu --disable-background-networking \
     --disable-component-update --disable-sync --no-first-run \
-    --user-data-dir="$work/profile" --virtual-time-budget=3600000 --dump-dom "$url" \
-    >/dev/null 2>&1 &
+    --user-data-dir="$work/profile" --remote-debugging-port=0 "$url" >/dev/null 2>&1 &
   browser_pid=$!
   pids+=("$browser_pid")
-  until [ -f "$work/viewed/summary.json" ]; do sleep 0.05; done
-  kill -INT "$run_pid"
-  wait "$run_pid" || true
-  kill "$browser_pid" 2>/dev/null || true
-  wait "$browser_pid" 2>/dev/null || true
+  sleep 3
+  before="$(browser_ticks "$browser_pid")"
+  "$bin" "${run_args[@]}" --out "$work/viewed" >/dev/null 2>&1
+  after="$(browser_ticks "$browser_pid")"
   report viewed "$work/viewed"
+  echo "        the browser took $(awk -v t=$((after - before)) 'BEGIN { printf "%.2f", t / 100 }') s of CPU meanwhile"
+  kill "$browser_pid" "$view_pid" 2>/dev/null || true
+  wait "$browser_pid" "$view_pid" 2>/dev/null || true
 done
