@@ -38,6 +38,10 @@ const TESTS: &[BrowserTest] = &[
         "the_report_shows_the_run_offline",
         the_report_shows_the_run_offline,
     ),
+    (
+        "the_page_shows_a_front_and_a_comparison",
+        the_page_shows_a_front_and_a_comparison,
+    ),
 ];
 
 /// The Chromium binary: `SHAPEGEN_CHROMIUM`, else `chromium` or `chromium-browser` on
@@ -283,9 +287,22 @@ fn the_page_shows_a_front_and_a_comparison(browser: &Path) {
 
     let front = dir.path().join("front");
     let scene = root.join("scenes/building.toml");
-    ok(&["run", s(&scene), "--cpu", "--generations", "2", "--out", s(&front)]);
+    ok(&[
+        "run",
+        s(&scene),
+        "--cpu",
+        "--generations",
+        "2",
+        "--out",
+        s(&front),
+    ]);
     let served = serve(&["view", s(&front)]);
-    let dom = browse(browser, &format!("http://{}/", served.addr), "--dump-dom", wait);
+    let dom = browse(
+        browser,
+        &format!("http://{}/", served.addr),
+        "--dump-dom",
+        wait,
+    );
     let members = fs::read_to_string(front.join("front.csv"))
         .unwrap()
         .lines()
@@ -318,7 +335,12 @@ fn the_page_shows_a_front_and_a_comparison(browser: &Path) {
         s(&compare),
     ]);
     let served = serve(&["view", s(&compare)]);
-    let dom = browse(browser, &format!("http://{}/", served.addr), "--dump-dom", wait);
+    let dom = browse(
+        browser,
+        &format!("http://{}/", served.addr),
+        "--dump-dom",
+        wait,
+    );
     assert_eq!(
         dom.matches("<button>show</button>").count(),
         2,

@@ -86,21 +86,35 @@ pub fn asset(name: &str) -> Option<&'static Asset> {
     ASSETS.iter().find(|a| a.name == name)
 }
 
-/// The JavaScript modules of three.js the page imports, as the page's import map names
-/// them, with the relative imports inside each that the self-contained report rewrites
-/// to those names (a module read from a `data:` URL cannot resolve a relative one). The
-/// parent steps are spelt with `concat!`, apart from the `/` after them.
-pub const MODULES: &[(&str, &str, &[(&str, &str)])] = &[
-    (
-        "three",
-        "vendor/three/three.module.js",
-        &[("'./three.core.js'", "'three/core'")],
-    ),
-    ("three/core", "vendor/three/three.core.js", &[]),
-    (
-        "three/addons/loaders/GLTFLoader.js",
-        "vendor/three/addons/loaders/GLTFLoader.js",
-        &[
+/// A JavaScript module of three.js the page imports.
+#[derive(Debug, Clone, Copy)]
+pub struct Module {
+    /// Its name in the page's import map.
+    pub key: &'static str,
+    /// The embedded asset that holds it.
+    pub asset: &'static str,
+    /// Its relative imports, each with the import-map name the self-contained report
+    /// rewrites it to (a module read from a `data:` URL cannot resolve a relative one).
+    pub rewrites: &'static [(&'static str, &'static str)],
+}
+
+/// The three.js modules the page imports. The parent steps of the relative imports are
+/// spelt with `concat!`, apart from the `/` after them.
+pub const MODULES: &[Module] = &[
+    Module {
+        key: "three",
+        asset: "vendor/three/three.module.js",
+        rewrites: &[("'./three.core.js'", "'three/core'")],
+    },
+    Module {
+        key: "three/core",
+        asset: "vendor/three/three.core.js",
+        rewrites: &[],
+    },
+    Module {
+        key: "three/addons/loaders/GLTFLoader.js",
+        asset: "vendor/three/addons/loaders/GLTFLoader.js",
+        rewrites: &[
             (
                 concat!("'..", "/utils/BufferGeometryUtils.js'"),
                 "'three/addons/utils/BufferGeometryUtils.js'",
@@ -110,27 +124,27 @@ pub const MODULES: &[(&str, &str, &[(&str, &str)])] = &[
                 "'three/addons/utils/SkeletonUtils.js'",
             ),
         ],
-    ),
-    (
-        "three/addons/loaders/OBJLoader.js",
-        "vendor/three/addons/loaders/OBJLoader.js",
-        &[],
-    ),
-    (
-        "three/addons/controls/OrbitControls.js",
-        "vendor/three/addons/controls/OrbitControls.js",
-        &[],
-    ),
-    (
-        "three/addons/utils/BufferGeometryUtils.js",
-        "vendor/three/addons/utils/BufferGeometryUtils.js",
-        &[],
-    ),
-    (
-        "three/addons/utils/SkeletonUtils.js",
-        "vendor/three/addons/utils/SkeletonUtils.js",
-        &[],
-    ),
+    },
+    Module {
+        key: "three/addons/loaders/OBJLoader.js",
+        asset: "vendor/three/addons/loaders/OBJLoader.js",
+        rewrites: &[],
+    },
+    Module {
+        key: "three/addons/controls/OrbitControls.js",
+        asset: "vendor/three/addons/controls/OrbitControls.js",
+        rewrites: &[],
+    },
+    Module {
+        key: "three/addons/utils/BufferGeometryUtils.js",
+        asset: "vendor/three/addons/utils/BufferGeometryUtils.js",
+        rewrites: &[],
+    },
+    Module {
+        key: "three/addons/utils/SkeletonUtils.js",
+        asset: "vendor/three/addons/utils/SkeletonUtils.js",
+        rewrites: &[],
+    },
 ];
 
 #[cfg(test)]
@@ -154,14 +168,18 @@ mod tests {
     /// than in a report that cannot load.
     #[test]
     fn module_rewrites_match_and_leave_no_relative_import() {
-        for (key, name, rewrites) in MODULES {
-            let mut text = asset(name).unwrap().text().unwrap();
-            for (from, to) in *rewrites {
-                assert!(text.contains(from), "{key}: {from} not found");
+        for m in MODULES {
+            let mut text = asset(m.asset).unwrap().text().unwrap();
+            for (from, to) in m.rewrites {
+                assert!(text.contains(from), "{}: {from} not found", m.key);
                 text = text.replace(from, to);
             }
             for relative in ["from '.", "import '."] {
-                assert!(!text.contains(relative), "{key} still imports `{relative}`");
+                assert!(
+                    !text.contains(relative),
+                    "{} still imports `{relative}`",
+                    m.key
+                );
             }
         }
     }

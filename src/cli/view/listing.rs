@@ -15,13 +15,13 @@ const MAX_FILES: usize = 5000;
 #[derive(Debug, Serialize, PartialEq, Eq)]
 pub struct Listing {
     /// Relative paths of the regular files (symbolic links and hidden or temporary
-    /// files left out), at most [`MAX_FILES`].
+    /// files left out), at most 5,000.
     pub files: Vec<String>,
-    /// Whether files were left out because there were more than [`MAX_FILES`].
+    /// Whether files were left out because there were more than 5,000.
     pub truncated: bool,
 }
 
-/// The files of `root`, down to [`MAX_DEPTH`] levels; an unreadable folder lists as
+/// The files of `root`, down to 3 levels (`runs/ga-0/best.glb`); an unreadable folder lists as
 /// empty.
 pub fn listing(root: &Path) -> Listing {
     let mut files = Vec::new();

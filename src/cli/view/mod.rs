@@ -14,7 +14,7 @@ mod path;
 mod report;
 mod server;
 
-pub use assets::{ASSETS, Asset, MODULES, asset};
+pub use assets::{ASSETS, Asset, MODULES, Module, asset};
 pub use listing::{Listing, listing};
 pub use path::{MAX_TARGET, Refusal, RequestPath};
 pub use report::report_html;

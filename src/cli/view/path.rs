@@ -195,7 +195,10 @@ mod tests {
 
     #[test]
     fn refuses_escapes() {
-        let (one, two) = (format!("/files/{UP}/secret"), format!("/files/a/{UP}/{UP}/secret"));
+        let (one, two) = (
+            format!("/files/{UP}/secret"),
+            format!("/files/a/{UP}/{UP}/secret"),
+        );
         let assets = format!("/assets/{UP}/Cargo.toml");
         for bad in [
             one.as_str(),

@@ -97,13 +97,13 @@ pub fn report_html(root: &Path) -> anyhow::Result<String> {
     }
 
     let mut imports = BTreeMap::new();
-    for (key, name, rewrites) in MODULES {
-        let mut text = asset_text(name)?;
-        for (from, to) in *rewrites {
-            text = replace(&text, from, to, name)?;
+    for module in MODULES {
+        let mut text = asset_text(module.asset)?;
+        for (from, to) in module.rewrites {
+            text = replace(&text, from, to, module.asset)?;
         }
         imports.insert(
-            *key,
+            module.key,
             format!("data:text/javascript;base64,{}", STANDARD.encode(text)),
         );
     }

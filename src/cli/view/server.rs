@@ -71,7 +71,7 @@ impl Viewer {
     }
 
     /// Answers requests until the process ends, each on a thread of its own (a
-    /// request may wait for a file to change), at most [`MAX_REQUESTS`] at once.
+    /// request may wait for a file to change), at most 32 at once.
     pub fn serve(&self) {
         let busy = Arc::new(AtomicUsize::new(0));
         for request in self.server.incoming_requests() {
