@@ -98,9 +98,9 @@ fn browse(browser: &Path, url: &str, mode: &str, wait: &str) -> String {
             "--disable-sync",
             "--no-first-run",
             "--hide-scrollbars",
-            // No name resolves: a page that needed anything beyond this machine would
-            // show it (only 127.0.0.1 and file:// are reached).
-            "--host-resolver-rules=MAP * ~NOTFOUND",
+            // No host but the test's server is reached: a page that needed anything
+            // beyond this machine would show it.
+            "--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE 127.0.0.1",
             &format!("--user-data-dir={}", profile.path().display()),
             &format!("--window-size={},{}", WINDOW.0, WINDOW.1),
             wait,
