@@ -454,13 +454,16 @@ async function update() {
   await loadTargets(files);
   const summary = await readJson('summary.json', true);
   const live = await readJson('run.json', true);
-  let finished = EMBEDDED ? true : Boolean(summary) || (live && live.running === false);
+  // A resumed run has its earlier summary.json until it ends again: run.json says
+  // whether it is running.
+  const running = Boolean(live && live.running);
+  const finished = EMBEDDED || (live ? !running : Boolean(summary));
   if (kind === 'run' || kind === 'front') {
     const csvName = kind === 'run' ? 'fitness.csv' : 'history.csv';
     const csv = await readFile(csvName);
     let last = null;
     if (csv) last = showCurve(text(csv), csvName);
-    const info = summary || live || (last && {
+    const info = (running ? live : summary || live) || (last && {
       generation: +last.generation, evaluations: +last.evaluations, elapsed_s: +last.elapsed_s,
     });
     showNumbers(info);
