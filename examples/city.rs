@@ -82,8 +82,21 @@ fn main() -> anyhow::Result<()> {
     preview
         .render(&instances, &meshes, &palette)?
         .save(out.join("best.png"))?;
+    // The fitness curve, as `shapegen run` writes it, for the viewer.
+    let mut curve = String::from("generation,elapsed_s,evaluations,best,mean,std\n");
+    for h in &result.history {
+        curve += &format!(
+            "{},{:.3},{},{},{},{}\n",
+            h.generation, h.elapsed_s, h.evaluations, h.best, h.mean, h.std
+        );
+    }
+    std::fs::write(out.join("fitness.csv"), curve)?;
     println!(
-        "wrote best.obj, best.glb, best.png and best.genome.json to {}",
+        "wrote best.obj, best.glb, best.png, best.genome.json and fitness.csv to {}",
+        out.display()
+    );
+    println!(
+        "to look at it in the browser: cargo run --release -- view {}",
         out.display()
     );
     Ok(())

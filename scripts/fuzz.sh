@@ -18,7 +18,7 @@ cd "$root"
 seconds="${1:?usage: scripts/fuzz.sh SECONDS [TARGET ...]}"
 shift
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(scene_toml genome_json checkpoint obj_mesh stl_mesh ply_mesh gltf_mesh point_cloud target_image)
+[ ${#targets[@]} -gt 0 ] || targets=(scene_toml genome_json checkpoint obj_mesh stl_mesh ply_mesh gltf_mesh point_cloud target_image request_path)
 rss="${FUZZ_RSS_MB:-2048}"
 malloc="${FUZZ_MALLOC_MB:-512}"
 logs="${FUZZ_LOG:-$root/fuzz/logs}"
@@ -50,6 +50,7 @@ seed ply_mesh fuzz/seeds/ply_mesh/*
 seed gltf_mesh fuzz/seeds/gltf_mesh/*
 seed point_cloud fuzz/seeds/point_cloud/*
 seed target_image scenes/targets/*.png scenes/paper/*/*.png fuzz/seeds/target_image/*
+seed request_path fuzz/seeds/request_path/*
 # The original's derivations (JSON of another shape, gzip-compressed in the repository).
 golden="$(mktemp -d)"
 trap 'rm -rf "$golden"' EXIT

@@ -77,6 +77,11 @@ impl Kind {
                 "scatter_*.svg",
                 "overlay_*.png",
                 "history.csv",
+                "run.json",
+                "target.obj",
+                "target.png",
+                "camera.json",
+                "report.html",
             ],
             Kind::Compare => &[
                 "summary.json",
@@ -87,6 +92,7 @@ impl Kind {
                 "gap-*.png",
                 "gap-*.svg",
                 "runs/",
+                "report.html",
             ],
             Kind::Sweep => &[
                 "plan.json",
@@ -98,6 +104,7 @@ impl Kind {
                 "final-*.png",
                 "final-*.svg",
                 "curves.png",
+                "report.html",
                 "curves.svg",
                 "targets.csv",
                 "gap-*.png",

@@ -3,8 +3,8 @@
 //! [`Cli`] gathers the generators the tool knows and runs the command its arguments
 //! give. The `shapegen` binary is `Cli::new().published().run()`; a crate with its own
 //! generators gets every subcommand (`sample`, `score`, `target`, `run`, `compare`,
-//! `sweep`, `render`, `export`, `genome`) for them with a `main` like this, and its scenes name
-//! them as `generator = "tower"`:
+//! `sweep`, `render`, `export`, `genome`, `view`, `report`) for them with a `main` like
+//! this, and its scenes name them as `generator = "tower"`:
 //!
 //! ```no_run
 //! use shapegen::prelude::*;
@@ -47,6 +47,7 @@ mod plot;
 mod processes;
 mod progress;
 mod stats;
+pub mod view;
 mod voxels;
 
 use std::ffi::OsString;

@@ -4,6 +4,7 @@
 #![allow(dead_code)]
 
 pub mod slurm;
+pub mod view;
 
 use std::fs;
 use std::path::{Path, PathBuf};

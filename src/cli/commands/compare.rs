@@ -36,6 +36,7 @@ use clap::Args;
 use image::Rgb;
 use serde::Serialize;
 use shapegen::Grammar;
+use shapegen::export::{Palette, glb_bytes};
 use shapegen::optimize::{Budget, HistoryEntry, StopReason};
 use shapegen::scene::{
     METRIC_COLUMNS, Method, Metrics, OptimizerGoal, Overrides, Scene, SceneEvaluator, SceneScorer,
@@ -246,7 +247,6 @@ struct Finished {
 impl Visit for Compare<'_> {
     fn visit<G: Grammar>(self, _: &Entry) -> anyhow::Result<()> {
         let scorer = SceneScorer::new::<G>(self.scene)?;
-        let meshes = self.scene.meshes.bind(G::GRAPH)?;
         let gpu = self.args.backend.open();
         let backend = scorer.on(self.args.backend.choice(), gpu.as_ref())?;
         for goal in self.goals {
@@ -268,6 +268,8 @@ impl Visit for Compare<'_> {
             SceneEvaluator::new(&backend).with_incremental(self.args.backend.incremental());
         let stop = interrupt::flag();
         let mut done: Vec<Finished> = Vec::with_capacity(total);
+        let (meshes, palette) = (self.scene.meshes.bind(G::GRAPH)?, Palette::new());
+        let mut instances = Vec::new();
         let outputs = Outputs {
             args: self.args,
             methods: self.methods,
@@ -312,6 +314,12 @@ impl Visit for Compare<'_> {
                 atomic_write(
                     &dir.join("best.genome.json"),
                     result.best.to_json().as_bytes(),
+                )?;
+                // The model, for the run viewer (`shapegen view`).
+                result.best.derive_into(&mut instances);
+                atomic_write(
+                    &dir.join("best.glb"),
+                    &glb_bytes(&instances, &meshes, &palette)?,
                 )?;
                 let elapsed = result.history.last().map_or(0.0, |h| h.elapsed_s);
                 eprintln!(

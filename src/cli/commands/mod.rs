@@ -7,11 +7,13 @@ mod compare;
 mod export;
 mod genome;
 mod render;
+mod report;
 mod run;
 mod sample;
 mod score;
 mod sweep;
 mod target;
+mod view;
 
 use clap::Subcommand;
 use shapegen_runtime::Grammar;
@@ -65,6 +67,14 @@ pub enum Command {
     /// Work on genome files: `convert` rewrites one in the other JSON form (packed or
     /// nested).
     Genome(genome::GenomeArgs),
+    /// Serve a page that shows an output folder live in the browser: the best model in
+    /// 3D beside the target, the fitness curve, the run's numbers; a multi-objective
+    /// run's front, a comparison's or a study's runs. Listens on 127.0.0.1 unless
+    /// --listen says otherwise; serves only the folder, read-only.
+    View(view::ViewArgs),
+    /// Write the viewer's page for an output folder as one self-contained
+    /// `report.html`: models, curves, targets and numbers inline, nothing fetched.
+    Report(report::ReportArgs),
 }
 
 impl Command {
@@ -80,6 +90,8 @@ impl Command {
             Command::Sweep(args) => sweep::run(&args, tool),
             Command::Export(args) => export::run(&args, tool),
             Command::Genome(args) => genome::run(&args, tool),
+            Command::View(args) => view::run(&args),
+            Command::Report(args) => report::run(&args),
         }
     }
 }

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::Args;
-use image::Rgb;
+use image::{GrayImage, ImageFormat, Luma, Rgb};
 use serde::Serialize;
 use shapegen::export::{Palette, Preview, glb_bytes, write_mtl, write_obj};
 use shapegen::optimize::islands::{IslandGa, IslandGaSettings, IslandSettings};
@@ -19,7 +19,7 @@ use crate::registry::Entry;
 
 use crate::cli::backend::{BackendArgs, Incremental, check_batches};
 use crate::cli::checkpoint::{Checkpoint, Head};
-use crate::cli::files::{Files, atomic_write, csv_bytes};
+use crate::cli::files::{Files, csv_bytes};
 use crate::cli::folder::{Existing, Folder, Kind};
 use crate::cli::front::FrontRun;
 use crate::cli::generators::{Generators, Jobs, Visit};
@@ -29,6 +29,9 @@ use crate::cli::overlay::overlay;
 use crate::cli::plot::{self, Line, Titles};
 use crate::cli::processes::Processes;
 use crate::cli::progress::ProgressLine;
+use crate::cli::voxels::voxel_surface_obj;
+
+use super::view::ServeArgs;
 
 /// Arguments of `shapegen run`.
 #[derive(Debug, Args)]
@@ -80,6 +83,35 @@ pub struct RunArgs {
     force: bool,
     #[command(flatten)]
     memory: MemoryArgs,
+    /// Serve the run viewer's page for the output folder while the run goes on (as
+    /// `shapegen view DIR` does), and after it until Ctrl-C.
+    #[arg(long)]
+    view: bool,
+    #[command(flatten)]
+    serve: ServeArgs,
+}
+
+/// `run.json`: what the viewer shows of a run, rewritten at every save.
+#[derive(Serialize)]
+struct Live<'a> {
+    generator: &'a str,
+    method: &'a str,
+    seed: u64,
+    generation: u64,
+    evaluations: u64,
+    elapsed_s: f64,
+    best_fitness: f64,
+    /// False once the run has ended (its `summary.json` is written).
+    running: bool,
+}
+
+/// `camera.json`: the first silhouette target's camera, for the viewer to look through.
+#[derive(Serialize)]
+struct TargetCamera {
+    width: u32,
+    height: u32,
+    /// World to clip space, column by column.
+    view_projection: [f32; 16],
 }
 
 /// `summary.json`.
@@ -121,6 +153,10 @@ where
         islands: args.islands,
         sets: args.sets.clone(),
     };
+    anyhow::ensure!(
+        args.view || (args.serve.port.is_none() && args.serve.listen.is_none()),
+        "--port and --listen say where --view serves: give --view too"
+    );
     let processes = Processes::start()?;
     let outcome = (|| {
         let (dir, scene_path, overrides) = match &args.resume {
@@ -145,6 +181,12 @@ where
             .writes()
             .then(|| Folder::claim(&dir, Kind::Run, existing))
             .transpose()?;
+        let viewer = (args.view && processes.writes())
+            .then(|| args.serve.bind(&dir))
+            .transpose()?;
+        if let Some(viewer) = viewer {
+            viewer.spawn();
+        }
         tool.visit(
             &scene.generator,
             Run {
@@ -157,7 +199,15 @@ where
             },
         )
     })();
-    processes.end(outcome)
+    let outcome = processes.end(outcome);
+    if args.view && outcome.is_ok() {
+        eprintln!("the run is over; the viewer goes on serving until Ctrl-C");
+        let stop = interrupt::flag();
+        while !stop.load(std::sync::atomic::Ordering::SeqCst) {
+            std::thread::sleep(std::time::Duration::from_millis(200));
+        }
+    }
+    outcome
 }
 
 /// The body of `shapegen run`.
@@ -261,6 +311,19 @@ impl Run<'_> {
             SceneEvaluator::new(&backend).with_incremental(self.args.backend.incremental());
         let stop = interrupt::flag();
         let outputs = Outputs::new::<G>(self.scene, &scorer)?;
+        if writes {
+            outputs.targets(self.dir)?;
+        }
+        let live = |result: &RunResult<G>, running: bool| Live {
+            generator: &self.scene.generator,
+            method: goal.method().name(),
+            seed: goal.seed,
+            generation: result.generations,
+            evaluations: result.evaluations,
+            elapsed_s: result.history.last().map_or(0.0, |h| h.elapsed_s),
+            best_fitness: result.best_fitness,
+            running,
+        };
         let mut progress = Progress::new(goal);
         let mut show = |s: &Snapshot<'_, G>| {
             if writes {
@@ -285,6 +348,10 @@ impl Run<'_> {
                     outputs.best(&mut files, self.dir, &result.best)?;
                 }
                 outputs.curves(&mut files, self.dir, &result)?;
+                files.write(
+                    &self.dir.join("run.json"),
+                    serde_json::to_string_pretty(&live(&result, true))?.as_bytes(),
+                )?;
                 Checkpoint {
                     scene: self.scene_path.to_owned(),
                     overrides: self.overrides.clone(),
@@ -330,10 +397,16 @@ impl Run<'_> {
         if let Some(incremental) = &summary.incremental {
             eprintln!("{incremental}");
         }
-        atomic_write(
+        let mut files = Files::new();
+        files.write(
             &self.dir.join("summary.json"),
             serde_json::to_string_pretty(&summary)?.as_bytes(),
         )?;
+        files.write(
+            &self.dir.join("run.json"),
+            serde_json::to_string_pretty(&live(&result, false))?.as_bytes(),
+        )?;
+        files.commit()?;
         println!(
             "best fitness {:.4} after {} generations and {} evaluations ({}); wrote best.obj, \
              best.glb, best.png{}, best.genome.json, fitness.csv, fitness.png, fitness.svg and summary.json to {}",
@@ -377,6 +450,42 @@ impl<'a> Outputs<'a> {
 
     fn has_overlay(&self) -> bool {
         self.scorer.silhouette().is_some()
+    }
+
+    /// What the viewer shows beside the model: `target.obj`, the surface of the volume
+    /// target's voxels (weight above 0), and `target.png` with `camera.json`, the first
+    /// silhouette target and the camera it is seen through.
+    fn targets(&self, dir: &Path) -> anyhow::Result<()> {
+        let mut files = Files::new();
+        if let Some(volume) = self.scorer.volume() {
+            let classes = volume.classes();
+            let voxels = classes.voxels();
+            let mut covered = vec![0u64; voxels.len().div_ceil(64)];
+            for (v, &class) in voxels.iter().enumerate() {
+                if classes.is_target(usize::from(class)) {
+                    covered[v / 64] |= 1 << (v % 64);
+                }
+            }
+            let (obj, _) = voxel_surface_obj(volume.grid(), &covered);
+            files.write(&dir.join("target.obj"), obj.as_bytes())?;
+        }
+        if let Some(silhouette) = self.scorer.silhouette() {
+            let t = &silhouette.targets()[0];
+            let image = GrayImage::from_fn(t.width(), t.height(), |x, y| Luma([t.level(x, y)]));
+            let mut png = std::io::Cursor::new(Vec::new());
+            image.write_to(&mut png, ImageFormat::Png)?;
+            files.write(&dir.join("target.png"), png.get_ref())?;
+            let camera = TargetCamera {
+                width: t.width(),
+                height: t.height(),
+                view_projection: t.view_projection().to_cols_array(),
+            };
+            files.write(
+                &dir.join("camera.json"),
+                serde_json::to_string_pretty(&camera)?.as_bytes(),
+            )?;
+        }
+        files.commit()
     }
 
     /// The best model: OBJ with its MTL, GLB, a shaded picture, the overlay and the genome.

@@ -5,7 +5,8 @@
 //!   generations, seconds, why it stopped, its best model's measures);
 //! - `fitness.csv`: its history, one row per generation (`generation`, `elapsed_s`,
 //!   `evaluations`, `best`, `mean`, `std`; every number as it round-trips exactly);
-//! - `best.genome.json`: the best genome found.
+//! - `best.genome.json`: the best genome found;
+//! - `best.glb`: its model, for the run viewer (`shapegen view`).
 //!
 //! The folder is written as `cells/.NNNN.partial-PID` and renamed into place once
 //! complete, so a cell's folder exists only whole: a study killed at any moment loses the
@@ -18,6 +19,7 @@ use std::sync::atomic::AtomicBool;
 use anyhow::Context;
 use serde::{Deserialize, Deserializer, Serialize};
 use shapegen::Grammar;
+use shapegen::export::{Palette, glb_bytes};
 use shapegen::gpu::GpuContext;
 use shapegen::optimize::{HistoryEntry, StopReason};
 use shapegen::scene::{Metrics, Scene, SceneEvaluator, SceneScorer};
@@ -33,6 +35,7 @@ use crate::registry::Entry;
 const RESULT: &str = "result.json";
 const HISTORY: &str = "fitness.csv";
 const GENOME: &str = "best.genome.json";
+const MODEL: &str = "best.glb";
 /// The columns of `fitness.csv`.
 const HISTORY_COLUMNS: [&str; 6] = [
     "generation",
@@ -147,13 +150,19 @@ where
         },
         history: outcome.history,
     };
-    write(plan, dir, &finished, &outcome.genome)?;
+    write(plan, dir, &finished, &outcome.genome, &outcome.model)?;
     Ok(Some(finished))
 }
 
 /// Writes `finished`'s folder: into a partial folder first, renamed into place when
 /// whole. A folder already there (the same cell, finished by another process) is kept.
-fn write(plan: &Plan, dir: &Path, finished: &Finished, genome: &str) -> anyhow::Result<()> {
+fn write(
+    plan: &Plan,
+    dir: &Path,
+    finished: &Finished,
+    genome: &str,
+    model: &[u8],
+) -> anyhow::Result<()> {
     let index = finished.record.index;
     let cells = dir.join("cells");
     let name = name(plan, index);
@@ -179,7 +188,8 @@ fn write(plan: &Plan, dir: &Path, finished: &Finished, genome: &str) -> anyhow::
             serde_json::to_string_pretty(&finished.record)?.as_bytes(),
         )?;
         write(HISTORY, &history_csv(&finished.history)?)?;
-        write(GENOME, genome.as_bytes())
+        write(GENOME, genome.as_bytes())?;
+        write(MODEL, model)
     })();
     if let Err(err) = written {
         // A full disk or a file-size limit: no partial folder is left behind.
@@ -302,6 +312,8 @@ struct Outcome {
     genome: String,
     /// Its measures.
     metrics: Metrics,
+    /// Its model, as binary glTF.
+    model: Vec<u8>,
 }
 
 /// The run of one cell, generic over the grammar of its scene's generator.
@@ -333,6 +345,9 @@ impl Visit for CellRun<'_> {
         })?;
         let meshes = self.scene.meshes.bind(G::GRAPH)?;
         let metrics = Metrics::of_genome(self.scene, Some(&scorer), &meshes, &result.best);
+        let mut instances = Vec::new();
+        result.best.derive_into(&mut instances);
+        let model = glb_bytes(&instances, &meshes, &Palette::new())?;
         *self.outcome = Some(Outcome {
             best: result.best_fitness,
             evaluations: result.evaluations,
@@ -341,6 +356,7 @@ impl Visit for CellRun<'_> {
             stopped: result.stopped,
             genome: result.best.to_json(),
             metrics,
+            model,
         });
         Ok(())
     }
