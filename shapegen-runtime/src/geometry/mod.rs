@@ -19,6 +19,6 @@ pub use instance::{CUBE, Instance, MeshId};
 pub use library::{BoundMeshes, MeshLibrary};
 pub use mesh::{Mesh, MeshError};
 pub use polygon::{Polygon, PolygonError};
-pub use roof::{Roof, RoofError, RoofShape};
+pub use roof::{Roof, RoofError, RoofMeshes, RoofPiece, RoofShape};
 pub use scope::Scope;
 pub use split::{Axis, Part, Repeat, Split};

@@ -24,7 +24,10 @@
 //! | [`Gable`](RoofShape::Gable) | two faces and two vertical gable ends on the short sides | the hip roof with the edges whose hip faces are triangles made vertical gable ends (no two neighbours) |
 //! | [`Pyramid`](RoofShape::Pyramid) | four triangles to one apex | one triangle per edge to an apex that sees every edge (in the polygon's kernel); a polygon with no kernel gets a hip roof |
 
+mod pieces;
 mod skeleton;
+
+pub use pieces::{RoofMeshes, RoofPiece};
 
 use glam::{DVec2, DVec3};
 
