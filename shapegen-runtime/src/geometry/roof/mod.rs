@@ -1,28 +1,7 @@
 //! Roofs and prisms over polygons: CGA's `extrude` and `roofFlat`, `roofShed`,
 //! `roofGable`, `roofHip` and `roofPyramid`, each a closed solid.
 //!
-//! A roof stands on its polygon's plane (`z = 0`) and rises along `+z`. Its eave is the
-//! polygon moved outward by the overhang ([`Polygon::offset`], mitred corners) and lies
-//! `overhang * tan(pitch)` below the plane, so that a roof face of the given pitch passes
-//! through the polygon's edge at `z = 0`: the wall's top. The solid is the roof surface
-//! with the eave polygon as its floor; every roof, on every simple polygon, is closed
-//! and wound with its normals outward: each is checked, and where one does not close,
-//! a simpler shape is built instead and [`Roof::shape`] says so.
-//!
-//! ```text
-//!   flat          shed            gable            hip             pyramid
-//!  ______                          /\             ____               /\
-//! |______|      __----|          /    \         /      \           /    \
-//!              |______|        /________\     /__________\       /________\
-//! ```
-//!
-//! | shape | over a rectangle | over any simple polygon |
-//! |---|---|---|
-//! | [`Flat`](RoofShape::Flat) | a slab of the given thickness | the same |
-//! | [`Shed`](RoofShape::Shed) | one plane rising toward `+y` | the same |
-//! | [`Hip`](RoofShape::Hip) | four faces, a ridge along the long side | one face per edge, from the straight skeleton |
-//! | [`Gable`](RoofShape::Gable) | two faces and two vertical gable ends on the short sides | the hip roof with the edges whose hip faces are triangles made vertical gable ends (no two neighbours) |
-//! | [`Pyramid`](RoofShape::Pyramid) | four triangles to one apex | one triangle per edge to an apex that sees every edge (in the polygon's kernel); a polygon with no kernel gets a hip roof |
+//! See [`RoofShape`] for the shapes and where a roof stands.
 
 mod pieces;
 mod skeleton;
@@ -36,6 +15,29 @@ use super::polygon::Polygon;
 use super::solid::Solid;
 
 /// Which roof, with its shape's measure. Angles are in radians.
+///
+/// A roof stands on its polygon's plane (`z = 0`) and rises along `+z`. Its eave is the
+/// polygon moved outward by the overhang ([`Polygon::offset`], mitred corners) and lies
+/// `overhang * tan(pitch)` below the plane, so that a roof face of the given pitch passes
+/// through the polygon's edge at `z = 0`: the wall's top. The solid is the roof surface
+/// with the eave polygon as its floor; every roof, on every simple polygon, is closed
+/// and wound with its normals outward: each is checked, and where one does not close,
+/// a simpler shape is built instead and [`Roof::shape`] says so.
+///
+/// ```text
+///   flat          shed            gable            hip             pyramid
+///  ______                          /\             ____               /\
+/// |______|      __----|          /    \         /      \           /    \
+///              |______|        /________\     /__________\       /________\
+/// ```
+///
+/// | shape | over a rectangle | over any simple polygon |
+/// |---|---|---|
+/// | [`Flat`](RoofShape::Flat) | a slab of the given thickness | the same |
+/// | [`Shed`](RoofShape::Shed) | one plane rising toward `+y` | the same |
+/// | [`Hip`](RoofShape::Hip) | four faces, a ridge along the long side | one face per edge, from the straight skeleton |
+/// | [`Gable`](RoofShape::Gable) | two faces and two vertical gable ends on the short sides | the hip roof with the edges whose hip faces are triangles made vertical gable ends (no two neighbours) |
+/// | [`Pyramid`](RoofShape::Pyramid) | four triangles to one apex | one triangle per edge to an apex that sees every edge (in the polygon's kernel); a polygon with no kernel gets a hip roof |
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum RoofShape {
     /// A slab of `thickness` over the eave polygon.
@@ -45,22 +47,22 @@ pub enum RoofShape {
     },
     /// One plane rising at `pitch` toward the polygon plane's `+y`, over vertical walls.
     Shed {
-        /// The plane's slope angle, in `[0, 90)` degrees.
+        /// The plane's slope angle, in radians, in `[0, pi/2)`.
         pitch: f32,
     },
     /// Sloped faces at `pitch` and vertical gable ends.
     Gable {
-        /// The faces' slope angle, in `[0, 90)` degrees.
+        /// The faces' slope angle, in radians, in `[0, pi/2)`.
         pitch: f32,
     },
     /// One face at `pitch` per edge.
     Hip {
-        /// The faces' slope angle, in `[0, 90)` degrees.
+        /// The faces' slope angle, in radians, in `[0, pi/2)`.
         pitch: f32,
     },
     /// Triangles to one apex; `pitch` is the slope of the steepest.
     Pyramid {
-        /// The steepest face's slope angle, in `[0, 90)` degrees.
+        /// The steepest face's slope angle, in radians, in `[0, pi/2)`.
         pitch: f32,
     },
 }
@@ -99,7 +101,7 @@ pub struct Roof {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum RoofError {
-    /// A pitch outside `[0, 90)` degrees, a negative thickness or overhang, or a
+    /// A pitch outside `[0, pi/2)` radians, a negative thickness or overhang, or a
     /// non-finite one.
     #[error("{what} is {value}; valid: {valid}")]
     Measure {
@@ -143,8 +145,8 @@ impl Polygon {
         solid.finish()
     }
 
-    /// The roof of `shape` over the polygon with `overhang` (see the [module
-    /// documentation](self) for what each shape is and where the eave lies).
+    /// The roof of `shape` over the polygon with `overhang` (see [`RoofShape`] for what
+    /// each shape is and where the eave lies).
     ///
     /// ```
     /// use glam::vec2;
