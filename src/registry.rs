@@ -149,7 +149,7 @@ pub trait AddGrammar {
 }
 
 /// Adds the published generators to `to`, each under its grammar's key (`spaceship`,
-/// `tree`, `city`, `building`), with its own meshes, its paper scene's limits and the
+/// `tree`, `city`, `building`, `roofed_building`), with its own meshes, its paper scene's limits and the
 /// original's settings of every method (the building, which has no paper scene, takes the
 /// thesis's GA).
 ///
@@ -178,7 +178,8 @@ impl Registry {
         Registry::default()
     }
 
-    /// The published generators, `spaceship`, `tree`, `city` and `building`, with their
+    /// The published generators, `spaceship`, `tree`, `city`, `building` and
+    /// `roofed_building`, with their
     /// own meshes, their paper scenes' limits and the original's settings of every method
     /// (the building, which has no paper scene, takes the thesis's GA).
     pub fn published() -> Self {
@@ -216,7 +217,7 @@ impl Registry {
         &self.entries
     }
 
-    /// The names, for messages: `spaceship, tree, city and building`.
+    /// The names, for messages: `spaceship, tree, city, building and roofed_building`.
     pub fn names(&self) -> String {
         let names: Vec<&str> = self.entries.iter().map(|e| e.name.as_str()).collect();
         match names.split_last() {
@@ -261,7 +262,7 @@ fn published_defaults(generator: Published, meshes: &MeshLibrary) -> Defaults {
 }
 
 /// The original's settings of every method for a published generator's paper scene; the
-/// building, which has no paper scene, breeds with the thesis's GA and takes the city's
+/// buildings, which have no paper scene, breeds with the thesis's GA and takes the city's
 /// settings of the other methods.
 fn paper_presets(generator: Published) -> Presets {
     let (ga, smc, rjmcmc): (GaSettings, fn(Order) -> SmcSettings, McmcSettings) = match generator {
@@ -280,7 +281,7 @@ fn paper_presets(generator: Published) -> Presets {
             generators::city::paper_smc,
             generators::city::paper_rjmcmc(),
         ),
-        Published::Building => (
+        Published::Building | Published::RoofedBuilding => (
             MultiGaSettings::thesis().ga,
             generators::city::paper_smc,
             generators::city::paper_rjmcmc(),

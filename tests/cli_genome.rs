@@ -146,8 +146,8 @@ fn convert_explains_its_mistakes() {
     assert_eq!(
         err.trim(),
         format!(
-            "error: `{}`: unknown generator `Rocket`; the generators are spaceship, tree, city \
-             and building",
+            "error: `{}`: unknown generator `Rocket`; the generators are spaceship, tree, city, \
+             building and roofed_building",
             rocket.display()
         )
     );
@@ -477,8 +477,8 @@ fn export_explains_its_mistakes() {
     ]);
     assert!(
         err.contains(
-            "error: unknown generator `rocket`; the generators are spaceship, tree, city and \
-             building"
+            "error: unknown generator `rocket`; the generators are spaceship, tree, city, \
+             building and roofed_building"
         ),
         "{err}"
     );

@@ -1,4 +1,4 @@
-//! Properties of the published generators (spaceship, tree, city, building) under their paper
+//! Properties of the published generators (spaceship, tree, city, buildings) under their paper
 //! limits: any sequence of genetic operators keeps every genome valid and derivable into
 //! finite instances, and the weighted operators keep it within the limits; JSON
 //! round-trips random genomes exactly; derivation and the operators (of both variants)
@@ -28,7 +28,7 @@ fn paper_initial_len(g: Published) -> u32 {
     match g {
         Published::Spaceship => 50,
         Published::Tree => 250,
-        Published::City | Published::Building => 50,
+        Published::City | Published::Building | Published::RoofedBuilding => 50,
     }
 }
 

@@ -126,7 +126,11 @@ fn unknown_keys_are_refused_with_their_line() {
 fn unknown_generators_are_refused() {
     let fixture = Fixture::new();
     let text = VOLUME.replace("\"spaceship\"", "\"castle\"");
-    fixture.refuses(&text, "generator", "spaceship, tree, city and building");
+    fixture.refuses(
+        &text,
+        "generator",
+        "spaceship, tree, city, building and roofed_building",
+    );
 }
 
 #[test]

@@ -17,6 +17,7 @@ use shapegen_runtime::Grammar;
 use shapegen_runtime::genome::Limits;
 
 pub use building::Building;
+pub use building::roofed::RoofedBuilding;
 pub use city::City;
 pub use meshes::{LEAF_OBJ, TRUNK_OBJ, default_meshes, low_poly_sphere};
 pub use spaceship::Spaceship;
@@ -42,25 +43,28 @@ pub enum Published {
     City,
     /// [`Building`].
     Building,
+    /// [`RoofedBuilding`].
+    RoofedBuilding,
 }
 
 impl Published {
     /// All published generators.
-    pub const ALL: [Published; 4] = [
+    pub const ALL: [Published; 5] = [
         Published::Spaceship,
         Published::Tree,
         Published::City,
         Published::Building,
+        Published::RoofedBuilding,
     ];
 
     /// The genome limits of the generator's paper scene ([`building::LIMITS`] for the
-    /// building, which has none).
+    /// buildings, which have none).
     pub const fn paper_limits(self) -> Limits {
         match self {
             Published::Spaceship => spaceship::PAPER_LIMITS,
             Published::Tree => tree::PAPER_LIMITS,
             Published::City => city::PAPER_LIMITS,
-            Published::Building => building::LIMITS,
+            Published::Building | Published::RoofedBuilding => building::LIMITS,
         }
     }
 
@@ -72,6 +76,7 @@ impl Published {
             Published::Tree => visitor.visit::<Tree>(limits),
             Published::City => visitor.visit::<City>(limits),
             Published::Building => visitor.visit::<Building>(limits),
+            Published::RoofedBuilding => visitor.visit::<RoofedBuilding>(limits),
         }
     }
 }

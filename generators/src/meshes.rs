@@ -2,6 +2,7 @@
 
 use std::f32::consts::{PI, TAU};
 
+use shapegen_runtime::geometry::RoofPiece;
 use shapegen_runtime::prelude::{Vec3, vec3};
 use shapegen_runtime::{Mesh, MeshLibrary};
 
@@ -19,14 +20,15 @@ const SPHERE_SEGMENTS: u32 = 8;
 const SPHERE_BANDS: u32 = 4;
 
 /// A mesh library holding every mesh the published generators use: the built-in `cube`,
-/// `trunk`, `leaf` and `sphere`. `trunk` and `leaf` are normalized as every generator
+/// `trunk`, `leaf` and `sphere`, and the roof pieces of
+/// [`RoofedBuilding`](crate::building::roofed::RoofedBuilding) ([`RoofPiece`]). `trunk` and `leaf` are normalized as every generator
 /// mesh loaded from OBJ is ([`Mesh::from_obj_str_normalized`]).
 ///
 /// ```
 /// use shapegen_runtime::Grammar;
 ///
 /// let library = generators::default_meshes();
-/// assert_eq!(library.names().count(), 4);
+/// assert_eq!(library.names().count(), 8);
 /// let bound = library.bind(<generators::Tree as Grammar>::GRAPH).unwrap();
 /// assert_eq!(bound.len(), 3);
 /// let bound = library.bind(<generators::Building as Grammar>::GRAPH).unwrap();
@@ -47,6 +49,11 @@ pub fn default_meshes() -> MeshLibrary {
     library
         .register("sphere", low_poly_sphere())
         .unwrap_or_else(|e| panic!("the built-in sphere mesh is broken: {e}"));
+    for piece in RoofPiece::ALL {
+        library
+            .register(piece.name(), piece.mesh())
+            .unwrap_or_else(|e| panic!("the built-in {} mesh is broken: {e}", piece.name()));
+    }
     library
 }
 

@@ -533,3 +533,40 @@ fn the_building_is_published_with_its_limits() {
     assert_eq!(b.paper_limits(), LIMITS);
     assert_eq!(b.visit(GraphName), ("Building", "building", LIMITS));
 }
+
+#[test]
+fn roofed_programs_grow_roofs_of_every_shape_and_leave_the_building_as_it_was() {
+    use generators::building::roofed::{self, RoofedBuilding};
+    // The published grammar has no roof; the roofed one has it in every program.
+    let names = |g: &shapegen_runtime::GeneratorGraph| -> Vec<&str> {
+        g.nodes.iter().map(|n| n.name).collect()
+    };
+    assert!(!names(Building::GRAPH).contains(&"Roof"));
+    assert!(names(RoofedBuilding::GRAPH).contains(&"Roof"));
+    assert_eq!(Building::GRAPH.meshes, ["cube", "sphere"]);
+    assert_eq!(Building::GRAPH.key, "building");
+    assert_eq!(RoofedBuilding::GRAPH.key, "roofed_building");
+    let meshes = generators::default_meshes()
+        .bind(RoofedBuilding::GRAPH)
+        .unwrap();
+    let mut ops = Operators::<RoofedBuilding>::new(LIMITS).unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(41);
+    let mut seen = [0usize; 6];
+    let mut out = Vec::new();
+    for _ in 0..200 {
+        let genome = ops.random(60, &mut rng);
+        genome.validate().unwrap();
+        genome.derive_into(&mut out);
+        assert!(!out.is_empty());
+        for i in &out {
+            assert!(i.transform.is_finite());
+            assert!(meshes.get(i.mesh).is_some(), "mesh {:?} is bound", i.mesh);
+            seen[i.mesh.0 as usize] += 1;
+        }
+    }
+    // Boxes, spheres and every roof piece appear.
+    for (id, count) in seen.iter().enumerate() {
+        assert!(*count > 0, "mesh {id} never appears: {seen:?}");
+    }
+    assert_eq!(roofed::ROOF_PIECES.hip_end, roofed::ROOF_HIP_END);
+}

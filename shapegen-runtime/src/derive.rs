@@ -12,7 +12,9 @@ use std::ops::Deref;
 
 use glam::Vec3;
 
-use crate::geometry::{Axis, Face, Instance, MeshId, Part, Scope};
+use crate::geometry::{
+    Axis, Face, Instance, MeshId, Part, RoofError, RoofMeshes, RoofShape, Scope,
+};
 use crate::graph::{GeneratorGraph, HEADER_WORDS};
 use crate::param::ParamValue;
 
@@ -321,6 +323,19 @@ impl<'a, G: Grammar> Shape<'a, G> {
             transform: self.scope.frame(),
             mesh,
         });
+    }
+
+    /// Emits the roof of `shape` with `overhang` on the top of the box, as instances of
+    /// the grammar's roof pieces; see [`Scope::roof`]. A measure out of range emits
+    /// nothing and says why.
+    pub fn roof(
+        &self,
+        shape: RoofShape,
+        overhang: f32,
+        meshes: &RoofMeshes,
+    ) -> Result<(), RoofError> {
+        self.scope
+            .roof(shape, overhang, meshes, &mut self.ctx.out.borrow_mut())
     }
 
     #[inline]

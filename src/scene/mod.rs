@@ -6,7 +6,8 @@
 //!
 //! ```toml
 //! generator = "spaceship"            # a registered generator: spaceship, tree, city,
-//!                                    # building, or one of your own (shapegen::registry)
+//!                                    # building, roofed_building, or one of your own
+//!                                    # (shapegen::registry)
 //!
 //! [meshes]                           # optional: replace or add meshes by name
 //! cube = "meshes/cube.obj"           # normalized to unit extent, as the original does

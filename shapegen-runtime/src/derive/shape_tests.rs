@@ -3,7 +3,7 @@
 use glam::vec3;
 
 use super::{Derivation, GeneView, Grammar, Shape};
-use crate::geometry::{Axis, Face, Instance, Part};
+use crate::geometry::{Axis, Face, Instance, MeshId, Part, RoofMeshes, RoofShape};
 use crate::graph::{GeneratorGraph, NodeDesc};
 
 /// A one-node grammar whose rule builds a small house: walls cut into a ground floor
@@ -82,5 +82,65 @@ fn shapes_split_repeat_and_take_faces() {
         window
             .transform_vector3(glam::Vec3::ONE)
             .abs_diff_eq(vec3(0.8, 2.0, 0.2), 1e-6)
+    );
+}
+
+/// A one-node grammar whose rule stands a 10 x 4 x 6 mass and puts a hip roof on it.
+struct Hipped;
+
+static HIPPED: GeneratorGraph = GeneratorGraph {
+    name: "Hipped",
+    key: "hipped",
+    axiom: 0,
+    nodes: &[NodeDesc {
+        name: "Hipped",
+        params: &[],
+        slots: &[],
+        links: 0,
+        param_words: 0,
+    }],
+    meshes: &["cube", "roof_gable", "roof_hip_end"],
+};
+
+impl Grammar for Hipped {
+    const GRAPH: &'static GeneratorGraph = &HIPPED;
+
+    fn derive_gene<'a>(shape: Shape<'a, Self>, _gene: GeneView<'a>) {
+        let mass = shape.with_size(vec3(10.0, 4.0, 6.0));
+        mass.emit(crate::CUBE);
+        let pieces = RoofMeshes {
+            gable: MeshId(1),
+            shed: MeshId(1),
+            pyramid: MeshId(1),
+            hip_end: MeshId(2),
+        };
+        mass.roof(RoofShape::Hip { pitch: 0.5 }, 0.0, &pieces)
+            .expect("a valid pitch");
+        // A pitch out of range emits nothing.
+        assert!(
+            mass.roof(RoofShape::Hip { pitch: 2.0 }, 0.0, &pieces)
+                .is_err()
+        );
+    }
+}
+
+#[test]
+fn shapes_put_roofs_on_their_tops() {
+    let mut out: Vec<Instance> = Vec::new();
+    Derivation::run::<Hipped>(&[0, 0], &mut out);
+    let meshes: Vec<u32> = out.iter().map(|i| i.mesh.0).collect();
+    assert_eq!(meshes, [0, 1, 2, 2]);
+    // The gable prism over the middle: 10 - 6 long, 3 tan(0.5) high, on the top at y = 2.
+    let h = 3.0 * 0.5f32.tan();
+    let middle = out[1].transform;
+    assert!(
+        middle
+            .transform_point3(glam::Vec3::ZERO)
+            .abs_diff_eq(vec3(0.0, 2.0 + h / 2.0, 0.0), 1e-6)
+    );
+    assert!(
+        middle
+            .transform_vector3(glam::Vec3::ONE)
+            .abs_diff_eq(vec3(4.0, h, 6.0), 1e-6)
     );
 }

@@ -244,7 +244,7 @@ mod tests {
             ("leaf.obj", [0.48, 0.98, 0.15]),
         ] {
             let mesh = Mesh::from_obj(meshes_dir().join(file)).unwrap();
-            assert!(super::super::normals::is_closed(&mesh), "{file} is closed");
+            assert!(mesh.is_closed(), "{file} is closed");
             let (lo, hi) = mesh.bounds().unwrap();
             assert!((lo + hi).abs().max_element() < 1e-3, "{file} is centred");
             let extent = hi - lo;

@@ -1,5 +1,6 @@
 //! Triangle meshes: the parts that mesh instances place.
 
+use std::collections::HashMap;
 use std::path::PathBuf;
 
 use glam::Vec3;
@@ -220,6 +221,53 @@ impl Mesh {
     }
 }
 
+impl Mesh {
+    /// Whether the mesh, with vertices welded by position, is a closed, consistently
+    /// wound surface: every edge is used exactly once in each direction. With
+    /// counter-clockwise triangles and a positive [`volume`](Self::volume), every normal
+    /// of such a surface points outward.
+    ///
+    /// ```
+    /// use shapegen_runtime::geometry::Mesh;
+    ///
+    /// let mut cube = Mesh::unit_cube();
+    /// assert!(cube.is_closed());
+    /// cube.indices.truncate(33);
+    /// assert!(!cube.is_closed());
+    /// ```
+    pub fn is_closed(&self) -> bool {
+        let (welded, _) = super::normals::weld(&self.positions);
+        let mut edges: HashMap<(u32, u32), i32> = HashMap::new();
+        for t in self.triangles() {
+            let t = t.map(|i| welded[i as usize]);
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                *edges.entry((a, b)).or_default() += 1;
+            }
+        }
+        edges
+            .iter()
+            .all(|(&(a, b), &n)| n == 1 && edges.get(&(b, a)) == Some(&1))
+    }
+
+    /// The signed volume enclosed by the triangles: positive for a closed surface whose
+    /// triangles run counter-clockwise seen from outside.
+    ///
+    /// ```
+    /// use shapegen_runtime::geometry::Mesh;
+    ///
+    /// assert!((Mesh::unit_cube().volume() - 1.0).abs() < 1e-6);
+    /// ```
+    pub fn volume(&self) -> f32 {
+        self.triangles()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| self.positions[i as usize].as_dvec3());
+                a.dot(b.cross(c)) / 6.0
+            })
+            .sum::<f64>() as f32
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -238,7 +286,7 @@ mod tests {
                 assert_eq!(cube.positions[i as usize].dot(face_normal), 0.5);
             }
         }
-        assert!(super::super::normals::is_closed(&cube));
+        assert!(cube.is_closed());
     }
 
     #[test]

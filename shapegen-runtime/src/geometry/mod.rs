@@ -1,4 +1,5 @@
-//! Geometry: oriented scopes, mesh instances and the meshes they refer to.
+//! Geometry: oriented scopes, mesh instances and the meshes they refer to, and the
+//! polygons, prisms and roofs that rules build as geometry of their own.
 
 mod face;
 mod formats;
@@ -7,7 +8,10 @@ mod library;
 mod mesh;
 mod normals;
 mod obj;
+mod polygon;
+mod roof;
 mod scope;
+mod solid;
 
 mod split;
 
@@ -16,5 +20,7 @@ pub use formats::{MeshFormat, PointCloud};
 pub use instance::{CUBE, Instance, MeshId};
 pub use library::{BoundMeshes, MeshLibrary};
 pub use mesh::{Mesh, MeshError};
+pub use polygon::{Polygon, PolygonError};
+pub use roof::{Roof, RoofError, RoofMeshes, RoofPiece, RoofShape};
 pub use scope::Scope;
 pub use split::{Axis, Part, Repeat, Split};

@@ -120,24 +120,6 @@ pub(crate) fn weld(positions: &[Vec3]) -> (Vec<u32>, usize) {
     (welded, ids.len())
 }
 
-/// Whether the mesh, with vertices welded by position, is a closed, consistently wound
-/// surface: every edge is used exactly once in each direction.
-#[cfg(test)]
-pub(crate) fn is_closed(mesh: &Mesh) -> bool {
-    let (welded, _) = weld(&mesh.positions);
-    let mut edges: HashMap<(u32, u32), i32> = HashMap::new();
-    for t in mesh.triangles() {
-        let t = t.map(|i| welded[i as usize]);
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            *edges.entry((a, b)).or_default() += 1;
-        }
-    }
-    edges
-        .iter()
-        .all(|(&(a, b), &n)| n == 1 && edges.get(&(b, a)) == Some(&1))
-}
-
 #[cfg(test)]
 mod tests {
     use glam::vec3;
@@ -172,10 +154,10 @@ mod tests {
     #[test]
     fn crease_angle_smooths_sides_and_keeps_caps_hard() {
         let mut m = prism();
-        assert!(is_closed(&m));
+        assert!(m.is_closed());
         m.compute_normals(Mesh::DEFAULT_CREASE_ANGLE);
         m.validate("prism").unwrap();
-        assert!(is_closed(&m));
+        assert!(m.is_closed());
         // Sides smooth (16 vertices), caps hard (8 each).
         assert_eq!(m.vertex_count(), 32);
         for (p, n) in m.positions.iter().zip(&m.normals) {

@@ -271,7 +271,7 @@ f 4//1 5//1 6//1
         let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
         let m = Mesh::from_obj_str("tetra", text).unwrap();
         assert_eq!((m.vertex_count(), m.triangle_count()), (12, 4));
-        assert!(super::super::normals::is_closed(&m));
+        assert!(m.is_closed());
         let centre = vec3(0.25, 0.25, 0.25);
         for (p, n) in m.positions.iter().zip(&m.normals) {
             assert!((n.length() - 1.0).abs() < 1e-6);

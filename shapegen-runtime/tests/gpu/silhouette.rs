@@ -1,13 +1,14 @@
 //! The silhouette scorer on the GPU agrees with the CPU up to pixels on edges.
 
 use generators::{city, spaceship, tree};
-use glam::vec3;
-use shapegen_runtime::Grammar;
+use glam::{Affine3A, Mat3A, vec3};
+use shapegen_runtime::geometry::{MeshId, RoofMeshes, RoofPiece, RoofShape};
 use shapegen_runtime::gpu::GpuContext;
 use shapegen_runtime::score::silhouette::{
     Camera, GpuSilhouetteScorer, ImageTarget, OrbitCamera, SilhouetteCounts, SilhouetteScorer,
 };
 use shapegen_runtime::score::{InstanceBatch, count_batch};
+use shapegen_runtime::{CUBE, Grammar, Scope};
 
 use crate::GpuTest;
 use crate::support::scenes::population;
@@ -19,6 +20,10 @@ pub const TESTS: &[GpuTest] = &[
     (
         "silhouette::gpu_matches_cpu_on_random_cities",
         gpu_matches_cpu_on_random_cities,
+    ),
+    (
+        "silhouette::gpu_matches_cpu_on_random_cities_with_roofs",
+        gpu_matches_cpu_on_random_cities_with_roofs,
     ),
     (
         "silhouette::gpu_matches_cpu_on_random_trees",
@@ -113,6 +118,65 @@ fn gpu_matches_cpu_on_random_cities(gpu: &GpuContext) {
         &scorer,
         &population::<city::City>(40, city::PAPER_LIMITS, 50, 21),
     );
+}
+
+/// Random cities with a roof of every shape in turn on every box: the roof pieces'
+/// sloped faces and gables take the GPU's instance path as the boxes do.
+fn gpu_matches_cpu_on_random_cities_with_roofs(gpu: &GpuContext) {
+    let mut library = generators::default_meshes();
+    for piece in RoofPiece::ALL {
+        library.register(piece.name(), piece.mesh()).unwrap();
+    }
+    let mut names: Vec<&str> = city::City::GRAPH.meshes.to_vec();
+    let first = names.len() as u32;
+    names.extend(RoofPiece::ALL.map(RoofPiece::name));
+    let meshes = library.bind_names("City", &names).unwrap();
+    let pieces = RoofMeshes {
+        gable: MeshId(first),
+        shed: MeshId(first + 1),
+        pyramid: MeshId(first + 2),
+        hip_end: MeshId(first + 3),
+    };
+    let shapes = [
+        RoofShape::Gable { pitch: 0.6 },
+        RoofShape::Hip { pitch: 0.5 },
+        RoofShape::Pyramid { pitch: 0.8 },
+        RoofShape::Shed { pitch: 0.3 },
+        RoofShape::Flat { thickness: 0.2 },
+    ];
+    let plain = population::<city::City>(40, city::PAPER_LIMITS, 50, 25);
+    let mut batch = InstanceBatch::new();
+    let mut pieces_placed = 0;
+    for m in 0..plain.len() {
+        batch.push_with(|out| {
+            for (k, i) in plain.model(m).iter().enumerate() {
+                out.push(*i);
+                let m3 = i.transform.matrix3;
+                let size = vec3(m3.x_axis.length(), m3.y_axis.length(), m3.z_axis.length());
+                if i.mesh != CUBE || size.min_element() <= 1e-3 {
+                    continue;
+                }
+                let frame = Affine3A {
+                    matrix3: m3 * Mat3A::from_diagonal(size.recip()),
+                    translation: i.transform.translation,
+                };
+                let before = out.len();
+                Scope::new(frame, size)
+                    .roof(shapes[k % shapes.len()], 0.1, &pieces, out)
+                    .unwrap();
+                pieces_placed += out.len() - before;
+            }
+        });
+    }
+    assert!(pieces_placed > 100, "{pieces_placed} roof pieces");
+    let targets = vec![small_target(
+        "city_whale",
+        "city_target_whale.png",
+        city_camera(),
+        false,
+    )];
+    let scorer = SilhouetteScorer::new(targets, &meshes, SMOOTH).unwrap();
+    compare_on_gpu(gpu, &scorer, &batch);
 }
 
 /// Compares the CPU and the GPU on 30 random trees against `target`, from `seed`.

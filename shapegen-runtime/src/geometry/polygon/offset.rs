@@ -1,0 +1,62 @@
+//! Outward offset of a polygon with mitred corners: a roof's eave line.
+
+use glam::DVec2;
+
+use super::Polygon;
+
+impl Polygon {
+    /// The polygon with every edge moved outward by `distance` and the corners mitred
+    /// (each corner moves along its bisector to where its moved edges meet), or `None`
+    /// when that outline is not simple or an edge would turn around: a notch narrower
+    /// than twice the distance closes.
+    ///
+    /// ```
+    /// use glam::vec2;
+    /// use shapegen_runtime::geometry::Polygon;
+    ///
+    /// let square = Polygon::rectangle(vec2(2.0, 2.0))?;
+    /// let eave = square.offset(0.5).unwrap();
+    /// assert!((eave.area() - 9.0).abs() < 1e-12);
+    /// # Ok::<(), shapegen_runtime::geometry::PolygonError>(())
+    /// ```
+    pub fn offset(&self, distance: f64) -> Option<Polygon> {
+        if distance == 0.0 {
+            return Some(self.clone());
+        }
+        let n = self.len();
+        let moved: Vec<DVec2> = (0..n)
+            .map(|i| self.points()[i] - self.corner_velocity(i) * distance)
+            .collect();
+        let out = Polygon::from_f64(&moved).ok()?;
+        // Same edges, none turned around.
+        let kept = out.len() == n
+            && (0..n).all(|i| {
+                let (a, b) = self.edge(i);
+                let (c, d) = (moved[i], moved[(i + 1) % n]);
+                (d - c).dot(b - a) > 0.0
+            });
+        kept.then_some(out)
+    }
+
+    /// The largest distance of `distance`, its halves down to a 256th, and zero, at
+    /// which [`offset`](Self::offset) gives a polygon, with that polygon.
+    pub fn offset_at_most(&self, distance: f64) -> (f64, Polygon) {
+        let mut d = distance;
+        for _ in 0..9 {
+            if let Some(p) = self.offset(d) {
+                return (d, p);
+            }
+            d /= 2.0;
+        }
+        (0.0, self.clone())
+    }
+
+    /// How point `i` moves when every edge moves inward at unit speed: the velocity that
+    /// keeps it on both its edges' moved lines.
+    pub(crate) fn corner_velocity(&self, i: usize) -> DVec2 {
+        let n = self.len();
+        let before = self.inward_normal((i + n - 1) % n);
+        let after = self.inward_normal(i);
+        (before + after) / (1.0 + before.dot(after))
+    }
+}
