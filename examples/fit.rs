@@ -30,7 +30,9 @@ use shapegen::export::{Palette, Preview, save_glb, save_obj};
 use shapegen::genome::Limits;
 use shapegen::geometry::MeshFormat;
 use shapegen::ops::Operators;
-use shapegen::optimize::{Control, Hybrid, HybridSettings, Optimizer, Settings, Snapshot};
+use shapegen::optimize::{
+    Control, GaSettings, Hybrid, HybridSettings, Optimizer, Settings, Snapshot,
+};
 use shapegen::scene::{BackendChoice, Metrics, Scene, SceneEvaluator, SceneScorer, ScorerGoal};
 use shapegen::score::objective::Surface;
 use shapegen::{Grammar, Instance, Mesh, MeshLibrary};
@@ -146,7 +148,10 @@ impl GeneratorVisitor for Fit<'_> {
         );
 
         let settings = HybridSettings {
-            polish: 16,
+            ga: GaSettings {
+                polish: 16,
+                ..GaSettings::default()
+            },
             ..HybridSettings::default()
         };
         let mut hybrid = Hybrid::<G>::new(settings, scene.limits, o.seed)?;

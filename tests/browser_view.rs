@@ -1,7 +1,8 @@
 //! The viewer's page in a real browser: headless Chromium loads `shapegen view`'s page
 //! for a finished run, for a running one, and a `report.html` from `file://`, and the
 //! page must show the numbers of `summary.json`, one curve point per row of
-//! `fitness.csv`, and a 3D canvas that is not blank.
+//! `fitness.csv`, and a 3D canvas that is not blank; a multi-objective run's front, the
+//! model of a chosen point, and the runs of a comparison and the cells of a study.
 //!
 //! Under its own harness so that a missing browser shows: without Chromium the tests are
 //! reported as ignored, after a line saying so, unless `SHAPEGEN_REQUIRE_BROWSER=1` (as
@@ -39,8 +40,8 @@ const TESTS: &[BrowserTest] = &[
         the_report_shows_the_run_offline,
     ),
     (
-        "the_page_shows_a_front_and_a_comparison",
-        the_page_shows_a_front_and_a_comparison,
+        "the_page_shows_a_front_a_comparison_and_a_study",
+        the_page_shows_a_front_a_comparison_and_a_study,
     ),
 ];
 
@@ -283,7 +284,7 @@ fn the_report_shows_the_run_offline(browser: &Path) {
     canvas_not_blank(browser, &url, &rect, wait);
 }
 
-fn the_page_shows_a_front_and_a_comparison(browser: &Path) {
+fn the_page_shows_a_front_a_comparison_and_a_study(browser: &Path) {
     let dir = tempfile::tempdir().unwrap();
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let wait = "--virtual-time-budget=5000";
@@ -320,6 +321,35 @@ fn the_page_shows_a_front_and_a_comparison(browser: &Path) {
         attribute(&dom, "canvas", "data-model").as_deref(),
         Some("front/model_000.glb")
     );
+    // A chosen point (`#point=K`, what a click on the K-th point from the left does)
+    // shows its own model: the K-th member by the first objective, as `front.csv`
+    // numbers it.
+    let table = fs::read_to_string(front.join("front.csv")).unwrap();
+    let mut rows: Vec<(f64, String)> = table
+        .lines()
+        .skip(1)
+        .map(|line| {
+            let fields: Vec<&str> = line.split(',').collect();
+            (fields[2].parse().unwrap(), fields[0].to_owned())
+        })
+        .collect();
+    rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+    assert!(rows.len() >= 2, "a front of {} members", rows.len());
+    let point = rows.len() - 1;
+    let dom = browse(
+        browser,
+        &format!("http://{}/#point={point}", served.addr),
+        "--dump-dom",
+        wait,
+    );
+    assert_eq!(
+        attribute(&dom, "front", "data-point"),
+        Some(point.to_string())
+    );
+    assert_eq!(
+        attribute(&dom, "canvas", "data-model"),
+        Some(format!("front/model_{:0>3}.glb", rows[point].1))
+    );
     drop(served);
 
     let compare = dir.path().join("compare");
@@ -352,5 +382,39 @@ fn the_page_shows_a_front_and_a_comparison(browser: &Path) {
     assert_eq!(
         attribute(&dom, "canvas", "data-model").as_deref(),
         Some("runs/ga-0/best.glb")
+    );
+    drop(served);
+
+    // A study: a model button per cell, and each cell's curve.
+    let sweep = dir.path().join("sweep");
+    ok(&[
+        "sweep",
+        s(&scene),
+        "--grid",
+        "optimizer.population=20,30,40",
+        "--runs",
+        "1",
+        "--evaluations",
+        "200",
+        "--cpu",
+        "--out",
+        s(&sweep),
+    ]);
+    let served = serve(&["view", s(&sweep)]);
+    let dom = browse(
+        browser,
+        &format!("http://{}/", served.addr),
+        "--dump-dom",
+        wait,
+    );
+    assert_eq!(
+        dom.matches("<button>show</button>").count(),
+        3,
+        "a model button per cell"
+    );
+    assert_eq!(
+        attribute(&dom, "curve", "data-series").as_deref(),
+        Some("3"),
+        "a curve per cell"
     );
 }

@@ -295,8 +295,26 @@ fn an_interrupted_front_run_keeps_its_front() {
         s(&out),
     ];
     let ended = interrupt_when(&args, &out.join("checkpoint.json"), || {
-        // What is kept while the run goes on: the front as a table and as genomes.
+        // What is kept while the run goes on: the front as a table, as genomes and as
+        // models, and the viewer's `run.json`, all of the same save.
         assert!(out.join("front.csv").is_file() && out.join("front.genomes.json").is_file());
+        // Read between two saves: `run.json` the same before and after.
+        let (live, rows, models) = (0..50)
+            .find_map(|_| {
+                let before = read(&out, "run.json");
+                let rows = read(&out, "front.csv").lines().count() - 1;
+                let live: serde_json::Value = serde_json::from_str(&before).unwrap();
+                let members = live["front"].as_u64().unwrap() as usize;
+                let models = (0..members)
+                    .filter(|i| out.join(format!("front/model_{i:03}.glb")).is_file())
+                    .count();
+                (read(&out, "run.json") == before).then_some((live, rows, models))
+            })
+            .expect("a moment between two saves");
+        assert_eq!(live["running"], true, "{live}");
+        assert_eq!(live["method"], "ga", "{live}");
+        assert_eq!(live["front"], rows, "{live}");
+        assert_eq!(models, rows, "a model per member");
     });
     assert!(ended.status.success(), "an interrupted run ends cleanly");
     let summary = timeless_summary(&out);
@@ -304,6 +322,12 @@ fn an_interrupted_front_run_keeps_its_front() {
     let front = summary["front"].as_u64().unwrap() as usize;
     assert_eq!(read(&out, "front.csv").lines().count(), 1 + front);
     assert_eq!(fs::read_dir(out.join("front")).unwrap().count(), front);
+    let live: serde_json::Value = serde_json::from_str(&read(&out, "run.json")).unwrap();
+    assert_eq!(
+        (live["running"].as_bool(), live["front"].as_u64()),
+        (Some(false), Some(front as u64))
+    );
+    assert_eq!(live["evaluations"], summary["evaluations"]);
     // The run can go on from where it stopped.
     let generations = summary["generations"].as_u64().unwrap() + 2;
     ok(&[

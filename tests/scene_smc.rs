@@ -61,6 +61,8 @@ fn the_paper_settings_are_the_originals() {
                 variant: SmcVariant::Original,
                 step_back_probability: 0.0,
                 max_grows_per_step: 64,
+                polish: 0,
+                polish_sigma: 0.1,
             },
             "{generator}"
         );

@@ -340,13 +340,24 @@ function showFront() {
   u.frontRows = rows;
   if (!u.clickable) {
     u.clickable = true;
-    u.over.addEventListener('click', () => {
-      const i = u.cursor.idx;
-      if (i === null || i === undefined || !u.frontRows[i]) return;
-      const index = String(u.frontRows[i].model).padStart(3, '0');
-      loadModel(`front/model_${index}.glb`, true);
-    });
+    u.over.addEventListener('click', () => showPoint(u, u.cursor.idx));
   }
+  // `#point=K` in the page's address shows the K-th point from the left, as a click
+  // on it does.
+  const chosen = /^#point=(\d+)$/.exec(location.hash);
+  if (chosen && !pointChosen) {
+    pointChosen = true;
+    return showPoint(u, +chosen[1]);
+  }
+}
+let pointChosen = false;
+
+/** Shows the model of the front's `i`-th point from the left in the 3D view. */
+function showPoint(u, i) {
+  if (i === null || i === undefined || !u.frontRows[i]) return;
+  const index = String(u.frontRows[i].model).padStart(3, '0');
+  $('front').dataset.point = String(i);
+  return loadModel(`front/model_${index}.glb`, true);
 }
 $('front-x').addEventListener('change', () => { charts.get('front')?.destroy(); charts.delete('front'); showFront(); });
 $('front-y').addEventListener('change', () => { charts.get('front')?.destroy(); charts.delete('front'); showFront(); });
@@ -405,6 +416,25 @@ async function showCompare(files) {
   }
 }
 
+/** Each finished cell's curve of a study, its best against seconds, by cell. */
+const cellCurves = new Map();
+async function showCellCurves(files) {
+  const tables = files.filter((f) => /^cells\/\d+\/fitness\.csv$/.test(f)).sort();
+  let changed = false;
+  for (const name of tables) {
+    const bytes = await readFile(name);
+    if (!bytes) continue;
+    const { rows } = parseCsv(text(bytes));
+    cellCurves.set(`cell ${name.split('/')[1]}`, [rows.map((r) => +r.elapsed_s), rows.map((r) => +r.best)]);
+    changed = true;
+  }
+  if (!changed) return;
+  const names = [...cellCurves.keys()].sort();
+  const data = names.length ? uPlot.join(names.map((n) => cellCurves.get(n))) : [[]];
+  chart($('curve'), 'best fitness of each cell', 'seconds', names, data);
+  $('curve').dataset.series = String(names.length);
+}
+
 async function showSweep(files) {
   const bytes = await readFile('sweep.csv');
   if (bytes) {
@@ -419,9 +449,8 @@ async function showSweep(files) {
     runsTable(header, rows, modelOf);
     const first = rows.map(modelOf).find((glb) => glb);
     if (!model && first) await loadModel(first);
-    chart($('curve'), 'final best of each run', 'run', ['best'],
-      [rows.map((_, i) => i), rows.map((r) => +r.best)]);
   }
+  await showCellCurves(files);
   const md = await readFile('summary.md');
   if (md) $('summary-md').textContent = text(md);
 }
@@ -474,7 +503,7 @@ async function update() {
       const table = await readFile('front.csv');
       if (table) {
         front = parseCsv(text(table));
-        showFront();
+        await showFront();
         if (!model) await loadModel('front/model_000.glb');
       }
     }

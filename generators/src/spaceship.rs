@@ -157,6 +157,8 @@ pub fn paper_ga() -> GaSettings {
         selection: ParentSelection::TournamentRoulette,
         operators: OperatorVariant::Original,
         cross_array_index: false,
+        // The original has no polishing.
+        ..GaSettings::default()
     }
 }
 
@@ -172,6 +174,8 @@ pub fn paper_smc(order: Order) -> SmcSettings {
         variant: SmcVariant::Original,
         step_back_probability: 0.0,
         max_grows_per_step: 64,
+        // The original has no polishing.
+        ..SmcSettings::default()
     }
 }
 

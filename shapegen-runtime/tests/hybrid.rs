@@ -16,13 +16,15 @@ use support::runs::{Poisoned, same_result, small_ga, threads};
 /// Every addition on: seeding, refinement and polishing.
 fn full() -> HybridSettings {
     HybridSettings {
-        ga: small_ga(),
         seed_steps: 2,
         refine: 4,
         refine_moves: 3,
         jump_probability: 0.5,
-        polish: 6,
-        polish_sigma: 0.1,
+        ga: GaSettings {
+            polish: 6,
+            polish_sigma: 0.1,
+            ..small_ga()
+        },
     }
 }
 
@@ -51,7 +53,10 @@ fn variants() -> [HybridSettings; 4] {
             ..none()
         },
         HybridSettings {
-            polish: 8,
+            ga: GaSettings {
+                polish: 8,
+                ..small_ga()
+            },
             ..none()
         },
     ]
@@ -264,11 +269,22 @@ fn hybrid_settings_are_validated() {
     };
     let d = full();
     check(HybridSettings { refine: 41, ..d }, "refine");
-    check(HybridSettings { polish: 1, ..d }, "polish");
+    let ga = |polish, polish_sigma| GaSettings {
+        polish,
+        polish_sigma,
+        ..d.ga
+    };
+    check(
+        HybridSettings {
+            ga: ga(1, 0.1),
+            ..d
+        },
+        "polish",
+    );
     for sigma in [0.0, -0.1, 1.5, f64::NAN] {
         check(
             HybridSettings {
-                polish_sigma: sigma,
+                ga: ga(8, sigma),
                 ..d
             },
             "polish_sigma",
@@ -300,82 +316,6 @@ fn hybrid_settings_are_validated() {
         serde_json::from_str(r#"{"refine": 2, "ga": {"population": 50}}"#).unwrap();
     assert_eq!((parsed.refine, parsed.ga.population), (2, 50));
     assert!(serde_json::from_str::<HybridSettings>(r#"{"refines": 2}"#).is_err());
-}
-
-generator! {
-    /// A column of blocks of any heights: the structure is the number of blocks, the
-    /// continuous parameters their heights.
-    pub Column {
-        axiom Block;
-        node Block {
-            params { height: f32 ~ uniform(0.1, 2.0) }
-            children { next: Block = 0.6 }
-            derive(s) {
-                let s = s.resize(vec3(1.0, height, 1.0));
-                s.emit(CUBE);
-                if let Some(next) = next { s.translate(vec3(0.0, height, 0.0)).derive(next); }
-            }
-        }
-    }
-}
-
-/// Minus how far each block's height is from its own target, `0.5 + 0.1 k` for the
-/// `k`th block, plus 1 per block short of or beyond 6: the structure is six blocks, and
-/// only continuous tuning gets their heights close.
-struct Heights;
-
-impl Evaluator<Column> for Heights {
-    fn evaluate(
-        &mut self,
-        genomes: &[Genome<Column>],
-        out: &mut [f64],
-    ) -> Result<(), EvaluateError> {
-        for (g, o) in genomes.iter().zip(out) {
-            let heights = g.genes().map(|gene| f32::from_bits(gene.params(1)[0]));
-            let off: f64 = heights
-                .enumerate()
-                .map(|(k, h)| (f64::from(h) - (0.5 + 0.1 * k as f64)).abs())
-                .sum();
-            *o = -off - (6.0 - g.len() as f64).abs();
-        }
-        Ok(())
-    }
-}
-
-#[test]
-fn hybrid_polishing_tunes_continuous_parameters_and_never_loses_the_best() {
-    let limits = Limits::new(1, 20, 20).unwrap();
-    for seed in [1, 2, 3] {
-        let s = HybridSettings {
-            polish: 8,
-            ..none()
-        };
-        let polished = Hybrid::<Column>::new(s, limits, seed)
-            .unwrap()
-            .run(&mut Heights, &Budget::generations(150), &mut Silent)
-            .unwrap();
-        assert!(polished.history.windows(2).all(|w| w[1].best >= w[0].best));
-        // Six heights, together within a ten-thousandth of a unit: far finer than the GA's
-        // redrawn parameters get in as many evaluations.
-        assert!(
-            polished.best_fitness > -1e-4,
-            "seed {seed}: {}",
-            polished.best_fitness
-        );
-        let plain = Hybrid::<Column>::new(none(), limits, seed)
-            .unwrap()
-            .run(
-                &mut Heights,
-                &Budget::evaluations(polished.evaluations),
-                &mut Silent,
-            )
-            .unwrap();
-        assert!(
-            plain.best_fitness < polished.best_fitness,
-            "seed {seed}: {}",
-            plain.best_fitness
-        );
-    }
 }
 
 #[test]

@@ -20,12 +20,13 @@ use shapegen::{BoundMeshes, Grammar, Instance};
 
 use super::backend::Incremental;
 use super::checkpoint::Checkpoint;
-use super::files::{Files, atomic_write, csv_bytes, save_figure, save_png};
+use super::files::{Files, csv_bytes, save_figure, save_png};
 use super::interrupt;
 use super::memory::{MemoryArgs, check_resumed};
 use super::overlay::{projection_overlay, projections};
 use super::plot::{self, Titles};
 use super::progress::ProgressLine;
+use super::view::Live;
 
 /// Most models drawn on the contact sheet; a larger front is shown evenly thinned.
 const SHEET_MODELS: usize = 100;
@@ -130,6 +131,17 @@ impl FrontRun<'_> {
             palette: Palette::new(),
         };
 
+        let live = |result: &MultiResult<G>, running: bool| Live {
+            generator: &self.scene.generator,
+            method: "ga",
+            seed: goal.seed,
+            generation: result.generations,
+            evaluations: result.evaluations,
+            elapsed_s: result.history.last().map_or(0.0, |h| h.elapsed_s),
+            best_fitness: None,
+            front: Some(result.front.len()),
+            running,
+        };
         let stop = interrupt::flag();
         let total = goal.generations();
         let line = ProgressLine::new();
@@ -141,21 +153,30 @@ impl FrontRun<'_> {
             .stop_flag(&stop)
             .on_progress(&mut show)
             .on_save(|save| {
-                // The front's tables and the checkpoint land together or not at all.
+                // The front's tables, its models, the viewer's `run.json` and the
+                // checkpoint land together or not at all.
                 let mut files = Files::new();
-                outputs.table(&mut files, self.dir, &save.result())?;
+                let result = save.result();
+                outputs.table(&mut files, self.dir, &result)?;
+                let front = sorted(&result.front, set.senses());
+                outputs.models(&mut files, self.dir, &front)?;
+                files.write(&self.dir.join("run.json"), &live(&result, true).to_bytes()?)?;
                 Checkpoint {
                     scene: self.scene_path.to_owned(),
                     overrides: self.overrides.clone(),
                     search: save.state,
                 }
                 .write(&mut files, self.dir)?;
-                files.commit()
+                files.commit()?;
+                outputs.remove_stale_models(self.dir, front.len())
             })
             .run(&mut evaluator)?;
         line.finish();
         let front = sorted(&result.front, set.senses());
-        outputs.models(self.dir, &front)?;
+        let mut files = Files::new();
+        outputs.models(&mut files, self.dir, &front)?;
+        files.commit()?;
+        outputs.remove_stale_models(self.dir, front.len())?;
         outputs.sheet(self.dir, &front)?;
         outputs.scatters(self.dir, &front)?;
         outputs.overlays(self.dir, &front)?;
@@ -190,10 +211,16 @@ impl FrontRun<'_> {
             stopped,
             incremental: evaluator.retention().map(Incremental::from),
         };
-        atomic_write(
+        let mut files = Files::new();
+        files.write(
             &self.dir.join("summary.json"),
             serde_json::to_string_pretty(&summary)?.as_bytes(),
         )?;
+        files.write(
+            &self.dir.join("run.json"),
+            &live(&result, false).to_bytes()?,
+        )?;
+        files.commit()?;
         if let Some(incremental) = &summary.incremental {
             eprintln!("{incremental} (the projection objectives; the others measured in full)");
         }
@@ -318,20 +345,31 @@ impl Outputs<'_> {
         files.write(&dir.join("history.csv"), &csv_bytes(&header, rows)?)
     }
 
-    /// `front/model_NNN.glb`, numbered as in `front.csv`; models of an earlier, larger
-    /// front are removed.
-    fn models<G: Grammar>(&self, dir: &Path, front: &[&Member<G>]) -> anyhow::Result<()> {
+    /// `front/model_NNN.glb`, numbered as in `front.csv`, kept current while the run
+    /// goes on so that the viewer shows any point of the front.
+    fn models<G: Grammar>(
+        &self,
+        files: &mut Files,
+        dir: &Path,
+        front: &[&Member<G>],
+    ) -> anyhow::Result<()> {
         let folder = dir.join("front");
         std::fs::create_dir_all(&folder)
             .with_context(|| format!("cannot create `{}`", folder.display()))?;
         let mut instances = Vec::new();
         for (i, member) in front.iter().enumerate() {
             member.genome.derive_into(&mut instances);
-            atomic_write(
+            files.write(
                 &folder.join(format!("model_{i:03}.glb")),
                 &glb_bytes(&instances, &self.meshes, &self.palette)?,
             )?;
         }
+        Ok(())
+    }
+
+    /// Removes the models of an earlier, larger front: those numbered `len` and above.
+    fn remove_stale_models(&self, dir: &Path, len: usize) -> anyhow::Result<()> {
+        let folder = dir.join("front");
         for entry in std::fs::read_dir(&folder)? {
             let path = entry?.path();
             let stale = path
@@ -339,7 +377,7 @@ impl Outputs<'_> {
                 .and_then(|s| s.to_str())
                 .and_then(|s| s.strip_prefix("model_"))
                 .and_then(|n| n.parse::<usize>().ok())
-                .is_some_and(|n| n >= front.len());
+                .is_some_and(|n| n >= len);
             if stale {
                 std::fs::remove_file(&path)
                     .with_context(|| format!("cannot remove `{}`", path.display()))?;

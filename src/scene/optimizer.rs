@@ -32,8 +32,10 @@ use super::method::{Method, MethodJob, MethodSettings, SettingsCause, SettingsKe
 ///                        # variant ("original" or "generative"),
 ///                        # step_back_probability, max_grows_per_step; for RJMCMC
 ///                        # variant ("original" or "tempered"), chains, iterations,
-///                        # initial_length, jump_probability, ...; each method's
-///                        # fields are those of its settings type ([`MethodSettings`])
+///                        # initial_length, jump_probability, ...; polish and
+///                        # polish_sigma for every method but random search; each
+///                        # method's fields are those of its settings type
+///                        # ([`MethodSettings`])
 /// ```
 ///
 /// The paper's GA settings use the original's operators and breeding
@@ -466,6 +468,45 @@ mod mcmc_tests {
         assert_eq!(key, "islands");
         let reason = cause.to_string();
         assert!(reason.contains("runs the GA"), "{reason}");
+    }
+}
+
+#[cfg(test)]
+mod polish_tests {
+    use super::*;
+
+    #[test]
+    fn every_single_fitness_method_reads_polish_and_the_original_rjmcmc_refuses_it() {
+        let presets = crate::registry::Registry::published()
+            .get("spaceship")
+            .unwrap()
+            .defaults
+            .presets;
+        let read = |text: &str| {
+            let table: toml::Table = toml::from_str(text).unwrap();
+            resolve(&presets, table, None, &Overrides::default()).map(|g| g.settings)
+        };
+        let with =
+            |method: &str| format!("method = \"{method}\"\npolish = 8\npolish_sigma = 0.2\n");
+        let polish = match read(&with("ga")).unwrap() {
+            MethodSettings::Ga(s) => (s.polish, s.polish_sigma),
+            other => panic!("{other:?}"),
+        };
+        assert_eq!(polish, (8, 0.2));
+        for method in ["smc", "sosmc"] {
+            let (MethodSettings::Smc(s) | MethodSettings::Sosmc(s)) = read(&with(method)).unwrap()
+            else {
+                panic!("{method}");
+            };
+            assert_eq!((s.polish, s.polish_sigma), (8, 0.2), "{method}");
+        }
+        let tempered = read(&(with("rjmcmc") + "variant = \"tempered\"\n")).unwrap();
+        assert!(matches!(tempered, MethodSettings::Rjmcmc(s) if s.polish == 8));
+        let SettingsKeyError { key, cause } = read(&with("rjmcmc")).unwrap_err();
+        assert_eq!(key, "optimizer.polish");
+        assert!(cause.to_string().contains("tempered"), "{cause}");
+        let SettingsKeyError { key, .. } = read("method = \"ga\"\npolish = 1\n").unwrap_err();
+        assert_eq!(key, "optimizer.polish");
     }
 }
 

@@ -29,6 +29,7 @@ use crate::cli::overlay::overlay;
 use crate::cli::plot::{self, Line, Titles};
 use crate::cli::processes::Processes;
 use crate::cli::progress::ProgressLine;
+use crate::cli::view::Live;
 use crate::cli::voxels::voxel_surface_obj;
 
 use super::view::ServeArgs;
@@ -89,20 +90,6 @@ pub struct RunArgs {
     view: bool,
     #[command(flatten)]
     serve: ServeArgs,
-}
-
-/// `run.json`: what the viewer shows of a run, rewritten at every save.
-#[derive(Serialize)]
-struct Live<'a> {
-    generator: &'a str,
-    method: &'a str,
-    seed: u64,
-    generation: u64,
-    evaluations: u64,
-    elapsed_s: f64,
-    best_fitness: f64,
-    /// False once the run has ended (its `summary.json` is written).
-    running: bool,
 }
 
 /// `camera.json`: the first silhouette target's camera, for the viewer to look through.
@@ -321,7 +308,8 @@ impl Run<'_> {
             generation: result.generations,
             evaluations: result.evaluations,
             elapsed_s: result.history.last().map_or(0.0, |h| h.elapsed_s),
-            best_fitness: result.best_fitness,
+            best_fitness: Some(result.best_fitness),
+            front: None,
             running,
         };
         let mut progress = Progress::new(goal);
@@ -348,10 +336,7 @@ impl Run<'_> {
                     outputs.best(&mut files, self.dir, &result.best)?;
                 }
                 outputs.curves(&mut files, self.dir, &result)?;
-                files.write(
-                    &self.dir.join("run.json"),
-                    serde_json::to_string_pretty(&live(&result, true))?.as_bytes(),
-                )?;
+                files.write(&self.dir.join("run.json"), &live(&result, true).to_bytes()?)?;
                 Checkpoint {
                     scene: self.scene_path.to_owned(),
                     overrides: self.overrides.clone(),
@@ -404,7 +389,7 @@ impl Run<'_> {
         )?;
         files.write(
             &self.dir.join("run.json"),
-            serde_json::to_string_pretty(&live(&result, false))?.as_bytes(),
+            &live(&result, false).to_bytes()?,
         )?;
         files.commit()?;
         println!(

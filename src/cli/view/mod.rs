@@ -10,12 +10,14 @@
 
 mod assets;
 mod listing;
+mod live;
 mod path;
 mod report;
 mod server;
 
 pub use assets::{ASSETS, Asset, MODULES, Module, asset};
 pub use listing::{Listing, listing};
+pub use live::Live;
 pub use path::{MAX_TARGET, Refusal, RequestPath};
 pub use report::report_html;
 pub use server::Viewer;

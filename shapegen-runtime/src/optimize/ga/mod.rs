@@ -13,6 +13,7 @@ pub use settings::{GaSettings, ParentSelection};
 use super::best::Best;
 use super::core::Core;
 use super::fitness::bits_vec;
+use super::polish::{self, Polish, PolishState, Polisher};
 use super::{Evaluator, Held, OptimizeError, Optimizer, Settings};
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
@@ -29,6 +30,9 @@ crate::checkpoint! {
         /// Its cached fitness.
         #[serde(with = "bits_vec")]
         pub fitness: Vec<f64>,
+        /// The polishing under way, if any.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub polish: Option<PolishState<G>>,
     }
 }
 
@@ -67,9 +71,17 @@ crate::checkpoint! {
 /// over the population size, which never happens here. A pair that 10 000 events do not
 /// fill stops the run with a settings error (the original would loop forever).
 ///
+/// Polishing (off by default): with [`polish`](GaSettings::polish), each generation
+/// ends with a separable CMA-ES ([`SepCmaEs`](super::SepCmaEs)) drawing that many
+/// candidates over the continuous parameters of the population's best, its structure
+/// kept; the best candidate replaces it when it scores at least as well. The strategy
+/// goes on while the best keeps its structure and starts again when another structure
+/// leads; it draws from its own stream (seed, generation, 3 * 2^30) and is kept in
+/// checkpoints.
+///
 /// Evaluations: elites keep their cached fitness and are not evaluated again, so every
-/// generation after the first costs `population - elitism` evaluations, with either
-/// operators; the original evaluates the whole population every generation, elites
+/// generation after the first costs `population - elitism` evaluations (and `polish`
+/// more while the best has a continuous parameter), with either operators; the original evaluates the whole population every generation, elites
 /// included, so its evaluation counts are higher by `elitism` per generation.
 ///
 /// ```
@@ -101,6 +113,7 @@ crate::checkpoint! {
 pub struct Ga<G> {
     core: Core<GaSettings, Best<G>>,
     breeder: Breeder<G>,
+    polisher: Polisher<G>,
 }
 
 impl<G: Grammar> std::fmt::Debug for Ga<G> {
@@ -114,9 +127,10 @@ impl<G: Grammar> Optimizer<G> for Ga<G> {
     type State = GaState<G>;
     type Record = Best<G>;
 
-    /// The population, the next generation bred beside it, and the checkpoint's copy.
+    /// The population, the next generation bred beside it, and the checkpoint's copy;
+    /// polishing's candidates and origin.
     fn genomes_held(settings: &GaSettings) -> Vec<Held> {
-        vec![settings.held(1)]
+        vec![settings.held(1), polish::held(settings.polish)]
     }
 
     /// A GA with these settings, keeping genomes within `limits` (the weighted operators)
@@ -125,6 +139,7 @@ impl<G: Grammar> Optimizer<G> for Ga<G> {
         settings.validate()?;
         Ok(Ga {
             breeder: Breeder::new(&settings, limits, 1, 1)?,
+            polisher: Polisher::new(),
             core: Core::new(settings, limits, seed),
         })
     }
@@ -141,21 +156,29 @@ impl<G: Grammar> Optimizer<G> for Ga<G> {
         )
     }
 
-    fn save_body(&self) -> (Vec<Genome<G>>, Vec<f64>) {
-        self.breeder.save()
+    #[allow(clippy::type_complexity)]
+    fn save_body(&self) -> (Vec<Genome<G>>, Vec<f64>, Option<PolishState<G>>) {
+        let (population, fitness) = self.breeder.save();
+        (population, fitness, self.polisher.save())
     }
 
     fn check_body(state: &GaState<G>) -> Result<(), OptimizeError> {
+        Polisher::check(state.polish.as_ref())?;
         check_population(&state.settings, &state.population, &state.fitness, None)
     }
 
-    fn restore_body(&mut self, body: (Vec<Genome<G>>, Vec<f64>)) -> Result<(), OptimizeError> {
-        self.breeder.restore(body);
+    #[allow(clippy::type_complexity)]
+    fn restore_body(
+        &mut self,
+        (population, fitness, polish): (Vec<Genome<G>>, Vec<f64>, Option<PolishState<G>>),
+    ) -> Result<(), OptimizeError> {
+        self.breeder.restore((population, fitness));
+        self.polisher.restore(polish);
         Ok(())
     }
 
     fn step_cost(&self) -> u64 {
-        self.core.settings.children()
+        self.core.settings.children() + u64::from(self.core.settings.polish)
     }
 
     fn start(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
@@ -167,8 +190,14 @@ impl<G: Grammar> Optimizer<G> for Ga<G> {
     }
 
     fn step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
-        let core = &mut self.core;
-        self.breeder
-            .generation(&core.settings, &mut core.progress, evaluator)
+        let (settings, progress) = (&self.core.settings, &mut self.core.progress);
+        let b = &mut self.breeder;
+        b.generation(settings, progress, evaluator)?;
+        progress.evaluations += self.polisher.polish(
+            Polish::of(settings.polish, settings.polish_sigma, progress),
+            evaluator,
+            (&mut b.population, &mut b.scores),
+        )?;
+        Ok(())
     }
 }

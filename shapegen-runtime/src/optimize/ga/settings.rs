@@ -8,6 +8,7 @@ use crate::derive::Grammar;
 use crate::genome::Limits;
 use crate::ops::{OperatorVariant, Operators};
 use crate::optimize::error::check_range;
+use crate::optimize::polish;
 use crate::optimize::{Held, OptimizeError, Settings, SettingsError};
 
 /// Settings of the [`Ga`](super::Ga). Loads from scene files with serde; missing fields take the
@@ -67,6 +68,13 @@ pub struct GaSettings {
     /// `cross_array_index`). `false`, the default: `lots[i]` meets only `lots[i]`, as
     /// the original's one symbol per lot does.
     pub cross_array_index: bool,
+    /// Candidates a separable CMA-ES draws each generation to tune the continuous
+    /// parameters of the population's best (see [`Ga`](super::Ga)); 0, the default,
+    /// polishes nothing, otherwise at least 2.
+    pub polish: u32,
+    /// The step size a new polishing strategy starts with, as a share of each
+    /// parameter's range; in `(0, 1]`.
+    pub polish_sigma: f64,
 }
 
 impl Default for GaSettings {
@@ -84,6 +92,8 @@ impl Default for GaSettings {
             selection: ParentSelection::TournamentRoulette,
             operators: OperatorVariant::Weighted,
             cross_array_index: false,
+            polish: 0,
+            polish_sigma: 0.1,
         }
     }
 }
@@ -169,7 +179,7 @@ impl Settings for GaSettings {
         if self.tournament == 0 {
             return Err(SettingsError::new("tournament", 0, "at least 1"));
         }
-        Ok(())
+        polish::check_settings(self.polish, self.polish_sigma)
     }
 }
 

@@ -12,7 +12,7 @@ use super::core::Core;
 use super::error::check_range;
 use super::fitness::bits_vec;
 use super::ga::{Breeder, check_population};
-use super::polish::{Polish, PolishState, Polisher};
+use super::polish::{self, Polish, PolishState, Polisher};
 use super::run::derived_seed;
 use super::{
     Evaluator, GaSettings, Held, OptimizeError, Optimizer, Order, Record, Settings, SettingsError,
@@ -41,13 +41,6 @@ pub struct HybridSettings {
     /// Chance that a refinement move is a jump (a subtree redrawn from the grammar)
     /// rather than a diffusion (one gene's parameters redrawn); in `[0, 1]`.
     pub jump_probability: f64,
-    /// Candidates a separable CMA-ES draws each generation to tune the continuous
-    /// parameters of the population's best (see [`Hybrid`]); 0 polishes nothing,
-    /// otherwise at least 2.
-    pub polish: u32,
-    /// The step size a new polishing strategy starts with, as a share of each
-    /// parameter's range; in `(0, 1]`.
-    pub polish_sigma: f64,
 }
 
 impl Default for HybridSettings {
@@ -58,8 +51,6 @@ impl Default for HybridSettings {
             refine: 4,
             refine_moves: 2,
             jump_probability: 0.5,
-            polish: 0,
-            polish_sigma: 0.1,
         }
     }
 }
@@ -77,13 +68,6 @@ impl Settings for HybridSettings {
                 "at most the population",
             ));
         }
-        if self.polish == 1 {
-            return Err(SettingsError::new(
-                "polish",
-                self.polish,
-                "0, or at least 2",
-            ));
-        }
         check_range(
             "jump_probability",
             self.jump_probability,
@@ -91,13 +75,6 @@ impl Settings for HybridSettings {
             1.0,
             "between 0 and 1",
         )?;
-        if !(self.polish_sigma > 0.0 && self.polish_sigma <= 1.0) {
-            return Err(SettingsError::new(
-                "polish_sigma",
-                self.polish_sigma,
-                "above 0 and at most 1",
-            ));
-        }
         Ok(())
     }
 }
@@ -147,7 +124,7 @@ crate::checkpoint! {
 ///   tempered variant's jumps and diffusions ([`McmcVariant::Tempered`](
 ///   super::McmcVariant::Tempered)); a move is kept when it loses nothing (a chain at
 ///   temperature 0). The refined individuals take the place of those they came from.
-/// - **Polishing** (off by default): with [`polish`](HybridSettings::polish), the
+/// - **Polishing** (off by default): with [`polish`](GaSettings::polish), the
 ///   continuous parameters of the generation's best are then tuned by a separable
 ///   CMA-ES ([`SepCmaEs`](super::SepCmaEs)) that draws that many candidates; the
 ///   strategy goes on while the best keeps its structure and starts again when another
@@ -203,7 +180,6 @@ pub struct Hybrid<G> {
     seeding: Option<Smc<G>>,
     chains: refine::Chains<G>,
     polisher: Polisher<G>,
-    polishing: Option<PolishState<G>>,
 }
 
 impl<G: Grammar> std::fmt::Debug for Hybrid<G> {
@@ -253,12 +229,7 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
                 setting: "optimizer.refine",
                 value: settings.refine.into(),
             },
-            Held {
-                genomes: u64::from(settings.polish) + u64::from(settings.polish > 0),
-                saved: u64::from(settings.polish > 0),
-                setting: "optimizer.polish",
-                value: settings.polish.into(),
-            },
+            polish::held(settings.ga.polish),
         ]
     }
 
@@ -270,7 +241,6 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
             seeding: None,
             chains: refine::Chains::new(settings.refine as usize),
             polisher: Polisher::new(),
-            polishing: None,
             core: Core::new(settings, limits, seed),
         })
     }
@@ -309,15 +279,13 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
             Some(smc) => (Vec::new(), Vec::new(), Some(smc.checkpoint()), None),
             None => {
                 let (population, fitness) = self.breeder.save();
-                (population, fitness, None, self.polishing.clone())
+                (population, fitness, None, self.polisher.save())
             }
         }
     }
 
     fn check_body(state: &HybridState<G>) -> Result<(), OptimizeError> {
-        if let Some(polish) = &state.polish {
-            polish.check()?;
-        }
+        Polisher::check(state.polish.as_ref())?;
         match &state.seeding {
             Some(smc) if smc.progress.record.started() => Smc::<G>::check_body(smc),
             Some(_) => Ok(()),
@@ -335,7 +303,7 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
             Option<PolishState<G>>,
         ),
     ) -> Result<(), OptimizeError> {
-        self.polishing = polishing;
+        self.polisher.restore(polishing);
         match seeding {
             // While the first population is seeded, the GA's own is not there yet.
             Some(smc) => self.seeding = Some(Smc::resume(smc)?),
@@ -349,7 +317,7 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
         if self.seeding.is_some() {
             u64::from(ga.population)
         } else {
-            ga.children() + self.refine_cost() + u64::from(self.core.settings.polish)
+            ga.children() + self.refine_cost() + u64::from(ga.polish)
         }
     }
 
@@ -396,13 +364,7 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
         )?;
         progress.evaluations += cost;
         progress.evaluations += self.polisher.polish(
-            Polish {
-                candidates: settings.polish,
-                sigma: settings.polish_sigma,
-                seed: progress.seed,
-                generation: progress.generation + 1,
-            },
-            &mut self.polishing,
+            Polish::of(settings.ga.polish, settings.ga.polish_sigma, progress),
             evaluator,
             (&mut b.population, &mut b.scores),
         )?;

@@ -112,6 +112,10 @@ impl Settings for IslandGaSettings {
     /// ```
     fn validate(&self) -> Result<(), SettingsError> {
         self.ga.validate()?;
+        super::polish::refuse(
+            self.ga.polish,
+            "0 in the island model (run the GA or the hybrid on one island to polish)",
+        )?;
         let islands = &self.islands;
         if islands.count == 0 {
             return Err(SettingsError::new("islands.count", 0, "at least 1"));

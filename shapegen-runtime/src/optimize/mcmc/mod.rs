@@ -18,6 +18,7 @@ use super::best::Best;
 use super::core::Core;
 use super::error::{check_range, check_sizes};
 use super::fitness::bits_vec;
+use super::polish::{self, Polish, PolishState, Polisher};
 use super::run::stream;
 use super::{Evaluator, Held, OptimizeError, Optimizer, Settings, SettingsError};
 use crate::derive::Grammar;
@@ -188,6 +189,13 @@ pub struct McmcSettings {
     /// Tempered variant only: acceptance chance of the same move in the coldest chain;
     /// in `(0, hot_acceptance)`.
     pub cold_acceptance: f64,
+    /// Tempered variant only: candidates a separable CMA-ES draws each iteration to tune
+    /// the continuous parameters of the best chain's state (see [`Mcmc`]); 0, the
+    /// default, polishes nothing, otherwise at least 2.
+    pub polish: u32,
+    /// The step size a new polishing strategy starts with, as a share of each
+    /// parameter's range; in `(0, 1]`.
+    pub polish_sigma: f64,
 }
 
 impl Default for McmcSettings {
@@ -207,6 +215,8 @@ impl Default for McmcSettings {
             anneal_interval: 10,
             hot_acceptance: 0.7,
             cold_acceptance: 0.01,
+            polish: 0,
+            polish_sigma: 0.1,
         }
     }
 }
@@ -230,10 +240,15 @@ impl Settings for McmcSettings {
             1.0,
             "between 0 and 1",
         )?;
-        if self.variant == McmcVariant::Tempered {
-            self.validate_tempered()?;
+        match self.variant {
+            McmcVariant::Tempered => self.validate_tempered()?,
+            McmcVariant::Original => polish::refuse(
+                self.polish,
+                "0 with variant = \"original\", whose chains keep the prior of their last \
+                 move (polishing runs with variant = \"tempered\")",
+            )?,
         }
-        Ok(())
+        polish::check_settings(self.polish, self.polish_sigma)
     }
 }
 
@@ -291,6 +306,9 @@ crate::checkpoint! {
         /// (`f32` values); empty for the tempered variant.
         #[serde(default, with = "bits_vec")]
         pub log_priors: Vec<f64>,
+        /// The polishing under way, if any.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub polish: Option<PolishState<G>>,
     }
 }
 
@@ -301,6 +319,13 @@ crate::checkpoint! {
 /// (seed, iteration, 2^31), initial genomes from (seed, 0, chain): results never depend
 /// on the thread count. An iteration costs one evaluation per chain, plus, in the
 /// tempered variant, one per delayed-rejection try.
+///
+/// Polishing (tempered variant, off by default): with [`polish`](McmcSettings::polish),
+/// each iteration ends with a separable CMA-ES ([`SepCmaEs`](super::SepCmaEs)) drawing
+/// that many candidates over the continuous parameters of the best chain's state, its
+/// structure kept; the best candidate replaces the state when it scores at least as
+/// well. It draws from (seed, iteration, 3 * 2^30) and costs `polish` evaluations an
+/// iteration while the best state has a continuous parameter.
 ///
 /// ```
 /// use shapegen_runtime::optimize::{
@@ -355,6 +380,7 @@ pub struct Mcmc<G> {
     retry_genomes: Vec<Genome<G>>,
     /// Tempered variant: their fitness.
     retry_fitness: Vec<f64>,
+    polisher: Polisher<G>,
 }
 
 impl<G: Grammar> std::fmt::Debug for Mcmc<G> {
@@ -416,14 +442,17 @@ impl<G: Grammar> Optimizer<G> for Mcmc<G> {
     type Record = Best<G>;
 
     /// The chains, their proposals, delayed-rejection retries and the checkpoint's
-    /// copy.
+    /// copy; polishing's candidates and origin.
     fn genomes_held(settings: &McmcSettings) -> Vec<Held> {
-        vec![Held {
-            genomes: 4 * u64::from(settings.chains),
-            saved: settings.chains.into(),
-            setting: "optimizer.chains",
-            value: settings.chains.into(),
-        }]
+        vec![
+            Held {
+                genomes: 4 * u64::from(settings.chains),
+                saved: settings.chains.into(),
+                setting: "optimizer.chains",
+                value: settings.chains.into(),
+            },
+            polish::held(settings.polish),
+        ]
     }
 
     /// An MCMC run with these settings and limits, seeded with `seed`.
@@ -469,6 +498,7 @@ impl<G: Grammar> Optimizer<G> for Mcmc<G> {
             retry: Vec::new(),
             retry_genomes: Vec::new(),
             retry_fitness: Vec::new(),
+            polisher: Polisher::new(),
         })
     }
 
@@ -480,18 +510,29 @@ impl<G: Grammar> Optimizer<G> for Mcmc<G> {
         (&mut self.core, &self.chains, &self.fitness)
     }
 
-    fn save_body(&self) -> (Vec<Genome<G>>, Vec<f64>, Vec<f64>, Vec<f64>) {
+    #[allow(clippy::type_complexity)]
+    fn save_body(
+        &self,
+    ) -> (
+        Vec<Genome<G>>,
+        Vec<f64>,
+        Vec<f64>,
+        Vec<f64>,
+        Option<PolishState<G>>,
+    ) {
         (
             self.chains.clone(),
             self.fitness.clone(),
             self.temperatures.clone(),
             self.log_priors.clone(),
+            self.polisher.save(),
         )
     }
 
     /// Counts the chains first, then, as many as the settings', their fitness values,
     /// temperatures and (original variant) log priors.
     fn check_body(state: &McmcState<G>) -> Result<(), OptimizeError> {
+        Polisher::check(state.polish.as_ref())?;
         let s = &state.settings;
         let n = s.chains as usize;
         let priors = if s.variant == McmcVariant::Original {
@@ -512,14 +553,22 @@ impl<G: Grammar> Optimizer<G> for Mcmc<G> {
         )
     }
 
+    #[allow(clippy::type_complexity)]
     fn restore_body(
         &mut self,
-        (chains, fitness, temperatures, log_priors): (Vec<Genome<G>>, Vec<f64>, Vec<f64>, Vec<f64>),
+        (chains, fitness, temperatures, log_priors, polish): (
+            Vec<Genome<G>>,
+            Vec<f64>,
+            Vec<f64>,
+            Vec<f64>,
+            Option<PolishState<G>>,
+        ),
     ) -> Result<(), OptimizeError> {
         self.chains = chains;
         self.fitness = fitness;
         self.temperatures = temperatures;
         self.log_priors = log_priors;
+        self.polisher.restore(polish);
         Ok(())
     }
 
@@ -528,7 +577,7 @@ impl<G: Grammar> Optimizer<G> for Mcmc<G> {
             McmcVariant::Original => 1,
             McmcVariant::Tempered => 1 + u64::from(self.core.settings.delayed_rejection),
         };
-        u64::from(self.core.settings.chains) * tries
+        u64::from(self.core.settings.chains) * tries + u64::from(self.core.settings.polish)
     }
 
     fn start(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
@@ -541,7 +590,16 @@ impl<G: Grammar> Optimizer<G> for Mcmc<G> {
     fn step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
         match self.core.settings.variant {
             McmcVariant::Original => self.step_original(evaluator),
-            McmcVariant::Tempered => self.step_tempered(evaluator),
+            McmcVariant::Tempered => {
+                self.step_tempered(evaluator)?;
+                let (settings, progress) = (&self.core.settings, &mut self.core.progress);
+                progress.evaluations += self.polisher.polish(
+                    Polish::of(settings.polish, settings.polish_sigma, progress),
+                    evaluator,
+                    (&mut self.chains, &mut self.fitness),
+                )?;
+                Ok(())
+            }
         }
     }
 }

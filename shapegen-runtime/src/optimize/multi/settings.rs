@@ -218,6 +218,10 @@ impl Settings for MultiGaSettings {
     /// ```
     fn validate(&self) -> Result<(), SettingsError> {
         self.ga.validate()?;
+        crate::optimize::polish::refuse(
+            self.ga.polish,
+            "0 with several objectives, which have no single best to polish",
+        )?;
         self.selection.validate()?;
         if self.archive == 0 {
             return Err(SettingsError::new("archive", 0, "at least 1"));

@@ -9,6 +9,11 @@
 //! (every other word as it was), the strategy goes on, otherwise a new one starts at its
 //! coordinates. `candidates` genomes are drawn, scored together, and the best replaces
 //! the individual when it scores at least as well.
+//!
+//! Every single-fitness method polishes with the same two settings, `polish` (the
+//! candidates a generation, 0 for none) and `polish_sigma` (a new strategy's step size):
+//! the GA and the hybrid its population's best each generation, SMC and SOSMC their best
+//! particle each step, RJMCMC its best chain's state each iteration.
 
 mod cmaes;
 
@@ -18,7 +23,7 @@ use serde::{Deserialize, Serialize};
 
 use super::fitness::{best_index, compare};
 use super::run::stream;
-use super::{CheckpointError, Evaluator, OptimizeError};
+use super::{CheckpointError, Evaluator, Held, OptimizeError, SettingsError};
 use crate::derive::Grammar;
 use crate::genome::{Genome, node_of};
 use crate::graph::{Distribution, HEADER_WORDS};
@@ -159,6 +164,40 @@ impl<G: Grammar> PolishState<G> {
     }
 }
 
+/// Checks a method's polishing settings: `polish` 0 or at least 2, `polish_sigma` in
+/// `(0, 1]`.
+pub(crate) fn check_settings(polish: u32, polish_sigma: f64) -> Result<(), SettingsError> {
+    if polish == 1 {
+        return Err(SettingsError::new("polish", polish, "0, or at least 2"));
+    }
+    if !(polish_sigma > 0.0 && polish_sigma <= 1.0) {
+        return Err(SettingsError::new(
+            "polish_sigma",
+            polish_sigma,
+            "above 0 and at most 1",
+        ));
+    }
+    Ok(())
+}
+
+/// The genomes polishing holds: its candidates and its origin, which checkpoints keep.
+pub(crate) fn held(polish: u32) -> Held {
+    Held {
+        genomes: u64::from(polish) + u64::from(polish > 0),
+        saved: u64::from(polish > 0),
+        setting: "optimizer.polish",
+        value: polish.into(),
+    }
+}
+
+/// Refuses `polish` in a method that has no single best to polish.
+pub(crate) fn refuse(polish: u32, why: &'static str) -> Result<(), SettingsError> {
+    if polish == 0 {
+        return Ok(());
+    }
+    Err(SettingsError::new("polish", polish, why))
+}
+
 /// One generation's polishing.
 pub(crate) struct Polish {
     /// Genomes drawn and scored.
@@ -171,21 +210,52 @@ pub(crate) struct Polish {
     pub(crate) generation: u64,
 }
 
-/// Polishing's buffers, reused from generation to generation.
+impl Polish {
+    /// The polishing of the generation (step, iteration) that follows `progress`, with a
+    /// method's `polish` and `polish_sigma` settings.
+    pub(crate) fn of<R>(candidates: u32, sigma: f64, progress: &super::Progress<R>) -> Self {
+        Polish {
+            candidates,
+            sigma,
+            seed: progress.seed,
+            generation: progress.generation + 1,
+        }
+    }
+}
+
+/// Polishing: the strategy under way, if any, and buffers reused from generation to
+/// generation.
 pub(crate) struct Polisher<G> {
+    state: Option<PolishState<G>>,
     genomes: Vec<Genome<G>>,
     fitness: Vec<f64>,
     from: Vec<u32>,
 }
 
 impl<G: Grammar> Polisher<G> {
-    /// Empty buffers.
+    /// No polishing under way.
     pub(crate) fn new() -> Self {
         Polisher {
+            state: None,
             genomes: Vec::new(),
             fitness: Vec::new(),
             from: Vec::new(),
         }
+    }
+
+    /// The polishing under way, for a checkpoint.
+    pub(crate) fn save(&self) -> Option<PolishState<G>> {
+        self.state.clone()
+    }
+
+    /// Checks a checkpoint's polishing.
+    pub(crate) fn check(state: Option<&PolishState<G>>) -> Result<(), OptimizeError> {
+        state.map_or(Ok(()), PolishState::check)
+    }
+
+    /// Goes on with a checkpoint's polishing.
+    pub(crate) fn restore(&mut self, state: Option<PolishState<G>>) {
+        self.state = state;
     }
 
     /// Polishes the best of `population` (see the [module](self) docs), scoring the
@@ -194,10 +264,10 @@ impl<G: Grammar> Polisher<G> {
     pub(crate) fn polish(
         &mut self,
         p: Polish,
-        state: &mut Option<PolishState<G>>,
         evaluator: &mut (dyn Evaluator<G> + '_),
         (population, fitness): (&mut [Genome<G>], &mut [f64]),
     ) -> Result<u64, OptimizeError> {
+        let state = &mut self.state;
         let Some(best) = best_index(fitness) else {
             return Ok(0);
         };

@@ -16,6 +16,7 @@ use super::best::Best;
 use super::core::Core;
 use super::error::{check_range, check_sizes};
 use super::fitness::{Roulette, bits_vec};
+use super::polish::{self, Polish, PolishState, Polisher};
 use super::run::stream;
 use super::{Evaluator, Held, OptimizeError, Optimizer, Settings, SettingsError};
 use crate::derive::Grammar;
@@ -174,6 +175,13 @@ pub struct SmcSettings {
     /// Generative variant only: most genes a step adds while waiting for new geometry;
     /// at least 1.
     pub max_grows_per_step: u32,
+    /// Candidates a separable CMA-ES draws each step to tune the continuous parameters
+    /// of the best particle (see [`Smc`]); 0, the default, polishes nothing, otherwise at
+    /// least 2.
+    pub polish: u32,
+    /// The step size a new polishing strategy starts with, as a share of each
+    /// parameter's range; in `(0, 1]`.
+    pub polish_sigma: f64,
 }
 
 impl Default for SmcSettings {
@@ -185,6 +193,8 @@ impl Default for SmcSettings {
             variant: SmcVariant::Generative,
             step_back_probability: 0.0,
             max_grows_per_step: 64,
+            polish: 0,
+            polish_sigma: 0.1,
         }
     }
 }
@@ -211,7 +221,7 @@ impl Settings for SmcSettings {
                 }
             }
         }
-        Ok(())
+        polish::check_settings(self.polish, self.polish_sigma)
     }
 }
 
@@ -237,6 +247,9 @@ crate::checkpoint! {
         /// Their fitness.
         #[serde(with = "bits_vec")]
         pub fitness: Vec<f64>,
+        /// The polishing under way, if any.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub polish: Option<PolishState<G>>,
     }
 }
 
@@ -246,6 +259,13 @@ crate::checkpoint! {
 /// Each particle's growth draws from the stream (seed, step, particle) and resampling
 /// from (seed, step, 2^31 + particle): results never depend on the thread count. Each
 /// step costs one evaluation per particle, as does the initial population.
+///
+/// Polishing (off by default): with [`polish`](SmcSettings::polish), each step ends
+/// with a separable CMA-ES ([`SepCmaEs`](super::SepCmaEs)) drawing that many candidates
+/// over the continuous parameters of the best particle, its structure kept; the best
+/// candidate replaces it when it scores at least as well, before the next resampling.
+/// It draws from (seed, step, 3 * 2^30) and costs `polish` evaluations a step while the
+/// best particle has a continuous parameter.
 ///
 /// ```
 /// use shapegen_runtime::optimize::{
@@ -287,6 +307,7 @@ pub struct Smc<G> {
     /// Which particles of the generative variant's last step can grow no more while
     /// shorter than the limits' `min_len`.
     stuck: Vec<bool>,
+    polisher: Polisher<G>,
 }
 
 impl<G: Grammar> std::fmt::Debug for Smc<G> {
@@ -348,14 +369,17 @@ impl<G: Grammar> Optimizer<G> for Smc<G> {
     type Record = Best<G>;
 
     /// The particles, the next generation resampled beside them, and the checkpoint's
-    /// copy.
+    /// copy; polishing's candidates and origin.
     fn genomes_held(settings: &SmcSettings) -> Vec<Held> {
-        vec![Held {
-            genomes: 3 * u64::from(settings.particles),
-            saved: settings.particles.into(),
-            setting: "optimizer.particles",
-            value: settings.particles.into(),
-        }]
+        vec![
+            Held {
+                genomes: 3 * u64::from(settings.particles),
+                saved: settings.particles.into(),
+                setting: "optimizer.particles",
+                value: settings.particles.into(),
+            },
+            polish::held(settings.polish),
+        ]
     }
 
     /// An SMC run with these settings and limits, seeded with `seed`.
@@ -376,6 +400,7 @@ impl<G: Grammar> Optimizer<G> for Smc<G> {
             wheel: original::Wheel::default(),
             picks: Vec::new(),
             stuck: vec![false; cursors],
+            polisher: Polisher::new(),
         })
     }
 
@@ -387,17 +412,27 @@ impl<G: Grammar> Optimizer<G> for Smc<G> {
         (&mut self.core, &self.particles, &self.fitness)
     }
 
-    fn save_body(&self) -> (Vec<Genome<G>>, Vec<Cursor>, Vec<f64>) {
+    #[allow(clippy::type_complexity)]
+    fn save_body(
+        &self,
+    ) -> (
+        Vec<Genome<G>>,
+        Vec<Cursor>,
+        Vec<f64>,
+        Option<PolishState<G>>,
+    ) {
         (
             self.particles.clone(),
             self.cursors.clone(),
             self.fitness.clone(),
+            self.polisher.save(),
         )
     }
 
     /// Counts the particles first, then, as many as the settings', their cursors and
     /// fitness values.
     fn check_body(state: &SmcState<G>) -> Result<(), OptimizeError> {
+        Polisher::check(state.polish.as_ref())?;
         let s = &state.settings;
         let (n, cursors) = (s.particles as usize, Smc::<G>::cursors(s));
         let particles = (state.particles.len(), n, "particles");
@@ -414,16 +449,22 @@ impl<G: Grammar> Optimizer<G> for Smc<G> {
 
     fn restore_body(
         &mut self,
-        (particles, cursors, fitness): (Vec<Genome<G>>, Vec<Cursor>, Vec<f64>),
+        (particles, cursors, fitness, polish): (
+            Vec<Genome<G>>,
+            Vec<Cursor>,
+            Vec<f64>,
+            Option<PolishState<G>>,
+        ),
     ) -> Result<(), OptimizeError> {
         self.particles = particles;
         self.cursors = cursors;
         self.fitness = fitness;
+        self.polisher.restore(polish);
         Ok(())
     }
 
     fn step_cost(&self) -> u64 {
-        u64::from(self.core.settings.particles)
+        u64::from(self.core.settings.particles) + u64::from(self.core.settings.polish)
     }
 
     fn start(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
@@ -443,7 +484,7 @@ impl<G: Grammar> Optimizer<G> for Smc<G> {
             }
         }
         evaluator.evaluate(&self.particles, &mut self.fitness)?;
-        self.core.progress.evaluations += self.step_cost();
+        self.core.progress.evaluations += u64::from(self.core.settings.particles);
         Ok(())
     }
 
@@ -488,7 +529,13 @@ impl<G: Grammar> Optimizer<G> for Smc<G> {
                 *f = f64::NAN;
             }
         }
-        self.core.progress.evaluations += self.step_cost();
+        let (settings, progress) = (&self.core.settings, &mut self.core.progress);
+        progress.evaluations += u64::from(settings.particles);
+        progress.evaluations += self.polisher.polish(
+            Polish::of(settings.polish, settings.polish_sigma, progress),
+            evaluator,
+            (&mut self.particles, &mut self.fitness),
+        )?;
         Ok(())
     }
 }
