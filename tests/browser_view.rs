@@ -284,10 +284,17 @@ fn the_report_shows_the_run_offline(browser: &Path) {
     canvas_not_blank(browser, &url, &rect, wait);
 }
 
+/// The page `shapegen view` serves for `folder` (with `fragment` after its address),
+/// once a finished folder's page has settled.
+fn finished_page(browser: &Path, folder: &Path, fragment: &str) -> String {
+    let served = serve(&["view", s(folder)]);
+    let url = format!("http://{}/{fragment}", served.addr);
+    browse(browser, &url, "--dump-dom", "--virtual-time-budget=5000")
+}
+
 fn the_page_shows_a_front_a_comparison_and_a_study(browser: &Path) {
     let dir = tempfile::tempdir().unwrap();
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let wait = "--virtual-time-budget=5000";
 
     let front = dir.path().join("front");
     let scene = root.join("scenes/building.toml");
@@ -300,30 +307,8 @@ fn the_page_shows_a_front_a_comparison_and_a_study(browser: &Path) {
         "--out",
         s(&front),
     ]);
-    let served = serve(&["view", s(&front)]);
-    let dom = browse(
-        browser,
-        &format!("http://{}/", served.addr),
-        "--dump-dom",
-        wait,
-    );
-    let members = fs::read_to_string(front.join("front.csv"))
-        .unwrap()
-        .lines()
-        .count()
-        - 1;
-    assert_eq!(
-        attribute(&dom, "front", "data-points").as_deref(),
-        Some(members.to_string().as_str()),
-        "one point per member of the front"
-    );
-    assert_eq!(
-        attribute(&dom, "canvas", "data-model").as_deref(),
-        Some("front/model_000.glb")
-    );
-    // A chosen point (`#point=K`, what a click on the K-th point from the left does)
-    // shows its own model: the K-th member by the first objective, as `front.csv`
-    // numbers it.
+    // The front's members by the first objective, as the scatter shows them from the
+    // left, with their numbers in `front.csv`.
     let table = fs::read_to_string(front.join("front.csv")).unwrap();
     let mut rows: Vec<(f64, String)> = table
         .lines()
@@ -334,14 +319,21 @@ fn the_page_shows_a_front_a_comparison_and_a_study(browser: &Path) {
         })
         .collect();
     rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let dom = finished_page(browser, &front, "");
+    assert_eq!(
+        attribute(&dom, "front", "data-points"),
+        Some(rows.len().to_string()),
+        "one point per member of the front"
+    );
+    assert_eq!(
+        attribute(&dom, "canvas", "data-model").as_deref(),
+        Some("front/model_000.glb")
+    );
+    // A chosen point (`#point=K`, what a click on the K-th point from the left does)
+    // shows its own model.
     assert!(rows.len() >= 2, "a front of {} members", rows.len());
     let point = rows.len() - 1;
-    let dom = browse(
-        browser,
-        &format!("http://{}/#point={point}", served.addr),
-        "--dump-dom",
-        wait,
-    );
+    let dom = finished_page(browser, &front, &format!("#point={point}"));
     assert_eq!(
         attribute(&dom, "front", "data-point"),
         Some(point.to_string())
@@ -350,7 +342,6 @@ fn the_page_shows_a_front_a_comparison_and_a_study(browser: &Path) {
         attribute(&dom, "canvas", "data-model"),
         Some(format!("front/model_{:0>3}.glb", rows[point].1))
     );
-    drop(served);
 
     let compare = dir.path().join("compare");
     let scene = skyline_scene(dir.path());
@@ -367,13 +358,7 @@ fn the_page_shows_a_front_a_comparison_and_a_study(browser: &Path) {
         "--out",
         s(&compare),
     ]);
-    let served = serve(&["view", s(&compare)]);
-    let dom = browse(
-        browser,
-        &format!("http://{}/", served.addr),
-        "--dump-dom",
-        wait,
-    );
+    let dom = finished_page(browser, &compare, "");
     assert_eq!(
         dom.matches("<button>show</button>").count(),
         2,
@@ -383,7 +368,6 @@ fn the_page_shows_a_front_a_comparison_and_a_study(browser: &Path) {
         attribute(&dom, "canvas", "data-model").as_deref(),
         Some("runs/ga-0/best.glb")
     );
-    drop(served);
 
     // A study: a model button per cell, and each cell's curve.
     let sweep = dir.path().join("sweep");
@@ -400,13 +384,7 @@ fn the_page_shows_a_front_a_comparison_and_a_study(browser: &Path) {
         "--out",
         s(&sweep),
     ]);
-    let served = serve(&["view", s(&sweep)]);
-    let dom = browse(
-        browser,
-        &format!("http://{}/", served.addr),
-        "--dump-dom",
-        wait,
-    );
+    let dom = finished_page(browser, &sweep, "");
     assert_eq!(
         dom.matches("<button>show</button>").count(),
         3,

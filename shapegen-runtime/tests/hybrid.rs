@@ -317,22 +317,3 @@ fn hybrid_settings_are_validated() {
     assert_eq!((parsed.refine, parsed.ga.population), (2, 50));
     assert!(serde_json::from_str::<HybridSettings>(r#"{"refines": 2}"#).is_err());
 }
-
-#[test]
-fn polishing_checkpoints_that_do_not_fit_their_genome_are_refused() {
-    let mut hybrid = Hybrid::<Spaceship>::new(full(), spaceship::PAPER_LIMITS, 2).unwrap();
-    hybrid
-        .run(&mut BoxTarget::new(), &Budget::generations(6), &mut Silent)
-        .unwrap();
-    let state = hybrid.checkpoint();
-    let polish = state.polish.clone().expect("polishing is under way");
-    assert!(!polish_coordinates(&polish.origin).is_empty());
-    Hybrid::<Spaceship>::resume(state.clone()).unwrap();
-    let mut bad = state;
-    bad.polish = Some(PolishState {
-        strategy: SepCmaEs::new(vec![0.5; 3], 0.1),
-        ..polish
-    });
-    let err = Hybrid::<Spaceship>::resume(bad).unwrap_err().to_string();
-    assert!(err.contains("polishing strategy of 3 dimensions"), "{err}");
-}

@@ -97,6 +97,17 @@ fn hybrid(polish: u32) -> HybridSettings {
     }
 }
 
+/// The paper's spaceship GA, small, polishing 6 candidates a generation.
+fn spaceship_ga() -> GaSettings {
+    GaSettings {
+        population: 30,
+        elitism: 6,
+        initial_length: 10,
+        polish: 6,
+        ..spaceship::paper_ga()
+    }
+}
+
 /// Runs `O` with `settings` on the column for `budget`.
 fn column<O: Optimizer<Column, Record = Best<Column>>>(
     settings: O::Settings,
@@ -208,14 +219,7 @@ where
 
 #[test]
 fn polishing_runs_the_same_at_any_thread_count_and_resumes_to_the_bit() {
-    let ga = GaSettings {
-        population: 30,
-        elitism: 6,
-        initial_length: 10,
-        polish: 6,
-        ..spaceship::paper_ga()
-    };
-    same_everywhere::<Ga<Spaceship>>("ga", ga, 10, &[0, 1, 4, 7]);
+    same_everywhere::<Ga<Spaceship>>("ga", spaceship_ga(), 10, &[0, 1, 4, 7]);
     let smc = SmcSettings {
         particles: 20,
         order: Order::Stochastic,
@@ -277,29 +281,45 @@ fn polishing_survives_nan_fitness() {
     }
 }
 
+/// Runs `O` with `settings` on the spaceship for `generations`, then checks that its
+/// checkpoint (whose polishing `polish` reaches) resumes, and that the same with a
+/// strategy of the wrong dimension is refused.
+fn refuses_misfit_strategies<O>(
+    settings: O::Settings,
+    generations: u64,
+    polish: fn(&mut O::State) -> &mut Option<PolishState<Spaceship>>,
+) where
+    O: Optimizer<Spaceship, Record = Best<Spaceship>> + std::fmt::Debug,
+    O::State: Clone,
+{
+    let mut optimizer = O::new(settings, spaceship::PAPER_LIMITS, 2).unwrap();
+    optimizer
+        .run(
+            &mut BoxTarget::new(),
+            &Budget::generations(generations),
+            &mut Silent,
+        )
+        .unwrap();
+    let mut state = optimizer.checkpoint();
+    let under_way = polish(&mut state).clone().expect("polishing is under way");
+    assert!(!polish_coordinates(&under_way.origin).is_empty());
+    O::resume(state.clone()).unwrap();
+    *polish(&mut state) = Some(PolishState {
+        strategy: SepCmaEs::new(vec![0.5; 3], 0.1),
+        ..under_way
+    });
+    let err = O::resume(state).unwrap_err().to_string();
+    assert!(err.contains("polishing strategy of 3 dimensions"), "{err}");
+}
+
 #[test]
 fn polishing_checkpoints_that_do_not_fit_their_genome_are_refused() {
-    let settings = GaSettings {
-        population: 30,
-        elitism: 6,
-        initial_length: 10,
-        polish: 6,
-        ..spaceship::paper_ga()
+    refuses_misfit_strategies::<Ga<Spaceship>>(spaceship_ga(), 4, |s| &mut s.polish);
+    let hybrid = HybridSettings {
+        ga: spaceship_ga(),
+        ..HybridSettings::default()
     };
-    let mut ga = Ga::<Spaceship>::new(settings, spaceship::PAPER_LIMITS, 2).unwrap();
-    ga.run(&mut BoxTarget::new(), &Budget::generations(4), &mut Silent)
-        .unwrap();
-    let state = ga.checkpoint();
-    let polish = state.polish.clone().expect("polishing is under way");
-    assert!(!polish_coordinates(&polish.origin).is_empty());
-    Ga::<Spaceship>::resume(state.clone()).unwrap();
-    let mut bad = state;
-    bad.polish = Some(PolishState {
-        strategy: SepCmaEs::new(vec![0.5; 3], 0.1),
-        ..polish
-    });
-    let err = Ga::<Spaceship>::resume(bad).unwrap_err().to_string();
-    assert!(err.contains("polishing strategy of 3 dimensions"), "{err}");
+    refuses_misfit_strategies::<Hybrid<Spaceship>>(hybrid, 6, |s| &mut s.polish);
 }
 
 #[test]

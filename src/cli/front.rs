@@ -168,15 +168,12 @@ impl FrontRun<'_> {
                 }
                 .write(&mut files, self.dir)?;
                 files.commit()?;
-                outputs.remove_stale_models(self.dir, front.len())
+                remove_stale_models(self.dir, front.len())
             })
             .run(&mut evaluator)?;
         line.finish();
+        // The session's last save wrote the front's table and models.
         let front = sorted(&result.front, set.senses());
-        let mut files = Files::new();
-        outputs.models(&mut files, self.dir, &front)?;
-        files.commit()?;
-        outputs.remove_stale_models(self.dir, front.len())?;
         outputs.sheet(self.dir, &front)?;
         outputs.scatters(self.dir, &front)?;
         outputs.overlays(self.dir, &front)?;
@@ -260,6 +257,25 @@ fn sorted<'a, G>(front: &'a [Member<G>], senses: &[Sense]) -> Vec<&'a Member<G>>
             .unwrap_or(std::cmp::Ordering::Equal)
     });
     order
+}
+
+/// Removes the models of an earlier, larger front: those numbered `len` and above.
+fn remove_stale_models(dir: &Path, len: usize) -> anyhow::Result<()> {
+    let folder = dir.join("front");
+    for entry in std::fs::read_dir(&folder)? {
+        let path = entry?.path();
+        let stale = path
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .and_then(|s| s.strip_prefix("model_"))
+            .and_then(|n| n.parse::<usize>().ok())
+            .is_some_and(|n| n >= len);
+        if stale {
+            std::fs::remove_file(&path)
+                .with_context(|| format!("cannot remove `{}`", path.display()))?;
+        }
+    }
+    Ok(())
 }
 
 /// The member of `front` best by objective `i` (the first of equals), if any.
@@ -363,25 +379,6 @@ impl Outputs<'_> {
                 &folder.join(format!("model_{i:03}.glb")),
                 &glb_bytes(&instances, &self.meshes, &self.palette)?,
             )?;
-        }
-        Ok(())
-    }
-
-    /// Removes the models of an earlier, larger front: those numbered `len` and above.
-    fn remove_stale_models(&self, dir: &Path, len: usize) -> anyhow::Result<()> {
-        let folder = dir.join("front");
-        for entry in std::fs::read_dir(&folder)? {
-            let path = entry?.path();
-            let stale = path
-                .file_stem()
-                .and_then(|s| s.to_str())
-                .and_then(|s| s.strip_prefix("model_"))
-                .and_then(|n| n.parse::<usize>().ok())
-                .is_some_and(|n| n >= len);
-            if stale {
-                std::fs::remove_file(&path)
-                    .with_context(|| format!("cannot remove `{}`", path.display()))?;
-            }
         }
         Ok(())
     }

@@ -13,7 +13,7 @@ pub use settings::{GaSettings, ParentSelection};
 use super::best::Best;
 use super::core::Core;
 use super::fitness::bits_vec;
-use super::polish::{self, Polish, PolishState, Polisher};
+use super::polish::{self, PolishState, Polisher};
 use super::{Evaluator, Held, OptimizeError, Optimizer, Settings};
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
@@ -193,8 +193,9 @@ impl<G: Grammar> Optimizer<G> for Ga<G> {
         let (settings, progress) = (&self.core.settings, &mut self.core.progress);
         let b = &mut self.breeder;
         b.generation(settings, progress, evaluator)?;
-        progress.evaluations += self.polisher.polish(
-            Polish::of(settings.polish, settings.polish_sigma, progress),
+        self.polisher.polish(
+            (settings.polish, settings.polish_sigma),
+            progress,
             evaluator,
             (&mut b.population, &mut b.scores),
         )?;

@@ -12,7 +12,7 @@ use super::core::Core;
 use super::error::check_range;
 use super::fitness::bits_vec;
 use super::ga::{Breeder, check_population};
-use super::polish::{self, Polish, PolishState, Polisher};
+use super::polish::{self, PolishState, Polisher};
 use super::run::derived_seed;
 use super::{
     Evaluator, GaSettings, Held, OptimizeError, Optimizer, Order, Record, Settings, SettingsError,
@@ -103,7 +103,7 @@ crate::checkpoint! {
         /// The SOSMC seeding the first population, while it runs.
         pub seeding: Option<SmcState<G>>,
         /// The polishing under way, if any.
-        #[serde(default)]
+        #[serde(default, skip_serializing_if = "Option::is_none")]
         pub polish: Option<PolishState<G>>,
     }
 }
@@ -363,8 +363,9 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
             (&mut b.population, &mut b.scores),
         )?;
         progress.evaluations += cost;
-        progress.evaluations += self.polisher.polish(
-            Polish::of(settings.ga.polish, settings.ga.polish_sigma, progress),
+        self.polisher.polish(
+            (settings.ga.polish, settings.ga.polish_sigma),
+            progress,
             evaluator,
             (&mut b.population, &mut b.scores),
         )?;

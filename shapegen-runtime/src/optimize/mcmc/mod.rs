@@ -18,7 +18,7 @@ use super::best::Best;
 use super::core::Core;
 use super::error::{check_range, check_sizes};
 use super::fitness::bits_vec;
-use super::polish::{self, Polish, PolishState, Polisher};
+use super::polish::{self, PolishState, Polisher};
 use super::run::stream;
 use super::{Evaluator, Held, OptimizeError, Optimizer, Settings, SettingsError};
 use crate::derive::Grammar;
@@ -593,8 +593,9 @@ impl<G: Grammar> Optimizer<G> for Mcmc<G> {
             McmcVariant::Tempered => {
                 self.step_tempered(evaluator)?;
                 let (settings, progress) = (&self.core.settings, &mut self.core.progress);
-                progress.evaluations += self.polisher.polish(
-                    Polish::of(settings.polish, settings.polish_sigma, progress),
+                self.polisher.polish(
+                    (settings.polish, settings.polish_sigma),
+                    progress,
                     evaluator,
                     (&mut self.chains, &mut self.fitness),
                 )?;

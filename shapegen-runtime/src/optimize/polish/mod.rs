@@ -23,7 +23,7 @@ use serde::{Deserialize, Serialize};
 
 use super::fitness::{best_index, compare};
 use super::run::stream;
-use super::{CheckpointError, Evaluator, Held, OptimizeError, SettingsError};
+use super::{CheckpointError, Evaluator, Held, OptimizeError, Progress, SettingsError};
 use crate::derive::Grammar;
 use crate::genome::{Genome, node_of};
 use crate::graph::{Distribution, HEADER_WORDS};
@@ -198,31 +198,6 @@ pub(crate) fn refuse(polish: u32, why: &'static str) -> Result<(), SettingsError
     Err(SettingsError::new("polish", polish, why))
 }
 
-/// One generation's polishing.
-pub(crate) struct Polish {
-    /// Genomes drawn and scored.
-    pub(crate) candidates: u32,
-    /// The step size a new strategy starts with, in the unit box.
-    pub(crate) sigma: f64,
-    /// The run's seed.
-    pub(crate) seed: u64,
-    /// The generation polished.
-    pub(crate) generation: u64,
-}
-
-impl Polish {
-    /// The polishing of the generation (step, iteration) that follows `progress`, with a
-    /// method's `polish` and `polish_sigma` settings.
-    pub(crate) fn of<R>(candidates: u32, sigma: f64, progress: &super::Progress<R>) -> Self {
-        Polish {
-            candidates,
-            sigma,
-            seed: progress.seed,
-            generation: progress.generation + 1,
-        }
-    }
-}
-
 /// Polishing: the strategy under way, if any, and buffers reused from generation to
 /// generation.
 pub(crate) struct Polisher<G> {
@@ -258,22 +233,28 @@ impl<G: Grammar> Polisher<G> {
         self.state = state;
     }
 
-    /// Polishes the best of `population` (see the [module](self) docs), scoring the
-    /// candidates as children of it; returns the evaluations made (none when the best
-    /// has no coordinates or `candidates` is under 2).
-    pub(crate) fn polish(
+    /// Polishes the best of `population` (see the [module](self) docs) in the
+    /// generation (step, iteration) that follows `progress`, with a method's `polish`
+    /// and `polish_sigma` settings, scoring the candidates as children of it and
+    /// counting them in `progress`. Nothing happens when `polish` is under 2 or the best
+    /// has no coordinates.
+    pub(crate) fn polish<R>(
         &mut self,
-        p: Polish,
+        (candidates, sigma): (u32, f64),
+        progress: &mut Progress<R>,
         evaluator: &mut (dyn Evaluator<G> + '_),
         (population, fitness): (&mut [Genome<G>], &mut [f64]),
-    ) -> Result<u64, OptimizeError> {
+    ) -> Result<(), OptimizeError> {
+        if candidates < 2 {
+            return Ok(());
+        }
         let state = &mut self.state;
         let Some(best) = best_index(fitness) else {
-            return Ok(0);
+            return Ok(());
         };
         let coordinates = polish_coordinates(&population[best]);
-        if coordinates.is_empty() || p.candidates < 2 || fitness[best].is_nan() {
-            return Ok(0);
+        if coordinates.is_empty() || fitness[best].is_nan() {
+            return Ok(());
         }
         if !state
             .as_ref()
@@ -283,12 +264,12 @@ impl<G: Grammar> Polisher<G> {
             let mean = coordinates.iter().map(|c| c.unit(words)).collect();
             *state = Some(PolishState {
                 origin: population[best].clone(),
-                strategy: SepCmaEs::new(mean, p.sigma),
+                strategy: SepCmaEs::new(mean, sigma),
             });
         }
         let polishing = state.as_mut().expect("made above");
-        let mut rng = stream(p.seed, p.generation, STREAM);
-        let points = polishing.strategy.ask(p.candidates as usize, &mut rng);
+        let mut rng = stream(progress.seed, progress.generation + 1, STREAM);
+        let points = polishing.strategy.ask(candidates as usize, &mut rng);
         self.genomes
             .resize_with(points.len(), || Genome::from_parts(Vec::new(), 0));
         for (genome, point) in self.genomes.iter_mut().zip(&points) {
@@ -310,6 +291,7 @@ impl<G: Grammar> Polisher<G> {
             std::mem::swap(&mut population[best], &mut self.genomes[top]);
             fitness[best] = self.fitness[top];
         }
-        Ok(points.len() as u64)
+        progress.evaluations += points.len() as u64;
+        Ok(())
     }
 }
