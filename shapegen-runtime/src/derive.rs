@@ -13,7 +13,8 @@ use std::ops::Deref;
 use glam::Vec3;
 
 use crate::geometry::{
-    Axis, Face, Instance, MeshId, Part, RoofError, RoofMeshes, RoofShape, Scope,
+    Axis, Face, Instance, Mesh, MeshId, Part, Polygon, Roof, RoofError, RoofMeshes, RoofShape,
+    Scope,
 };
 use crate::graph::{GeneratorGraph, HEADER_WORDS};
 use crate::param::ParamValue;
@@ -336,6 +337,40 @@ impl<'a, G: Grammar> Shape<'a, G> {
     ) -> Result<(), RoofError> {
         self.scope
             .roof(shape, overhang, meshes, &mut self.ctx.out.borrow_mut())
+    }
+
+    /// Emits `mesh`, given in the box's frame without scaling, as generated geometry:
+    /// one instance of the facet mesh `facet` per triangle; see [`Scope::surface`] and
+    /// [`geometry::facet_transform`](crate::geometry::facet_transform).
+    pub fn emit_surface(&self, mesh: &Mesh, facet: MeshId) -> usize {
+        self.scope
+            .surface(mesh, facet, &mut self.ctx.out.borrow_mut())
+    }
+
+    /// Emits the prism of `height` standing on `footprint` on the bottom of the box, as
+    /// facets (CGA's `extrude` of a polygon); see [`Scope::extrude_polygon`].
+    pub fn extrude_polygon(&self, footprint: &Polygon, height: f32, facet: MeshId) -> usize {
+        self.scope
+            .extrude_polygon(footprint, height, facet, &mut self.ctx.out.borrow_mut())
+    }
+
+    /// Emits the roof of `shape` with `overhang` over `footprint` on the top of the box,
+    /// as facets (a straight-skeleton roof on any simple polygon); see
+    /// [`Scope::roof_polygon`]. A measure out of range emits nothing and says why.
+    pub fn roof_polygon(
+        &self,
+        footprint: &Polygon,
+        shape: RoofShape,
+        overhang: f32,
+        facet: MeshId,
+    ) -> Result<Roof, RoofError> {
+        self.scope.roof_polygon(
+            footprint,
+            shape,
+            overhang,
+            facet,
+            &mut self.ctx.out.borrow_mut(),
+        )
     }
 
     #[inline]

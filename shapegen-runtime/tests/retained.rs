@@ -9,6 +9,7 @@ mod support {
     pub mod breeding;
     pub mod city_expanded;
     pub mod objective_scenes;
+    pub mod pavilions;
     pub mod scenes;
     pub mod silhouette_scenes;
     pub mod volume_scenes;
@@ -248,6 +249,63 @@ fn building_volume_and_silhouette() {
         30,
         sequences(150),
         7,
+    );
+}
+
+/// Generated geometry: pavilions whose walls and roofs are facets, counted together by
+/// winding number, next to boxes; a child's volume and silhouette counted from its
+/// parent's state equal its counts from nothing.
+#[test]
+fn generated_facets_volume_and_silhouette() {
+    let meshes = support::pavilions::meshes();
+    let grid = shapegen_runtime::score::volume::Grid::new(
+        Vec3::new(-12.0, 0.0, -12.0),
+        Vec3::new(12.0, 24.0, 12.0),
+        [48, 48, 48],
+    )
+    .unwrap();
+    let t = target(
+        "hall",
+        block(Vec3::new(-6.0, 0.0, -4.0), Vec3::new(6.0, 10.0, 4.0)),
+        1.0,
+        -1.0,
+    );
+    let form = shapegen_runtime::score::Form::Weighted { overlap: 0.5 };
+    let volume = VolumeScorer::new(grid, &[t], &meshes, form).unwrap();
+    let checked = check_sequences::<support::pavilions::Pavilions, _>(
+        "pavilion volume",
+        &volume,
+        support::pavilions::LIMITS,
+        3,
+        sequences(100),
+        11,
+    );
+    assert!(checked > 0);
+    let camera = Camera::Orbit(shapegen_runtime::score::silhouette::OrbitCamera {
+        phi: -1.2,
+        theta: 0.3,
+        radius: 45.0,
+        lookat: Vec3::new(0.0, 6.0, 0.0),
+        fov_degrees: 50.0,
+        near: 0.1,
+        far: 200.0,
+    });
+    let image = image::DynamicImage::ImageLuma8(image::GrayImage::from_fn(160, 120, |x, y| {
+        image::Luma([if (40..120).contains(&x) && y > 40 {
+            0
+        } else {
+            255
+        }])
+    }));
+    let t = ImageTarget::from_mask("front".into(), &image, camera, 1.0, -1.0).unwrap();
+    let silhouette = SilhouetteScorer::new(vec![t], &meshes, SMOOTH).unwrap();
+    check_sequences::<support::pavilions::Pavilions, _>(
+        "pavilion silhouette",
+        &silhouette,
+        support::pavilions::LIMITS,
+        3,
+        sequences(100),
+        12,
     );
 }
 

@@ -1,7 +1,9 @@
 //! Geometry: oriented scopes, mesh instances and the meshes they refer to, and the
-//! polygons, prisms and roofs that rules build as geometry of their own.
+//! polygons, prisms and roofs that rules build as geometry of their own, placed as
+//! facets.
 
 mod face;
+mod facet;
 mod formats;
 mod instance;
 mod library;
@@ -16,6 +18,7 @@ mod solid;
 mod split;
 
 pub use face::{Face, Faces};
+pub use facet::{FACET_CORNERS, emit_facets, facet_transform, is_facet};
 pub use formats::{MeshFormat, PointCloud};
 pub use instance::{CUBE, Instance, MeshId};
 pub use library::{BoundMeshes, MeshLibrary};

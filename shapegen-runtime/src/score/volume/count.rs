@@ -1,7 +1,7 @@
 //! Counting one model on the CPU: bitsets of the voxels covered and covered again, whose
 //! reset costs what the model covered.
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
 use super::parity::{Bounds, Voxelizer};
 use super::parts::PartKind;
@@ -9,6 +9,9 @@ use super::quant::{Placement, QuantBox, quantize, usable_linear, voxels_of_volum
 use super::span::span_out_of_grid;
 use super::{VolumeCounts, VolumeScorer};
 use crate::geometry::Instance;
+
+/// Facet corners are snapped to `1 / FACET_SNAP` of a voxel.
+const FACET_SNAP: f64 = 4096.0;
 
 /// Working memory of one worker counting models with a [`VolumeScorer`]: a bitset over
 /// the grid of the voxels covered, one of those covered more than once, and the list
@@ -124,6 +127,8 @@ impl VolumeScorer {
         };
         out.span(span_out_of_grid(&self.grid, part, &instance.transform));
         match part {
+            // Covered together with the model's other facets: see walk_facets.
+            PartKind::Facet => {}
             PartKind::Box => match quantize(&self.grid, &instance.transform) {
                 Placement::Nothing => {}
                 Placement::Oversize(n) => out.outside(n),
@@ -144,6 +149,51 @@ impl VolumeScorer {
                     out.outside(voxels_of_volume(grid, volume * m.determinant().abs()));
                 }
             }
+        }
+    }
+
+    /// Hands what the facets among `instances` cover to `out`, together: each lattice
+    /// point once for every closed facet surface that holds it (their winding number).
+    /// Facets beyond the rasterisation limits count as many lattice points outside the
+    /// grid as the voxels of the volume they enclose.
+    pub(super) fn walk_facets(
+        &self,
+        instances: &[Instance],
+        voxelizer: &mut Voxelizer,
+        out: &mut impl Lattice,
+    ) {
+        if !self.parts.contains(&PartKind::Facet) {
+            return; // the grammar has no facets: the instance path alone
+        }
+        let grid = &self.grid;
+        // The corners `a`, `a + u`, `a + v` in f64 (exactly the sums of the transform's
+        // f32 columns).
+        let triangles = || {
+            instances
+                .iter()
+                .filter(|i| self.parts.get(i.mesh.0 as usize) == Some(&PartKind::Facet))
+                .map(|i| {
+                    let t = &i.transform;
+                    let a = Vec3::from(t.translation).as_dvec3();
+                    let [u, v] =
+                        [t.matrix3.x_axis, t.matrix3.y_axis].map(|c| Vec3::from(c).as_dvec3());
+                    [a, a + u, a + v]
+                })
+        };
+        if triangles().next().is_none() {
+            return;
+        }
+        // A corner two facets share is placed from each facet's own columns, which can
+        // differ in the last bits: snapped to 1/4096 of a voxel, both copies are one
+        // point again, and the surface stays closed to the rays.
+        let snap = |p: DVec3| (grid.to_lattice(p) * FACET_SNAP).round() / FACET_SNAP;
+        let lattice = triangles().map(|t| t.map(snap));
+        let run = voxelizer.run_winding(lattice, Bounds::Lattice, |j, k, a, b| {
+            self.row(out, j, k, a, b)
+        });
+        if run.is_err() {
+            let volume: f64 = triangles().map(|[a, b, c]| a.dot(b.cross(c)) / 6.0).sum();
+            out.outside(voxels_of_volume(grid, volume.abs()));
         }
     }
 
@@ -208,6 +258,7 @@ impl VolumeScorer {
         for instance in instances {
             self.walk(instance, voxelizer, &mut tally);
         }
+        self.walk_facets(instances, voxelizer, &mut tally);
         let counts = tally.counts;
         if let Some(out) = keep {
             out.clear();

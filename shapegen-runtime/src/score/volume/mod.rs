@@ -6,7 +6,12 @@
 //! the unit cube (or any mesh whose geometry is exactly the unit cube) are rasterised
 //! with exact integer arithmetic from a quantised form of the instance, which the GPU
 //! evaluates identically; other meshes are voxelized by parity on their transformed
-//! triangles. A lattice point counts as covered when its voxel centre is.
+//! triangles. A model's [facets](crate::geometry::Mesh::facet), the triangles of the
+//! surfaces its rules generate, are voxelized together by winding number: a lattice
+//! point is covered by them once for each closed, outward-wound facet surface holding
+//! it (corners snapped to 1/4096 of a voxel, so that a corner two facets share is one
+//! point), and each facet's span is that of its triangle. A lattice point counts as
+//! covered when its voxel centre is.
 //!
 //! [`VolumeCounts`] holds what a model covers: distinct covered voxels per class,
 //! `inside` (target voxels: class weight above 0) and `outside` (the rest); repeated

@@ -1,4 +1,5 @@
-//! Voxelization of triangle meshes by ray parity.
+//! Voxelization of triangle meshes by ray parity, and of closed surfaces by winding
+//! number.
 //!
 //! A lattice point is inside a mesh when the ray from it along +x crosses the mesh's
 //! triangles an odd number of times. Work is done in lattice coordinates (lattice point
@@ -12,7 +13,10 @@
 //! lattice points `I < c`.
 //!
 //! Only lattice points within the mesh's bounding box can be inside. Meshes need not be
-//! closed: parity does what it does on any triangle soup.
+//! closed: parity does what it does on any triangle soup. The winding number counts
+//! the same crossings with a sign (`+1` where the triangle faces `+x`, `-1` where it
+//! faces `-x`): around a point it is the number of closed, outward-wound surfaces that
+//! hold it, however they overlap.
 
 use glam::{DVec2, DVec3, Vec3, Vec3Swizzles};
 
@@ -23,8 +27,9 @@ use crate::geometry::Mesh;
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Voxelizer {
     points: Vec<DVec3>,
-    /// `(row within the bounding box, x of the crossing)`.
-    crossings: Vec<(u64, f64)>,
+    /// `(row within the bounding box, x of the crossing, +1 where the triangle faces
+    /// +x and -1 where it faces -x)`.
+    crossings: Vec<(u64, f64, i8)>,
 }
 
 /// Which lattice points a run may consider.
@@ -63,6 +68,17 @@ fn left_of(a: DVec2, b: DVec2, p: DVec2) -> bool {
     d.y < 0.0 || (d.y == 0.0 && d.x > 0.0)
 }
 
+/// What a run counts a lattice point as covered by.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Rule {
+    /// Once, when its ray crosses an odd number of triangles.
+    Parity,
+    /// As many times as the winding number around it, when positive: its ray's
+    /// crossings counted `+1` where a triangle faces `+x` (the ray leaves the surface)
+    /// and `-1` where it faces `-x`.
+    Winding,
+}
+
 impl Voxelizer {
     /// Voxelizes `mesh`, each vertex placed by `place` (returning lattice coordinates),
     /// calling `emit(J, K, I_first, I_last)` for each run of inside lattice points,
@@ -72,10 +88,45 @@ impl Voxelizer {
         mesh: &Mesh,
         place: impl Fn(Vec3) -> DVec3,
         bounds: Bounds,
-        mut emit: impl FnMut(i64, i64, i64, i64),
+        emit: impl FnMut(i64, i64, i64, i64),
     ) -> Result<(), TooLarge> {
         self.points.clear();
         self.points.extend(mesh.positions.iter().map(|&p| place(p)));
+        self.sweep(mesh.triangles(), bounds, Rule::Parity, emit)
+    }
+
+    /// Voxelizes closed surfaces given as triangles (corners in lattice coordinates,
+    /// counter-clockwise seen from outside) by their winding number: `emit(J, K,
+    /// I_first, I_last)` is called once for each run of lattice points inside at least
+    /// one surface, once more for each run inside at least two, and so on, so that a
+    /// point is emitted as many times as the number of surfaces holding it. Triangles
+    /// with a non-finite corner cover nothing.
+    pub(crate) fn run_winding(
+        &mut self,
+        triangles: impl IntoIterator<Item = [DVec3; 3]>,
+        bounds: Bounds,
+        emit: impl FnMut(i64, i64, i64, i64),
+    ) -> Result<(), TooLarge> {
+        self.points.clear();
+        self.points.extend(
+            triangles
+                .into_iter()
+                .filter(|t| t.iter().all(|p| p.is_finite()))
+                .flatten(),
+        );
+        let n = (self.points.len() / 3) as u32;
+        let triangles = (0..n).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]);
+        self.sweep(triangles, bounds, Rule::Winding, emit)
+    }
+
+    /// Voxelizes the `triangles` of the placed points by `rule`.
+    fn sweep(
+        &mut self,
+        triangles: impl Iterator<Item = [u32; 3]>,
+        bounds: Bounds,
+        rule: Rule,
+        mut emit: impl FnMut(i64, i64, i64, i64),
+    ) -> Result<(), TooLarge> {
         if self.points.iter().any(|p| !p.is_finite()) || self.points.is_empty() {
             return Ok(());
         }
@@ -106,13 +157,15 @@ impl Voxelizer {
         let nj = count[1];
 
         self.crossings.clear();
-        for [a, b, c] in mesh.triangles() {
+        for [a, b, c] in triangles {
             let [pa, pb, mut pc] = [a, b, c].map(|v| self.points[v as usize]);
             let mut pb = pb;
+            // The x component of the triangle's normal: positive where it faces +x.
             let area = edge(pa.yz(), pb.yz(), pc.yz());
             if area == 0.0 {
                 continue;
             }
+            let sign = if area > 0.0 { 1 } else { -1 };
             if area < 0.0 {
                 std::mem::swap(&mut pb, &mut pc);
             }
@@ -141,7 +194,7 @@ impl Voxelizer {
                         (pa.x + pb.x + pc.x) / 3.0
                     };
                     let row = ((k - k0) * nj + (j - j0)) as u64;
-                    self.crossings.push((row, x));
+                    self.crossings.push((row, x, sign));
                 }
             }
         }
@@ -149,17 +202,26 @@ impl Voxelizer {
             .sort_unstable_by(|p, q| p.0.cmp(&q.0).then(p.1.total_cmp(&q.1)));
 
         // Lattice point I counts the crossings c > I; between consecutive crossings that
-        // number is constant.
+        // count, and their signs' sum, are constant.
         let (below, above) = ((i0 - 1) as f64, (i1 + 1) as f64);
         let first_after = |c: f64| c.clamp(below, above).ceil() as i64;
         let mut rest = &self.crossings[..];
-        while let Some(&(row, _)) = rest.first() {
+        while let Some(&(row, _, _)) = rest.first() {
             let n = rest.iter().take_while(|c| c.0 == row).count();
             let (group, tail) = rest.split_at(n);
             rest = tail;
             let (j, k) = (j0 + row as i64 % nj, k0 + row as i64 / nj);
+            // The signs' sum of the crossings after the m-th, for m = 0 first.
+            let mut winding: i64 = group.iter().map(|c| i64::from(c.2)).sum();
             for m in 0..=n {
-                if (n - m) % 2 == 0 {
+                let times = match rule {
+                    Rule::Parity => ((n - m) % 2) as i64,
+                    Rule::Winding => winding,
+                };
+                if m < n {
+                    winding -= i64::from(group[m].2);
+                }
+                if times <= 0 {
                     continue;
                 }
                 let from = if m == 0 {
@@ -173,7 +235,9 @@ impl Voxelizer {
                     (first_after(group[m].1) - 1).min(i1)
                 };
                 if from <= to {
-                    emit(j, k, from, to);
+                    for _ in 0..times {
+                        emit(j, k, from, to);
+                    }
                 }
             }
         }

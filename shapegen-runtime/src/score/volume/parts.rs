@@ -1,15 +1,18 @@
-//! How each of a grammar's meshes is counted: boxes exactly in integers, anything else
-//! by parity.
+//! How each of a grammar's meshes is counted: boxes exactly in integers, facets
+//! together by winding number, anything else by parity.
 
 use glam::Vec3;
 
-use crate::geometry::Mesh;
+use crate::geometry::{Mesh, is_facet};
 
 /// How instances of one mesh are counted.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) enum PartKind {
     /// The unit cube `[-0.5, 0.5]^3`: the exact integer path.
     Box,
+    /// The unit [facet](crate::geometry::Mesh::facet), one triangle of a generated
+    /// surface: a model's facets are voxelized together, by winding number.
+    Facet,
     /// Any other mesh: parity voxelization of its transformed triangles. `volume` (the
     /// magnitude of its signed volume) sizes instances too large to rasterise.
     Solid {
@@ -25,6 +28,8 @@ impl PartKind {
     pub(crate) fn of(mesh: &Mesh) -> PartKind {
         if is_unit_cube(mesh) {
             PartKind::Box
+        } else if is_facet(mesh) {
+            PartKind::Facet
         } else {
             PartKind::Solid {
                 volume: signed_volume(mesh).abs(),

@@ -1,6 +1,7 @@
 //! Incremental volume counting: per-voxel hit counts of one model.
 
 use super::count::{Lattice, VolumeScratch, word_masks};
+use super::parts::PartKind;
 use super::{VolumeCounts, VolumeScorer};
 use crate::geometry::Instance;
 use crate::score::retained::{CellCounts, Changed, Overflow, RetainedScorer, TILE_WORDS};
@@ -15,6 +16,9 @@ use crate::score::retained::{CellCounts, Changed, Overflow, RetainedScorer, TILE
 pub struct VolumeState {
     cells: CellCounts,
     counts: VolumeCounts,
+    /// The model's facet instances, which cover together: when one changes, what they
+    /// covered is taken away and what the new set covers is added.
+    facets: Vec<Instance>,
 }
 
 /// One instance's hits going into, or out of, a [`VolumeState`].
@@ -53,7 +57,7 @@ impl Lattice for Apply<'_> {
     #[inline]
     fn voxels(&mut self, first: usize, last: usize) {
         let per = self.scorer.class_stride;
-        let VolumeState { cells, counts } = &mut *self.state;
+        let VolumeState { cells, counts, .. } = &mut *self.state;
         for (w, mask) in word_masks(first, last) {
             let (tile, word) = (w / TILE_WORDS, w % TILE_WORDS);
             let Changed { first, second } = if self.remove {
@@ -117,6 +121,30 @@ impl VolumeScorer {
         }
         Ok(())
     }
+
+    /// Adds what the state's facets cover together, or takes it away.
+    fn apply_facets(
+        &self,
+        state: &mut VolumeState,
+        remove: bool,
+        scratch: &mut VolumeScratch,
+    ) -> Result<(), Overflow> {
+        let facets = std::mem::take(&mut state.facets);
+        let mut apply = Apply {
+            scorer: self,
+            state,
+            remove,
+            overflow: false,
+        };
+        self.walk_facets(&facets, &mut scratch.voxelizer, &mut apply);
+        let overflow = apply.overflow;
+        state.facets = facets;
+        if overflow { Err(Overflow) } else { Ok(()) }
+    }
+
+    fn is_facet(&self, instance: &Instance) -> bool {
+        self.parts.get(instance.mesh.0 as usize) == Some(&PartKind::Facet)
+    }
 }
 
 impl RetainedScorer for VolumeScorer {
@@ -131,8 +159,14 @@ impl RetainedScorer for VolumeScorer {
         let mut state = VolumeState {
             cells: CellCounts::new(words.div_ceil(TILE_WORDS)),
             counts: VolumeCounts::default(),
+            facets: instances
+                .iter()
+                .filter(|i| self.is_facet(i))
+                .copied()
+                .collect(),
         };
         self.apply(&mut state, instances, false, scratch)?;
+        self.apply_facets(&mut state, false, scratch)?;
         Ok(state)
     }
 
@@ -143,8 +177,24 @@ impl RetainedScorer for VolumeScorer {
         added: &[Instance],
         scratch: &mut VolumeScratch,
     ) -> Result<(), Overflow> {
+        let facets_change = removed.iter().chain(added).any(|i| self.is_facet(i));
+        if facets_change {
+            self.apply_facets(state, true, scratch)?;
+            for gone in removed.iter().filter(|i| self.is_facet(i)) {
+                if let Some(k) = state.facets.iter().position(|f| f == gone) {
+                    state.facets.swap_remove(k);
+                }
+            }
+            state
+                .facets
+                .extend(added.iter().filter(|i| self.is_facet(i)).copied());
+        }
         self.apply(state, removed, true, scratch)?;
-        self.apply(state, added, false, scratch)
+        self.apply(state, added, false, scratch)?;
+        if facets_change {
+            self.apply_facets(state, false, scratch)?;
+        }
+        Ok(())
     }
 
     fn state_counts(&self, state: &VolumeState) -> VolumeCounts {

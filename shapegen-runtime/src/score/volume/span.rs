@@ -17,12 +17,17 @@ use glam::{Affine3A, Vec3};
 
 use super::Grid;
 use super::parts::PartKind;
+use crate::geometry::FACET_CORNERS;
 
 /// The voxels outside `grid` of the span of the instance of `part` placed by `t`.
 pub(crate) fn span_out_of_grid(grid: &Grid, part: &PartKind, t: &Affine3A) -> u64 {
     let (lo, hi) = match part {
         PartKind::Box => box_span(grid, t),
         PartKind::Solid { vertices, .. } => match mesh_span(grid, t, vertices) {
+            Some(span) => span,
+            None => return 0,
+        },
+        PartKind::Facet => match mesh_span(grid, t, &FACET_CORNERS) {
             Some(span) => span,
             None => return 0,
         },
