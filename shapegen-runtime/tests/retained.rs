@@ -195,6 +195,19 @@ fn city_volume_with_overlaps() {
     );
 }
 
+/// A volume scorer on the grid `(min, max, resolution)` toward the block `(lo, hi)`
+/// (inside 1, outside -1), overlaps weighted 0.5.
+fn block_volume(
+    meshes: &BoundMeshes,
+    (min, max, resolution): (Vec3, Vec3, [u32; 3]),
+    (lo, hi): (Vec3, Vec3),
+) -> VolumeScorer {
+    let grid = shapegen_runtime::score::volume::Grid::new(min, max, resolution).unwrap();
+    let t = target("block", block(lo, hi), 1.0, -1.0);
+    let form = shapegen_runtime::score::Form::Weighted { overlap: 0.5 };
+    VolumeScorer::new(grid, &[t], meshes, form).unwrap()
+}
+
 /// The building generator's meshes are not all boxes, so its volume counts take the
 /// parity voxelizer; its silhouette seen from the front.
 #[test]
@@ -202,20 +215,13 @@ fn building_volume_and_silhouette() {
     let meshes = generators::default_meshes()
         .bind(building::Building::GRAPH)
         .unwrap();
-    let grid = shapegen_runtime::score::volume::Grid::new(
+    let grid = (
         Vec3::new(-8.0, 0.0, -8.0),
         Vec3::new(8.0, 40.0, 8.0),
         [64, 160, 64],
-    )
-    .unwrap();
-    let t = target(
-        "tower",
-        block(Vec3::new(-4.0, 0.0, -4.0), Vec3::new(4.0, 24.0, 4.0)),
-        1.0,
-        -1.0,
     );
-    let form = shapegen_runtime::score::Form::Weighted { overlap: 0.5 };
-    let volume = VolumeScorer::new(grid, &[t], &meshes, form).unwrap();
+    let tower = (Vec3::new(-4.0, 0.0, -4.0), Vec3::new(4.0, 24.0, 4.0));
+    let volume = block_volume(&meshes, grid, tower);
     check_sequences::<building::Building, _>(
         "building volume",
         &volume,
@@ -258,20 +264,13 @@ fn building_volume_and_silhouette() {
 #[test]
 fn generated_facets_volume_and_silhouette() {
     let meshes = support::pavilions::meshes();
-    let grid = shapegen_runtime::score::volume::Grid::new(
+    let grid = (
         Vec3::new(-12.0, 0.0, -12.0),
         Vec3::new(12.0, 24.0, 12.0),
         [48, 48, 48],
-    )
-    .unwrap();
-    let t = target(
-        "hall",
-        block(Vec3::new(-6.0, 0.0, -4.0), Vec3::new(6.0, 10.0, 4.0)),
-        1.0,
-        -1.0,
     );
-    let form = shapegen_runtime::score::Form::Weighted { overlap: 0.5 };
-    let volume = VolumeScorer::new(grid, &[t], &meshes, form).unwrap();
+    let hall = (Vec3::new(-6.0, 0.0, -4.0), Vec3::new(6.0, 10.0, 4.0));
+    let volume = block_volume(&meshes, grid, hall);
     let checked = check_sequences::<support::pavilions::Pavilions, _>(
         "pavilion volume",
         &volume,
@@ -281,23 +280,7 @@ fn generated_facets_volume_and_silhouette() {
         11,
     );
     assert!(checked > 0);
-    let camera = Camera::Orbit(shapegen_runtime::score::silhouette::OrbitCamera {
-        phi: -1.2,
-        theta: 0.3,
-        radius: 45.0,
-        lookat: Vec3::new(0.0, 6.0, 0.0),
-        fov_degrees: 50.0,
-        near: 0.1,
-        far: 200.0,
-    });
-    let image = image::DynamicImage::ImageLuma8(image::GrayImage::from_fn(160, 120, |x, y| {
-        image::Luma([if (40..120).contains(&x) && y > 40 {
-            0
-        } else {
-            255
-        }])
-    }));
-    let t = ImageTarget::from_mask("front".into(), &image, camera, 1.0, -1.0).unwrap();
+    let t = support::pavilions::front_target();
     let silhouette = SilhouetteScorer::new(vec![t], &meshes, SMOOTH).unwrap();
     check_sequences::<support::pavilions::Pavilions, _>(
         "pavilion silhouette",

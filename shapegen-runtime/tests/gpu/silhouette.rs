@@ -186,28 +186,11 @@ fn gpu_matches_cpu_on_random_cities_with_roofs(gpu: &GpuContext) {
 /// Random pavilions: walls extruded from polygon footprints and straight-skeleton roofs,
 /// placed as facets, take the GPU's instance path as fixed meshes do.
 fn gpu_matches_cpu_on_generated_facets(gpu: &GpuContext) {
-    use crate::support::pavilions::{LIMITS, Pavilions, meshes};
+    use crate::support::pavilions::{LIMITS, Pavilions, front_target, meshes};
     let batch = population::<Pavilions>(40, LIMITS, 4, 31);
     let facets: usize = (0..batch.len()).map(|m| batch.model(m).len()).sum();
     assert!(facets > 2000, "{facets} instances");
-    let camera = Camera::Orbit(OrbitCamera {
-        phi: -1.2,
-        theta: 0.3,
-        radius: 45.0,
-        lookat: vec3(0.0, 6.0, 0.0),
-        fov_degrees: 50.0,
-        near: 0.1,
-        far: 200.0,
-    });
-    let image = image::DynamicImage::ImageLuma8(image::GrayImage::from_fn(160, 120, |x, y| {
-        image::Luma([if (40..120).contains(&x) && y > 40 {
-            0
-        } else {
-            255
-        }])
-    }));
-    let target = ImageTarget::from_mask("front".into(), &image, camera, 1.0, -1.0).unwrap();
-    let scorer = SilhouetteScorer::new(vec![target], &meshes(), SMOOTH).unwrap();
+    let scorer = SilhouetteScorer::new(vec![front_target()], &meshes(), SMOOTH).unwrap();
     compare_on_gpu(gpu, &scorer, &batch);
 }
 

@@ -5,6 +5,7 @@
 use glam::DVec2;
 use shapegen_runtime::geometry::{Mesh, MeshLibrary, Polygon, RoofShape};
 use shapegen_runtime::prelude::*;
+use shapegen_runtime::score::silhouette::{Camera, ImageTarget, OrbitCamera};
 use shapegen_runtime::{BoundMeshes, generator};
 
 /// The footprint of shape `k`, `size` across.
@@ -136,4 +137,27 @@ pub fn meshes() -> BoundMeshes {
     library.register("facet_wall", Mesh::facet()).unwrap();
     library.register("facet_roof", Mesh::facet()).unwrap();
     library.bind(Pavilions::GRAPH).unwrap()
+}
+
+/// A 160 x 120 silhouette target seen from the front and a little above: a block in the
+/// middle of the image.
+#[allow(dead_code)] // not every test target that includes this module uses it
+pub fn front_target() -> ImageTarget {
+    let camera = Camera::Orbit(OrbitCamera {
+        phi: -1.2,
+        theta: 0.3,
+        radius: 45.0,
+        lookat: vec3(0.0, 6.0, 0.0),
+        fov_degrees: 50.0,
+        near: 0.1,
+        far: 200.0,
+    });
+    let image = image::DynamicImage::ImageLuma8(image::GrayImage::from_fn(160, 120, |x, y| {
+        image::Luma([if (40..120).contains(&x) && y > 40 {
+            0
+        } else {
+            255
+        }])
+    }));
+    ImageTarget::from_mask("front".into(), &image, camera, 1.0, -1.0).unwrap()
 }

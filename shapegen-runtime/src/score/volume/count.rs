@@ -169,20 +169,13 @@ impl VolumeScorer {
         // The corners `a`, `a + u`, `a + v` in f64 (exactly the sums of the transform's
         // f32 columns).
         let triangles = || {
-            instances
-                .iter()
-                .filter(|i| self.parts.get(i.mesh.0 as usize) == Some(&PartKind::Facet))
-                .map(|i| {
-                    let t = &i.transform;
-                    let a = Vec3::from(t.translation).as_dvec3();
-                    let [u, v] =
-                        [t.matrix3.x_axis, t.matrix3.y_axis].map(|c| Vec3::from(c).as_dvec3());
-                    [a, a + u, a + v]
-                })
+            instances.iter().filter(|i| self.is_facet(i)).map(|i| {
+                let t = &i.transform;
+                let a = Vec3::from(t.translation).as_dvec3();
+                let [u, v] = [t.matrix3.x_axis, t.matrix3.y_axis].map(|c| Vec3::from(c).as_dvec3());
+                [a, a + u, a + v]
+            })
         };
-        if triangles().next().is_none() {
-            return;
-        }
         // A corner two facets share is placed from each facet's own columns, which can
         // differ in the last bits: snapped to 1/4096 of a voxel, both copies are one
         // point again, and the surface stays closed to the rays.
@@ -195,6 +188,12 @@ impl VolumeScorer {
             let volume: f64 = triangles().map(|[a, b, c]| a.dot(b.cross(c)) / 6.0).sum();
             out.outside(voxels_of_volume(grid, volume.abs()));
         }
+    }
+
+    /// Whether `instance` is a facet, counted with the model's other facets.
+    #[inline]
+    pub(super) fn is_facet(&self, instance: &Instance) -> bool {
+        self.part(instance.mesh) == Some(&PartKind::Facet)
     }
 
     /// Covers lattice points `(first..=last, j, k)`.

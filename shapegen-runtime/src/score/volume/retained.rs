@@ -1,7 +1,6 @@
 //! Incremental volume counting: per-voxel hit counts of one model.
 
 use super::count::{Lattice, VolumeScratch, word_masks};
-use super::parts::PartKind;
 use super::{VolumeCounts, VolumeScorer};
 use crate::geometry::Instance;
 use crate::score::retained::{CellCounts, Changed, Overflow, RetainedScorer, TILE_WORDS};
@@ -140,10 +139,6 @@ impl VolumeScorer {
         let overflow = apply.overflow;
         state.facets = facets;
         if overflow { Err(Overflow) } else { Ok(()) }
-    }
-
-    fn is_facet(&self, instance: &Instance) -> bool {
-        self.parts.get(instance.mesh.0 as usize) == Some(&PartKind::Facet)
     }
 }
 

@@ -23,14 +23,16 @@ use crate::geometry::FACET_CORNERS;
 pub(crate) fn span_out_of_grid(grid: &Grid, part: &PartKind, t: &Affine3A) -> u64 {
     let (lo, hi) = match part {
         PartKind::Box => box_span(grid, t),
-        PartKind::Solid { vertices, .. } => match mesh_span(grid, t, vertices) {
-            Some(span) => span,
-            None => return 0,
-        },
-        PartKind::Facet => match mesh_span(grid, t, &FACET_CORNERS) {
-            Some(span) => span,
-            None => return 0,
-        },
+        PartKind::Solid { .. } | PartKind::Facet => {
+            let vertices = match part {
+                PartKind::Solid { vertices, .. } => vertices.as_slice(),
+                _ => &FACET_CORNERS,
+            };
+            match mesh_span(grid, t, vertices) {
+                Some(span) => span,
+                None => return 0,
+            }
+        }
     };
     outside(grid, lo, hi)
 }
