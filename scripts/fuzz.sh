@@ -18,7 +18,7 @@ cd "$root"
 seconds="${1:?usage: scripts/fuzz.sh SECONDS [TARGET ...]}"
 shift
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(scene_toml genome_json checkpoint obj_mesh stl_mesh ply_mesh gltf_mesh point_cloud target_image request_path)
+[ ${#targets[@]} -gt 0 ] || targets=(scene_toml lot_geojson genome_json checkpoint obj_mesh stl_mesh ply_mesh gltf_mesh point_cloud target_image request_path)
 rss="${FUZZ_RSS_MB:-2048}"
 malloc="${FUZZ_MALLOC_MB:-512}"
 logs="${FUZZ_LOG:-$root/fuzz/logs}"
@@ -41,6 +41,7 @@ seed() {
     done
 }
 shopt -s nullglob
+seed lot_geojson scenes/lots/*.geojson fuzz/seeds/lot_geojson/*
 seed scene_toml scenes/*.toml scenes/paper/*.toml examples/*/*.toml fuzz/seeds/scene_toml/*
 seed genome_json scenes/targets/*.genome.json examples/*/targets/*.genome.json fuzz/seeds/genome_json/*
 seed checkpoint fuzz/seeds/checkpoint/*

@@ -11,6 +11,7 @@ use std::marker::PhantomData;
 use std::ops::Deref;
 
 use glam::Vec3;
+use typed_arena::Arena;
 
 use crate::geometry::{
     Axis, Face, Instance, Mesh, MeshId, Part, Polygon, Roof, RoofError, RoofMeshes, RoofShape,
@@ -18,6 +19,10 @@ use crate::geometry::{
 };
 use crate::graph::{GeneratorGraph, HEADER_WORDS};
 use crate::param::ParamValue;
+
+mod site;
+
+pub use site::Site;
 
 /// A procedural generator: its static graph and its derivation rules.
 ///
@@ -189,22 +194,36 @@ impl<'a, P: NodeParams, const N: usize> Slots<'a, P, N> {
     }
 }
 
-/// The state shared by all rules during one derivation: the genome's words and the
-/// output instances.
-#[derive(Debug)]
-pub struct Derivation {
+/// The state shared by all rules during one derivation: the site it grows on, the
+/// output instances and the footprints its rules made.
+pub struct Derivation<'s> {
     out: RefCell<Vec<Instance>>,
+    site: &'s Site,
+    footprints: Arena<Polygon>,
 }
 
-impl Derivation {
-    /// Derives the genome held in `words` (root at word 0), appending its instances to
-    /// `out`.
-    pub(crate) fn run<G: Grammar>(words: &[u32], out: &mut Vec<Instance>) {
+impl std::fmt::Debug for Derivation<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Derivation")
+            .field("out", &self.out)
+            .field("site", &self.site)
+            .finish_non_exhaustive()
+    }
+}
+
+impl Derivation<'_> {
+    /// Derives the genome held in `words` (root at word 0) on `site`, appending its
+    /// instances to `out`.
+    pub(crate) fn run<G: Grammar>(words: &[u32], site: &Site, out: &mut Vec<Instance>) {
         let ctx = Derivation {
             out: RefCell::new(std::mem::take(out)),
+            site,
+            // Empty until a rule makes a footprint: no allocation otherwise.
+            footprints: Arena::with_capacity(0),
         };
         let shape = Shape {
             scope: Scope::UNIT,
+            footprint: None,
             ctx: &ctx,
             _g: PhantomData,
         };
@@ -214,11 +233,14 @@ impl Derivation {
 }
 
 /// The scope a rule works in, tied to the derivation it belongs to: [`Scope`]'s
-/// operations plus [`emit`](Self::emit) and [`derive`](Self::derive).
+/// operations plus [`emit`](Self::emit) and [`derive`](Self::derive), and the footprint
+/// it builds on, if a rule gave it one ([`on_footprint`](Self::on_footprint)), which
+/// every scope operation keeps.
 #[derive(Debug)]
 pub struct Shape<'a, G> {
     scope: Scope,
-    ctx: &'a Derivation,
+    footprint: Option<&'a Polygon>,
+    ctx: &'a Derivation<'a>,
     _g: PhantomData<fn() -> G>,
 }
 
@@ -248,6 +270,77 @@ impl<'a, G: Grammar> Shape<'a, G> {
     #[inline]
     pub fn scope(&self) -> Scope {
         self.scope
+    }
+
+    /// The site the derivation grows on: [`Site::NONE`] unless the model is derived on
+    /// one ([`Genome::derive_on`](crate::Genome::derive_on)).
+    #[inline]
+    pub fn site(&self) -> &'a Site {
+        self.ctx.site
+    }
+
+    /// The footprint the shape builds on, in the plane of its box's bottom face (see
+    /// [`Scope::extrude_polygon`]): `None` until a rule sets one.
+    #[inline]
+    pub fn footprint(&self) -> Option<&'a Polygon> {
+        self.footprint
+    }
+
+    /// The same shape building on `footprint`: the site's lot, say, or a footprint the
+    /// grammar keeps in a static.
+    ///
+    /// ```
+    /// use std::sync::LazyLock;
+    /// use glam::vec2;
+    /// use shapegen_runtime::geometry::Polygon;
+    /// use shapegen_runtime::prelude::*;
+    ///
+    /// static SQUARE: LazyLock<Polygon> =
+    ///     LazyLock::new(|| Polygon::rectangle(vec2(4.0, 4.0)).expect("a square"));
+    ///
+    /// generator! {
+    ///     /// A slab on the site's lot, or on a square without one, set back once.
+    ///     pub Slab {
+    ///         axiom Ground;
+    ///         meshes { FACET = "facet" }
+    ///         node Ground {
+    ///             derive(s) {
+    ///                 let s = s.on_footprint(s.site().lot().unwrap_or(&SQUARE));
+    ///                 let inner = s.setback(1.0).expect("a 4-wide square has room for it");
+    ///                 let area = inner.footprint().map(Polygon::area);
+    ///                 assert_eq!(area, Some(4.0));
+    ///                 inner.extrude_polygon(inner.footprint().unwrap(), 1.0, FACET);
+    ///             }
+    ///         }
+    ///     }
+    /// }
+    ///
+    /// let mut instances = Vec::new();
+    /// Genome::<Slab>::with_root(Ground {})?.derive_into(&mut instances);
+    /// assert_eq!(instances.len(), 12);
+    /// # Ok::<(), shapegen_runtime::GenomeError>(())
+    /// ```
+    #[inline]
+    pub fn on_footprint(self, footprint: &'a Polygon) -> Self {
+        Shape {
+            footprint: Some(footprint),
+            ..self
+        }
+    }
+
+    /// The same shape building on `footprint`, a polygon made by the rule, which the
+    /// derivation keeps until it ends.
+    pub fn on_new_footprint(self, footprint: Polygon) -> Self {
+        self.on_footprint(self.ctx.footprints.alloc(footprint))
+    }
+
+    /// CGA's `setback` to the remainder: the same shape on its footprint with every
+    /// edge moved inward by `distance`, or `None` where the shape has no footprint or
+    /// the moved outline is no longer a polygon of the same edges (a part narrower than
+    /// twice the distance closes); see [`Polygon::offset`].
+    pub fn setback(self, distance: f32) -> Option<Self> {
+        let inner = self.footprint?.offset(-f64::from(distance))?;
+        Some(self.on_new_footprint(inner))
     }
 
     /// The same derivation with another scope.

@@ -23,7 +23,7 @@ pub mod optimize;
 pub mod param;
 pub mod score;
 
-pub use derive::{Child, GeneView, Grammar, NodeParams, Shape, Slots};
+pub use derive::{Child, GeneView, Grammar, NodeParams, Shape, Site, Slots};
 pub use genome::{Genome, GenomeError, Limits};
 pub use geometry::{Axis, CUBE, Face, Instance, MeshId, Part, Scope};
 pub use geometry::{BoundMeshes, Mesh, MeshError, MeshLibrary};

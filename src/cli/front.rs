@@ -16,7 +16,7 @@ use shapegen::optimize::multi::{
 use shapegen::optimize::{Control, Sense, Session};
 use shapegen::scene::{Metrics, ObjectiveEvaluator, Overrides, Scene};
 use shapegen::score::objective::{ObjectiveSet, Surface};
-use shapegen::{BoundMeshes, Grammar, Instance};
+use shapegen::{BoundMeshes, Grammar, Instance, Site};
 
 use super::backend::Incremental;
 use super::checkpoint::Checkpoint;
@@ -127,6 +127,7 @@ impl FrontRun<'_> {
         );
         let outputs = Outputs {
             set,
+            site: &self.scene.site,
             meshes: evaluator.meshes().clone(),
             palette: Palette::new(),
         };
@@ -310,6 +311,8 @@ fn progress<G>(s: &MultiSnapshot<'_, G>, names: &[&str], total: u64) -> String {
 /// Writes a multi-objective run's files.
 struct Outputs<'a> {
     set: &'a ObjectiveSet,
+    /// The scene's site, which the models grow on.
+    site: &'a Site,
     meshes: BoundMeshes,
     palette: Palette,
 }
@@ -374,7 +377,7 @@ impl Outputs<'_> {
             .with_context(|| format!("cannot create `{}`", folder.display()))?;
         let mut instances = Vec::new();
         for (i, member) in front.iter().enumerate() {
-            member.genome.derive_into(&mut instances);
+            member.genome.derive_on(self.site, &mut instances);
             files.write(
                 &folder.join(format!("model_{i:03}.glb")),
                 &glb_bytes(&instances, &self.meshes, &self.palette)?,
@@ -394,7 +397,7 @@ impl Outputs<'_> {
             .step_by(step)
             .map(|(i, m)| {
                 let mut instances = Vec::new();
-                m.genome.derive_into(&mut instances);
+                m.genome.derive_on(self.site, &mut instances);
                 (i, instances)
             })
             .collect();
@@ -459,7 +462,7 @@ impl Outputs<'_> {
             let Some(best) = best_by(front, i, self.set.senses()[i]) else {
                 continue;
             };
-            best.genome.derive_into(&mut instances);
+            best.genome.derive_on(self.site, &mut instances);
             let surface = Surface::from_instances(&instances, &self.meshes);
             save_png(
                 &dir.join(format!("overlay_{name}.png")),

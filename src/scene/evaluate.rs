@@ -20,7 +20,7 @@ use shapegen_runtime::score::silhouette::{
 };
 use shapegen_runtime::score::volume::{GpuVolumeScorer, VolumeCounts, VolumeScorer};
 use shapegen_runtime::score::{InstanceBatch, LengthPenalty, Scorer, count_batch};
-use shapegen_runtime::{Genome, Grammar, Instance};
+use shapegen_runtime::{Genome, Grammar, Instance, Site};
 
 use super::{BackendError, Scene, SceneError, SilhouetteGoal, ValueError, VolumeGoal};
 
@@ -388,6 +388,8 @@ pub struct SceneScorer {
     scorers: Vec<AnyScorer>,
     /// The genome-length term.
     pub length: LengthPenalty,
+    /// The site the scene's models grow on.
+    site: Site,
 }
 
 impl Scene {
@@ -430,7 +432,13 @@ impl SceneScorer {
         Ok(SceneScorer {
             scorers,
             length: scene.length,
+            site: scene.site.clone(),
         })
+    }
+
+    /// The site the scene's models grow on ([`Scene::site`]).
+    pub fn site(&self) -> &Site {
+        &self.site
     }
 
     /// The scorers, one per goal of the scene, in its order.
@@ -620,7 +628,7 @@ impl<'a> SceneEvaluator<'a> {
     pub fn new(backend: &'a Backend<'a>) -> Self {
         SceneEvaluator {
             backend,
-            batch: InstanceBatch::new(),
+            batch: InstanceBatch::new().on_site(backend.scorer().site().clone()),
             counts: Vec::new(),
             retention: None,
             gpu_retention: None,

@@ -12,6 +12,8 @@ pub(super) struct SceneFile {
     #[serde(default)]
     pub meshes: std::collections::BTreeMap<String, MeshFile>,
     pub limits: LimitsFile,
+    /// `[lot]`: the footprint a building generator builds on.
+    pub lot: Option<super::lot::LotFile>,
     #[serde(default)]
     pub fitness: FitnessFile,
     pub volume: Option<VolumeFile>,

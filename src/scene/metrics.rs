@@ -89,7 +89,7 @@ impl Metrics {
         genome: &Genome<G>,
     ) -> Metrics {
         let mut instances = Vec::new();
-        genome.derive_into(&mut instances);
+        genome.derive_on(&scene.site, &mut instances);
         Metrics::of(scene, scorer, meshes, genome.len(), &instances)
     }
 

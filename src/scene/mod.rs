@@ -119,6 +119,7 @@ mod error;
 mod evaluate;
 mod file;
 mod image;
+mod lot;
 mod memory;
 mod method;
 mod metrics;
@@ -129,6 +130,7 @@ mod resolve;
 use std::path::{Path, PathBuf};
 
 use crate::registry::{Presets, Registry};
+use shapegen_runtime::Site;
 use shapegen_runtime::genome::Limits;
 use shapegen_runtime::geometry::MeshLibrary;
 use shapegen_runtime::optimize::islands::IslandSettings;
@@ -144,6 +146,7 @@ pub use evaluate::{
     ScorerGoal, ScorerKind,
 };
 pub use image::{decode_image, read_image};
+pub use lot::{LotError, geojson_outline};
 pub use memory::{JSON_BYTES_PER_WORD, MemoryError, MemoryEstimate, MemoryPart, RunShape};
 pub use method::{
     Method, MethodJob, MethodSettings, SettingsCause, SettingsKeyError, UnknownMethod,
@@ -165,6 +168,10 @@ pub struct Scene {
     pub meshes: MeshLibrary,
     /// Genome limits of the search.
     pub limits: Limits,
+    /// The site models grow on (`[lot]`): the lot a building generator builds on, or
+    /// [`Site::NONE`] when the scene gives none. Derive a scene's genomes on it
+    /// ([`Genome::derive_on`](shapegen_runtime::Genome::derive_on)); its evaluators do.
+    pub site: Site,
     /// The optimal genome length, when the scene gives one (`limits.optimal_len`); the
     /// length penalty starts there if `fitness.length_from = "optimal_len"`.
     pub optimal_len: Option<u32>,

@@ -153,7 +153,7 @@ impl<'a> ObjectiveEvaluator<'a> {
             set: &goal.set,
             bred: BredObjectives::new(&goal.set, &meshes),
             meshes,
-            batch: InstanceBatch::new(),
+            batch: InstanceBatch::new().on_site(scene.site.clone()),
         })
     }
 

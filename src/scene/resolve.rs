@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use glam::{Mat4, Vec3};
+use shapegen_runtime::Site;
 use shapegen_runtime::genome::Limits;
 use shapegen_runtime::geometry::Mesh;
 use shapegen_runtime::score::silhouette::{Camera, ImageTarget, MaskRule, OrbitCamera};
@@ -134,6 +135,10 @@ impl<'a> Resolver<'a> {
         }
 
         let (limits, optimal_len) = self.limits(&file.limits)?;
+        let site = match &file.lot {
+            Some(lot) => self.lot(lot)?,
+            None => Site::NONE,
+        };
         let from = match (file.fitness.length_from, optimal_len) {
             (LengthFrom::MinLen, _) => limits.min_len,
             (LengthFrom::OptimalLen, Some(optimal)) => optimal,
@@ -250,6 +255,7 @@ impl<'a> Resolver<'a> {
             generator: entry.name.clone(),
             meshes,
             limits,
+            site,
             optimal_len,
             length,
             optimum,

@@ -2,7 +2,7 @@
 
 use glam::vec3;
 
-use super::{Derivation, GeneView, Grammar, Shape};
+use super::{Derivation, GeneView, Grammar, Shape, Site};
 use crate::geometry::{Axis, Face, Instance, MeshId, Part, RoofMeshes, RoofShape};
 use crate::graph::{GeneratorGraph, NodeDesc};
 
@@ -52,7 +52,7 @@ impl Grammar for House {
 #[test]
 fn shapes_split_repeat_and_take_faces() {
     let mut out: Vec<Instance> = Vec::new();
-    Derivation::run::<House>(&[0, 0], &mut out);
+    Derivation::run::<House>(&[0, 0], &Site::NONE, &mut out);
     // Roof + per side wall (front, back: 8 wide; left, right: 4 wide) a ground floor
     // and round(w / 1.5) windows: 5, 5, 3, 3.
     assert_eq!(out.len(), 1 + 4 + 5 + 5 + 3 + 3);
@@ -127,7 +127,7 @@ impl Grammar for Hipped {
 #[test]
 fn shapes_put_roofs_on_their_tops() {
     let mut out: Vec<Instance> = Vec::new();
-    Derivation::run::<Hipped>(&[0, 0], &mut out);
+    Derivation::run::<Hipped>(&[0, 0], &Site::NONE, &mut out);
     let meshes: Vec<u32> = out.iter().map(|i| i.mesh.0).collect();
     assert_eq!(meshes, [0, 1, 2, 2]);
     // The gable prism over the middle: 10 - 6 long, 3 tan(0.5) high, on the top at y = 2.

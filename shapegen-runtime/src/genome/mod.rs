@@ -39,7 +39,7 @@ use std::marker::PhantomData;
 
 use rand::Rng;
 
-use crate::derive::{Derivation, GeneView, Grammar};
+use crate::derive::{Derivation, GeneView, Grammar, Site};
 use crate::geometry::Instance;
 use crate::graph::{GeneratorGraph, HEADER_WORDS, NodeDesc};
 use crate::param;
@@ -164,16 +164,30 @@ impl<G: Grammar> Genome<G> {
 
     /// Derives the model: runs the rules from the root in the axiom's unit scope and
     /// writes the emitted mesh instances into `out`, replacing what it held and reusing
-    /// its allocation.
+    /// its allocation. The model grows on no site ([`Site::NONE`]); see
+    /// [`derive_on`](Self::derive_on).
     pub fn derive_into(&self, out: &mut Vec<Instance>) {
+        self.derive_on(&Site::NONE, out);
+    }
+
+    /// Derives the model like [`derive_into`](Self::derive_into), growing it on `site`
+    /// (a lot for a building, say), which its rules read through
+    /// [`Shape::site`](crate::Shape::site).
+    pub fn derive_on(&self, site: &Site, out: &mut Vec<Instance>) {
         out.clear();
-        Derivation::run::<G>(&self.words, out);
+        Derivation::run::<G>(&self.words, site, out);
     }
 
     /// Derives the model like [`derive_into`](Self::derive_into), appending its
     /// instances to what `out` already holds (a population's models back to back).
     pub fn derive_append(&self, out: &mut Vec<Instance>) {
-        Derivation::run::<G>(&self.words, out);
+        self.derive_append_on(&Site::NONE, out);
+    }
+
+    /// Derives the model on `site` like [`derive_on`](Self::derive_on), appending its
+    /// instances to what `out` already holds.
+    pub fn derive_append_on(&self, site: &Site, out: &mut Vec<Instance>) {
+        Derivation::run::<G>(&self.words, site, out);
     }
 
     /// Appends a gene of kind `kind` with parameters drawn from `rng`, linked from

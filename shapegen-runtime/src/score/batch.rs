@@ -4,11 +4,12 @@ use rayon::prelude::*;
 
 use super::Scorer;
 use crate::geometry::Instance;
-use crate::{Genome, Grammar};
+use crate::{Genome, Grammar, Site};
 
 /// The instances of many models in one buffer: model `i` is
 /// `instances[starts[i]..starts[i + 1]]`. Reused from generation to generation, it
-/// allocates only when a population outgrows it.
+/// allocates only when a population outgrows it. Genomes are derived on the batch's
+/// [`site`](Self::site), [`Site::NONE`] unless [set](Self::on_site).
 ///
 /// ```
 /// use shapegen_runtime::score::InstanceBatch;
@@ -27,6 +28,7 @@ use crate::{Genome, Grammar};
 pub struct InstanceBatch {
     instances: Vec<Instance>,
     starts: Vec<u32>,
+    site: Site,
 }
 
 impl InstanceBatch {
@@ -35,7 +37,20 @@ impl InstanceBatch {
         InstanceBatch {
             instances: Vec::new(),
             starts: vec![0],
+            site: Site::NONE,
         }
+    }
+
+    /// The batch, empty, deriving its genomes on `site` from now on.
+    pub fn on_site(self, site: Site) -> Self {
+        let mut batch = self;
+        batch.clear();
+        InstanceBatch { site, ..batch }
+    }
+
+    /// The site the batch derives genomes on.
+    pub fn site(&self) -> &Site {
+        &self.site
     }
 
     /// Empties the batch, keeping its memory.
@@ -49,18 +64,30 @@ impl InstanceBatch {
     /// (for example `|out| genome.derive_append(out)`, which is what
     /// [`push_genome`](Self::push_genome) does).
     pub fn push_with(&mut self, write: impl FnOnce(&mut Vec<Instance>)) {
+        self.open_model();
+        write(&mut self.instances);
+        self.close_model();
+    }
+
+    /// Appends the model `genome` derives into on the batch's site.
+    pub fn push_genome<G: Grammar>(&mut self, genome: &Genome<G>) {
+        self.open_model();
+        genome.derive_append_on(&self.site, &mut self.instances);
+        self.close_model();
+    }
+
+    /// Starts a model: makes sure the first start is recorded.
+    fn open_model(&mut self) {
         if self.starts.is_empty() {
             self.starts.push(0);
         }
-        write(&mut self.instances);
+    }
+
+    /// Ends the model whose instances were appended since [`open_model`](Self::open_model).
+    fn close_model(&mut self) {
         let end =
             u32::try_from(self.instances.len()).expect("a batch holds fewer than 2^32 instances");
         self.starts.push(end);
-    }
-
-    /// Appends the model `genome` derives into.
-    pub fn push_genome<G: Grammar>(&mut self, genome: &Genome<G>) {
-        self.push_with(|out| genome.derive_append(out));
     }
 
     /// Empties the batch, keeping its memory, and appends the model each of `genomes`

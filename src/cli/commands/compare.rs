@@ -316,7 +316,7 @@ impl Visit for Compare<'_> {
                     result.best.to_json().as_bytes(),
                 )?;
                 // The model, for the run viewer (`shapegen view`).
-                result.best.derive_into(&mut instances);
+                result.best.derive_on(&self.scene.site, &mut instances);
                 atomic_write(
                     &dir.join("best.glb"),
                     &glb_bytes(&instances, &meshes, &palette)?,

@@ -7,6 +7,7 @@ use anyhow::Context;
 use clap::Args;
 use shapegen::Grammar;
 use shapegen::MeshLibrary;
+use shapegen::Site;
 use shapegen::export::{Palette, glb_bytes, write_mtl, write_obj};
 use shapegen::scene::{Overrides, Scene};
 
@@ -89,6 +90,7 @@ where
             args,
             file: &file,
             meshes: scene.as_ref().map(|s| &s.meshes),
+            site: scene.as_ref().map_or(&Site::NONE, |s| &s.site),
             format,
         },
     )
@@ -100,6 +102,8 @@ pub struct Export<'a> {
     file: &'a GenomeFile,
     /// The scene's meshes, if a scene was given.
     meshes: Option<&'a MeshLibrary>,
+    /// The scene's site, or none without a scene.
+    site: &'a Site,
     format: Format,
 }
 
@@ -112,7 +116,7 @@ impl Visit for Export<'_> {
             .unwrap_or(&entry.defaults.meshes)
             .bind(G::GRAPH)?;
         let mut instances = Vec::new();
-        genome.derive_into(&mut instances);
+        genome.derive_on(self.site, &mut instances);
         if let Some(parent) = args.out.parent().filter(|p| !p.as_os_str().is_empty()) {
             std::fs::create_dir_all(parent)
                 .with_context(|| format!("cannot create `{}`", parent.display()))?;

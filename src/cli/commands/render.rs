@@ -88,7 +88,7 @@ impl Visit for Render<'_> {
             .par_iter()
             .enumerate()
             .try_for_each_init(Vec::new, |instances, (i, genome)| {
-                genome.derive_into(instances);
+                genome.derive_on(&self.scene.site, instances);
                 let preview = match targets.first() {
                     Some(t) => Preview {
                         view_projection: t.view_projection(),

@@ -13,7 +13,7 @@ use shapegen::optimize::{Best, Control, Optimizer, RunResult, Session, Snapshot}
 use shapegen::scene::{
     Method, MethodJob, MethodSettings, Metrics, Overrides, Scene, SceneEvaluator, SceneScorer,
 };
-use shapegen::{Genome, Grammar};
+use shapegen::{Genome, Grammar, Site};
 
 use crate::registry::Entry;
 
@@ -356,7 +356,7 @@ impl Run<'_> {
         progress.finish();
 
         let mut instances = Vec::new();
-        result.best.derive_into(&mut instances);
+        result.best.derive_on(&self.scene.site, &mut instances);
         let summary = Summary {
             best_fitness: result.best_fitness,
             evaluations: result.evaluations,
@@ -413,6 +413,8 @@ impl Run<'_> {
 /// Writes the run's files.
 struct Outputs<'a> {
     scorer: &'a SceneScorer,
+    /// The scene's site, which the models grow on.
+    site: &'a Site,
     /// The fitness chart's title: the generator and the method.
     title: String,
     meshes: shapegen::BoundMeshes,
@@ -420,9 +422,10 @@ struct Outputs<'a> {
 }
 
 impl<'a> Outputs<'a> {
-    fn new<G: Grammar>(scene: &Scene, scorer: &'a SceneScorer) -> anyhow::Result<Outputs<'a>> {
+    fn new<G: Grammar>(scene: &'a Scene, scorer: &'a SceneScorer) -> anyhow::Result<Outputs<'a>> {
         Ok(Outputs {
             scorer,
+            site: &scene.site,
             title: format!(
                 "{} with {}: fitness per generation",
                 scene.generator,
@@ -481,7 +484,7 @@ impl<'a> Outputs<'a> {
         best: &Genome<G>,
     ) -> anyhow::Result<()> {
         let mut instances = Vec::new();
-        best.derive_into(&mut instances);
+        best.derive_on(self.site, &mut instances);
         let (mut obj, mut mtl) = (Vec::new(), Vec::new());
         write_obj(
             &mut obj,

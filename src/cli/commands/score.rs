@@ -76,7 +76,7 @@ impl Visit for Score<'_> {
             backend.describe()
         );
 
-        let mut batch = InstanceBatch::new();
+        let mut batch = InstanceBatch::new().on_site(self.scene.site.clone());
         for genome in &genomes {
             batch.push_genome(genome);
         }

@@ -63,7 +63,7 @@ impl Visit for Target<'_> {
         let args = self.args;
         let genome = load_genome::<G>(&args.genome, args.index)?;
         let mut instances = Vec::new();
-        genome.derive_into(&mut instances);
+        genome.derive_on(&self.scene.site, &mut instances);
         if let Some(parent) = args.out.parent().filter(|p| !p.as_os_str().is_empty()) {
             std::fs::create_dir_all(parent)
                 .with_context(|| format!("cannot create `{}`", parent.display()))?;

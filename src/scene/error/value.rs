@@ -1,12 +1,14 @@
 //! Values of a scene that the runtime refuses, and files they name that cannot be used.
 
 use shapegen_runtime::MeshError;
+use shapegen_runtime::geometry::PolygonError;
 use shapegen_runtime::optimize::SettingsError;
 use shapegen_runtime::score::objective::ObjectiveError;
 use shapegen_runtime::score::silhouette::{CameraError, SilhouetteError, TargetError};
 use shapegen_runtime::score::volume::{GridError, VolumeError};
 
 use super::ImageError;
+use crate::scene::LotError;
 
 /// Why the value of a scene's key cannot be used: the runtime's error about it, the
 /// target image it names, or serde's message about a value of the wrong type.
@@ -38,6 +40,12 @@ pub enum ValueError {
     /// An objective, or the set of them (`objective`, `objective[0].image`).
     #[error(transparent)]
     Objective(#[from] ObjectiveError),
+    /// A lot's outline that is not a simple polygon (`lot.points`, `lot.geojson`).
+    #[error(transparent)]
+    Polygon(#[from] PolygonError),
+    /// A lot's GeoJSON file that does not hold one polygon (`lot.geojson`).
+    #[error(transparent)]
+    Lot(#[from] LotError),
     /// A setting of the `[selection]` table (`selection.weights`).
     #[error(transparent)]
     Settings(#[from] SettingsError),

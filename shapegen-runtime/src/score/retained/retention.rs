@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use super::{InstanceDiff, RetainedScorer, TILE_BYTES};
 use crate::geometry::Instance;
 use crate::score::InstanceBatch;
-use crate::{Genome, Grammar};
+use crate::{Genome, Grammar, Site};
 
 /// What is kept of one model: its instances and each scorer's state.
 struct Kept<S: RetainedScorer> {
@@ -206,8 +206,9 @@ impl<S: RetainedScorer> Retention<S> {
     /// Counts `children` (whose instances are the models of `batch`, in order) with each
     /// of `scorers`, child `i` bred from `parents[from[i]]`: `out[i * k + j]` gets child
     /// `i`'s counts of scorer `j`, `k = scorers.len()`, exactly as counting it from
-    /// nothing would. Afterwards only the states of `parents` and `children` are kept.
-    /// The result does not depend on the number of threads, nor on what was kept.
+    /// nothing would. Parents not kept are derived on the batch's
+    /// [site](InstanceBatch::site). Afterwards only the states of `parents` and
+    /// `children` are kept. The result does not depend on the number of threads, nor on what was kept.
     ///
     /// # Panics
     /// If the lengths disagree (`batch` and `from` one model per child, `out` `k` per
@@ -234,7 +235,7 @@ impl<S: RetainedScorer> Retention<S> {
             .iter()
             .map(|key| self.kept.get(key).cloned())
             .collect();
-        self.count_missing_parents(scorers, parents, from, &mut bases);
+        self.count_missing_parents(scorers, parents, batch.site(), from, &mut bases);
         let keep =
             self.memory_bound(scorers) <= self.max_bytes || self.memory(scorers) <= self.max_bytes;
         let chunks = 4 * rayon::current_num_threads();
@@ -283,6 +284,7 @@ impl<S: RetainedScorer> Retention<S> {
         &mut self,
         scorers: &[S],
         parents: &[Genome<G>],
+        site: &Site,
         from: &[u32],
         bases: &mut [Option<Arc<Kept<S>>>],
     ) {
@@ -298,7 +300,7 @@ impl<S: RetainedScorer> Retention<S> {
             .map_init(
                 || Worker::new(scorers),
                 |worker, &p| {
-                    parents[p as usize].derive_into(&mut worker.instances);
+                    parents[p as usize].derive_on(site, &mut worker.instances);
                     full_state(scorers, &worker.instances, &mut worker.scratch).map(Arc::new)
                 },
             )

@@ -23,7 +23,7 @@ use crate::geometry::Instance;
 use crate::gpu::GpuError;
 use crate::score::InstanceBatch;
 use crate::score::retained::{InstanceDiff, RetentionStats, genome_key};
-use crate::{Genome, Grammar};
+use crate::{Genome, Grammar, Site};
 
 /// Mirrors the WGSL struct `Params` of [`shapegen_shaders::SILHOUETTE_RETAINED`].
 #[repr(C)]
@@ -214,8 +214,9 @@ impl GpuRetention {
 
     /// Counts `children` (the models of `batch`, in order), child `i` bred from
     /// `parents[from[i]]`, writing child `i`'s counts to `out[i]`, exactly as
-    /// [`GpuSilhouetteScorer::count_batch`] counts them. Afterwards only the slots of
-    /// `parents` and `children` are kept.
+    /// [`GpuSilhouetteScorer::count_batch`] counts them. Parents not kept are derived on
+    /// the batch's [site](InstanceBatch::site). Afterwards only the slots of `parents`
+    /// and `children` are kept.
     ///
     /// # Errors
     /// [`GpuError::Device`] when the device fails; [`GpuError::Unsupported`] when a
@@ -242,7 +243,7 @@ impl GpuRetention {
             .collect();
         self.kept.clear();
         let mut free = self.free_slots(bases.iter().flatten().map(|kept| kept.slot));
-        self.count_missing_parents(scorer, parents, from, &mut bases, &mut free)?;
+        self.count_missing_parents(scorer, parents, batch.site(), from, &mut bases, &mut free)?;
 
         let mut diffs: Vec<InstanceDiff> = Vec::new();
         let mut slots: Vec<Option<u32>> = Vec::with_capacity(children.len());
@@ -345,6 +346,7 @@ impl GpuRetention {
         &mut self,
         scorer: &GpuSilhouetteScorer<'_>,
         parents: &[Genome<G>],
+        site: &Site,
         from: &[u32],
         bases: &mut [Option<Arc<Kept>>],
         free: &mut Vec<u32>,
@@ -362,7 +364,7 @@ impl GpuRetention {
                 break;
             };
             let mut instances = Vec::new();
-            parents[p as usize].derive_into(&mut instances);
+            parents[p as usize].derive_on(site, &mut instances);
             fresh.push((p, slot, instances));
         }
         let draws: Vec<Draw> = fresh

@@ -346,7 +346,7 @@ impl Visit for CellRun<'_> {
         let meshes = self.scene.meshes.bind(G::GRAPH)?;
         let metrics = Metrics::of_genome(self.scene, Some(&scorer), &meshes, &result.best);
         let mut instances = Vec::new();
-        result.best.derive_into(&mut instances);
+        result.best.derive_on(&self.scene.site, &mut instances);
         let model = glb_bytes(&instances, &meshes, &Palette::new())?;
         *self.outcome = Some(Outcome {
             best: result.best_fitness,

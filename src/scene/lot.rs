@@ -1,0 +1,180 @@
+//! `[lot]`: the footprint a scene's building stands on, as a list of points or a GeoJSON
+//! file.
+
+use std::path::Path;
+use std::str::FromStr;
+
+use geojson::{GeoJson, Geometry, GeometryValue, PolygonType};
+use glam::DVec2;
+use serde::Deserialize;
+use shapegen_runtime::Site;
+use shapegen_runtime::geometry::Polygon;
+
+use super::SceneError;
+use super::resolve::Resolver;
+
+/// `[lot]`: exactly one of `points` and `geojson`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct LotFile {
+    /// The outline's points, `[x, y]` with `y` north, in either orientation.
+    points: Option<Vec<[f64; 2]>>,
+    /// A GeoJSON file, relative to the scene's folder, holding one polygon.
+    geojson: Option<String>,
+}
+
+/// Why a GeoJSON file does not hold one lot.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum LotError {
+    /// The file cannot be read.
+    #[error("cannot read `{}`: {source}", path.display())]
+    Io {
+        /// The file.
+        path: std::path::PathBuf,
+        /// What the system said.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The file is not GeoJSON.
+    #[error("`{}` is not GeoJSON: {message}", path.display())]
+    Syntax {
+        /// The file.
+        path: std::path::PathBuf,
+        /// The parser's message.
+        message: String,
+    },
+    /// The file holds no polygon, or more than one.
+    #[error(
+        "`{}` holds {polygons} polygons; a lot is one Polygon (a geometry, a feature, or \
+         a collection of one feature)",
+        path.display()
+    )]
+    Polygons {
+        /// The file.
+        path: std::path::PathBuf,
+        /// How many it holds.
+        polygons: usize,
+    },
+    /// The polygon has holes.
+    #[error(
+        "`{}`: the polygon has {holes} holes; a lot is an outline without holes \
+         (its exterior ring only)",
+        path.display()
+    )]
+    Holes {
+        /// The file.
+        path: std::path::PathBuf,
+        /// How many interior rings.
+        holes: usize,
+    },
+}
+
+impl Resolver<'_> {
+    /// The site of a scene's `[lot]` table.
+    pub(super) fn lot(&self, lot: &LotFile) -> Result<Site, SceneError> {
+        let (key, points) = match (&lot.points, &lot.geojson) {
+            (Some(points), None) => (
+                "lot.points",
+                points.iter().map(|&[x, y]| DVec2::new(x, y)).collect(),
+            ),
+            (None, Some(written)) => {
+                let path = self.file("lot.geojson", written)?;
+                let ring = read_geojson(&path).map_err(|err| self.refused("lot.geojson", err))?;
+                ("lot.geojson", ring)
+            }
+            _ => {
+                return Err(self.invalid(
+                    "lot",
+                    "give the lot's outline either as `points = [[x, y], ..]` or as \
+                     `geojson = \"file.geojson\"`, one of the two",
+                ));
+            }
+        };
+        let polygon = Polygon::from_f64(&points).map_err(|err| self.refused(key, err))?;
+        Ok(Site::with_lot(polygon))
+    }
+}
+
+/// The exterior ring of the one polygon of the GeoJSON file at `path`.
+fn read_geojson(path: &Path) -> Result<Vec<DVec2>, LotError> {
+    let text = std::fs::read_to_string(path).map_err(|source| LotError::Io {
+        path: path.to_owned(),
+        source,
+    })?;
+    geojson_outline(path, &text)
+}
+
+/// The outline of the lot in `text`, a GeoJSON file's contents (the file is `path`, which
+/// errors name): the exterior ring of its one polygon, a `Polygon` geometry (or a
+/// `MultiPolygon` of one) on its own, in a feature, or in a collection of one feature.
+/// Coordinates are used as they are, `[x, y]` with `y` north (an altitude is ignored):
+/// give a lot in metres of a local or projected system, not in degrees of longitude and
+/// latitude.
+///
+/// ```
+/// use std::path::Path;
+/// use shapegen::scene::geojson_outline;
+///
+/// let text = r#"{"type": "Feature", "properties": {}, "geometry": {"type": "Polygon",
+///     "coordinates": [[[0, 0], [8, 0], [8, 6], [0, 6], [0, 0]]]}}"#;
+/// let ring = geojson_outline(Path::new("lot.geojson"), text)?;
+/// assert_eq!(ring.len(), 5);
+/// let hole = r#"{"type": "Polygon", "coordinates": [[[0, 0], [8, 0], [8, 6], [0, 0]],
+///     [[1, 1], [2, 1], [2, 2], [1, 1]]]}"#;
+/// let err = geojson_outline(Path::new("lot.geojson"), hole).unwrap_err();
+/// assert!(err.to_string().contains("1 holes"));
+/// # Ok::<(), shapegen::scene::LotError>(())
+/// ```
+pub fn geojson_outline(path: &Path, text: &str) -> Result<Vec<DVec2>, LotError> {
+    let json = GeoJson::from_str(text).map_err(|err| LotError::Syntax {
+        path: path.to_owned(),
+        message: err.to_string(),
+    })?;
+    let mut polygons = Vec::new();
+    match &json {
+        GeoJson::Geometry(g) => collect(g, &mut polygons),
+        GeoJson::Feature(f) => f.geometry.iter().for_each(|g| collect(g, &mut polygons)),
+        GeoJson::FeatureCollection(c) => c
+            .features
+            .iter()
+            .flat_map(|f| &f.geometry)
+            .for_each(|g| collect(g, &mut polygons)),
+    }
+    let [rings] = polygons[..] else {
+        return Err(LotError::Polygons {
+            path: path.to_owned(),
+            polygons: polygons.len(),
+        });
+    };
+    if rings.len() > 1 {
+        return Err(LotError::Holes {
+            path: path.to_owned(),
+            holes: rings.len() - 1,
+        });
+    }
+    // A position holds at least two numbers (the parser refuses shorter ones).
+    Ok(rings
+        .first()
+        .map(|ring| {
+            ring.iter()
+                .filter_map(|p| match *p.as_slice() {
+                    [x, y, ..] => Some(DVec2::new(x, y)),
+                    _ => None,
+                })
+                .collect()
+        })
+        .unwrap_or_default())
+}
+
+/// Appends the polygons of `geometry` to `out`.
+fn collect<'a>(geometry: &'a Geometry, out: &mut Vec<&'a PolygonType>) {
+    match &geometry.value {
+        GeometryValue::Polygon { coordinates } => out.push(coordinates),
+        GeometryValue::MultiPolygon { coordinates } => out.extend(coordinates),
+        GeometryValue::GeometryCollection { geometries } => {
+            geometries.iter().for_each(|g| collect(g, out));
+        }
+        _ => {}
+    }
+}
