@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
 use generators::building::{self, roofed::RoofedBuilding};
-use glam::{Affine3A, Quat, vec2, vec3};
+use glam::{Affine3A, Quat, Vec3, vec2, vec3};
 use libtest_mimic::{Arguments, Failed, Trial};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -38,6 +38,10 @@ const TESTS: &[ValidatorTest] = &[
     (
         "facets_are_valid_with_a_material_per_facet_mesh",
         facets_are_valid_with_a_material_per_facet_mesh,
+    ),
+    (
+        "non_finite_instances_are_left_out",
+        non_finite_instances_are_left_out,
     ),
     (
         "random_roofed_buildings_are_valid",
@@ -79,7 +83,8 @@ fn node() -> Option<PathBuf> {
 /// in, or in the checkout's `target`, as `scripts/gltf-validator.sh` installs it.
 fn package() -> Option<PathBuf> {
     if let Some(dir) = std::env::var_os("SHAPEGEN_GLTF_VALIDATOR") {
-        return Some(PathBuf::from(dir));
+        let dir = PathBuf::from(dir);
+        return dir.join("package.json").is_file().then_some(dir);
     }
     let installed = Path::new("gltf-validator/node_modules/gltf-validator");
     // This executable is TARGET/PROFILE/deps/NAME.
@@ -99,7 +104,7 @@ fn validator() -> Result<Validator, String> {
     let node = node().ok_or("no node on the PATH (apt-get install nodejs npm)")?;
     let package = package().ok_or(
         "no gltf-validator package (scripts/gltf-validator.sh installs it into \
-         target/gltf-validator; or set SHAPEGEN_GLTF_VALIDATOR to its folder)",
+         target/gltf-validator; or set SHAPEGEN_GLTF_VALIDATOR to the package's folder)",
     )?;
     Ok(Validator { node, package })
 }
@@ -221,10 +226,12 @@ fn report(value: &serde_json::Value) -> Report {
                 "{} {} at {}: {}",
                 severity.get(level).unwrap_or(&"?"),
                 m["code"].as_str().unwrap_or("?"),
-                m["pointer"]
-                    .as_str()
-                    .or(m["offset"].as_u64().map(|_| "offset"))
-                    .unwrap_or("-"),
+                match (m["pointer"].as_str(), m["offset"].as_u64()) {
+                    (Some(""), _) => "/".to_owned(),
+                    (Some(pointer), _) => pointer.to_owned(),
+                    (None, Some(offset)) => format!("byte {offset}"),
+                    (None, None) => "-".to_owned(),
+                },
                 m["message"].as_str().unwrap_or("?"),
             )
         })
@@ -363,6 +370,40 @@ fn facets_are_valid_with_a_material_per_facet_mesh(v: &Validator) {
     v.assert_valid(&[("facets", &model, &meshes), ("walls", &walls_only, &meshes)]);
 }
 
+fn non_finite_instances_are_left_out(v: &Validator) {
+    let mut library = MeshLibrary::new();
+    library.register("wall", Mesh::facet()).unwrap();
+    let meshes = library.bind_names("Broken", &["cube", "wall"]).unwrap();
+    let wall = MeshId(1);
+    let at = |transform, mesh| Instance { transform, mesh };
+    let nan = Affine3A::from_translation(vec3(f32::NAN, 0.0, 0.0));
+    // Finite, but the corners overflow to infinity.
+    let huge = Affine3A::from_scale_rotation_translation(
+        Vec3::splat(f32::MAX),
+        Quat::IDENTITY,
+        Vec3::splat(f32::MAX),
+    );
+    let model = [
+        at(Affine3A::IDENTITY, CUBE),
+        at(nan, CUBE),
+        at(huge, CUBE),
+        at(nan, wall),
+        at(huge, wall),
+    ];
+    let glb = glb_bytes(&model, &meshes, &Palette::new()).unwrap();
+    let reports = v.validate(&[("non_finite", &glb)]);
+    assert_eq!(
+        (reports[0].errors, reports[0].warnings),
+        (0, 0),
+        "{:#?}",
+        reports[0].messages
+    );
+    // The finite cube alone is left, and the wall, with no finite instance, not at all.
+    let cube = glb_bytes(&model[..1], &meshes, &Palette::new()).unwrap();
+    assert!(glb == cube, "more than the finite cube exported");
+    assert_names("non_finite", &glb, &model[..1], &meshes);
+}
+
 fn random_roofed_buildings_are_valid(v: &Validator) {
     let meshes = generators::default_meshes()
         .bind(RoofedBuilding::GRAPH)
@@ -399,12 +440,51 @@ fn broken_files_are_reported(v: &Validator) {
     let mut corrupted = glb.clone();
     assert_eq!(corrupted[20], b'{');
     corrupted[20..24].copy_from_slice(b"!!!!");
-    let reports = v.validate(&[("truncated", truncated), ("corrupted", &corrupted)]);
-    for r in reports {
+    // Well-formed JSON that misstates the data: the positions' minimum.
+    let mut json: serde_json::Value = serde_json::from_slice(json_chunk(&glb)).unwrap();
+    json["accessors"][0]["min"] = serde_json::json!([-9.0, -9.0, -9.0]);
+    let wrong_min = with_json(&glb, &serde_json::to_vec(&json).unwrap());
+    let reports = v.validate(&[
+        ("truncated", truncated),
+        ("corrupted", &corrupted),
+        ("wrong_min", &wrong_min),
+    ]);
+    for r in &reports {
         assert!(
             r.rejected.is_some() || r.errors > 0,
             "{}: the validator found no error in a broken file",
             r.file
         );
     }
+    assert!(
+        reports[2]
+            .messages
+            .iter()
+            .any(|m| m.contains("ACCESSOR_MIN_MISMATCH")),
+        "{:#?}",
+        reports[2].messages
+    );
+}
+
+/// The JSON chunk of a GLB file, padding included.
+fn json_chunk(glb: &[u8]) -> &[u8] {
+    let length = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
+    assert_eq!(&glb[16..20], b"JSON");
+    &glb[20..20 + length]
+}
+
+/// `glb` with its JSON chunk replaced by `json`, padded with spaces, the header's length
+/// updated.
+fn with_json(glb: &[u8], json: &[u8]) -> Vec<u8> {
+    let rest = &glb[20 + json_chunk(glb).len()..];
+    let mut json = json.to_vec();
+    json.resize(json.len().next_multiple_of(4), b' ');
+    let mut out = glb[..8].to_vec();
+    let total = 12 + 8 + json.len() + rest.len();
+    out.extend_from_slice(&(total as u32).to_le_bytes());
+    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&json);
+    out.extend_from_slice(rest);
+    out
 }
