@@ -119,9 +119,9 @@ fn main() -> ExitCode {
             v.node.display(),
             v.package.display()
         ),
-        Err(why) if required => eprintln!(
-            "{why}; SHAPEGEN_REQUIRE_GLTF_VALIDATOR=1, so the glTF validator tests fail"
-        ),
+        Err(why) if required => {
+            eprintln!("{why}; SHAPEGEN_REQUIRE_GLTF_VALIDATOR=1, so the glTF validator tests fail")
+        }
         Err(why) => eprintln!("{why}; the glTF validator tests are ignored"),
     }
     let validator = validator.ok().map(std::sync::Arc::new);

@@ -237,7 +237,10 @@ fn bake(
             .extend(mesh.positions.iter().map(|&p| place.position(p)));
         // glTF allows finite floats only: an instance placed at NaN or infinity (a
         // non-finite transform, or one that overflows) is left out.
-        if !baked.positions[base as usize..].iter().all(|p| p.is_finite()) {
+        if !baked.positions[base as usize..]
+            .iter()
+            .all(|p| p.is_finite())
+        {
             baked.positions.truncate(base as usize);
             continue;
         }
