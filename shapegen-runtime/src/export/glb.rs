@@ -29,6 +29,12 @@ const CHUNK_BIN: &[u8; 4] = b"BIN\0";
 /// materials and nodes are named after the mesh. With no instances the file holds no
 /// scene and no buffer.
 ///
+/// glTF allows finite numbers only: an instance that places a vertex at NaN or infinity
+/// (a non-finite transform, or one whose result overflows `f32`) is left out, and a
+/// mesh with no instance left, or with no triangle, gets no glTF mesh, material or
+/// node. So every file passes the Khronos glTF validator, as `tests/gltf_validator.rs`
+/// checks.
+///
 /// [`MeshId`]: crate::MeshId
 ///
 /// ```
@@ -59,6 +65,10 @@ pub fn glb_bytes(
     for id in used_meshes(instances, meshes)? {
         let name = meshes.name(id).unwrap_or_default();
         let baked = bake(instances, id, &meshes[id], name)?;
+        if baked.indices.is_empty() {
+            // No finite instance, or no triangle: an accessor must hold an element.
+            continue;
+        }
         let views = [
             (
                 as_bytes(&baked.positions),
@@ -225,6 +235,15 @@ fn bake(
         baked
             .positions
             .extend(mesh.positions.iter().map(|&p| place.position(p)));
+        // glTF allows finite floats only: an instance placed at NaN or infinity (a
+        // non-finite transform, or one that overflows) is left out.
+        if !baked.positions[base as usize..]
+            .iter()
+            .all(|p| p.is_finite())
+        {
+            baked.positions.truncate(base as usize);
+            continue;
+        }
         baked
             .normals
             .extend(mesh.normals.iter().map(|&n| place.normal(n)));

@@ -6,7 +6,9 @@
 //! triangle winding reversed for mirroring transforms (negative determinant), so that
 //! faces stay counter-clockwise and normals outward. Instances are grouped by mesh, in
 //! [`MeshId`] order, each group coloured from a [`Palette`]. The output is a function
-//! of the input alone: identical input gives identical bytes.
+//! of the input alone: identical input gives identical bytes. glTF holds finite numbers
+//! only, so [`glb_bytes`] leaves out an instance that places a vertex at NaN or
+//! infinity.
 
 mod bake;
 mod glb;

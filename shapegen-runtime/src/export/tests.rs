@@ -337,3 +337,49 @@ fn empty_and_invalid_input() {
         "{err}"
     );
 }
+
+#[test]
+fn glb_leaves_out_instances_placed_at_nan_or_infinity() {
+    // glTF allows finite floats only (the validator's ACCESSOR_INVALID_FLOAT), and the
+    // positions' min and max must be those of finite data.
+    let meshes = meshes();
+    let at = |transform, mesh| Instance { transform, mesh };
+    let nan = Affine3A::from_translation(vec3(f32::NAN, 0.0, 0.0));
+    let overflow = Affine3A::from_scale_rotation_translation(
+        Vec3::splat(f32::MAX),
+        Quat::IDENTITY,
+        Vec3::splat(f32::MAX),
+    );
+    let finite = [
+        at(Affine3A::from_translation(vec3(1.0, 2.0, 3.0)), CUBE),
+        at(mirrored(), CUBE),
+    ];
+    let model = [
+        at(nan, CUBE),
+        finite[0],
+        at(overflow, CUBE),
+        at(nan, LEAF),
+        finite[1],
+        at(overflow, LEAF),
+    ];
+    let glb = glb_bytes(&model, &meshes, &Palette::new()).unwrap();
+    // Exactly the file of the finite instances: the leaf, with none, is not in it.
+    assert_eq!(glb, glb_bytes(&finite, &meshes, &Palette::new()).unwrap());
+    let gltf = gltf::Gltf::from_slice(&glb).unwrap();
+    let names: Vec<_> = gltf.materials().map(|m| m.name()).collect();
+    assert_eq!(names, [Some("cube")]);
+    let blob = gltf.blob.as_deref().unwrap();
+    let primitive = gltf.meshes().next().unwrap().primitives().next().unwrap();
+    let p: Vec<Vec3> = primitive
+        .reader(|_| Some(blob))
+        .read_positions()
+        .unwrap()
+        .map(Vec3::from)
+        .collect();
+    assert_eq!(p, expected_positions(&finite, &meshes, CUBE));
+    let bbox = primitive.bounding_box();
+    assert_eq!((Vec3::from(bbox.min), Vec3::from(bbox.max)), bounds(&p));
+    // Nothing finite at all: the empty model's file.
+    let none = glb_bytes(&model[2..4], &meshes, &Palette::new()).unwrap();
+    assert_eq!(none, glb_bytes(&[], &meshes, &Palette::new()).unwrap());
+}
