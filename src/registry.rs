@@ -149,9 +149,9 @@ pub trait AddGrammar {
 }
 
 /// Adds the published generators to `to`, each under its grammar's key (`spaceship`,
-/// `tree`, `city`, `building`, `roofed_building`), with its own meshes, its paper scene's limits and the
-/// original's settings of every method (the building, which has no paper scene, takes the
-/// thesis's GA).
+/// `tree`, `city`, `building`, `roofed_building`, `lot_building`), with its own meshes,
+/// its paper scene's limits and the original's settings of every method (the buildings,
+/// which have no paper scene, take the thesis's GA).
 ///
 /// # Errors
 /// When a published generator's name is taken in `to`.
@@ -178,10 +178,10 @@ impl Registry {
         Registry::default()
     }
 
-    /// The published generators, `spaceship`, `tree`, `city`, `building` and
-    /// `roofed_building`, with their
-    /// own meshes, their paper scenes' limits and the original's settings of every method
-    /// (the building, which has no paper scene, takes the thesis's GA).
+    /// The published generators, `spaceship`, `tree`, `city`, `building`,
+    /// `roofed_building` and `lot_building`, with their own meshes, their paper scenes'
+    /// limits and the original's settings of every method (the buildings, which have no
+    /// paper scene, take the thesis's GA).
     pub fn published() -> Self {
         let mut registry = Registry::new();
         add_published(&mut registry).expect("the published generators have distinct plain names");
@@ -217,7 +217,8 @@ impl Registry {
         &self.entries
     }
 
-    /// The names, for messages: `spaceship, tree, city, building and roofed_building`.
+    /// The names, for messages: `spaceship, tree, city, building, roofed_building and
+    /// lot_building`.
     pub fn names(&self) -> String {
         let names: Vec<&str> = self.entries.iter().map(|e| e.name.as_str()).collect();
         match names.split_last() {
@@ -281,7 +282,7 @@ fn paper_presets(generator: Published) -> Presets {
             generators::city::paper_smc,
             generators::city::paper_rjmcmc(),
         ),
-        Published::Building | Published::RoofedBuilding => (
+        Published::Building | Published::RoofedBuilding | Published::LotBuilding => (
             MultiGaSettings::thesis().ga,
             generators::city::paper_smc,
             generators::city::paper_rjmcmc(),

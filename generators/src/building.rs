@@ -367,7 +367,7 @@ fn mesh_of(mesh: u32) -> MeshId {
 
 /// The tile length to repeat with along a side of `length`: `tile`, or longer where that
 /// would make more than [`MAX_TILES`] tiles.
-fn capped_tile(length: f32, tile: f32) -> f32 {
+pub(crate) fn capped_tile(length: f32, tile: f32) -> f32 {
     tile.max(length / MAX_TILES as f32)
 }
 
@@ -410,9 +410,10 @@ pub const LIMITS: Limits = Limits {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub mod roofed {
-    use shapegen_runtime::geometry::{RoofMeshes, RoofShape};
+    use shapegen_runtime::geometry::RoofMeshes;
 
     use super::*;
+    use crate::lot_building::roof_shape;
 
     building_grammar! {
         /// A building on one lot, grown by a building program of CGA-style operations
@@ -438,16 +439,4 @@ pub mod roofed {
         pyramid: ROOF_PYRAMID,
         hip_end: ROOF_HIP_END,
     };
-
-    /// The roof of a [`Roof::shape`] parameter: 0 flat (a slab of 0.3), 1 shed, 2 gable,
-    /// 3 hip, anything else a pyramid.
-    fn roof_shape(shape: u32, pitch: f32) -> RoofShape {
-        match shape {
-            0 => RoofShape::Flat { thickness: 0.3 },
-            1 => RoofShape::Shed { pitch },
-            2 => RoofShape::Gable { pitch },
-            3 => RoofShape::Hip { pitch },
-            _ => RoofShape::Pyramid { pitch },
-        }
-    }
 }

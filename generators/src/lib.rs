@@ -9,6 +9,7 @@
 
 pub mod building;
 pub mod city;
+pub mod lot_building;
 mod meshes;
 pub mod spaceship;
 pub mod tree;
@@ -19,6 +20,7 @@ use shapegen_runtime::genome::Limits;
 pub use building::Building;
 pub use building::roofed::RoofedBuilding;
 pub use city::City;
+pub use lot_building::LotBuilding;
 pub use meshes::{LEAF_OBJ, TRUNK_OBJ, default_meshes, low_poly_sphere};
 pub use spaceship::Spaceship;
 pub use tree::Tree;
@@ -45,16 +47,19 @@ pub enum Published {
     Building,
     /// [`RoofedBuilding`].
     RoofedBuilding,
+    /// [`LotBuilding`].
+    LotBuilding,
 }
 
 impl Published {
     /// All published generators.
-    pub const ALL: [Published; 5] = [
+    pub const ALL: [Published; 6] = [
         Published::Spaceship,
         Published::Tree,
         Published::City,
         Published::Building,
         Published::RoofedBuilding,
+        Published::LotBuilding,
     ];
 
     /// The genome limits of the generator's paper scene ([`building::LIMITS`] for the
@@ -65,6 +70,7 @@ impl Published {
             Published::Tree => tree::PAPER_LIMITS,
             Published::City => city::PAPER_LIMITS,
             Published::Building | Published::RoofedBuilding => building::LIMITS,
+            Published::LotBuilding => lot_building::LIMITS,
         }
     }
 
@@ -77,6 +83,7 @@ impl Published {
             Published::City => visitor.visit::<City>(limits),
             Published::Building => visitor.visit::<Building>(limits),
             Published::RoofedBuilding => visitor.visit::<RoofedBuilding>(limits),
+            Published::LotBuilding => visitor.visit::<LotBuilding>(limits),
         }
     }
 }

@@ -20,15 +20,17 @@ const SPHERE_SEGMENTS: u32 = 8;
 const SPHERE_BANDS: u32 = 4;
 
 /// A mesh library holding every mesh the published generators use: the built-in `cube`,
-/// `trunk`, `leaf` and `sphere`, and the roof pieces of
-/// [`RoofedBuilding`](crate::building::roofed::RoofedBuilding) ([`RoofPiece`]). `trunk` and `leaf` are normalized as every generator
+/// `trunk`, `leaf` and `sphere`, the roof pieces of
+/// [`RoofedBuilding`](crate::building::roofed::RoofedBuilding) ([`RoofPiece`]), and the
+/// parts of [`LotBuilding`](crate::LotBuilding), `wall`, `roof`, `window`, `door` and
+/// `slab`, each the unit facet ([`Mesh::facet`]) that its generated triangles place. `trunk` and `leaf` are normalized as every generator
 /// mesh loaded from OBJ is ([`Mesh::from_obj_str_normalized`]).
 ///
 /// ```
 /// use shapegen_runtime::Grammar;
 ///
 /// let library = generators::default_meshes();
-/// assert_eq!(library.names().count(), 8);
+/// assert_eq!(library.names().count(), 13);
 /// let bound = library.bind(<generators::Tree as Grammar>::GRAPH).unwrap();
 /// assert_eq!(bound.len(), 3);
 /// let bound = library.bind(<generators::Building as Grammar>::GRAPH).unwrap();
@@ -53,6 +55,11 @@ pub fn default_meshes() -> MeshLibrary {
         library
             .register(piece.name(), piece.mesh())
             .unwrap_or_else(|e| panic!("the built-in {} mesh is broken: {e}", piece.name()));
+    }
+    for part in ["wall", "roof", "window", "door", "slab"] {
+        library
+            .register(part, Mesh::facet())
+            .unwrap_or_else(|e| panic!("the built-in {part} facet is broken: {e}"));
     }
     library
 }

@@ -5,10 +5,15 @@ use std::collections::BTreeMap;
 use crate::geometry::MeshId;
 
 /// Default colours by mesh name (linear RGB; sRGB hex in the comments).
-const NAMED: [(&str, [f32; 3]); 3] = [
-    ("cube", [0.2542, 0.3278, 0.4341]),  // #8A9BB0 grey-blue
-    ("trunk", [0.1946, 0.0844, 0.0296]), // #7A5230 brown
-    ("leaf", [0.0782, 0.3231, 0.0423]),  // #4F9A3A green
+const NAMED: [(&str, [f32; 3]); 8] = [
+    ("cube", [0.2542, 0.3278, 0.4341]),   // #8A9BB0 grey-blue
+    ("trunk", [0.1946, 0.0844, 0.0296]),  // #7A5230 brown
+    ("leaf", [0.0782, 0.3231, 0.0423]),   // #4F9A3A green
+    ("wall", [0.7682, 0.6654, 0.5149]),   // #E3D5BE sandstone
+    ("roof", [0.3419, 0.0685, 0.0423]),   // #9E4A3A tile red
+    ("window", [0.0482, 0.1070, 0.1946]), // #3E5C7A glass blue
+    ("door", [0.1470, 0.0685, 0.0273]),   // #6B4A2E wood
+    ("slab", [0.3231, 0.3231, 0.3231]),   // #9A9A9A concrete
 ];
 
 /// Default colours for other meshes, chosen by mesh id.
@@ -26,8 +31,9 @@ const CYCLE: [[f32; 3]; 8] = [
 /// The colour of each mesh in an export: linear RGB components in `[0, 1]`, written as
 /// glTF `baseColorFactor` (with alpha 1) and MTL `Kd`.
 ///
-/// By default `cube` is grey-blue, `trunk` brown and `leaf` green; other meshes take
-/// distinct colours by mesh id. [`set`](Self::set) overrides a mesh's colour by name.
+/// By default `cube` is grey-blue, `trunk` brown and `leaf` green, and a building's
+/// parts `wall` sandstone, `roof` tile red, `window` glass blue, `door` wood and `slab`
+/// concrete; other meshes take distinct colours by mesh id. [`set`](Self::set) overrides a mesh's colour by name.
 ///
 /// ```
 /// use shapegen_runtime::{CUBE, MeshId, export::Palette};

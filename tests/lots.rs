@@ -1,0 +1,205 @@
+//! Lots: a scene's `[lot]` table, as points or as a GeoJSON file, is the footprint its
+//! building generator builds on, in every evaluator; mistakes are refused with the file,
+//! the key and the reason.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use generators::LotBuilding;
+use shapegen::optimize::multi::MultiEvaluator;
+use shapegen::scene::{ObjectiveEvaluator, Scene, SceneError};
+use shapegen::{Genome, Grammar, Instance};
+
+/// A scene of the lot building measuring the models' height, with `lot` as its `[lot]`
+/// table.
+fn scene_text(lot: &str) -> String {
+    format!(
+        r#"
+generator = "lot_building"
+{lot}
+[limits]
+min_len = 2
+max_len = 100
+max_depth = 12
+[[objective]]
+name = "extent"
+kind = "footprint_excess"
+min = [0, 0]
+max = [0, 0]
+"#
+    )
+}
+
+const L_POINTS: &str = "[lot]\npoints = [[-8, -6], [8, -6], [8, 0], [0, 0], [0, 6], [-8, 6]]";
+
+const L_GEOJSON: &str = r#"{"type": "Feature", "properties": {"name": "L"},
+  "geometry": {"type": "Polygon",
+    "coordinates": [[[-8, -6], [8, -6], [8, 0], [0, 0], [0, 6], [-8, 6], [-8, -6]]]}}"#;
+
+struct Fixture {
+    dir: tempfile::TempDir,
+}
+
+impl Fixture {
+    fn new() -> Fixture {
+        Fixture {
+            dir: tempfile::tempdir().unwrap(),
+        }
+    }
+
+    fn path(&self) -> PathBuf {
+        self.dir.path().join("scene.toml")
+    }
+
+    fn write(&self, name: &str, text: &str) {
+        fs::write(self.dir.path().join(name), text).unwrap();
+    }
+
+    fn load(&self, lot: &str) -> Result<Scene, SceneError> {
+        fs::write(self.path(), scene_text(lot)).unwrap();
+        Scene::load(self.path())
+    }
+
+    /// Loads a scene with `lot`, expecting an error about `key` that says `reason`.
+    fn refuses(&self, lot: &str, key: &str, reason: &str) {
+        let err = self.load(lot).expect_err("the scene must be refused");
+        let message = err.to_string();
+        assert!(
+            message.contains(&self.path().display().to_string()),
+            "names the file: {message}"
+        );
+        assert!(message.contains(key), "names `{key}`: {message}");
+        assert!(message.contains(reason), "says `{reason}`: {message}");
+    }
+}
+
+/// A one-storey building of `height` with plain walls and a flat roof.
+fn block(height: f32) -> Genome<LotBuilding> {
+    use generators::lot_building::{Lot, Mass};
+    let mut g = Genome::<LotBuilding>::with_root(Lot {}).unwrap();
+    g.attach(0, "mass", Mass { height }).unwrap();
+    g
+}
+
+/// The x/z extent of `instances`' facets.
+fn extent(instances: &[Instance]) -> (f32, f32, f32, f32) {
+    instances.iter().fold(
+        (f32::MAX, f32::MIN, f32::MAX, f32::MIN),
+        |(x0, x1, z0, z1), i| {
+            let t = i.transform;
+            let corners = [glam::Vec3::ZERO, glam::Vec3::X, glam::Vec3::Y]
+                .map(|p| t.transform_point3(p));
+            corners.iter().fold((x0, x1, z0, z1), |(x0, x1, z0, z1), p| {
+                (x0.min(p.x), x1.max(p.x), z0.min(p.z), z1.max(p.z))
+            })
+        },
+    )
+}
+
+#[test]
+fn a_lot_of_points_or_geojson_is_the_footprint_built_on() {
+    let fixture = Fixture::new();
+    let scene = fixture.load(L_POINTS).unwrap();
+    let lot = scene.site.lot().expect("the scene has a lot");
+    assert_eq!((lot.len(), lot.area()), (6, 16.0 * 12.0 - 8.0 * 6.0));
+
+    fixture.write("l.geojson", L_GEOJSON);
+    let from_file = fixture.load("[lot]\ngeojson = \"l.geojson\"").unwrap();
+    assert_eq!(from_file.site, scene.site);
+
+    // Map coordinates: x east, y north, laid on the ground as z = -y.
+    let mut instances = Vec::new();
+    block(6.0).derive_on(&scene.site, &mut instances);
+    let (x0, x1, z0, z1) = extent(&instances);
+    assert_eq!((x0, x1, z0, z1), (-8.0, 8.0, -6.0, 6.0));
+    block(6.0).derive_into(&mut instances);
+    assert_eq!(extent(&instances), (-5.0, 5.0, -5.0, 5.0), "the default lot");
+
+    // No lot: the site has none.
+    assert!(fixture.load("").unwrap().site.lot().is_none());
+}
+
+#[test]
+fn evaluators_build_on_the_scene_s_lot() {
+    let fixture = Fixture::new();
+    let on_l = fixture.load(L_POINTS).unwrap();
+    let bare = fixture.load("").unwrap();
+    let measure = |scene: &Scene| {
+        let mut evaluator = ObjectiveEvaluator::new::<LotBuilding>(scene).unwrap();
+        let mut value = [0.0];
+        MultiEvaluator::<LotBuilding>::evaluate(&mut evaluator, &[block(5.0)], &mut value)
+            .unwrap();
+        value[0]
+    };
+    // The extent beyond the point (0, 0): the L's 8 + 8 + 6 + 6, the square's 4 x 5.
+    assert_eq!(measure(&on_l), 28.0);
+    assert_eq!(measure(&bare), 20.0);
+}
+
+#[test]
+fn lot_mistakes_are_refused() {
+    let fixture = Fixture::new();
+    fixture.refuses("[lot]", "lot", "either as `points = [[x, y], ..]`");
+    fixture.write("l.geojson", L_GEOJSON);
+    fixture.refuses(
+        &format!("{L_POINTS}\ngeojson = \"l.geojson\""),
+        "lot",
+        "one of the two",
+    );
+    fixture.refuses(
+        "[lot]\npoints = [[0, 0], [4, 4], [4, 0], [0, 4]]",
+        "lot.points",
+        "edges 0 and 2 cross or touch",
+    );
+    fixture.refuses(
+        "[lot]\npoints = [[0, 0], [4, 0], [8, 0]]",
+        "lot.points",
+        "at least 3 distinct points not all on one line",
+    );
+    fixture.refuses("[lot]\npoints = [[0, 0, 1]]", "lot", "");
+    fixture.refuses("[lot]\nwidth = 3", "lot", "unknown field `width`");
+    fixture.refuses(
+        "[lot]\ngeojson = \"missing.geojson\"",
+        "lot.geojson",
+        "is not a file",
+    );
+    fixture.write("broken.geojson", "{\"type\": \"Polygon\", \"coordinates\": [[[0, 0]");
+    fixture.refuses(
+        "[lot]\ngeojson = \"broken.geojson\"",
+        "lot.geojson",
+        "is not GeoJSON",
+    );
+    let two = r#"{"type": "MultiPolygon", "coordinates": [
+        [[[0, 0], [1, 0], [1, 1], [0, 0]]], [[[2, 0], [3, 0], [3, 1], [2, 0]]]]}"#;
+    fixture.write("two.geojson", two);
+    fixture.refuses(
+        "[lot]\ngeojson = \"two.geojson\"",
+        "lot.geojson",
+        "holds 2 polygons",
+    );
+    let point = r#"{"type": "Point", "coordinates": [0, 0]}"#;
+    fixture.write("point.geojson", point);
+    fixture.refuses(
+        "[lot]\ngeojson = \"point.geojson\"",
+        "lot.geojson",
+        "holds 0 polygons",
+    );
+    let court = r#"{"type": "Polygon", "coordinates": [[[0, 0], [9, 0], [9, 9], [0, 9], [0, 0]],
+        [[3, 3], [6, 3], [6, 6], [3, 6], [3, 3]]]}"#;
+    fixture.write("court.geojson", court);
+    fixture.refuses(
+        "[lot]\ngeojson = \"court.geojson\"",
+        "lot.geojson",
+        "the polygon has 1 holes",
+    );
+}
+
+#[test]
+fn the_project_s_lot_is_an_l() {
+    let lots = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/lots");
+    let text = fs::read_to_string(lots.join("l_lot.geojson")).unwrap();
+    let ring = shapegen::scene::geojson_outline(&lots.join("l_lot.geojson"), &text).unwrap();
+    let lot = shapegen::geometry::Polygon::from_f64(&ring).unwrap();
+    assert_eq!((lot.len(), lot.area()), (6, 144.0));
+    assert_eq!(LotBuilding::GRAPH.key, "lot_building");
+}
