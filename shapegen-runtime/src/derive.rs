@@ -14,8 +14,8 @@ use glam::Vec3;
 use typed_arena::Arena;
 
 use crate::geometry::{
-    Axis, Face, Instance, Mesh, MeshId, Part, Polygon, Roof, RoofError, RoofMeshes, RoofShape,
-    Scope,
+    Axis, Face, Inset, Instance, Margins, Mesh, MeshId, Part, Polygon, Roof, RoofError, RoofMeshes,
+    RoofShape, Scope,
 };
 use crate::graph::{GeneratorGraph, HEADER_WORDS};
 use crate::param::ParamValue;
@@ -464,6 +464,110 @@ impl<'a, G: Grammar> Shape<'a, G> {
             facet,
             &mut self.ctx.out.borrow_mut(),
         )
+    }
+
+    /// Emits the box's front rectangle (a flat shape's own plane) as two facets of
+    /// `facet` facing its `+z`; see [`Scope::emit_rect`]. Returns how many.
+    ///
+    /// With [`walls`](Self::walls), [`top_cap`](Self::top_cap),
+    /// [`bottom_cap`](Self::bottom_cap) and [`inset`](Self::inset), rules build CGA's
+    /// facades as closed solids: a footprint's walls, each split into floors and
+    /// tiles (splits and repeats tile flat shapes along `x` and `y`), each tile a
+    /// window or a door recessed into the wall.
+    ///
+    /// ```
+    /// # use rand::SeedableRng;
+    /// use shapegen_runtime::geometry::{Margins, Polygon};
+    /// use shapegen_runtime::prelude::*;
+    ///
+    /// generator! {
+    ///     pub Block {
+    ///         axiom Lot;
+    ///         meshes {
+    ///             WALL = "wall",
+    ///             WINDOW = "window",
+    ///             DOOR = "door",
+    ///         }
+    ///         node Lot {
+    ///             derive(s) {
+    ///                 let footprint = Polygon::rectangle(vec2(12.0, 8.0)).unwrap();
+    ///                 let lot = s.with_size(vec3(12.0, 9.0, 8.0));
+    ///                 for (face, wall) in lot.walls(&footprint, 9.0) {
+    ///                     if face != Face::Front {
+    ///                         wall.emit_rect(WALL);
+    ///                         continue;
+    ///                     }
+    ///                     // 12 x 9: three floors of four tiles, a door on the ground.
+    ///                     for (floor, level) in wall.repeat(Axis::Y, 3.0).enumerate() {
+    ///                         for (k, tile) in level.repeat(Axis::X, 3.0).enumerate() {
+    ///                             let door = floor == 0 && k == 1;
+    ///                             let (margins, opening) = if door {
+    ///                                 (Margins::door(0.8, 0.6), DOOR)
+    ///                             } else {
+    ///                                 (Margins::new(0.75, 0.75, 0.8, 0.6), WINDOW)
+    ///                             };
+    ///                             let inset = tile.inset(margins, 0.3).unwrap();
+    ///                             for part in inset.frame.into_iter().chain(inset.reveals) {
+    ///                                 part.emit_rect(WALL);
+    ///                             }
+    ///                             inset.opening.emit_rect(opening);
+    ///                         }
+    ///                     }
+    ///                 }
+    ///                 lot.top_cap(&footprint, 9.0, WALL);
+    ///                 lot.bottom_cap(&footprint, WALL);
+    ///             }
+    ///         }
+    ///     }
+    /// }
+    ///
+    /// let genome = Genome::<Block>::axiom(&mut rand_chacha::ChaCha8Rng::seed_from_u64(1));
+    /// let mut out = Vec::new();
+    /// genome.derive_into(&mut out);
+    /// let count = |mesh: MeshId| out.iter().filter(|i| i.mesh == mesh).count();
+    /// assert_eq!((count(WINDOW), count(DOOR)), (2 * 11, 2));
+    /// // Three plain walls, twelve tiles of 4 frame strips and 4 reveals (the door's
+    /// // bottom strip is empty), two caps.
+    /// assert_eq!(count(WALL), 3 * 2 + 12 * 8 * 2 - 2 + 2 * 2);
+    /// ```
+    pub fn emit_rect(&self, facet: MeshId) -> usize {
+        self.scope.emit_rect(facet, &mut self.ctx.out.borrow_mut())
+    }
+
+    /// CGA's `comp(f)` of the prism of `height` on `footprint` on the bottom of the box:
+    /// one flat shape per footprint edge, facing out, with the face of the box it
+    /// faces; see [`Scope::walls`]. See [`emit_rect`](Self::emit_rect) for an example.
+    pub fn walls(
+        self,
+        footprint: &Polygon,
+        height: f32,
+    ) -> impl ExactSizeIterator<Item = (Face, Self)> {
+        self.scope
+            .walls(footprint, height)
+            .map(move |(f, s)| (f, self.with_scope(s)))
+    }
+
+    /// Emits the top of the prism of `height` on `footprint`, facing up, as facets; see
+    /// [`Scope::top_cap`]. Returns how many.
+    pub fn top_cap(&self, footprint: &Polygon, height: f32, facet: MeshId) -> usize {
+        self.scope
+            .top_cap(footprint, height, facet, &mut self.ctx.out.borrow_mut())
+    }
+
+    /// Emits the bottom of the prism on `footprint`, facing down, as facets; see
+    /// [`Scope::bottom_cap`]. Returns how many.
+    pub fn bottom_cap(&self, footprint: &Polygon, facet: MeshId) -> usize {
+        self.scope
+            .bottom_cap(footprint, facet, &mut self.ctx.out.borrow_mut())
+    }
+
+    /// CGA's `inset` of a window or a door into a flat tile: the frame, reveals and
+    /// opening as shapes, or `None` when the margins leave no opening or a measure is
+    /// negative or not finite; see [`Scope::inset`]. See
+    /// [`emit_rect`](Self::emit_rect) for an example.
+    pub fn inset(self, margins: Margins, depth: f32) -> Option<Inset<Self>> {
+        let inset = self.scope.inset(margins, depth)?;
+        Some(inset.map(|s| self.with_scope(s)))
     }
 
     #[inline]

@@ -2,6 +2,10 @@
 //! polygons, prisms and roofs that rules build as geometry of their own, placed as
 //! facets.
 
+#[cfg(test)]
+mod closed;
+mod comp;
+mod facade;
 mod face;
 mod facet;
 mod formats;
@@ -17,13 +21,15 @@ mod solid;
 
 mod split;
 
+pub use comp::Walls;
+pub use facade::{Inset, Margins};
 pub use face::{Face, Faces};
 pub use facet::{FACET_CORNERS, emit_facets, facet_transform, is_facet};
 pub use formats::{MeshFormat, PointCloud};
 pub use instance::{CUBE, Instance, MeshId};
 pub use library::{BoundMeshes, MeshLibrary};
 pub use mesh::{Mesh, MeshError};
-pub use polygon::{Polygon, PolygonError};
+pub use polygon::{Polygon, PolygonError, Setback};
 pub use roof::{Roof, RoofError, RoofMeshes, RoofPiece, RoofShape};
 pub use scope::Scope;
 pub use split::{Axis, Part, Repeat, Split};

@@ -8,12 +8,14 @@
 
 mod clean;
 mod offset;
+mod setback;
 mod triangulate;
 
 use glam::{DVec2, Vec2};
 
 pub(crate) use clean::EPS;
 pub use clean::PolygonError;
+pub use setback::Setback;
 
 /// A simple polygon: at least three points, counter-clockwise, no two consecutive points
 /// the same, no three consecutive points on a line, and no two edges that touch other
