@@ -31,6 +31,8 @@
 //! // by its registered name.
 //! assert_eq!(registry.find("Stack").unwrap().name, "stack");
 //! assert_eq!(registry.get("stack").unwrap().key, "stack");
+//! // Its meshes, by id: what the parts of its scenes' objectives are looked up in.
+//! assert_eq!(registry.get("stack").unwrap().mesh_names, ["cube"]);
 //! assert!(registry.add::<Stack>("spaceship", Defaults::default()).is_err());
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
@@ -113,6 +115,10 @@ pub struct Entry {
     /// The grammar's name in snake case, which genome files record
     /// (`"generator": "tower"`; [`GeneratorGraph::key`](shapegen_runtime::GeneratorGraph::key)).
     pub key: &'static str,
+    /// The names of the grammar's meshes, in id order
+    /// ([`GeneratorGraph::meshes`](shapegen_runtime::GeneratorGraph::meshes)): what the
+    /// parts a scene's objectives name are resolved against.
+    pub mesh_names: &'static [&'static str],
     /// Its defaults.
     pub defaults: Defaults,
 }
@@ -245,6 +251,7 @@ impl AddGrammar for Registry {
             name: name.to_owned(),
             grammar: G::GRAPH.name,
             key: G::GRAPH.key,
+            mesh_names: G::GRAPH.meshes,
             defaults,
         });
         Ok(())

@@ -871,3 +871,259 @@ fn chamfer_objectives_read_their_point_cloud() {
     );
     fixture.refuses(&chamfer(""), "objective[3]", "points");
 }
+
+/// A generator whose meshes are a building's parts, as a scene names them in
+/// `area_share` and `roof_pitch` objectives.
+mod house {
+    use shapegen::geometry::{Mesh, MeshLibrary};
+    use shapegen::prelude::*;
+    use shapegen::registry::{AddGrammar, Defaults, Registry};
+
+    /// A `w` by `h` quad in the plane `z`, facing `+z`.
+    fn quad(w: f32, h: f32, z: f32) -> Mesh {
+        Mesh {
+            positions: vec![
+                vec3(0.0, 0.0, z),
+                vec3(w, 0.0, z),
+                vec3(w, h, z),
+                vec3(0.0, h, z),
+            ],
+            normals: vec![Vec3::Z; 4],
+            indices: vec![0, 1, 2, 0, 2, 3],
+        }
+    }
+
+    /// Two 45 degree slopes, 1 long, from eaves 1 apart at `y = 1` to a ridge at
+    /// `y = 2`: a gable roof of area `2 sqrt 2`.
+    fn gable() -> Mesh {
+        Mesh {
+            positions: vec![
+                vec3(0.0, 1.0, 1.0),
+                vec3(1.0, 1.0, 1.0),
+                vec3(1.0, 2.0, 0.0),
+                vec3(0.0, 2.0, 0.0),
+                vec3(1.0, 1.0, -1.0),
+                vec3(0.0, 1.0, -1.0),
+            ],
+            normals: vec![Vec3::Y; 6],
+            indices: vec![0, 1, 2, 0, 2, 3, 4, 5, 3, 4, 3, 2],
+        }
+    }
+
+    generator! {
+        /// A house: a unit block of wall, a 1 x 1 window in front of it and a gable roof.
+        pub House {
+            axiom Lot;
+            meshes {
+                /// Walls (a unit cube).
+                WALL = "wall",
+                /// Roofs (facets).
+                ROOF = "roof",
+                /// Windows (facets).
+                WINDOW = "window",
+                /// Doors (facets).
+                DOOR = "door",
+            }
+            /// The house.
+            node Lot {
+                derive(s) {
+                    s.emit(WALL);
+                    s.emit_surface(&quad(1.0, 1.0, 0.6), WINDOW);
+                    s.emit_surface(&gable(), ROOF);
+                }
+            }
+        }
+    }
+
+    /// The published generators and the house, its walls a unit cube and its other
+    /// parts facets.
+    pub fn registry() -> Registry {
+        let mut meshes = MeshLibrary::new();
+        meshes.register("wall", Mesh::unit_cube()).unwrap();
+        for part in ["roof", "window", "door"] {
+            meshes.register(part, Mesh::facet()).unwrap();
+        }
+        let mut registry = Registry::published();
+        let defaults = Defaults {
+            meshes,
+            ..Defaults::default()
+        };
+        registry.add::<House>("house", defaults).unwrap();
+        registry
+    }
+}
+
+const HOUSE: &str = r#"
+generator = "house"
+[limits]
+min_len = 1
+max_len = 5
+max_depth = 2
+# The window-to-wall ratio.
+[[objective]]
+name = "wwr"
+kind = "area_share"
+parts = ["window", "door"]
+of = ["wall", "window", "door"]
+target = 0.4
+# The roof's share of all the area.
+[[objective]]
+kind = "area_share"
+parts = ["roof"]
+target = 0.25
+# The roof's pitch; its parts are `roof` unless given.
+[[objective]]
+kind = "roof_pitch"
+target_deg = 30
+"#;
+
+fn house_scene(text: &str) -> Result<Scene, SceneError> {
+    Scene::parse_in(
+        text,
+        Path::new("house.toml"),
+        &house::registry(),
+        &shapegen::scene::Overrides::default(),
+    )
+}
+
+/// Loads `text` for the house, expecting an error about `key` whose message holds each
+/// of `reasons`.
+fn house_refuses(text: &str, key: &str, reasons: &[&str]) {
+    let err = house_scene(text).expect_err("the scene must be refused");
+    let message = err.to_string();
+    assert!(message.starts_with("scene `house.toml`: "), "{message}");
+    assert!(
+        message.contains(&format!("`{key}`: ")),
+        "names `{key}`: {message}"
+    );
+    for reason in reasons {
+        assert!(message.contains(reason), "says `{reason}`: {message}");
+    }
+}
+
+/// Part objectives load with their parts resolved against the generator's meshes, and
+/// measure the house's derived model exactly.
+#[test]
+fn part_objectives_load_and_measure_the_generators_parts() {
+    use shapegen::optimize::Sense;
+    use shapegen::optimize::multi::MultiEvaluator;
+    use shapegen::scene::ObjectiveEvaluator;
+    use shapegen::score::objective::{Objective, Parts};
+
+    let scene = house_scene(HOUSE).unwrap();
+    let set = &scene.objectives.as_ref().unwrap().set;
+    let names: Vec<&str> = set.names().collect();
+    assert_eq!(names, ["wwr", "area_share", "roof_pitch"]);
+    assert_eq!(set.senses(), [Sense::Minimize; 3]);
+    let meshes = ["cube", "wall", "roof", "window", "door"];
+    let parts = |wanted: &[&str]| Parts::named(wanted, &meshes).unwrap();
+    assert_eq!(
+        set.entries()[0].1,
+        Objective::AreaShare {
+            parts: parts(&["window", "door"]),
+            of: Some(parts(&["wall", "window", "door"])),
+            target: 0.4,
+        }
+    );
+    assert_eq!(
+        set.entries()[1].1,
+        Objective::AreaShare {
+            parts: parts(&["roof"]),
+            of: None,
+            target: 0.25,
+        }
+    );
+    assert_eq!(
+        set.entries()[2].1,
+        Objective::RoofPitch {
+            parts: parts(&["roof"]),
+            target_deg: 30.0,
+        }
+    );
+
+    let mut evaluator = ObjectiveEvaluator::new::<house::House>(&scene).unwrap();
+    let genome = shapegen::Genome::<house::House>::axiom(&mut rand::rng());
+    let mut values = [0.0; 3];
+    MultiEvaluator::<house::House>::evaluate(&mut evaluator, &[genome], &mut values).unwrap();
+    // Wall 6, window 1, roof 2 sqrt 2, all slopes at 45 degrees.
+    let roof = 2.0 * 2f64.sqrt();
+    let expected = [
+        1.0 / 7.0 - f64::from(0.4f32),
+        roof / (7.0 + roof) - 0.25,
+        15.0,
+    ];
+    for (value, want) in values.iter().zip(expected) {
+        assert!(
+            (value - want.abs()).abs() < 1e-12,
+            "{values:?} against {expected:?}"
+        );
+    }
+}
+
+#[test]
+fn part_objective_mistakes_are_refused() {
+    let listed = "the meshes are `cube`, `wall`, `roof`, `window` and `door`";
+    house_refuses(
+        &HOUSE.replace("[\"window\", \"door\"]", "[\"windw\", \"door\"]"),
+        "objective[0].parts",
+        &["objective `wwr`: no mesh is named `windw`", listed],
+    );
+    house_refuses(
+        &HOUSE.replace("of = [\"wall\",", "of = [\"facade\","),
+        "objective[0].of",
+        &["objective `wwr`: no mesh is named `facade`", listed],
+    );
+    house_refuses(
+        &HOUSE.replace("target_deg = 30", "target_deg = 30\nparts = [\"attic\"]"),
+        "objective[2].parts",
+        &["objective `roof_pitch`: no mesh is named `attic`", listed],
+    );
+    house_refuses(
+        &HOUSE.replace("target = 0.4", "target = 1.5"),
+        "objective",
+        &["objective `wwr`: `target` is 1.5; it must be a share from 0 to 1"],
+    );
+    house_refuses(
+        &HOUSE.replace("target = 0.25", "target = nan"),
+        "objective",
+        &["objective `area_share`: `target` is NaN"],
+    );
+    house_refuses(
+        &HOUSE.replace("target_deg = 30", "target_deg = 95"),
+        "objective",
+        &["objective `roof_pitch`: `target_deg` is 95; it must be an angle from 0 to 90 degrees"],
+    );
+    house_refuses(
+        &HOUSE.replace("target_deg = 30", "target_deg = -5"),
+        "objective",
+        &["`target_deg` is -5"],
+    );
+    house_refuses(
+        &HOUSE.replace("parts = [\"roof\"]", "parts = []"),
+        "objective",
+        &["objective `area_share`: `parts` names no mesh"],
+    );
+    house_refuses(
+        &HOUSE.replace(
+            "parts = [\"window\", \"door\"]",
+            "parts = [\"window\", \"roof\"]",
+        ),
+        "objective",
+        &["objective `wwr`: `parts` has a mesh that `of` lacks"],
+    );
+    house_refuses(
+        &HOUSE.replace("target = 0.25\n", ""),
+        "objective[1]",
+        &["kind \"area_share\": missing field `target`"],
+    );
+    house_refuses(
+        &HOUSE.replace("target_deg = 30", "target = 30"),
+        "objective[2]",
+        &["kind \"roof_pitch\": unknown field `target`, expected `parts` or `target_deg`"],
+    );
+    house_refuses(
+        &HOUSE.replace("parts = [\"roof\"]", "parts = \"roof\""),
+        "objective[1]",
+        &["kind \"area_share\"", "sequence"],
+    );
+}

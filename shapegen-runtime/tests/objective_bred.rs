@@ -4,7 +4,9 @@
 //! threads; and the distinct-normals objectives equal their definitions (every normal
 //! compared with every distinct normal) to the bit, on random buildings and on triangle
 //! soups made to sit on the tolerance. The weighted objectives of single-objective
-//! searches count bred children the same way.
+//! searches count bred children the same way. The objectives that read a triangle's part
+//! (`area_share`, `roof_pitch`) are measured on roofed buildings, whose roof pieces are
+//! meshes of their own, beside the projections counted from parents.
 //!
 //! The number of sequences scales with `SHAPEGEN_PROPERTY_SCALE` (default 1; the debug
 //! build runs a fifth of the release build's).
@@ -14,6 +16,7 @@ mod support {
     pub mod objective_scenes;
 }
 
+use generators::RoofedBuilding;
 use generators::building::{self, Building};
 use glam::{Affine3A, Quat, Vec2, Vec3};
 use rand::{Rng, RngExt, SeedableRng};
@@ -23,7 +26,7 @@ use shapegen_runtime::geometry::{BoundMeshes, Mesh, MeshId, MeshLibrary};
 use shapegen_runtime::ops::{OperatorVariant, Operators};
 use shapegen_runtime::score::InstanceBatch;
 use shapegen_runtime::score::objective::{
-    BredObjectives, Objective, ObjectiveScratch, ObjectiveSet, Surface, WeightedObjectives,
+    BredObjectives, Objective, ObjectiveScratch, ObjectiveSet, Parts, Surface, WeightedObjectives,
 };
 use shapegen_runtime::{Genome, Grammar, Instance};
 use support::breeding::{bred, sequences};
@@ -54,8 +57,48 @@ fn every_kind(tolerance_deg: f32) -> ObjectiveSet {
     .unwrap()
 }
 
+/// [`every_kind`] and the objectives that read a triangle's part, on the roofed
+/// building's meshes: the share of the area of gable and hip-end pieces, among the cubes
+/// and those, and the pitch of every roof piece.
+fn every_kind_with_parts(tolerance_deg: f32) -> ObjectiveSet {
+    let names = RoofedBuilding::GRAPH.meshes;
+    let parts = |wanted: &[&str]| Parts::named(wanted, names).unwrap();
+    let mut entries = every_kind(tolerance_deg).entries().to_vec();
+    entries.insert(
+        1,
+        (
+            "share".into(),
+            Objective::AreaShare {
+                parts: parts(&["roof_gable", "roof_hip_end"]),
+                of: Some(parts(&["cube", "roof_gable", "roof_hip_end"])),
+                target: 0.3,
+            },
+        ),
+    );
+    entries.push((
+        "pitch".into(),
+        Objective::RoofPitch {
+            parts: parts(&["roof_gable", "roof_shed", "roof_pyramid", "roof_hip_end"]),
+            target_deg: 30.0,
+        },
+    ));
+    entries.push((
+        "roofs".into(),
+        Objective::AreaShare {
+            parts: parts(&["roof_gable", "roof_shed", "roof_pyramid", "roof_hip_end"]),
+            of: None,
+            target: 0.0,
+        },
+    ));
+    ObjectiveSet::new(entries).unwrap()
+}
+
 fn building_meshes() -> BoundMeshes {
-    generators::default_meshes().bind(Building::GRAPH).unwrap()
+    grammar_meshes::<Building>()
+}
+
+fn grammar_meshes<G: Grammar>() -> BoundMeshes {
+    generators::default_meshes().bind(G::GRAPH).unwrap()
 }
 
 /// The distinct normals of `normals` by their definition: each normal, in order, joins
@@ -126,12 +169,17 @@ fn check_normals(surface: &Surface, tolerance_deg: f32, scratch: &mut ObjectiveS
 /// [`STEPS`] generations. Each generation's children are measured from their parents'
 /// states and in full; both must agree to the bit, and their distinct normals must equal
 /// the definition's. Returns every generation's values.
-fn bred_values(set: &ObjectiveSet, lineages: usize, threads: usize, seed: u64) -> Vec<Vec<f64>> {
+fn bred_values<G: Grammar>(
+    set: &ObjectiveSet,
+    lineages: usize,
+    threads: usize,
+    seed: u64,
+) -> Vec<Vec<f64>> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .unwrap();
-    let meshes = building_meshes();
+    let meshes = grammar_meshes::<G>();
     let tolerance = set
         .entries()
         .iter()
@@ -142,8 +190,8 @@ fn bred_values(set: &ObjectiveSet, lineages: usize, threads: usize, seed: u64) -
         .expect("the set counts distinct normals");
     pool.install(|| {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        let mut ops = Operators::<Building>::new(building::LIMITS).unwrap();
-        let mut population: Vec<Genome<Building>> =
+        let mut ops = Operators::<G>::new(building::LIMITS).unwrap();
+        let mut population: Vec<Genome<G>> =
             (0..lineages).map(|_| ops.random(30, &mut rng)).collect();
         let mut bred_objectives = BredObjectives::new(set, &meshes).unwrap();
         let (mut scratch, mut surface) = (ObjectiveScratch::default(), Surface::new());
@@ -164,7 +212,7 @@ fn bred_values(set: &ObjectiveSet, lineages: usize, threads: usize, seed: u64) -
                     }
                 })
                 .collect();
-            let children: Vec<Genome<Building>> = from
+            let children: Vec<Genome<G>> = from
                 .iter()
                 .map(|&p| bred(&mut ops, &population[p as usize], 30, &mut rng))
                 .collect();
@@ -210,8 +258,8 @@ fn bred_children_measure_as_in_full_at_one_and_two_threads() {
     let lineages = sequences(600);
     for (tolerance, seed) in [(1.0, 1), (5.0, 2)] {
         let set = every_kind(tolerance);
-        let one = bred_values(&set, lineages, 1, seed);
-        let two = bred_values(&set, lineages, 2, seed);
+        let one = bred_values::<Building>(&set, lineages, 1, seed);
+        let two = bred_values::<Building>(&set, lineages, 2, seed);
         assert_eq!(one, two, "tolerance {tolerance}");
         eprintln!(
             "tolerance {tolerance}: {lineages} lineages of {STEPS} operators, {} children \
@@ -219,6 +267,37 @@ fn bred_children_measure_as_in_full_at_one_and_two_threads() {
             lineages * STEPS
         );
     }
+}
+
+/// The objectives that read a triangle's part, on roofed buildings: bred children
+/// measured from their parents equal their full measurement, at 1 and 2 threads alike,
+/// and the roofs give them values that vary.
+#[test]
+fn part_objectives_of_bred_roofed_buildings_measure_as_in_full() {
+    let lineages = sequences(300);
+    let set = every_kind_with_parts(1.0);
+    let one = bred_values::<RoofedBuilding>(&set, lineages, 1, 3);
+    let two = bred_values::<RoofedBuilding>(&set, lineages, 2, 3);
+    assert_eq!(one, two);
+    let k = set.len();
+    for (slot, name) in [(1, "share"), (k - 2, "pitch"), (k - 1, "roofs")] {
+        assert_eq!(set.entries()[slot].0, name);
+        let values: Vec<f64> = one
+            .iter()
+            .flat_map(|generation| generation.iter().skip(slot).step_by(k).copied())
+            .collect();
+        let (lo, hi) = values
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+                (lo.min(v), hi.max(v))
+            });
+        assert!(lo.is_finite() && lo < hi, "{name}: from {lo} to {hi}");
+    }
+    eprintln!(
+        "{lineages} lineages of {STEPS} operators on roofed buildings, {} children equal to \
+         their full measurement at 1 and 2 threads",
+        lineages * STEPS
+    );
 }
 
 /// A bred child's state is updated only from the instances it was counted from, so an

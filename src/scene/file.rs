@@ -243,6 +243,26 @@ pub(super) enum ObjectiveFile {
         #[serde(default = "chamfer_samples")]
         samples: usize,
     },
+    /// The share of the area of the meshes `of` (all when absent) that the meshes
+    /// `parts` take, toward `target`.
+    AreaShare {
+        parts: Vec<String>,
+        #[serde(default)]
+        of: Option<Vec<String>>,
+        target: f32,
+    },
+    /// The mean pitch of the upward-facing triangles of the meshes `parts`, toward
+    /// `target_deg`.
+    RoofPitch {
+        #[serde(default = "roof_parts")]
+        parts: Vec<String>,
+        target_deg: f32,
+    },
+}
+
+/// Default parts of a `roof_pitch` objective: the mesh a building names its roofs.
+fn roof_parts() -> Vec<String> {
+    vec!["roof".to_owned()]
 }
 
 /// Default samples a side of a `chamfer` objective.

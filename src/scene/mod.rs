@@ -99,6 +99,15 @@
 //! kind = "chamfer"                   # Chamfer distance to a point cloud, minimized
 //! points = "scan.xyz"                # .xyz or .txt (x y z per line) or .ply (its vertices)
 //! samples = 512                      # points a side (default 512)
+//! [[objective]]
+//! kind = "area_share"                # |share - target|, minimized: the share of the area
+//! parts = ["window", "door"]         #   of the meshes `of` (all when left out) that the
+//! of = ["wall", "window", "door"]    #   meshes `parts` take (a window-to-wall ratio)
+//! target = 0.4                       # from 0 to 1
+//! [[objective]]
+//! kind = "roof_pitch"                # |mean pitch - target_deg|, minimized: the area-weighted
+//! parts = ["roof"]                   #   pitch of the upward-facing triangles of `parts`
+//! target_deg = 35                    #   (default ["roof"]); from 0 to 90 degrees
 //!
 //! [selection]
 //! ranking = "pareto"                 # or summed_rank, normalized_summed_rank, weighted_sum
@@ -108,6 +117,11 @@
 //! [optimizer]                        # the GA's settings (the thesis's by default) and
 //! archive = 300                      # the most non-dominated models kept
 //! ```
+//!
+//! The `parts` and `of` of `area_share` and `roof_pitch` name the generator's meshes: a
+//! triangle belongs to the part its instance's mesh is (a building's generator names its
+//! facet meshes `wall`, `roof`, `window` and `door`). The names are looked up when the
+//! scene is loaded; one the generator does not have is refused, with the names it has.
 //!
 //! Unknown keys, missing files, values out of range and images whose size differs from
 //! their camera's are all refused with the file, the key and the reason.

@@ -8,7 +8,8 @@ use shapegen_runtime::optimize::multi::MultiEvaluator;
 use shapegen_runtime::optimize::{EvaluateError, Sense};
 use shapegen_runtime::score::InstanceBatch;
 use shapegen_runtime::score::objective::{
-    BredObjectives, ChamferMatch, Objective, ObjectiveSet, ProjectionMatch, View,
+    BredObjectives, ChamferMatch, Objective, ObjectiveError, ObjectiveSet, Parts, ProjectionMatch,
+    View,
 };
 use shapegen_runtime::score::retained::RetentionStats;
 use shapegen_runtime::{Genome, Grammar};
@@ -19,12 +20,31 @@ use super::resolve::Resolver;
 use super::{Scene, SceneError, ValueError};
 
 impl Resolver<'_> {
-    /// The objectives of `[[objective]]` tables, in order.
-    pub(super) fn objectives(&self, tables: Vec<toml::Table>) -> Result<ObjectiveSet, SceneError> {
+    /// The objectives of `[[objective]]` tables, in order, for a generator whose meshes
+    /// are named `meshes` (in id order): the parts objectives name are resolved
+    /// against those.
+    pub(super) fn objectives(
+        &self,
+        tables: Vec<toml::Table>,
+        meshes: &[&str],
+    ) -> Result<ObjectiveSet, SceneError> {
         let mut entries = Vec::with_capacity(tables.len());
         for (i, table) in tables.into_iter().enumerate() {
             let (name, file) = self.objective_file(i, table)?;
             let image = format!("objective[{i}].image");
+            // The meshes of `field`, an error naming the table, its objective and the
+            // field.
+            let parts = |field: &str, wanted: &[String], kind: &str| {
+                Parts::named(wanted, meshes).map_err(|err| {
+                    self.refused(
+                        format!("objective[{i}].{field}"),
+                        ObjectiveError::Entry {
+                            name: name.clone().unwrap_or_else(|| kind.to_owned()),
+                            source: Box::new(err),
+                        },
+                    )
+                })
+            };
             // One arm per kind.
             let objective = match file {
                 ObjectiveFile::Height { target } => Objective::Height { target },
@@ -43,6 +63,22 @@ impl Resolver<'_> {
                 ObjectiveFile::Chamfer { points, samples } => {
                     self.chamfer(&format!("objective[{i}]"), &points, samples)?
                 }
+                ObjectiveFile::AreaShare {
+                    parts: p,
+                    of,
+                    target,
+                } => Objective::AreaShare {
+                    parts: parts("parts", &p, "area_share")?,
+                    of: of.map(|of| parts("of", &of, "area_share")).transpose()?,
+                    target,
+                },
+                ObjectiveFile::RoofPitch {
+                    parts: p,
+                    target_deg,
+                } => Objective::RoofPitch {
+                    parts: parts("parts", &p, "roof_pitch")?,
+                    target_deg,
+                },
             };
             entries.push((
                 name.unwrap_or_else(|| objective.name().to_owned()),
@@ -244,6 +280,8 @@ mod tests {
             "footprint_excess" => "min = [-1, -1]\nmax = [1, 1]",
             "top_match" | "front_match" => "image = \"image.png\"\nmin = [-1, -1]\nmax = [1, 1]",
             "chamfer" => "points = \"scan.xyz\"",
+            "area_share" => "parts = [\"window\"]\nof = [\"wall\", \"window\"]\ntarget = 0.4",
+            "roof_pitch" => "target_deg = 35",
             _ => panic!("give a table of the new kind `{kind}` here"),
         };
         toml::from_str(&format!("kind = \"{kind}\"\n{keys}")).unwrap()
@@ -260,7 +298,10 @@ mod tests {
         let kinds = kinds();
         assert!(kinds.len() > 1, "{kinds:?}");
         let set = Resolver::new(&path)
-            .objectives(kinds.iter().map(|k| table(k)).collect())
+            .objectives(
+                kinds.iter().map(|k| table(k)).collect(),
+                &["cube", "wall", "roof", "window"],
+            )
             .unwrap();
         for (kind, (name, objective)) in kinds.iter().zip(set.entries()) {
             assert_eq!(objective.name(), kind);

@@ -206,7 +206,7 @@ impl<'a> Resolver<'a> {
                      tables, not both",
                 ));
             }
-            let set = self.objectives(file.objective)?;
+            let set = self.objectives(file.objective, entry.mesh_names)?;
             let selection = file.selection.unwrap_or_default();
             selection
                 .validate()

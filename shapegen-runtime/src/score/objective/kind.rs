@@ -5,6 +5,7 @@ use glam::{Vec2, Vec3};
 use super::ObjectiveError;
 use super::chamfer::ChamferMatch;
 use super::normals::{NormalGrid, cluster, spread};
+use super::parts::{Parts, area_share, roof_pitch};
 use super::projection::{ProjectionMatch, View};
 use super::surface::Surface;
 use crate::evaluate::Sense;
@@ -75,6 +76,92 @@ pub enum Objective {
     /// Symmetric Chamfer distance to a point cloud, in world units
     /// ([`Sense::Minimize`]); see [`ChamferMatch`].
     Chamfer(ChamferMatch),
+    /// How far the share of the surface area that some parts take is from a target,
+    /// `|share - target|` ([`Sense::Minimize`]): `share` is the world-space area of the
+    /// triangles whose instance's mesh is in `parts` over that of the triangles whose
+    /// mesh is in `of` (every triangle when `of` is `None`), in `[0, 1]`; 0 when the
+    /// model has no area in `of`. Every mesh of `parts` must be in `of`. A window-to-wall
+    /// ratio: `parts` the windows and doors, `of` those and the walls.
+    ///
+    /// ```
+    /// use glam::{Affine3A, Vec3};
+    /// use shapegen_runtime::geometry::{Mesh, MeshLibrary, facet_transform};
+    /// use shapegen_runtime::score::objective::{Objective, ObjectiveScratch, Parts, Surface};
+    /// use shapegen_runtime::{CUBE, Instance};
+    ///
+    /// let mut library = MeshLibrary::new();
+    /// library.register("window", Mesh::facet())?;
+    /// let meshes = library.bind_names("House", &["cube", "window"])?;
+    /// let window = meshes.iter().find(|(_, name, _)| *name == "window").unwrap().0;
+    /// // A unit cube (area 6) and a 1 x 1 window of two facets (area 1) in front of it.
+    /// let corner = |x: f32, y: f32| Vec3::new(x, y, 0.6);
+    /// let facet = |a, b, c| Instance { transform: facet_transform(a, b, c).unwrap(), mesh: window };
+    /// let model = [
+    ///     Instance { transform: Affine3A::IDENTITY, mesh: CUBE },
+    ///     facet(corner(0.0, 0.0), corner(1.0, 0.0), corner(1.0, 1.0)),
+    ///     facet(corner(0.0, 0.0), corner(1.0, 1.0), corner(0.0, 1.0)),
+    /// ];
+    /// let surface = Surface::from_instances(&model, &meshes);
+    /// let mut scratch = ObjectiveScratch::default();
+    ///
+    /// let windows = Parts::bound(&["window"], &meshes)?;
+    /// let of_all = Objective::AreaShare { parts: windows.clone(), of: None, target: 0.0 };
+    /// assert_eq!(of_all.measure(&surface, &mut scratch), 1.0 / 7.0);
+    /// let of_both = Parts::bound(&["cube", "window"], &meshes)?;
+    /// let ratio = Objective::AreaShare { parts: windows, of: Some(of_both), target: 0.5 };
+    /// assert_eq!(ratio.measure(&surface, &mut scratch), 0.5 - 1.0 / 7.0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    AreaShare {
+        /// The meshes whose area is counted.
+        parts: Parts,
+        /// The meshes whose area it is a share of; every mesh when `None`.
+        of: Option<Parts>,
+        /// The share to reach, from 0 to 1.
+        target: f32,
+    },
+    /// How far the area-weighted mean pitch of a roof is from a target, in degrees,
+    /// `|mean - target_deg|` ([`Sense::Minimize`]).
+    ///
+    /// A triangle's pitch is the angle between its plane and the horizontal,
+    /// `atan2(|(n.x, n.z)|, n.y)` for its unit normal `n`: 0 flat, towards 90 vertical.
+    /// Counted are the triangles whose instance's mesh is in `parts` and that face up,
+    /// `n.y >` [`MIN_UPWARD_Y`](super::MIN_UPWARD_Y) (`1e-4`, a pitch below about 89.994
+    /// degrees), each weighted by its world-space area: a roof's underside (`n.y < 0`)
+    /// and its vertical gable ends (`n.y = 0`, give or take rounding) are not its pitch.
+    /// A model with no such triangle has mean 0.
+    ///
+    /// ```
+    /// use glam::Vec3;
+    /// use shapegen_runtime::geometry::{Mesh, MeshLibrary, facet_transform};
+    /// use shapegen_runtime::score::objective::{Objective, ObjectiveScratch, Parts, Surface};
+    /// use shapegen_runtime::Instance;
+    ///
+    /// let mut library = MeshLibrary::new();
+    /// library.register("roof", Mesh::facet())?;
+    /// let meshes = library.bind_names("House", &["cube", "roof"])?;
+    /// let roof = meshes.iter().find(|(_, name, _)| *name == "roof").unwrap().0;
+    /// let facet = |a, b, c| Instance { transform: facet_transform(a, b, c).unwrap(), mesh: roof };
+    /// // A gable roof: two 45 degree slopes from the eaves at z = -1 and z = 1 to the
+    /// // ridge at y = 1, z = 0, each a quad of two facets.
+    /// let p = |x: f32, y: f32, z: f32| Vec3::new(x, y, z);
+    /// let model = [
+    ///     facet(p(0.0, 0.0, 1.0), p(1.0, 0.0, 1.0), p(1.0, 1.0, 0.0)),
+    ///     facet(p(0.0, 0.0, 1.0), p(1.0, 1.0, 0.0), p(0.0, 1.0, 0.0)),
+    ///     facet(p(1.0, 0.0, -1.0), p(0.0, 0.0, -1.0), p(0.0, 1.0, 0.0)),
+    ///     facet(p(1.0, 0.0, -1.0), p(0.0, 1.0, 0.0), p(1.0, 1.0, 0.0)),
+    /// ];
+    /// let surface = Surface::from_instances(&model, &meshes);
+    /// let pitch = Objective::RoofPitch { parts: Parts::bound(&["roof"], &meshes)?, target_deg: 30.0 };
+    /// assert_eq!(pitch.measure(&surface, &mut ObjectiveScratch::default()), 15.0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    RoofPitch {
+        /// The meshes of the roof.
+        parts: Parts,
+        /// The mean pitch to reach, in degrees from 0 to 90.
+        target_deg: f32,
+    },
 }
 
 /// Reusable working memory for measuring [objectives](Objective): one per worker.
@@ -114,7 +201,9 @@ impl Objective {
         match self {
             Objective::Height { .. }
             | Objective::FootprintExcess { .. }
-            | Objective::Chamfer(_) => Sense::Minimize,
+            | Objective::Chamfer(_)
+            | Objective::AreaShare { .. }
+            | Objective::RoofPitch { .. } => Sense::Minimize,
             Objective::UniqueNormals { .. }
             | Objective::NormalSpread { .. }
             | Objective::Projection(_) => Sense::Maximize,
@@ -122,7 +211,8 @@ impl Objective {
     }
 
     /// The kind of objective, in snake case: `height`, `unique_normals`,
-    /// `normal_spread`, `footprint_excess`, `top_match`, `front_match` or `chamfer`.
+    /// `normal_spread`, `footprint_excess`, `top_match`, `front_match`, `chamfer`,
+    /// `area_share` or `roof_pitch`.
     pub fn name(&self) -> &'static str {
         match self {
             Objective::Height { .. } => "height",
@@ -134,14 +224,44 @@ impl Objective {
                 View::Front => "front_match",
             },
             Objective::Chamfer(_) => "chamfer",
+            Objective::AreaShare { .. } => "area_share",
+            Objective::RoofPitch { .. } => "roof_pitch",
         }
     }
 
-    /// Checks the parameters: finite numbers, tolerances from 0 to 180 degrees, and a
-    /// footprint with `min <= max` in both coordinates (a [`ProjectionMatch`] is checked
-    /// when it is made).
+    /// Checks the parameters: finite numbers, tolerances from 0 to 180 degrees, a
+    /// footprint with `min <= max` in both coordinates, an area share from 0 to 1 of
+    /// parts that are all among `of`, a pitch from 0 to 90 degrees, and parts that name
+    /// at least one mesh (a [`ProjectionMatch`] is checked when it is made).
     pub fn validate(&self) -> Result<(), ObjectiveError> {
         match *self {
+            Objective::AreaShare { ref parts, .. } | Objective::RoofPitch { ref parts, .. }
+                if parts.is_empty() =>
+            {
+                Err(ObjectiveError::NoParts { field: "parts" })
+            }
+            Objective::AreaShare {
+                of: Some(ref of), ..
+            } if of.is_empty() => Err(ObjectiveError::NoParts { field: "of" }),
+            Objective::AreaShare {
+                ref parts,
+                of: Some(ref of),
+                ..
+            } if !parts.is_subset(of) => Err(ObjectiveError::PartsOutsideOf),
+            Objective::AreaShare { target, .. } if !(0.0..=1.0).contains(&target) => {
+                Err(ObjectiveError::Parameter {
+                    field: "target",
+                    value: target,
+                    valid: "a share from 0 to 1",
+                })
+            }
+            Objective::RoofPitch { target_deg, .. } if !(0.0..=90.0).contains(&target_deg) => {
+                Err(ObjectiveError::Parameter {
+                    field: "target_deg",
+                    value: target_deg,
+                    valid: "an angle from 0 to 90 degrees",
+                })
+            }
             Objective::Height { target } if !target.is_finite() => Err(ObjectiveError::Parameter {
                 field: "target",
                 value: target,
@@ -199,6 +319,10 @@ impl Objective {
             }),
             Objective::Projection(p) => p.score_with(surface, &mut scratch.coverage),
             Objective::Chamfer(c) => c.measure(surface),
+            Objective::AreaShare { parts, of, target } => {
+                area_share(surface, parts, of.as_ref(), *target)
+            }
+            Objective::RoofPitch { parts, target_deg } => roof_pitch(surface, parts, *target_deg),
         }
     }
 }

@@ -7,7 +7,9 @@
 //! how far apart those normals are, how far the footprint exceeds a rectangle, and how
 //! well a top-down or front orthographic projection matches a black-and-white target
 //! image ([`ProjectionMatch`], rasterized as the silhouette scorer does), and how close
-//! the surface comes to a scanned point cloud ([`ChamferMatch`]).
+//! the surface comes to a scanned point cloud ([`ChamferMatch`]); and, reading which
+//! part each triangle belongs to (its instance's mesh, a set of [`Parts`]), how far the
+//! share of the area some parts take and the pitch of a roof are from targets.
 //!
 //! An [`ObjectiveSet`] names the objectives of a search and measures whole populations
 //! ([`InstanceBatch`](crate::score::InstanceBatch)es) on the rayon pool, one row of
@@ -37,6 +39,7 @@ mod bred;
 mod chamfer;
 mod kind;
 mod normals;
+mod parts;
 mod projection;
 mod retained;
 mod set;
@@ -45,6 +48,7 @@ mod surface;
 pub use bred::BredObjectives;
 pub use chamfer::{ChamferMatch, MAX_CHAMFER_SAMPLES};
 pub use kind::{Objective, ObjectiveScratch};
+pub use parts::{MIN_UPWARD_Y, Parts};
 pub use projection::{ProjectionMatch, View};
 pub use retained::{ProjectionCounts, ProjectionScorer, ProjectionScratch, ProjectionState};
 pub use set::{ObjectiveSet, WeightedObjectives};
@@ -130,6 +134,26 @@ pub enum ObjectiveError {
         /// What would be valid.
         valid: &'static str,
     },
+    /// A name of a part is not the name of one of the grammar's meshes.
+    #[error("no mesh is named `{name}`; the meshes are {meshes}")]
+    UnknownPart {
+        /// The name given.
+        name: String,
+        /// The meshes' names, quoted and listed.
+        meshes: String,
+    },
+    /// A set of parts names no mesh.
+    #[error("`{field}` names no mesh; name at least one")]
+    NoParts {
+        /// The parameter.
+        field: &'static str,
+    },
+    /// An area share's `parts` has a mesh that its `of` lacks.
+    #[error(
+        "`parts` has a mesh that `of` lacks; the share is of the area of `of`, so list \
+         every part there too"
+    )]
+    PartsOutsideOf,
     /// A set was given no objective.
     #[error("no objectives given; a set needs at least one")]
     NoObjectives,

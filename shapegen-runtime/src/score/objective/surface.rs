@@ -1,11 +1,12 @@
-//! The world-space triangles of one model, each with its unit face normal.
+//! The world-space triangles of one model, each with its unit face normal and mesh.
 
 use glam::Vec3;
 
-use crate::geometry::{BoundMeshes, Instance};
+use crate::geometry::{BoundMeshes, Instance, MeshId};
 
-/// The world-space triangles of one model, each with its unit face normal, and their
-/// bounding box: what the [objectives](super::Objective) measure.
+/// The world-space triangles of one model, each with its unit face normal and the mesh
+/// of the instance it comes from, and their bounding box: what the
+/// [objectives](super::Objective) measure.
 ///
 /// Each instance's mesh vertices are transformed by the instance's transform and every
 /// triangle of the mesh is kept with the normal of the transformed triangle,
@@ -33,6 +34,7 @@ use crate::geometry::{BoundMeshes, Instance};
 /// let surface = Surface::from_instances(&model, &meshes);
 /// assert_eq!(surface.triangles().len(), 12);
 /// assert_eq!(surface.normals().len(), 12);
+/// assert!(surface.mesh_ids().iter().all(|&id| id == CUBE));
 /// assert_eq!(surface.bounds(), Some((Vec3::new(-0.5, 0.5, -0.5), Vec3::new(0.5, 1.5, 0.5))));
 /// # Ok::<(), shapegen_runtime::MeshError>(())
 /// ```
@@ -40,6 +42,8 @@ use crate::geometry::{BoundMeshes, Instance};
 pub struct Surface {
     triangles: Vec<[Vec3; 3]>,
     normals: Vec<Vec3>,
+    /// The mesh of each triangle's instance.
+    mesh_ids: Vec<MeshId>,
     bounds: Option<(Vec3, Vec3)>,
     /// One instance's transformed vertices.
     world: Vec<Vec3>,
@@ -62,6 +66,7 @@ impl Surface {
     pub fn clear(&mut self) {
         self.triangles.clear();
         self.normals.clear();
+        self.mesh_ids.clear();
         self.bounds = None;
     }
 
@@ -96,6 +101,7 @@ impl Surface {
                 };
                 self.triangles.push([a, b, c]);
                 self.normals.push(flip * normal);
+                self.mesh_ids.push(instance.mesh);
                 lo = lo.min(a.min(b).min(c));
                 hi = hi.max(a.max(b).max(c));
             }
@@ -113,6 +119,12 @@ impl Surface {
     /// The unit face normal of each of [`triangles`](Self::triangles).
     pub fn normals(&self) -> &[Vec3] {
         &self.normals
+    }
+
+    /// The mesh of the instance each of [`triangles`](Self::triangles) comes from: which
+    /// part of the model it is.
+    pub fn mesh_ids(&self) -> &[MeshId] {
+        &self.mesh_ids
     }
 
     /// The smallest and largest coordinates of the triangles' vertices, or `None` when

@@ -1,0 +1,183 @@
+//! Objectives that read which part of a model a triangle belongs to: the share of the
+//! surface area some parts take, and the pitch of a roof.
+//!
+//! A triangle's part is the name of its instance's mesh (a building's generator names its
+//! facet meshes `wall`, `roof`, `window`, `door`). The names are resolved to mesh ids once,
+//! into a [`Parts`] set; measuring then asks a bit mask per triangle.
+
+use glam::{DVec3, Vec3};
+
+use super::ObjectiveError;
+use super::surface::Surface;
+use crate::geometry::{BoundMeshes, MeshId};
+
+/// Triangles whose unit normal's `y` is at most this are not counted by
+/// [`RoofPitch`](super::Objective::RoofPitch): they face down or sideways (a pitch above
+/// about 89.994 degrees).
+pub const MIN_UPWARD_Y: f32 = 1e-4;
+
+/// A set of meshes of one grammar, by [`MeshId`]: the parts an objective measures.
+///
+/// Made from mesh names with [`named`](Self::named) (against the names of a grammar's
+/// meshes, in id order, as [`GeneratorGraph::meshes`](crate::graph::GeneratorGraph::meshes)
+/// lists them) or [`bound`](Self::bound) (against [`BoundMeshes`]), or from ids with
+/// [`from_ids`](Self::from_ids). Whether a mesh is in the set is one bit.
+///
+/// ```
+/// use shapegen_runtime::geometry::{Mesh, MeshId, MeshLibrary};
+/// use shapegen_runtime::score::objective::Parts;
+///
+/// let names = ["cube", "wall", "window", "door"];
+/// let openings = Parts::named(&["window", "door"], &names)?;
+/// assert_eq!(openings.ids().collect::<Vec<_>>(), [MeshId(2), MeshId(3)]);
+/// assert!(openings.contains(MeshId(3)) && !openings.contains(MeshId(1)));
+///
+/// let err = Parts::named(&["windows"], &names).unwrap_err();
+/// assert_eq!(
+///     err.to_string(),
+///     "no mesh is named `windows`; the meshes are `cube`, `wall`, `window` and `door`"
+/// );
+///
+/// let mut library = MeshLibrary::new();
+/// library.register("wall", Mesh::facet())?;
+/// let meshes = library.bind_names("Walls", &["cube", "wall"])?;
+/// assert_eq!(Parts::bound(&["wall"], &meshes)?, Parts::from_ids([MeshId(1)]));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Parts {
+    /// Bit `i % 64` of word `i / 64` is set when mesh `i` is in the set.
+    mask: Vec<u64>,
+}
+
+impl Parts {
+    /// The meshes `ids`.
+    pub fn from_ids(ids: impl IntoIterator<Item = MeshId>) -> Parts {
+        let mut parts = Parts::default();
+        for MeshId(id) in ids {
+            let (word, bit) = (id as usize / 64, id % 64);
+            if parts.mask.len() <= word {
+                parts.mask.resize(word + 1, 0);
+            }
+            parts.mask[word] |= 1 << bit;
+        }
+        parts
+    }
+
+    /// The meshes named `wanted`, where mesh `i` is named `meshes[i]` (a name given
+    /// twice stands for the first mesh of that name). Fails on the first name that no
+    /// mesh has, listing the names there are.
+    pub fn named<S: AsRef<str>>(wanted: &[S], meshes: &[&str]) -> Result<Parts, ObjectiveError> {
+        let mut ids = Vec::with_capacity(wanted.len());
+        for name in wanted {
+            let name = name.as_ref();
+            let Some(i) = meshes.iter().position(|&m| m == name) else {
+                return Err(ObjectiveError::UnknownPart {
+                    name: name.to_owned(),
+                    meshes: listing(meshes),
+                });
+            };
+            ids.push(MeshId(i as u32));
+        }
+        Ok(Parts::from_ids(ids))
+    }
+
+    /// The meshes of `meshes` named `wanted`; see [`named`](Self::named).
+    pub fn bound<S: AsRef<str>>(
+        wanted: &[S],
+        meshes: &BoundMeshes,
+    ) -> Result<Parts, ObjectiveError> {
+        let names: Vec<&str> = meshes.iter().map(|(_, name, _)| name).collect();
+        Parts::named(wanted, &names)
+    }
+
+    /// Whether mesh `id` is in the set.
+    #[inline]
+    pub fn contains(&self, MeshId(id): MeshId) -> bool {
+        self.mask
+            .get(id as usize / 64)
+            .is_some_and(|word| word & (1 << (id % 64)) != 0)
+    }
+
+    /// The meshes of the set, in id order.
+    pub fn ids(&self) -> impl Iterator<Item = MeshId> + '_ {
+        self.mask.iter().enumerate().flat_map(|(w, &word)| {
+            (0..64)
+                .filter(move |bit| word & (1 << bit) != 0)
+                .map(move |bit| MeshId(w as u32 * 64 + bit))
+        })
+    }
+
+    /// Whether the set has no mesh.
+    pub fn is_empty(&self) -> bool {
+        self.mask.iter().all(|&word| word == 0)
+    }
+
+    /// Whether every mesh of `self` is in `other`.
+    pub fn is_subset(&self, other: &Parts) -> bool {
+        self.mask
+            .iter()
+            .enumerate()
+            .all(|(w, &word)| word & !other.mask.get(w).copied().unwrap_or(0) == 0)
+    }
+}
+
+/// `` `a`, `b` and `c` ``.
+fn listing(names: &[&str]) -> String {
+    let quoted: Vec<String> = names.iter().map(|n| format!("`{n}`")).collect();
+    match quoted.split_last() {
+        None => "none".to_owned(),
+        Some((last, [])) => last.clone(),
+        Some((last, rest)) => format!("{} and {last}", rest.join(", ")),
+    }
+}
+
+/// The area of triangle `t`, in `f64`.
+#[inline]
+fn area(t: &[Vec3; 3]) -> f64 {
+    let [a, b, c] = t.map(|p| p.as_dvec3());
+    0.5 * (b - a).cross(c - a).length()
+}
+
+/// `|share - target|`, `share` the area of the triangles of `parts` (and of `of`) over
+/// that of the triangles of `of` (all triangles when `None`), 0 when that is 0.
+pub(super) fn area_share(surface: &Surface, parts: &Parts, of: Option<&Parts>, target: f32) -> f64 {
+    let (mut part, mut whole) = (0.0, 0.0);
+    for (t, &mesh) in surface.triangles().iter().zip(surface.mesh_ids()) {
+        if of.is_some_and(|of| !of.contains(mesh)) {
+            continue;
+        }
+        let a = area(t);
+        whole += a;
+        if parts.contains(mesh) {
+            part += a;
+        }
+    }
+    let share = if whole > 0.0 { part / whole } else { 0.0 };
+    (share - f64::from(target)).abs()
+}
+
+/// `|mean - target_deg|`, `mean` the area-weighted mean pitch, in degrees, of the
+/// triangles of `parts` whose unit normal's `y` is above [`MIN_UPWARD_Y`], 0 when there
+/// is none.
+pub(super) fn roof_pitch(surface: &Surface, parts: &Parts, target_deg: f32) -> f64 {
+    let (mut weighted, mut total) = (0.0, 0.0);
+    let triangles = surface.triangles().iter().zip(surface.normals());
+    for ((t, n), &mesh) in triangles.zip(surface.mesh_ids()) {
+        if n.y <= MIN_UPWARD_Y || !parts.contains(mesh) {
+            continue;
+        }
+        let a = area(t);
+        weighted += a * pitch_deg(n.as_dvec3());
+        total += a;
+    }
+    let mean = if total > 0.0 { weighted / total } else { 0.0 };
+    (mean - f64::from(target_deg)).abs()
+}
+
+/// The angle in degrees between the plane of unit normal `n` and the horizontal:
+/// `atan2(|(n.x, n.z)|, n.y)`.
+#[inline]
+fn pitch_deg(n: DVec3) -> f64 {
+    n.x.hypot(n.z).atan2(n.y).to_degrees()
+}
