@@ -156,8 +156,12 @@ fn lot_mistakes_are_refused() {
         "lot.points",
         "at least 3 distinct points not all on one line",
     );
-    fixture.refuses("[lot]\npoints = [[0, 0, 1]]", "lot", "");
-    fixture.refuses("[lot]\nwidth = 3", "lot", "unknown field `width`");
+    fixture.refuses(
+        "[lot]\npoints = [[0, 0, 1]]",
+        "lot.points[0]",
+        "[0.0, 0.0, 1.0] has 3 numbers; a point is [x, y]",
+    );
+    fixture.refuses("[lot]\nwidth = 3", "width", "unknown field `width`");
     fixture.refuses(
         "[lot]\ngeojson = \"missing.geojson\"",
         "lot.geojson",

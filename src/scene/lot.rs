@@ -18,7 +18,7 @@ use super::resolve::Resolver;
 #[serde(deny_unknown_fields)]
 pub(super) struct LotFile {
     /// The outline's points, `[x, y]` with `y` north, in either orientation.
-    points: Option<Vec<[f64; 2]>>,
+    points: Option<Vec<Vec<f64>>>,
     /// A GeoJSON file, relative to the scene's folder, holding one polygon.
     geojson: Option<String>,
 }
@@ -74,10 +74,20 @@ impl Resolver<'_> {
     /// The site of a scene's `[lot]` table.
     pub(super) fn lot(&self, lot: &LotFile) -> Result<Site, SceneError> {
         let (key, points) = match (&lot.points, &lot.geojson) {
-            (Some(points), None) => (
-                "lot.points",
-                points.iter().map(|&[x, y]| DVec2::new(x, y)).collect(),
-            ),
+            (Some(points), None) => {
+                let points = points
+                    .iter()
+                    .enumerate()
+                    .map(|(i, p)| match p[..] {
+                        [x, y] => Ok(DVec2::new(x, y)),
+                        _ => Err(self.invalid(
+                            format!("lot.points[{i}]"),
+                            format!("{p:?} has {} numbers; a point is [x, y]", p.len()),
+                        )),
+                    })
+                    .collect::<Result<_, _>>()?;
+                ("lot.points", points)
+            }
             (None, Some(written)) => {
                 let path = self.file("lot.geojson", written)?;
                 let ring = read_geojson(&path).map_err(|err| self.refused("lot.geojson", err))?;
