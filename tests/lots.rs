@@ -87,11 +87,13 @@ fn extent(instances: &[Instance]) -> (f32, f32, f32, f32) {
         (f32::MAX, f32::MIN, f32::MAX, f32::MIN),
         |(x0, x1, z0, z1), i| {
             let t = i.transform;
-            let corners = [glam::Vec3::ZERO, glam::Vec3::X, glam::Vec3::Y]
-                .map(|p| t.transform_point3(p));
-            corners.iter().fold((x0, x1, z0, z1), |(x0, x1, z0, z1), p| {
-                (x0.min(p.x), x1.max(p.x), z0.min(p.z), z1.max(p.z))
-            })
+            let corners =
+                [glam::Vec3::ZERO, glam::Vec3::X, glam::Vec3::Y].map(|p| t.transform_point3(p));
+            corners
+                .iter()
+                .fold((x0, x1, z0, z1), |(x0, x1, z0, z1), p| {
+                    (x0.min(p.x), x1.max(p.x), z0.min(p.z), z1.max(p.z))
+                })
         },
     )
 }
@@ -113,7 +115,11 @@ fn a_lot_of_points_or_geojson_is_the_footprint_built_on() {
     let (x0, x1, z0, z1) = extent(&instances);
     assert_eq!((x0, x1, z0, z1), (-8.0, 8.0, -6.0, 6.0));
     block(6.0).derive_into(&mut instances);
-    assert_eq!(extent(&instances), (-5.0, 5.0, -5.0, 5.0), "the default lot");
+    assert_eq!(
+        extent(&instances),
+        (-5.0, 5.0, -5.0, 5.0),
+        "the default lot"
+    );
 
     // No lot: the site has none.
     assert!(fixture.load("").unwrap().site.lot().is_none());
@@ -127,8 +133,7 @@ fn evaluators_build_on_the_scene_s_lot() {
     let measure = |scene: &Scene| {
         let mut evaluator = ObjectiveEvaluator::new::<LotBuilding>(scene).unwrap();
         let mut value = [0.0];
-        MultiEvaluator::<LotBuilding>::evaluate(&mut evaluator, &[block(5.0)], &mut value)
-            .unwrap();
+        MultiEvaluator::<LotBuilding>::evaluate(&mut evaluator, &[block(5.0)], &mut value).unwrap();
         value[0]
     };
     // The extent beyond the point (0, 0): the L's 8 + 8 + 6 + 6, the square's 4 x 5.
@@ -167,7 +172,10 @@ fn lot_mistakes_are_refused() {
         "lot.geojson",
         "is not a file",
     );
-    fixture.write("broken.geojson", "{\"type\": \"Polygon\", \"coordinates\": [[[0, 0]");
+    fixture.write(
+        "broken.geojson",
+        "{\"type\": \"Polygon\", \"coordinates\": [[[0, 0]",
+    );
     fixture.refuses(
         "[lot]\ngeojson = \"broken.geojson\"",
         "lot.geojson",

@@ -1,9 +1,12 @@
 //! The scope operations as grammar rules see them, through [`Shape`].
 
-use glam::vec3;
+use glam::{vec2, vec3};
 
 use super::{Derivation, GeneView, Grammar, Shape, Site};
-use crate::geometry::{Axis, Face, Instance, MeshId, Part, RoofMeshes, RoofShape};
+use crate::geometry::closed::{assert_watertight, signed_volume};
+use crate::geometry::{
+    Axis, Face, Instance, Margins, MeshId, Part, Polygon, RoofMeshes, RoofShape,
+};
 use crate::graph::{GeneratorGraph, NodeDesc};
 
 /// A one-node grammar whose rule builds a small house: walls cut into a ground floor
@@ -142,5 +145,76 @@ fn shapes_put_roofs_on_their_tops() {
         middle
             .transform_vector3(glam::Vec3::ONE)
             .abs_diff_eq(vec3(4.0, h, 6.0), 1e-6)
+    );
+}
+
+/// A one-node grammar whose rule builds a 12 x 9 x 8 block from its walls and caps,
+/// its front split into three floors of four tiles, each inset as a window, one as a
+/// door.
+struct Block;
+
+static BLOCK: GeneratorGraph = GeneratorGraph {
+    name: "Block",
+    key: "block",
+    axiom: 0,
+    nodes: &[NodeDesc {
+        name: "Block",
+        params: &[],
+        slots: &[],
+        links: 0,
+        param_words: 0,
+    }],
+    meshes: &["cube", "wall", "window"],
+};
+
+impl Grammar for Block {
+    const GRAPH: &'static GeneratorGraph = &BLOCK;
+
+    fn derive_gene<'a>(shape: Shape<'a, Self>, _gene: GeneView<'a>) {
+        let footprint = Polygon::rectangle(vec2(12.0, 8.0)).unwrap();
+        let block = shape
+            .translate(vec3(3.0, 4.5, -2.0))
+            .rotate_y(0.6)
+            .with_size(vec3(12.0, 9.0, 8.0));
+        let (wall, window) = (MeshId(1), MeshId(2));
+        for (face, side) in block.walls(&footprint, 9.0) {
+            if face != Face::Front {
+                assert_eq!(side.emit_rect(wall), 2);
+                continue;
+            }
+            for (floor, level) in side.repeat(Axis::Y, 3.0).enumerate() {
+                for (k, tile) in level.repeat(Axis::X, 3.0).enumerate() {
+                    assert_eq!(tile.size(), vec3(3.0, 3.0, 0.0));
+                    let margins = if floor == 0 && k == 1 {
+                        Margins::door(0.8, 0.6)
+                    } else {
+                        Margins::new(0.75, 0.75, 0.8, 0.6)
+                    };
+                    let inset = tile.inset(margins, 0.25).unwrap();
+                    for part in inset.frame.into_iter().chain(inset.reveals) {
+                        part.emit_rect(wall);
+                    }
+                    inset.opening.emit_rect(window);
+                }
+            }
+        }
+        assert_eq!(block.top_cap(&footprint, 9.0, wall), 2);
+        assert_eq!(block.bottom_cap(&footprint, wall), 2);
+        assert!(block.inset(Margins::uniform(7.0), 0.1).is_none());
+    }
+}
+
+#[test]
+fn shapes_build_a_closed_facade() {
+    let mut out: Vec<Instance> = Vec::new();
+    Derivation::run::<Block>(&[0, 0], &Site::NONE, &mut out);
+    assert_eq!(out.iter().filter(|i| i.mesh == MeshId(2)).count(), 12 * 2);
+    assert_watertight(&out);
+    // Eleven windows 1.5 x 1.6 and a door 1.4 x 2.4, 0.25 deep.
+    let recesses = 0.25 * (11.0 * 1.5 * 1.6 + 1.4 * 2.4);
+    let volume = signed_volume(&out);
+    assert!(
+        (volume - (12.0 * 8.0 * 9.0 - recesses)).abs() < 1e-3,
+        "{volume}"
     );
 }

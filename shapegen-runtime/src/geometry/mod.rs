@@ -3,7 +3,7 @@
 //! facets.
 
 #[cfg(test)]
-mod closed;
+pub(crate) mod closed;
 mod comp;
 mod facade;
 mod face;
