@@ -1,10 +1,16 @@
-//! Evolves buildings against three objectives at once: the project's
-//! `scenes/building.toml` asks for a footprint seen from above and a silhouette seen from
-//! the front (both of one building of the project's CGA-style generator) and for as many
-//! distinct facets as possible. The multi-objective GA (Pareto ranking with crowding, a
-//! penalty for clones) runs 60 generations of 300, or the time budget if that comes
-//! first, and keeps every non-dominated building it finds: the whole trade-off, not one
-//! weighted compromise.
+//! Evolves roofed buildings on an L-shaped lot: the project's `scenes/lot_building.toml`,
+//! whose lot is `scenes/lots/l_lot.geojson`. Its four objectives ask for a footprint
+//! seen from above and a silhouette seen from the front (both of one building of the lot
+//! building generator on that lot), a window-to-wall ratio near 0.35 and roofs pitched
+//! near 35 degrees. The multi-objective GA (Pareto ranking with crowding, a penalty for
+//! clones) runs the scene's generations, or the time budget if that comes first, and
+//! keeps every non-dominated building it finds.
+//!
+//! It writes `out/building`: `front.csv` (each front member's objective values),
+//! `contact_sheet.png` (the front's buildings, in the csv's order, through one camera),
+//! `front_NNN.glb`, and the building whose footprint and front silhouette match best as
+//! `best.obj` (with `best.mtl`), `best.glb` and `best.png`, with separate `wall`, `roof`,
+//! `window`, `door` and `slab` materials.
 //!
 //! ```sh
 //! cargo run --release --example building          # writes out/building
@@ -15,8 +21,8 @@ use std::path::Path;
 use std::time::Duration;
 
 use anyhow::Context;
-use generators::Building;
-use shapegen::export::{Palette, Preview, save_glb};
+use generators::LotBuilding;
+use shapegen::export::{ContactSheet, ExportError, Palette, Preview, save_glb, save_obj};
 use shapegen::optimize::Control;
 use shapegen::optimize::multi::{MultiGa, MultiSnapshot};
 use shapegen::optimize::{Optimizer, Settings};
@@ -33,9 +39,11 @@ fn main() -> anyhow::Result<()> {
     let out = root.join("out/building");
     std::fs::create_dir_all(&out)?;
 
-    // The goal: the scene's objectives, measured on whole populations.
-    let scene = Scene::load(root.join("scenes/building.toml"))?;
-    let mut evaluator = ObjectiveEvaluator::new::<Building>(&scene)?;
+    // The goal: the lot and the scene's objectives, measured on whole populations.
+    let scene = Scene::load(root.join("scenes/lot_building.toml"))?;
+    let lot = scene.site.lot().context("the scene has a lot")?;
+    println!("lot: {} corners, {:.0} m2", lot.len(), lot.area());
+    let mut evaluator = ObjectiveEvaluator::new::<LotBuilding>(&scene)?;
     let names: Vec<&str> = evaluator.set().names().collect();
     println!("objectives: {}", names.join(", "));
 
@@ -45,8 +53,8 @@ fn main() -> anyhow::Result<()> {
         .ga
         .budget()
         .and_wall_time(Duration::from_secs(seconds));
-    let mut ga = MultiGa::<Building>::new(settings, scene.limits, scene.optimizer.seed)?;
-    let mut progress = |s: &MultiSnapshot<'_, Building>| {
+    let mut ga = MultiGa::<LotBuilding>::new(settings, scene.limits, scene.optimizer.seed)?;
+    let mut progress = |s: &MultiSnapshot<'_, LotBuilding>| {
         if s.generation.is_multiple_of(10) {
             let best: Vec<String> = names
                 .iter()
@@ -71,29 +79,62 @@ fn main() -> anyhow::Result<()> {
         result.evaluations
     );
 
-    // What was found: every building of the front as a model and a shaded picture,
-    // named by its objective values.
+    // What was found: every building of the front, built on the lot, as a model, in a
+    // contact sheet, and in a table of its objective values.
     let meshes = evaluator.meshes();
     let palette = Palette::new();
-    let mut instances = Vec::new();
+    let models: Vec<Vec<_>> = result
+        .front
+        .iter()
+        .map(|member| {
+            let mut instances = Vec::new();
+            member.genome.derive_on(&scene.site, &mut instances);
+            instances
+        })
+        .collect();
     let mut csv = format!("model,{}\n", names.join(","));
-    for (i, member) in result.front.iter().enumerate() {
-        member.genome.derive_into(&mut instances);
+    for (i, (member, instances)) in result.front.iter().zip(&models).enumerate() {
         save_glb(
             out.join(format!("front_{i:03}.glb")),
-            &instances,
+            instances,
             meshes,
             &palette,
         )?;
-        Preview::framing(&instances, meshes, 400, 400)
-            .render(&instances, meshes, &palette)?
-            .save(out.join(format!("front_{i:03}.png")))?;
         let values: Vec<String> = member.values.iter().map(|v| format!("{v}")).collect();
         csv += &format!("{i},{}\n", values.join(","));
     }
     std::fs::write(out.join("front.csv"), csv)?;
+    ContactSheet {
+        cell: 200,
+        columns: 8,
+    }
+    .render(&models, meshes, &palette, |_, _| Ok::<_, ExportError>(()))?
+    .save(out.join("contact_sheet.png"))?;
+
+    // The building whose footprint and front silhouette match best (the largest mean of
+    // the two matches), with a material per part.
+    let matches: Vec<usize> = ["top", "front"]
+        .iter()
+        .filter_map(|n| names.iter().position(|m| m == n))
+        .collect();
+    let score = |values: &[f64]| matches.iter().map(|&k| values[k]).sum::<f64>();
+    let best = (0..models.len())
+        .max_by(|&a, &b| score(&result.front[a].values).total_cmp(&score(&result.front[b].values)))
+        .context("the front holds a building")?;
+    let instances = &models[best];
+    save_obj(out.join("best"), instances, meshes, &palette)?;
+    save_glb(out.join("best.glb"), instances, meshes, &palette)?;
+    Preview::framing(instances, meshes, 800, 600)
+        .render(instances, meshes, &palette)?
+        .save(out.join("best.png"))?;
+    let values: Vec<String> = names
+        .iter()
+        .zip(&result.front[best].values)
+        .map(|(n, v)| format!("{n} {v:.3}"))
+        .collect();
+    println!("best match: front member {best}, {}", values.join(", "));
     println!(
-        "wrote front_NNN.glb, front_NNN.png and front.csv to {}",
+        "wrote front.csv, contact_sheet.png, front_NNN.glb and best.obj/.mtl/.glb/.png to {}",
         out.display()
     );
     Ok(())

@@ -76,7 +76,11 @@ impl Fixture {
 /// A one-storey building of `height` with plain walls and a flat roof.
 fn block(height: f32) -> Genome<LotBuilding> {
     use generators::lot_building::{Lot, Mass};
-    let mut g = Genome::<LotBuilding>::with_root(Lot {}).unwrap();
+    let lot = Lot {
+        front: 0.0,
+        sides: 0.0,
+    };
+    let mut g = Genome::<LotBuilding>::with_root(lot).unwrap();
     g.attach(0, "mass", Mass { height }).unwrap();
     g
 }

@@ -15,7 +15,7 @@
 //!
 //! | node | parameters | children | geometry |
 //! |---|---|---|---|
-//! | [`Lot`] | none | `mass` | the mass on the lot (a [`DEFAULT_HEIGHT`] block when absent) |
+//! | [`Lot`] | `front`, `sides` | `mass` | the lot set back by `front` from its edges facing the front and by `sides` from the others; the mass on it (a [`DEFAULT_HEIGHT`] block when absent) |
 //! | [`Mass`] | `height` | `front`, `sides`, `roof`, `upper` | the footprint extruded by `height`; `front` dresses the walls facing `+z`, `sides` the others (plain walls when absent); `upper` stands on top, else `roof`, else a flat roof |
 //! | [`Setback`] | `depth` | `mass` | the footprint moved inward by `depth`; nothing where the lot is too narrow for it |
 //! | [`Roof`] | `shape`, `pitch`, `overhang` | none | a flat, shed, gable, hip or pyramid roof over the footprint |
@@ -35,7 +35,8 @@
 //!     vec2(-8.0, -6.0), vec2(8.0, -6.0), vec2(8.0, 0.0),
 //!     vec2(0.0, 0.0), vec2(0.0, 6.0), vec2(-8.0, 6.0),
 //! ])?;
-//! let mut g = Genome::<LotBuilding>::with_root(lot_building::Lot {})?;
+//! let lot = lot_building::Lot { front: 0.0, sides: 0.0 };
+//! let mut g = Genome::<LotBuilding>::with_root(lot)?;
 //! let mass = g.attach(0, "mass", lot_building::Mass { height: 9.0 })?;
 //! let facade = lot_building::Facade { floor_height: 3.0, tile_width: 2.0 };
 //! let front = g.attach(mass, "front", facade)?;
@@ -101,8 +102,17 @@ generator! {
             SLAB = "slab",
         }
 
-        /// The axiom: the site's lot, or [`DEFAULT_LOT`].
+        /// The axiom: the site's lot, or [`DEFAULT_LOT`], set back from the street: the
+        /// building's footprint is the lot with its edges facing the front (`+z`) moved
+        /// inward by `front` and the others by `sides` (the whole lot where that leaves
+        /// no polygon of the same edges).
         node Lot {
+            params {
+                /// The setback from the edges facing the front.
+                front: f32 ~ uniform(0.0, 4.0),
+                /// The setback from the other edges.
+                sides: f32 ~ uniform(0.0, 2.0),
+            }
             children {
                 /// The ground storey.
                 mass: Mass = 1.0,
@@ -111,10 +121,14 @@ generator! {
                 let lot: &Polygon = s.site().lot().unwrap_or(&DEFAULT_LOT);
                 // A flat box on the ground: the footprint lies on its bottom face.
                 let ground = s.with_size(Vec3::ZERO).on_footprint(lot);
+                let ground = ground
+                    .setback_edges(|i| if faces_front(lot, i) { front } else { sides })
+                    .unwrap_or(ground);
+                let footprint = ground.footprint().unwrap_or(lot);
                 match mass {
                     Some(mass) => ground.derive(mass),
                     None => {
-                        ground.extrude_polygon(lot, DEFAULT_HEIGHT, WALL);
+                        ground.extrude_polygon(footprint, DEFAULT_HEIGHT, WALL);
                     }
                 }
             }
@@ -283,6 +297,14 @@ generator! {
             }
         }
     }
+}
+
+/// Whether edge `i` of `footprint` faces the front (`+z`, south in map coordinates):
+/// its outward normal is nearer `+z` than any other horizontal axis.
+fn faces_front(footprint: &Polygon, i: usize) -> bool {
+    // Map `y` is north, world `-z`: facing `+z` is an inward normal pointing north.
+    let inward = footprint.inward_normal(i);
+    inward.y >= inward.x.abs()
 }
 
 /// Emits the tile `s` with an opening of `margins` set back by `depth`, its wall parts

@@ -335,11 +335,24 @@ impl<'a, G: Grammar> Shape<'a, G> {
     }
 
     /// CGA's `setback` to the remainder: the same shape on its footprint with every
-    /// edge moved inward by `distance`, or `None` where the shape has no footprint or
-    /// the moved outline is no longer a polygon of the same edges (a part narrower than
-    /// twice the distance closes); see [`Polygon::offset`].
+    /// edge moved inward by `distance`, or `None` where the shape has no footprint, the
+    /// distance is not positive and finite, or the moved outline is no longer a polygon
+    /// of the same edges (a part narrower than twice the distance closes); see
+    /// [`Polygon::setback`].
     pub fn setback(self, distance: f32) -> Option<Self> {
+        if !(distance > 0.0 && distance.is_finite()) {
+            return None;
+        }
         let inner = self.footprint?.offset(-f64::from(distance))?;
+        Some(self.on_new_footprint(inner))
+    }
+
+    /// The same shape on its footprint with each edge `i` moved inward by its own
+    /// `distance(i)` (a street setback on the front, say), or `None` where the shape has
+    /// no footprint or the moved outline is not a polygon of the same edges; see
+    /// [`Polygon::offset_edges`].
+    pub fn setback_edges(self, distance: impl Fn(usize) -> f32) -> Option<Self> {
+        let inner = self.footprint?.offset_edges(|i| f64::from(distance(i)))?;
         Some(self.on_new_footprint(inner))
     }
 

@@ -5,9 +5,9 @@
 use std::path::Path;
 
 use anyhow::Context;
-use image::{Rgb, RgbImage};
+use image::Rgb;
 use serde::Serialize;
-use shapegen::export::{Palette, Preview, glb_bytes};
+use shapegen::export::{ContactSheet, Palette, glb_bytes};
 use shapegen::genome::GenomeSet;
 use shapegen::optimize::Optimizer;
 use shapegen::optimize::multi::{
@@ -401,26 +401,14 @@ impl Outputs<'_> {
                 (i, instances)
             })
             .collect();
-        let all: Vec<Instance> = shown.iter().flat_map(|(_, v)| v.iter().copied()).collect();
-        let preview = Preview::framing(&all, &self.meshes, SHEET_CELL, SHEET_CELL);
-        let columns = shown.len().clamp(1, SHEET_COLUMNS);
-        let rows = shown.len().div_ceil(columns).max(1);
-        let mut sheet = RgbImage::from_pixel(
-            SHEET_CELL * columns as u32,
-            SHEET_CELL * rows as u32,
-            Rgb([255, 255, 255]),
-        );
-        for (k, (i, instances)) in shown.iter().enumerate() {
-            let mut cell = preview.render(instances, &self.meshes, &self.palette)?;
-            plot::label(&mut cell, &i.to_string())?;
-            let (x, y) = ((k % columns) as u32, (k / columns) as u32);
-            image::imageops::replace(
-                &mut sheet,
-                &cell,
-                i64::from(x * SHEET_CELL),
-                i64::from(y * SHEET_CELL),
-            );
+        let models: Vec<&[Instance]> = shown.iter().map(|(_, v)| v.as_slice()).collect();
+        let sheet = ContactSheet {
+            cell: SHEET_CELL,
+            columns: SHEET_COLUMNS,
         }
+        .render(&models, &self.meshes, &self.palette, |k, cell| {
+            plot::label(cell, &shown[k].0.to_string())
+        })?;
         save_png(&dir.join("contact_sheet.png"), &sheet)
     }
 

@@ -1,5 +1,5 @@
 //! Writing derived models to files: Wavefront OBJ with its MTL materials, binary glTF
-//! (`.glb`), and shaded [`Preview`] pictures.
+//! (`.glb`), and shaded [`Preview`] pictures, alone or side by side ([`ContactSheet`]).
 //!
 //! Both exporters bake every [`Instance`] into world space: positions through the
 //! instance's transform, normals through its inverse transpose (renormalized), and
@@ -15,6 +15,7 @@ mod glb;
 mod obj;
 mod palette;
 mod render;
+mod sheet;
 
 use std::path::PathBuf;
 
@@ -22,6 +23,7 @@ pub use glb::{glb_bytes, save_glb, write_glb};
 pub use obj::{save_obj, write_mtl, write_obj};
 pub use palette::Palette;
 pub use render::Preview;
+pub use sheet::ContactSheet;
 
 #[cfg(doc)]
 use crate::geometry::{Instance, MeshId};

@@ -23,12 +23,53 @@ impl Polygon {
         if distance == 0.0 {
             return Some(self.clone());
         }
-        let n = self.len();
-        let moved: Vec<DVec2> = (0..n)
+        let moved: Vec<DVec2> = (0..self.len())
             .map(|i| self.points()[i] - self.corner_velocity(i) * distance)
             .collect();
-        let out = Polygon::from_f64(&moved).ok()?;
-        // Same edges, none turned around.
+        self.moved_to(&moved)
+    }
+
+    /// The polygon with each edge `i` moved inward by its own `distance(i)` (CGA's
+    /// `setback` by edge: a street setback on the front, less on the sides), each corner
+    /// where its two moved edges meet; `None` when that outline is not simple, loses an
+    /// edge or turns one around, or a distance is not finite. A negative distance moves
+    /// its edge outward.
+    ///
+    /// ```
+    /// use glam::vec2;
+    /// use shapegen_runtime::geometry::Polygon;
+    ///
+    /// // A 10 x 6 lot, 2 back from the front edge (edge 0, along y = -3), 0.5 from the others.
+    /// let lot = Polygon::rectangle(vec2(10.0, 6.0))?;
+    /// let built = lot.offset_edges(|i| if i == 0 { 2.0 } else { 0.5 }).unwrap();
+    /// assert!((built.area() - 9.0 * 3.5).abs() < 1e-9);
+    /// assert!(lot.offset_edges(|i| if i == 0 { 6.0 } else { 0.0 }).is_none());
+    /// # Ok::<(), shapegen_runtime::geometry::PolygonError>(())
+    /// ```
+    pub fn offset_edges(&self, distance: impl Fn(usize) -> f64) -> Option<Polygon> {
+        let n = self.len();
+        let d: Vec<f64> = (0..n).map(distance).collect();
+        if d.iter().any(|d| !d.is_finite()) {
+            return None;
+        }
+        let moved: Vec<DVec2> = (0..n)
+            .map(|i| {
+                let before = (i + n - 1) % n;
+                let (a, b) = (self.inward_normal(before), self.inward_normal(i));
+                // The corner x - p with a . x = d[before] and b . x = d[i].
+                let det = a.perp_dot(b);
+                let x = DVec2::new(d[before] * b.y - d[i] * a.y, a.x * d[i] - b.x * d[before]);
+                self.points()[i] + x / det
+            })
+            .collect();
+        self.moved_to(&moved)
+    }
+
+    /// The polygon of `moved`, the polygon's points moved, where it keeps every edge the
+    /// same way round.
+    fn moved_to(&self, moved: &[DVec2]) -> Option<Polygon> {
+        let n = self.len();
+        let out = Polygon::from_f64(moved).ok()?;
         let kept = out.len() == n
             && (0..n).all(|i| {
                 let (a, b) = self.edge(i);
