@@ -299,6 +299,17 @@ generator! {
     }
 }
 
+/// How deep, at most `depth`, a recess may reach into a storey on `footprint` and stay
+/// inside it: the largest of `depth` and its halves (down to a 256th, else 0) by which
+/// every wall can move inward and leave a polygon of the same walls. A very thin storey
+/// gets shallow windows rather than windows that pierce the wall behind.
+fn deepest_recess(footprint: Option<&Polygon>, depth: f32) -> f32 {
+    footprint.map_or(depth, |f| {
+        let (reach, _) = f.offset_at_most(-f64::from(depth));
+        -reach as f32
+    })
+}
+
 /// Whether edge `i` of `footprint` faces the front (`+z`, south in map coordinates):
 /// its outward normal is nearer `+z` than any other horizontal axis.
 fn faces_front(footprint: &Polygon, i: usize) -> bool {
@@ -307,11 +318,11 @@ fn faces_front(footprint: &Polygon, i: usize) -> bool {
     inward.y >= inward.x.abs()
 }
 
-/// Emits the tile `s` with an opening of `margins` set back by `depth`, its wall parts
-/// as [`WALL`] and the opening as `pane`; a plain wall where the margins leave no
-/// opening.
+/// Emits the tile `s` with an opening of `margins` set back by `depth` (less where the
+/// storey is too thin for it: see [`deepest_recess`]), its wall parts as [`WALL`] and
+/// the opening as `pane`; a plain wall where the margins leave no opening.
 fn opening(s: Shape<'_, LotBuilding>, margins: Margins, depth: f32, pane: MeshId) {
-    match s.inset(margins, depth) {
+    match s.inset(margins, depth.min(deepest_recess(s.footprint(), depth))) {
         Some(inset) => {
             for part in inset.frame.iter().chain(&inset.reveals) {
                 part.emit_rect(WALL);

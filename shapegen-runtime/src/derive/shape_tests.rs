@@ -3,7 +3,7 @@
 use glam::{vec2, vec3};
 
 use super::{Derivation, GeneView, Grammar, Shape, Site};
-use crate::geometry::closed::{assert_watertight, signed_volume};
+use crate::geometry::closed::tests::{assert_watertight, volume as signed_volume};
 use crate::geometry::{
     Axis, Face, Instance, Margins, MeshId, Part, Polygon, RoofMeshes, RoofShape,
 };

@@ -201,7 +201,7 @@ mod tests {
     use glam::{Affine3A, DVec2, Quat};
 
     use super::super::Axis;
-    use super::super::closed::{assert_watertight, signed_volume};
+    use super::super::closed::tests::{assert_watertight, volume as signed_volume};
     use super::*;
 
     const FACET: MeshId = MeshId(1);

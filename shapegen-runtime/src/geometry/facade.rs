@@ -275,7 +275,7 @@ impl Scope {
 mod tests {
     use glam::{Affine3A, Quat, vec2};
 
-    use super::super::closed::{assert_watertight, signed_volume};
+    use super::super::closed::tests::{assert_watertight, volume as signed_volume};
     use super::super::{Axis, Face, Polygon};
     use super::*;
 

@@ -2,7 +2,6 @@
 //! polygons, prisms and roofs that rules build as geometry of their own, placed as
 //! facets.
 
-#[cfg(test)]
 pub(crate) mod closed;
 mod comp;
 mod facade;
@@ -21,6 +20,7 @@ mod solid;
 
 mod split;
 
+pub use closed::{OpenEdge, facet_triangles, open_edges, signed_volume};
 pub use comp::Walls;
 pub use facade::{Inset, Margins};
 pub use face::{Face, Faces};
