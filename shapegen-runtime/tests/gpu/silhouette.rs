@@ -30,6 +30,10 @@ pub const TESTS: &[GpuTest] = &[
         gpu_matches_cpu_on_generated_facets,
     ),
     (
+        "silhouette::gpu_matches_cpu_on_lot_buildings",
+        gpu_matches_cpu_on_lot_buildings,
+    ),
+    (
         "silhouette::gpu_matches_cpu_on_random_trees",
         gpu_matches_cpu_on_random_trees,
     ),
@@ -191,6 +195,39 @@ fn gpu_matches_cpu_on_generated_facets(gpu: &GpuContext) {
     let facets: usize = (0..batch.len()).map(|m| batch.model(m).len()).sum();
     assert!(facets > 2000, "{facets} instances");
     let scorer = SilhouetteScorer::new(vec![front_target()], &meshes(), SMOOTH).unwrap();
+    compare_on_gpu(gpu, &scorer, &batch);
+}
+
+/// Buildings on an L-shaped lot, their walls, windows, doors and roofs all generated
+/// facets: a site's lot reaches the GPU through the batch as it reaches the CPU.
+fn gpu_matches_cpu_on_lot_buildings(gpu: &GpuContext) {
+    use generators::lot_building::{LIMITS, LotBuilding};
+    use rand::SeedableRng;
+    use shapegen_runtime::geometry::Polygon;
+    use shapegen_runtime::{Operators, Site};
+
+    let l = Polygon::new([
+        glam::vec2(-8.0, -6.0),
+        glam::vec2(8.0, -6.0),
+        glam::vec2(8.0, 0.0),
+        glam::vec2(0.0, 0.0),
+        glam::vec2(0.0, 6.0),
+        glam::vec2(-8.0, 6.0),
+    ])
+    .unwrap();
+    let mut ops = Operators::<LotBuilding>::new(LIMITS).unwrap();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(41);
+    let mut batch = InstanceBatch::new().on_site(Site::with_lot(l));
+    for _ in 0..30 {
+        batch.push_genome(&ops.random(30, &mut rng));
+    }
+    let facets: usize = (0..batch.len()).map(|m| batch.model(m).len()).sum();
+    assert!(facets > 10_000, "{facets} instances");
+    let meshes = generators::default_meshes()
+        .bind(LotBuilding::GRAPH)
+        .unwrap();
+    let target = crate::support::pavilions::front_target();
+    let scorer = SilhouetteScorer::new(vec![target], &meshes, SMOOTH).unwrap();
     compare_on_gpu(gpu, &scorer, &batch);
 }
 
