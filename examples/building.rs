@@ -7,7 +7,8 @@
 //! keeps every non-dominated building it finds.
 //!
 //! It writes `out/building`: `front.csv` (each front member's objective values),
-//! `contact_sheet.png` (the front's buildings, in the csv's order, through one camera),
+//! `contact_sheet.png` (up to 24 of the front's buildings, evenly thinned, in the csv's
+//! order, through one camera),
 //! `front_NNN.glb`, and the building whose footprint and front silhouette match best as
 //! `best.obj` (with `best.mtl`), `best.glb` and `best.png`, with separate `wall`, `roof`,
 //! `window`, `door` and `slab` materials.
@@ -104,11 +105,14 @@ fn main() -> anyhow::Result<()> {
         csv += &format!("{i},{}\n", values.join(","));
     }
     std::fs::write(out.join("front.csv"), csv)?;
+    // At most 24 of them, evenly thinned, in the csv's order.
+    let step = models.len().div_ceil(24).max(1);
+    let shown: Vec<&Vec<_>> = models.iter().step_by(step).collect();
     ContactSheet {
         cell: 200,
         columns: 8,
     }
-    .render(&models, meshes, &palette, |_, _| Ok::<_, ExportError>(()))?
+    .render(&shown, meshes, &palette, |_, _| Ok::<_, ExportError>(()))?
     .save(out.join("contact_sheet.png"))?;
 
     // The building whose footprint and front silhouette match best (the largest mean of

@@ -6,8 +6,14 @@
 //!
 //! ```toml
 //! generator = "spaceship"            # a registered generator: spaceship, tree, city,
-//!                                    # building, roofed_building, or one of your own
-//!                                    # (shapegen::registry)
+//!                                    # building, roofed_building, lot_building, or one
+//!                                    # of your own (shapegen::registry)
+//!
+//! [lot]                              # optional: the site a building generator builds on
+//! points = [[-8, -6], [8, -6], [8, 0], [0, 0], [0, 6], [-8, 6]]   # [x, y], y north
+//! # geojson = "lots/l_lot.geojson"   # or: a GeoJSON file holding one Polygon (no holes)
+//!                                    # any simple polygon, either orientation; laid on
+//!                                    # the ground as x = x, z = -y (see Site)
 //!
 //! [meshes]                           # optional: replace or add meshes by name
 //! cube = "meshes/cube.obj"           # normalized to unit extent, as the original does
