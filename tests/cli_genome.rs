@@ -147,7 +147,7 @@ fn convert_explains_its_mistakes() {
         err.trim(),
         format!(
             "error: `{}`: unknown generator `Rocket`; the generators are spaceship, tree, city, \
-             building and roofed_building",
+             building, roofed_building and lot_building",
             rocket.display()
         )
     );
@@ -478,7 +478,7 @@ fn export_explains_its_mistakes() {
     assert!(
         err.contains(
             "error: unknown generator `rocket`; the generators are spaceship, tree, city, \
-             building and roofed_building"
+             building, roofed_building and lot_building"
         ),
         "{err}"
     );

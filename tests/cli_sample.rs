@@ -127,7 +127,7 @@ fn bad_input_is_refused_with_a_clear_message() {
     let cases: [(&[&str], &str); 4] = [
         (
             &["sample", "-g", "house", "-o", out],
-            "unknown generator `house`; the generators are spaceship, tree, city, building and roofed_building",
+            "unknown generator `house`; the generators are spaceship, tree, city, building, roofed_building and lot_building",
         ),
         (
             &["sample", "-g", "tree", "--max-depth", "0", "-o", out],

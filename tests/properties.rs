@@ -23,12 +23,14 @@ fn rng(seed: u64) -> ChaCha8Rng {
     ChaCha8Rng::seed_from_u64(seed)
 }
 
-/// The GA's initial genome length in the paper's settings for each generator.
+/// The GA's initial genome length in the paper's settings for each generator (for the
+/// lot building, which has none, its scene's optimal length).
 fn paper_initial_len(g: Published) -> u32 {
     match g {
         Published::Spaceship => 50,
         Published::Tree => 250,
         Published::City | Published::Building | Published::RoofedBuilding => 50,
+        Published::LotBuilding => 40,
     }
 }
 

@@ -6,9 +6,12 @@ use std::path::{Path, PathBuf};
 
 use shapegen::scene::{Scene, SceneError, ScorerGoal};
 
+#[path = "scene/lots.rs"]
+mod lots;
+
 /// A folder with a target mesh (`cube.obj`), an 8 x 6 target image (`target.png`) and
 /// whatever scene text a test writes.
-struct Fixture {
+pub(crate) struct Fixture {
     dir: tempfile::TempDir,
 }
 
@@ -129,7 +132,7 @@ fn unknown_generators_are_refused() {
     fixture.refuses(
         &text,
         "generator",
-        "spaceship, tree, city, building and roofed_building",
+        "spaceship, tree, city, building, roofed_building and lot_building",
     );
 }
 

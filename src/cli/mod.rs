@@ -76,8 +76,8 @@ impl Cli {
         Cli::default()
     }
 
-    /// Adds the published generators: `spaceship`, `tree`, `city`, `building` and
-    /// `roofed_building`, with their meshes and the original's settings
+    /// Adds the published generators: `spaceship`, `tree`, `city`, `building`,
+    /// `roofed_building` and `lot_building`, with their meshes and the original's settings
     /// ([`Registry::published`](crate::registry::Registry::published)).
     pub fn published(mut self) -> Cli {
         if let Err(err) = add_published(&mut self.generators) {

@@ -3,12 +3,14 @@
 //! the key and the reason.
 
 use std::fs;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use generators::LotBuilding;
 use shapegen::optimize::multi::MultiEvaluator;
 use shapegen::scene::{ObjectiveEvaluator, Scene, SceneError};
 use shapegen::{Genome, Grammar, Instance};
+
+use super::Fixture;
 
 /// A scene of the lot building measuring the models' height, with `lot` as its `[lot]`
 /// table.
@@ -36,41 +38,19 @@ const L_GEOJSON: &str = r#"{"type": "Feature", "properties": {"name": "L"},
   "geometry": {"type": "Polygon",
     "coordinates": [[[-8, -6], [8, -6], [8, 0], [0, 0], [0, 6], [-8, 6], [-8, -6]]]}}"#;
 
-struct Fixture {
-    dir: tempfile::TempDir,
+/// The scene of [`scene_text`] with `lot`, in `fixture`'s folder.
+fn load(fixture: &Fixture, lot: &str) -> Result<Scene, SceneError> {
+    fixture.load(&scene_text(lot))
 }
 
-impl Fixture {
-    fn new() -> Fixture {
-        Fixture {
-            dir: tempfile::tempdir().unwrap(),
-        }
-    }
+/// Loads the scene with `lot`, expecting an error about `key` that says `reason`.
+fn refuses(fixture: &Fixture, lot: &str, key: &str, reason: &str) {
+    fixture.refuses(&scene_text(lot), key, reason);
+}
 
-    fn path(&self) -> PathBuf {
-        self.dir.path().join("scene.toml")
-    }
-
-    fn write(&self, name: &str, text: &str) {
-        fs::write(self.dir.path().join(name), text).unwrap();
-    }
-
-    fn load(&self, lot: &str) -> Result<Scene, SceneError> {
-        fs::write(self.path(), scene_text(lot)).unwrap();
-        Scene::load(self.path())
-    }
-
-    /// Loads a scene with `lot`, expecting an error about `key` that says `reason`.
-    fn refuses(&self, lot: &str, key: &str, reason: &str) {
-        let err = self.load(lot).expect_err("the scene must be refused");
-        let message = err.to_string();
-        assert!(
-            message.contains(&self.path().display().to_string()),
-            "names the file: {message}"
-        );
-        assert!(message.contains(key), "names `{key}`: {message}");
-        assert!(message.contains(reason), "says `{reason}`: {message}");
-    }
+/// Writes `text` to the file `name` in `fixture`'s folder.
+fn write(fixture: &Fixture, name: &str, text: &str) {
+    fs::write(fixture.dir.path().join(name), text).unwrap();
 }
 
 /// A one-storey building of `height` with plain walls and a flat roof.
@@ -105,12 +85,12 @@ fn extent(instances: &[Instance]) -> (f32, f32, f32, f32) {
 #[test]
 fn a_lot_of_points_or_geojson_is_the_footprint_built_on() {
     let fixture = Fixture::new();
-    let scene = fixture.load(L_POINTS).unwrap();
+    let scene = load(&fixture, L_POINTS).unwrap();
     let lot = scene.site.lot().expect("the scene has a lot");
     assert_eq!((lot.len(), lot.area()), (6, 16.0 * 12.0 - 8.0 * 6.0));
 
-    fixture.write("l.geojson", L_GEOJSON);
-    let from_file = fixture.load("[lot]\ngeojson = \"l.geojson\"").unwrap();
+    write(&fixture, "l.geojson", L_GEOJSON);
+    let from_file = load(&fixture, "[lot]\ngeojson = \"l.geojson\"").unwrap();
     assert_eq!(from_file.site, scene.site);
 
     // Map coordinates: x east, y north, laid on the ground as z = -y.
@@ -126,14 +106,14 @@ fn a_lot_of_points_or_geojson_is_the_footprint_built_on() {
     );
 
     // No lot: the site has none.
-    assert!(fixture.load("").unwrap().site.lot().is_none());
+    assert!(load(&fixture, "").unwrap().site.lot().is_none());
 }
 
 #[test]
 fn evaluators_build_on_the_scene_s_lot() {
     let fixture = Fixture::new();
-    let on_l = fixture.load(L_POINTS).unwrap();
-    let bare = fixture.load("").unwrap();
+    let on_l = load(&fixture, L_POINTS).unwrap();
+    let bare = load(&fixture, "").unwrap();
     let measure = |scene: &Scene| {
         let mut evaluator = ObjectiveEvaluator::new::<LotBuilding>(scene).unwrap();
         let mut value = [0.0];
@@ -148,62 +128,82 @@ fn evaluators_build_on_the_scene_s_lot() {
 #[test]
 fn lot_mistakes_are_refused() {
     let fixture = Fixture::new();
-    fixture.refuses("[lot]", "lot", "either as `points = [[x, y], ..]`");
-    fixture.write("l.geojson", L_GEOJSON);
-    fixture.refuses(
+    refuses(
+        &fixture,
+        "[lot]",
+        "lot",
+        "either as `points = [[x, y], ..]`",
+    );
+    write(&fixture, "l.geojson", L_GEOJSON);
+    refuses(
+        &fixture,
         &format!("{L_POINTS}\ngeojson = \"l.geojson\""),
         "lot",
         "one of the two",
     );
-    fixture.refuses(
+    refuses(
+        &fixture,
         "[lot]\npoints = [[0, 0], [4, 4], [4, 0], [0, 4]]",
         "lot.points",
         "edges 0 and 2 cross or touch",
     );
-    fixture.refuses(
+    refuses(
+        &fixture,
         "[lot]\npoints = [[0, 0], [4, 0], [8, 0]]",
         "lot.points",
         "at least 3 distinct points not all on one line",
     );
-    fixture.refuses(
+    refuses(
+        &fixture,
         "[lot]\npoints = [[0, 0, 1]]",
         "lot.points[0]",
         "[0.0, 0.0, 1.0] has 3 numbers; a point is [x, y]",
     );
-    fixture.refuses("[lot]\nwidth = 3", "width", "unknown field `width`");
-    fixture.refuses(
+    refuses(
+        &fixture,
+        "[lot]\nwidth = 3",
+        "width",
+        "unknown field `width`",
+    );
+    refuses(
+        &fixture,
         "[lot]\ngeojson = \"missing.geojson\"",
         "lot.geojson",
         "is not a file",
     );
-    fixture.write(
+    write(
+        &fixture,
         "broken.geojson",
         "{\"type\": \"Polygon\", \"coordinates\": [[[0, 0]",
     );
-    fixture.refuses(
+    refuses(
+        &fixture,
         "[lot]\ngeojson = \"broken.geojson\"",
         "lot.geojson",
         "is not GeoJSON",
     );
     let two = r#"{"type": "MultiPolygon", "coordinates": [
         [[[0, 0], [1, 0], [1, 1], [0, 0]]], [[[2, 0], [3, 0], [3, 1], [2, 0]]]]}"#;
-    fixture.write("two.geojson", two);
-    fixture.refuses(
+    write(&fixture, "two.geojson", two);
+    refuses(
+        &fixture,
         "[lot]\ngeojson = \"two.geojson\"",
         "lot.geojson",
         "holds 2 polygons",
     );
     let point = r#"{"type": "Point", "coordinates": [0, 0]}"#;
-    fixture.write("point.geojson", point);
-    fixture.refuses(
+    write(&fixture, "point.geojson", point);
+    refuses(
+        &fixture,
         "[lot]\ngeojson = \"point.geojson\"",
         "lot.geojson",
         "holds 0 polygons",
     );
     let court = r#"{"type": "Polygon", "coordinates": [[[0, 0], [9, 0], [9, 9], [0, 9], [0, 0]],
         [[3, 3], [6, 3], [6, 6], [3, 6], [3, 3]]]}"#;
-    fixture.write("court.geojson", court);
-    fixture.refuses(
+    write(&fixture, "court.geojson", court);
+    refuses(
+        &fixture,
         "[lot]\ngeojson = \"court.geojson\"",
         "lot.geojson",
         "the polygon has 1 holes",
