@@ -6,7 +6,7 @@
 //! [`Shape`], their parameters as plain values and their children as [`Child`] (single
 //! slots) or [`Slots`] (array slots).
 
-use std::cell::RefCell;
+use std::cell::{OnceCell, RefCell};
 use std::marker::PhantomData;
 use std::ops::Deref;
 
@@ -199,7 +199,9 @@ impl<'a, P: NodeParams, const N: usize> Slots<'a, P, N> {
 pub struct Derivation<'s> {
     out: RefCell<Vec<Instance>>,
     site: &'s Site,
-    footprints: Arena<Polygon>,
+    /// Made when a rule first makes a footprint: a derivation that makes none
+    /// allocates nothing for them.
+    footprints: OnceCell<Arena<Polygon>>,
 }
 
 impl std::fmt::Debug for Derivation<'_> {
@@ -218,8 +220,7 @@ impl Derivation<'_> {
         let ctx = Derivation {
             out: RefCell::new(std::mem::take(out)),
             site,
-            // Empty until a rule makes a footprint: no allocation otherwise.
-            footprints: Arena::with_capacity(0),
+            footprints: OnceCell::new(),
         };
         let shape = Shape {
             scope: Scope::UNIT,
@@ -331,7 +332,8 @@ impl<'a, G: Grammar> Shape<'a, G> {
     /// The same shape building on `footprint`, a polygon made by the rule, which the
     /// derivation keeps until it ends.
     pub fn on_new_footprint(self, footprint: Polygon) -> Self {
-        self.on_footprint(self.ctx.footprints.alloc(footprint))
+        let footprints = self.ctx.footprints.get_or_init(Arena::new);
+        self.on_footprint(footprints.alloc(footprint))
     }
 
     /// CGA's `setback` to the remainder: the same shape on its footprint with every

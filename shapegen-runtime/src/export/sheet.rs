@@ -12,14 +12,14 @@ use crate::geometry::{BoundMeshes, Instance};
 ///
 /// ```
 /// use glam::{Affine3A, Vec3};
-/// use shapegen_runtime::export::{ContactSheet, Palette};
+/// use shapegen_runtime::export::{ContactSheet, ExportError, Palette};
 /// use shapegen_runtime::{CUBE, Instance, MeshLibrary};
 ///
 /// let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"])?;
 /// let at = |x: f32| Instance { transform: Affine3A::from_translation(Vec3::X * x), mesh: CUBE };
 /// let models = [vec![at(0.0)], vec![at(0.0), at(2.0)], vec![at(4.0)]];
 /// let sheet = ContactSheet { cell: 40, columns: 2 };
-/// let image = sheet.render(&models, &meshes, &Palette::new(), |_, _| Ok(()))?;
+/// let image = sheet.render(&models, &meshes, &Palette::new(), |_, _| Ok::<_, ExportError>(()))?;
 /// assert_eq!(image.dimensions(), (80, 80));
 /// // The fourth cell has no model: white.
 /// assert_eq!(image.get_pixel(60, 60).0, [255, 255, 255]);
