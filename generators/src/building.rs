@@ -66,6 +66,7 @@ use std::ops::RangeInclusive;
 
 use shapegen_runtime::generator;
 use shapegen_runtime::genome::Limits;
+use shapegen_runtime::geometry::RoofShape;
 use shapegen_runtime::prelude::*;
 
 /// The lot's footprint: width along x and depth along z, centred on the origin.
@@ -371,6 +372,19 @@ pub(crate) fn capped_tile(length: f32, tile: f32) -> f32 {
     tile.max(length / MAX_TILES as f32)
 }
 
+/// The roof of a `shape` parameter (a roof node's, here and in
+/// [`lot_building`](crate::lot_building)): 0 flat (a slab of 0.3), 1 shed, 2 gable,
+/// 3 hip, anything else a pyramid.
+pub(crate) fn roof_shape(shape: u32, pitch: f32) -> RoofShape {
+    match shape {
+        0 => RoofShape::Flat { thickness: 0.3 },
+        1 => RoofShape::Shed { pitch },
+        2 => RoofShape::Gable { pitch },
+        3 => RoofShape::Hip { pitch },
+        _ => RoofShape::Pyramid { pitch },
+    }
+}
+
 /// The genome limits of building programs: length 2 to 300, depth 20 (ten operations
 /// deep, a program and an operation per level).
 pub const LIMITS: Limits = Limits {
@@ -413,7 +427,6 @@ pub mod roofed {
     use shapegen_runtime::geometry::RoofMeshes;
 
     use super::*;
-    use crate::lot_building::roof_shape;
 
     building_grammar! {
         /// A building on one lot, grown by a building program of CGA-style operations

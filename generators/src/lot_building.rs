@@ -60,10 +60,10 @@ use std::sync::LazyLock;
 
 use shapegen_runtime::generator;
 use shapegen_runtime::genome::Limits;
-use shapegen_runtime::geometry::{Margins, Polygon, RoofShape};
+use shapegen_runtime::geometry::{Margins, Polygon};
 use shapegen_runtime::prelude::*;
 
-use crate::building::capped_tile;
+use crate::building::{capped_tile, roof_shape};
 
 /// The lot without a site: a 10 x 10 square centred on the origin, [`Building`]'s
 /// lot.
@@ -332,17 +332,5 @@ fn opening(s: Shape<'_, LotBuilding>, margins: Margins, depth: f32, pane: MeshId
         None => {
             s.emit_rect(WALL);
         }
-    }
-}
-
-/// The roof of a [`Roof::shape`] parameter: 0 flat (a slab of 0.3), 1 shed, 2 gable,
-/// 3 hip, anything else a pyramid.
-pub(crate) fn roof_shape(shape: u32, pitch: f32) -> RoofShape {
-    match shape {
-        0 => RoofShape::Flat { thickness: 0.3 },
-        1 => RoofShape::Shed { pitch },
-        2 => RoofShape::Gable { pitch },
-        3 => RoofShape::Hip { pitch },
-        _ => RoofShape::Pyramid { pitch },
     }
 }

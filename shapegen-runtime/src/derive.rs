@@ -339,8 +339,9 @@ impl<'a, G: Grammar> Shape<'a, G> {
     /// CGA's `setback` to the remainder: the same shape on its footprint with every
     /// edge moved inward by `distance`, or `None` where the shape has no footprint, the
     /// distance is not positive and finite, or the moved outline is no longer a polygon
-    /// of the same edges (a part narrower than twice the distance closes); see
-    /// [`Polygon::setback`].
+    /// of the same edges (a part narrower than twice the distance closes): the
+    /// [`Polygon::offset`] by `-distance`, the remainder of [`Polygon::setback`] without
+    /// its strips.
     pub fn setback(self, distance: f32) -> Option<Self> {
         if !(distance > 0.0 && distance.is_finite()) {
             return None;

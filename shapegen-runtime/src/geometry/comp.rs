@@ -9,7 +9,7 @@
 
 use std::iter::FusedIterator;
 
-use glam::{Mat3A, Vec3, vec3};
+use glam::{Vec3, vec3};
 
 use super::{Face, Instance, MeshId, Polygon, Scope, facet_transform};
 
@@ -104,9 +104,7 @@ impl Scope {
         // outward normal (d.y, -d.x) of a counter-clockwise polygon.
         let x = vec3(d.x, 0.0, -d.y);
         let z = vec3(d.y, 0.0, d.x);
-        let centre = vec3(middle.x, (height - self.size.y) / 2.0, -middle.y);
-        let mut frame = self.translate(centre).frame;
-        frame.matrix3 *= Mat3A::from_cols(x.into(), Vec3::Y.into(), z.into());
+        let centre = self.plane_point(vec3(middle.x, middle.y, 0.0), height / 2.0);
         let face = if z.z.abs() >= z.x.abs() {
             if z.z > 0.0 { Face::Front } else { Face::Back }
         } else if z.x > 0.0 {
@@ -115,7 +113,7 @@ impl Scope {
             Face::Left
         };
         let size = vec3(length as f32, height, 0.0);
-        (face, Scope { frame, size })
+        (face, self.part(centre, [x, Vec3::Y, z], size))
     }
 
     /// The top of the prism of `height` on `footprint` (see [`walls`](Self::walls)):
@@ -165,13 +163,13 @@ impl Scope {
         facet: MeshId,
         out: &mut Vec<Instance>,
     ) -> usize {
-        let y = height - self.size.y / 2.0;
         let points: Vec<Vec3> = footprint
             .points()
             .iter()
             .map(|p| {
                 let p = p.as_vec2();
-                self.frame.transform_point3(vec3(p.x, y, -p.y))
+                self.frame
+                    .transform_point3(self.plane_point(vec3(p.x, p.y, 0.0), height))
             })
             .collect();
         let before = out.len();

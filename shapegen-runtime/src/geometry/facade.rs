@@ -7,7 +7,7 @@
 //! face the way the tile does, so a wall tile of a closed solid replaced by its inset
 //! leaves the solid closed, less the recess.
 
-use glam::{Mat3A, Vec3, vec3};
+use glam::{Vec3, vec3};
 
 use super::{Instance, MeshId, Scope, facet_transform};
 
@@ -225,12 +225,7 @@ impl Scope {
         // A flat part centred at `centre`, with axes `axes` (columns, in the tile's
         // local axes) and size `(sx, sy)`.
         let part = |centre: Vec3, axes: [Vec3; 3], sx: f32, sy: f32| {
-            let mut frame = self.translate(centre).frame;
-            frame.matrix3 *= Mat3A::from_cols(axes[0].into(), axes[1].into(), axes[2].into());
-            Scope {
-                frame,
-                size: vec3(sx, sy, 0.0),
-            }
+            self.part(centre, axes, vec3(sx, sy, 0.0))
         };
         let facing = [Vec3::X, Vec3::Y, Vec3::Z];
         Some(Inset {

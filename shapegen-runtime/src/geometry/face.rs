@@ -3,7 +3,7 @@
 
 use std::iter::FusedIterator;
 
-use glam::{Mat3A, Vec3, vec3};
+use glam::{Vec3, vec3};
 
 use super::Scope;
 
@@ -117,10 +117,7 @@ impl Scope {
             Face::Top => (vec3(0.0, s.y / 2.0, 0.0), vec3(s.x, s.z, 0.0)),
             Face::Bottom => (vec3(0.0, -s.y / 2.0, 0.0), vec3(s.x, s.z, 0.0)),
         };
-        let [x, y, z] = face.axes();
-        let mut frame = self.translate(centre).frame;
-        frame.matrix3 *= Mat3A::from_cols(x.into(), y.into(), z.into());
-        Scope { frame, size }
+        self.part(centre, face.axes(), size)
     }
 
     /// The six faces of the box with their flat scopes, in the order of [`Face::ALL`];

@@ -166,7 +166,7 @@ impl Scope {
         facet: MeshId,
         out: &mut Vec<Instance>,
     ) -> usize {
-        self.on_face(&footprint.extrude(height), -0.5, facet, out)
+        self.on_face(&footprint.extrude(height), 0.0, facet, out)
     }
 
     /// The roof of `shape` with `overhang` over `footprint` laid on the box's top face
@@ -203,18 +203,16 @@ impl Scope {
         out: &mut Vec<Instance>,
     ) -> Result<Roof, RoofError> {
         let roof = footprint.roof(shape, overhang)?;
-        self.on_face(&roof.mesh, 0.5, facet, out);
+        self.on_face(&roof.mesh, self.size.y, facet, out);
         Ok(roof)
     }
 
-    /// Emits `mesh`, in a polygon's plane coordinates, on the box's face at height
-    /// `level` (`-0.5` the bottom, `0.5` the top, in units of the box's height).
-    fn on_face(self, mesh: &Mesh, level: f32, facet: MeshId, out: &mut Vec<Instance>) -> usize {
-        let y = level * self.size.y;
-        let frame = self.frame;
+    /// Emits `mesh`, in a polygon's plane coordinates, raised by `lift` above the box's
+    /// bottom face (`0` on the bottom, the box's height on the top).
+    fn on_face(self, mesh: &Mesh, lift: f32, facet: MeshId, out: &mut Vec<Instance>) -> usize {
         emit_facets(
             mesh,
-            |p| frame.transform_point3(Vec3::new(p.x, y + p.z, -p.y)),
+            |p| self.frame.transform_point3(self.plane_point(p, lift)),
             facet,
             out,
         )

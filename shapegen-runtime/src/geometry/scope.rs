@@ -125,6 +125,26 @@ impl Scope {
         self.rotated_by(Mat3A::from_rotation_z(angle))
     }
 
+    /// The scope of a part of this box: centred at `centre` and turned so that its
+    /// local axes are `axes` (columns of a rotation, in this box's local axes), of
+    /// `size`. A face of the box, a wall of a prism, a piece of a window's recess.
+    #[inline]
+    pub(super) fn part(self, centre: Vec3, axes: [Vec3; 3], size: Vec3) -> Scope {
+        let [x, y, z] = axes;
+        let turned =
+            self.translate(centre)
+                .rotated_by(Mat3A::from_cols(x.into(), y.into(), z.into()));
+        Scope { size, ..turned }
+    }
+
+    /// The box-local point of a polygon's plane point `p`, the plane lifted by `lift`
+    /// above the box's bottom face: the plane's `(x, y)` at the box's `(x, -z)`, its
+    /// `+z` up the box's `y` (a proper rotation, so windings keep their sense).
+    #[inline]
+    pub(super) fn plane_point(self, p: Vec3, lift: f32) -> Vec3 {
+        Vec3::new(p.x, p.z + (lift - self.size.y / 2.0), -p.y)
+    }
+
     #[inline]
     fn rotated_by(self, r: Mat3A) -> Self {
         let mut frame = self.frame;

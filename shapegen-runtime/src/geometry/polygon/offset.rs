@@ -67,7 +67,7 @@ impl Polygon {
 
     /// The polygon of `moved`, the polygon's points moved, where it keeps every edge the
     /// same way round.
-    fn moved_to(&self, moved: &[DVec2]) -> Option<Polygon> {
+    pub(super) fn moved_to(&self, moved: &[DVec2]) -> Option<Polygon> {
         let n = self.len();
         let out = Polygon::from_f64(moved).ok()?;
         let kept = out.len() == n

@@ -51,11 +51,12 @@ impl Polygon {
         if !(distance > 0.0 && distance.is_finite()) {
             return None;
         }
-        let remainder = self.offset(-distance)?;
         let n = self.len();
         let moved: Vec<DVec2> = (0..n)
             .map(|i| self.points()[i] + self.corner_velocity(i) * distance)
             .collect();
+        // The offset by -distance: the same moved points.
+        let remainder = self.moved_to(&moved)?;
         let tolerance = super::EPS * self.scale();
         let same = remainder.len() == n
             && remainder
