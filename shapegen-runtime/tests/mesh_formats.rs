@@ -273,6 +273,55 @@ fn bad_files_are_refused_naming_the_file_and_the_fault() {
 }
 
 #[test]
+fn a_binary_ply_declaring_more_entries_than_its_bytes_hold_is_refused_before_reading() {
+    let reference = placed_box();
+    let binary = ply_binary(&reference);
+    let end = b"end_header\n";
+    let header_end = binary.windows(end.len()).position(|w| w == end).unwrap() + end.len();
+    let with = |from: &str, to: &str| {
+        let header = std::str::from_utf8(&binary[..header_end]).unwrap();
+        [
+            header.replacen(from, to, 1).as_bytes(),
+            &binary[header_end..],
+        ]
+        .concat()
+    };
+    // An element of no properties takes no payload bytes: a huge count of them
+    // would be read entry by entry until memory ran out.
+    let empty = with(
+        "element vertex",
+        "element note 888888888888888880\nelement vertex",
+    );
+    let message = Mesh::from_ply_bytes("e.ply", &empty)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.contains("e.ply")
+            && message.contains("element `note` declares 888888888888888880 entries")
+            && message.contains(&format!(
+                "only {} bytes follow",
+                12 * reference.vertex_count() + 13 * reference.triangle_count()
+            )),
+        "{message}"
+    );
+    let vertices = with(
+        &format!("element vertex {}", reference.vertex_count()),
+        "element vertex 4000000000",
+    );
+    let message = Mesh::from_ply_bytes("v.ply", &vertices)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.contains("element `vertex` declares 4000000000 entries of at least 12 bytes"),
+        "{message}"
+    );
+    // A few entries of an element without properties are harmless and still read.
+    let few = with("element vertex", "element note 3\nelement vertex");
+    let mesh = Mesh::from_ply_bytes("few.ply", &few).unwrap();
+    assert_eq!(triangles(&mesh), triangles(&reference));
+}
+
+#[test]
 fn an_open_mesh_fills_by_winding_number_as_the_closed_one_does_by_parity() {
     let closed = placed_box();
     let mut open = closed.clone();

@@ -2,8 +2,8 @@
 //! `x`, `y`, `z` and the `face` element's index list.
 
 use glam::Vec3;
-use ply_rs_bw::parser::Parser;
-use ply_rs_bw::ply::{DefaultElement, Ply};
+use ply_rs_bw::parser::{Parser, Reader};
+use ply_rs_bw::ply::{DefaultElement, Encoding, Header, Ply, PropertyType, ScalarType};
 
 use super::{Mesh, MeshError, decode, fan};
 
@@ -66,11 +66,73 @@ impl Mesh {
     }
 }
 
-/// The parsed file.
+/// The parsed file. A binary file's header is checked against the bytes that follow
+/// it before the payload is read, so a declared count no file could hold is refused
+/// instead of being read entry by entry.
 fn read(name: &str, bytes: &[u8]) -> Result<Ply<DefaultElement>, MeshError> {
-    Parser::<DefaultElement>::new()
-        .read_ply(&mut &bytes[..])
-        .map_err(|e| decode("PLY", name, e))
+    let parser = Parser::<DefaultElement>::new();
+    let mut reader = Reader::new(bytes);
+    let header = parser
+        .read_header(&mut reader)
+        .map_err(|e| decode("PLY", name, e))?;
+    let payload_bytes = reader.get_ref().len();
+    if header.encoding != Encoding::Ascii {
+        fits(name, &header, payload_bytes)?;
+    }
+    let payload = parser
+        .read_payload(&mut reader, &header)
+        .map_err(|e| decode("PLY", name, e))?;
+    let mut ply = Ply::new();
+    ply.header = header;
+    ply.payload = payload;
+    Ok(ply)
+}
+
+/// Checks that a binary payload of `payload_bytes` can hold every element the header
+/// declares, each entry taking at least its scalars and its lists' lengths (and at
+/// least one byte, so that an element without properties cannot declare more
+/// entries than the file has bytes).
+fn fits(name: &str, header: &Header, payload_bytes: usize) -> Result<(), MeshError> {
+    let mut needed = 0usize;
+    for element in header.elements.values() {
+        let entry = element
+            .properties
+            .values()
+            .map(|p| match &p.data_type {
+                PropertyType::Scalar(t) | PropertyType::List(t, _) => scalar_size(t),
+            })
+            .sum::<usize>()
+            .max(1);
+        needed = element
+            .count
+            .checked_mul(entry)
+            .and_then(|n| n.checked_add(needed))
+            .filter(|&n| n <= payload_bytes)
+            .ok_or_else(|| {
+                decode(
+                    "PLY",
+                    name,
+                    format!(
+                        "element `{}` declares {} entries of at least {entry} byte{} each, \
+                         but only {payload_bytes} bytes follow the header",
+                        element.name,
+                        element.count,
+                        if entry == 1 { "" } else { "s" }
+                    ),
+                )
+            })?;
+    }
+    Ok(())
+}
+
+/// The bytes one binary scalar of type `t` takes.
+fn scalar_size(t: &ScalarType) -> usize {
+    match t {
+        ScalarType::Char | ScalarType::UChar => 1,
+        ScalarType::Short | ScalarType::UShort => 2,
+        ScalarType::Int | ScalarType::UInt | ScalarType::Float => 4,
+        ScalarType::Double => 8,
+    }
 }
 
 /// The positions of the `vertex` element, checked finite.
