@@ -3,7 +3,7 @@
 //!
 //! | constant | program | compiled by |
 //! |---|---|---|
-//! | [`VOLUME`] | `volume.wgsl`: the compute shader counting the voxels of box instances | `score::volume::GpuVolumeScorer` |
+//! | [`VOLUME`] | `volume.wgsl`: the compute shader counting the voxels of box instances (and of the runs the CPU rasterises) | `score::volume::GpuVolumeScorer` |
 //! | [`SILHOUETTE`] | `clip.wgsl` then `silhouette.wgsl`: instanced draws into per-model coverage bitsets | `score::silhouette::GpuSilhouetteScorer` |
 //! | [`SILHOUETTE_RETAINED`] | `clip.wgsl` then `silhouette_retained.wgsl`: instanced draws into per-pixel fragment counts kept between generations | `score::silhouette::GpuRetention` |
 //!

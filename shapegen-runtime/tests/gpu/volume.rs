@@ -2,12 +2,15 @@
 
 use std::path::Path;
 
-use glam::{Affine3A, Vec3};
+use generators::lot_building::{LIMITS, LotBuilding};
+use glam::{Affine3A, Vec3, vec2};
+use rand::SeedableRng;
 use shapegen_runtime::genome::Limits;
-use shapegen_runtime::gpu::{GpuContext, GpuError};
+use shapegen_runtime::geometry::{MeshId, Polygon, facet_transform};
+use shapegen_runtime::gpu::GpuContext;
 use shapegen_runtime::score::volume::{GpuVolumeScorer, Grid, VolumeCounts, VolumeScorer};
 use shapegen_runtime::score::{Form, InstanceBatch, count_batch};
-use shapegen_runtime::{CUBE, Grammar, Instance, Mesh, MeshLibrary};
+use shapegen_runtime::{CUBE, Grammar, Instance, Mesh, MeshLibrary, Operators, Site};
 
 use crate::GpuTest;
 use crate::support::city_expanded::City;
@@ -24,8 +27,8 @@ pub const TESTS: &[GpuTest] = &[
         the_gpu_counts_exactly_what_the_cpu_counts,
     ),
     (
-        "volume::the_gpu_refuses_meshes_other_than_boxes",
-        the_gpu_refuses_meshes_other_than_boxes,
+        "volume::the_gpu_counts_other_meshes_and_facets_exactly_as_the_cpu_does",
+        the_gpu_counts_other_meshes_and_facets_exactly_as_the_cpu_does,
     ),
 ];
 
@@ -159,23 +162,167 @@ fn the_gpu_counts_exactly_what_the_cpu_counts(gpu: &GpuContext) {
     assert_eq!(cpu, out);
 }
 
-fn the_gpu_refuses_meshes_other_than_boxes(gpu: &GpuContext) {
+/// A tetrahedron of facets, outward-wound, with its right-angle corner at `at` and legs
+/// of `size`.
+fn facet_tetrahedron(at: Vec3, size: f32) -> Vec<Instance> {
+    let [p0, p1, p2, p3] = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z].map(|p| at + p * size);
+    [[p0, p2, p1], [p0, p1, p3], [p0, p3, p2], [p1, p2, p3]]
+        .into_iter()
+        .map(|[a, b, c]| Instance {
+            transform: facet_transform(a, b, c).unwrap(),
+            mesh: FACET,
+        })
+        .collect()
+}
+
+const FACET: MeshId = MeshId(1);
+const TRUNK: MeshId = MeshId(2);
+
+fn the_gpu_counts_other_meshes_and_facets_exactly_as_the_cpu_does(gpu: &GpuContext) {
+    // Trees: trunks and leaves are meshes of their own, voxelized by parity.
+    let meshes = generators::default_meshes()
+        .bind(generators::tree::Tree::GRAPH)
+        .unwrap();
+    let grid = Grid::new(
+        Vec3::new(-2.0, 0.0, -2.0),
+        Vec3::new(2.0, 5.0, 2.0),
+        [24, 30, 24],
+    )
+    .unwrap();
+    let trunk = target(
+        "trunk",
+        block(Vec3::new(-0.5, 0.0, -0.5), Vec3::new(0.5, 2.0, 0.5)),
+        1.0,
+        -1.0,
+    );
+    let scorer =
+        VolumeScorer::new(grid, &[trunk], &meshes, Form::Weighted { overlap: 0.5 }).unwrap();
+    let trees = population::<generators::tree::Tree>(30, generators::tree::PAPER_LIMITS, 150, 5);
+    let cpu = cpu_counts(&scorer, &trees);
+    assert!(
+        cpu.iter().filter(|c| c.inside > 0 && c.outside > 0).count() > 10,
+        "{cpu:?}"
+    );
+    assert!(
+        cpu.iter().filter(|c| c.out_of_grid_hits > 0).count() > 5,
+        "{cpu:?}"
+    );
+    assert!(
+        cpu.iter().filter(|c| c.overlap_voxels > 0).count() > 5,
+        "{cpu:?}"
+    );
+    assert_eq!(cpu, gpu_counts(gpu, &scorer, &trees));
+
+    // Lot buildings: generated surfaces, their facets voxelized together by winding
+    // number, on a grid that cuts them.
+    let l = Polygon::new([
+        vec2(-8.0, -6.0),
+        vec2(8.0, -6.0),
+        vec2(8.0, 0.0),
+        vec2(0.0, 0.0),
+        vec2(0.0, 6.0),
+        vec2(-8.0, 6.0),
+    ])
+    .unwrap();
+    let mut ops = Operators::<LotBuilding>::new(LIMITS).unwrap();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(41);
+    let mut buildings = InstanceBatch::new().on_site(Site::with_lot(l));
+    for _ in 0..30 {
+        buildings.push_genome(&ops.random(30, &mut rng));
+    }
+    let meshes = generators::default_meshes()
+        .bind(LotBuilding::GRAPH)
+        .unwrap();
+    let grid = Grid::new(
+        Vec3::new(-6.0, -0.5, -5.0),
+        Vec3::new(6.0, 7.0, 5.0),
+        [36, 22, 30],
+    )
+    .unwrap();
+    let mass = target(
+        "mass",
+        block(Vec3::new(-5.0, 0.0, -4.0), Vec3::new(2.0, 4.0, 4.0)),
+        1.0,
+        -1.0,
+    );
+    let scorer =
+        VolumeScorer::new(grid, &[mass], &meshes, Form::Weighted { overlap: 0.5 }).unwrap();
+    let cpu = cpu_counts(&scorer, &buildings);
+    assert!(
+        cpu.iter().filter(|c| c.inside > 0 && c.outside > 0).count() > 10,
+        "{cpu:?}"
+    );
+    assert!(
+        cpu.iter().filter(|c| c.out_of_grid_hits > 0).count() > 5,
+        "{cpu:?}"
+    );
+    assert!(
+        cpu.iter().filter(|c| c.span_out_of_grid > 0).count() > 5,
+        "{cpu:?}"
+    );
+    let mut on_gpu = GpuVolumeScorer::new(gpu, &scorer).unwrap();
+    let mut out = vec![VolumeCounts::default(); buildings.len()];
+    on_gpu.count_batch(&buildings, &mut out).unwrap();
+    assert_eq!(cpu, out);
+    on_gpu.limit_models_per_pass(4);
+    out.fill(VolumeCounts::default());
+    on_gpu.count_batch(&buildings, &mut out).unwrap();
+    assert_eq!(cpu, out);
+
+    // Boxes, a solid mesh and facets in one model: a cube, a trunk through it, a facet
+    // tetrahedron over both and a copy of it (covered twice by winding number), one
+    // open facet (covers nothing), and a tetrahedron too large to rasterise.
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../generators/meshes");
     let mut library = MeshLibrary::new();
+    library.register("facet", Mesh::facet()).unwrap();
     library
         .register_obj("trunk", dir.join("trunk.obj"))
         .unwrap();
-    library.register_obj("leaf", dir.join("leaf.obj")).unwrap();
-    let bound = library
-        .bind_names("Tree", &["cube", "trunk", "leaf"])
+    let meshes = library
+        .bind_names("Mixed", &["cube", "facet", "trunk"])
         .unwrap();
-    let grid = Grid::new(Vec3::splat(-1.0), Vec3::splat(1.0), [8, 8, 8]).unwrap();
-    let scorer = VolumeScorer::new(grid, &[], &bound, Form::Weighted { overlap: 0.0 }).unwrap();
-    let err = GpuVolumeScorer::new(gpu, &scorer).unwrap_err();
-    assert!(matches!(err, GpuError::Unsupported(_)), "{err:?}");
-    assert_eq!(
-        err.to_string(),
-        "not supported on the GPU: mesh `trunk` (id 1) is not the unit cube; only box meshes \
-         are counted on the GPU, count this grammar on the CPU"
+    let grid = Grid::new(Vec3::splat(-2.0), Vec3::splat(2.0), [20, 20, 20]).unwrap();
+    let core = target(
+        "core",
+        block(Vec3::splat(-1.0), Vec3::splat(1.0)),
+        1.0,
+        -1.0,
     );
+    let scorer =
+        VolumeScorer::new(grid, &[core], &meshes, Form::Weighted { overlap: 0.5 }).unwrap();
+    let cube = aabb(Vec3::splat(-0.8), Vec3::splat(0.6));
+    let trunk = Instance {
+        transform: Affine3A::from_scale_rotation_translation(
+            Vec3::new(1.5, 3.0, 1.5),
+            glam::Quat::from_rotation_z(0.4),
+            Vec3::new(0.2, -1.0, 0.1),
+        ),
+        mesh: TRUNK,
+    };
+    let tetra = facet_tetrahedron(Vec3::new(-0.9, -0.3, -1.1), 2.6);
+    let mut mixed = InstanceBatch::new();
+    mixed.push_with(|out| {
+        out.extend([cube, trunk]);
+        out.extend(tetra.iter().chain(&tetra));
+    });
+    mixed.push_with(|out| out.extend(tetra.iter().take(1)));
+    mixed.push_with(|out| {
+        out.push(cube);
+        out.extend(facet_tetrahedron(Vec3::splat(-1e6), 3e6));
+    });
+    mixed.push_with(|out| out.extend(facet_tetrahedron(Vec3::new(1.0, 1.0, 1.0), 2.0)));
+    let cpu = cpu_counts(&scorer, &mixed);
+    assert!(
+        cpu[0].overlap_voxels > 0 && cpu[0].inside > 0 && cpu[0].outside > 0,
+        "{:?}",
+        cpu[0]
+    );
+    assert_eq!((cpu[1].inside, cpu[1].outside), (0, 0), "{:?}", cpu[1]);
+    assert!(cpu[2].out_of_grid_hits > 1_000_000_000, "{:?}", cpu[2]);
+    assert!(
+        cpu[3].out_of_grid_hits > 0 && cpu[3].span_out_of_grid > 0,
+        "{:?}",
+        cpu[3]
+    );
+    assert_eq!(cpu, gpu_counts(gpu, &scorer, &mixed));
 }

@@ -8,6 +8,13 @@
 //! second bitset (voxels covered more than once) and adds what it counted to the model's
 //! counters. A pass holds as many models as their bitsets fit in one storage binding; all
 //! passes go in one submission, followed by one small read-back of the counters.
+//!
+//! Instances of other meshes, and a model's facets (voxelized together, by winding
+//! number), are rasterised on the CPU threads by the CPU's own code, model by model;
+//! their covered in-grid runs of each row go to the GPU as boxes of one row (a
+//! [`QuantBox`] without planes, consecutive rows of the same run merged), counted there
+//! with the model's box instances, and what they cover outside the grid is counted on
+//! the CPU. So every grammar counts on the GPU, exactly as on the CPU.
 
 use std::sync::Mutex;
 
@@ -15,6 +22,9 @@ use rayon::prelude::*;
 use wgpu::util::DeviceExt;
 
 use super::classes::MAX_CLASSES;
+use super::count::Lattice;
+use super::parity::Voxelizer;
+use super::parts::PartKind;
 use super::quant::{Placement, QuantBox, quantize};
 use super::span::span_out_of_grid;
 use super::{VolumeCounts, VolumeScorer};
@@ -48,12 +58,64 @@ struct PassParams {
 
 const _: () = assert!(size_of::<PassParams>() == 48);
 
-/// What a model's instances count on the CPU: out-of-grid hits of instances too large
-/// to rasterise, and their spans' out-of-grid voxels.
+/// What a model's instances count on the CPU: out-of-grid hits (of box instances too
+/// large to rasterise, and of what is rasterised on the CPU), and their spans'
+/// out-of-grid voxels.
 #[derive(Clone, Copy, Default)]
 struct Beyond {
-    oversize: u64,
+    outside: u64,
     span: u64,
+}
+
+/// What the CPU rasterises of one model (its instances of meshes other than boxes, and
+/// its facets): in-grid runs as boxes of one row, and what lies beyond the grid.
+struct Rows {
+    /// Grid resolution along x and y, to split flat voxel indices.
+    nx: usize,
+    ny: usize,
+    boxes: Vec<QuantBox>,
+    beyond: Beyond,
+}
+
+impl Rows {
+    fn new(res: [u32; 3]) -> Rows {
+        Rows {
+            nx: res[0] as usize,
+            ny: res[1] as usize,
+            boxes: Vec::new(),
+            beyond: Beyond::default(),
+        }
+    }
+}
+
+impl Lattice for Rows {
+    fn span(&mut self, n: u64) {
+        self.beyond.span = self.beyond.span.saturating_add(n);
+    }
+
+    fn outside(&mut self, n: u64) {
+        self.beyond.outside = self.beyond.outside.saturating_add(n);
+    }
+
+    fn voxels(&mut self, first: usize, last: usize) {
+        let (i, row) = (first % self.nx, first / self.nx);
+        let (j, k) = (row % self.ny, row / self.ny);
+        let [i, j, k, len] = [i, j, k, last - first + 1].map(|n| n as i32);
+        // The run of the row before it, along y, grows by one row.
+        if let Some(q) = self.boxes.last_mut()
+            && q.corner[..3] == [i, j - q.extent[1], k]
+            && q.extent[0] == len
+        {
+            q.extent[1] += 1;
+            return;
+        }
+        // No planes: every row of the box covers its whole extent.
+        self.boxes.push(QuantBox {
+            corner: [i, j, k, 0],
+            extent: [len, 1, 1, 0],
+            ..QuantBox::default()
+        });
+    }
 }
 
 /// The models of one pass and their quantised boxes.
@@ -100,6 +162,8 @@ pub struct GpuVolumeScorer<'a> {
     /// Every instance of the last batch, quantised, with its span's out-of-grid
     /// voxels; reused.
     placements: Mutex<Vec<(Placement, u64)>>,
+    /// Whether every mesh of the grammar is a box, so nothing is rasterised on the CPU.
+    boxes_only: bool,
 }
 
 impl std::fmt::Debug for GpuVolumeScorer<'_> {
@@ -116,19 +180,14 @@ impl<'a> GpuVolumeScorer<'a> {
     /// pipeline.
     ///
     /// # Errors
-    /// [`GpuError::Unsupported`] when one of the grammar's meshes is not a box (naming
-    /// it) or one model's bitset or the class grid exceeds the largest storage binding;
-    /// [`GpuError::Device`] when the device rejects the shader or a buffer.
+    /// [`GpuError::Unsupported`] when one model's bitset or the class grid exceeds the
+    /// largest storage binding; [`GpuError::Device`] when the device rejects the shader
+    /// or a buffer.
     pub fn new(ctx: &'a GpuContext, scorer: &'a VolumeScorer) -> Result<Self, GpuError> {
-        for (id, name, _) in scorer.meshes().iter() {
-            if scorer.is_box(id) != Some(true) {
-                return Err(GpuError::Unsupported(format!(
-                    "mesh `{name}` (id {}) is not the unit cube; only box meshes are counted \
-                     on the GPU, count this grammar on the CPU",
-                    id.0
-                )));
-            }
-        }
+        let boxes_only = scorer
+            .meshes()
+            .iter()
+            .all(|(id, _, _)| scorer.is_box(id) == Some(true));
         let max = ctx.max_binding();
         let voxels = scorer.grid().voxel_count();
         let words_per_model = voxels.div_ceil(32);
@@ -178,6 +237,7 @@ impl<'a> GpuVolumeScorer<'a> {
             models_per_pass,
             bitsets: Mutex::new(None),
             placements: Mutex::new(Vec::new()),
+            boxes_only,
         })
     }
 
@@ -271,7 +331,7 @@ impl<'a> GpuVolumeScorer<'a> {
             *slot = self.scorer.with_totals(VolumeCounts {
                 overlap_hits: wide(OVERLAP_HITS),
                 overlap_voxels: wide(OVERLAP_VOXELS),
-                out_of_grid_hits: wide(OUT_OF_GRID_HITS).saturating_add(beyond[m].oversize),
+                out_of_grid_hits: wide(OUT_OF_GRID_HITS).saturating_add(beyond[m].outside),
                 span_out_of_grid: beyond[m].span,
                 classes: std::array::from_fn(|c| wide(2 * c)),
                 ..VolumeCounts::default()
@@ -280,29 +340,52 @@ impl<'a> GpuVolumeScorer<'a> {
         Ok(())
     }
 
-    /// Quantises every model's boxes and splits the models into passes; also gives what
-    /// each model counts on the CPU.
+    /// Quantises every model's boxes, rasterises the rest on the CPU, and splits the
+    /// models into passes; also gives what each model counts on the CPU.
     fn plan(&self, batch: &InstanceBatch) -> Result<(Vec<Pass>, Vec<Beyond>), GpuError> {
         let max_boxes = (self.ctx.max_binding() / size_of::<QuantBox>() as u64) as usize;
         // Row numbers travel as i32 in QuantBox::extent[3].
         let max_rows = i32::MAX as u64 - WORKGROUP;
         let grid = self.scorer.grid();
-        // Quantise every instance on the CPU threads, in order. Meshes are all boxes
-        // (checked in `new`).
+        // Quantise every box instance on the CPU threads, in order.
         let mut placements = self.placements.lock().unwrap_or_else(|e| e.into_inner());
         batch
             .instances()
             .par_iter()
             .map(|instance| match self.scorer.part(instance.mesh) {
-                Some(part) => (
+                Some(part @ PartKind::Box) => (
                     quantize(grid, &instance.transform),
                     span_out_of_grid(grid, part, &instance.transform),
                 ),
-                None => (Placement::Nothing, 0), // ids the grammar lacks cover nothing
+                // Rasterised below; ids the grammar lacks cover nothing.
+                _ => (Placement::Nothing, 0),
             })
             .collect_into_vec(&mut placements);
+        // Rasterise every model's other instances and its facets on the CPU threads.
+        let rasterised: Vec<Rows> = if self.boxes_only {
+            Vec::new()
+        } else {
+            (0..batch.len())
+                .into_par_iter()
+                .map_init(Voxelizer::default, |voxelizer, m| {
+                    let model = batch.model(m);
+                    let mut rows = Rows::new(grid.resolution());
+                    for instance in model {
+                        if self.scorer.part(instance.mesh) != Some(&PartKind::Box) {
+                            self.scorer.walk(instance, voxelizer, &mut rows);
+                        }
+                    }
+                    self.scorer.walk_facets(model, voxelizer, &mut rows);
+                    rows
+                })
+                .collect()
+        };
         let starts = batch.starts();
-        let mut beyond = vec![Beyond::default(); batch.len()];
+        let mut beyond: Vec<Beyond> = if rasterised.is_empty() {
+            vec![Beyond::default(); batch.len()]
+        } else {
+            rasterised.iter().map(|r| r.beyond).collect()
+        };
         let mut passes = vec![Pass::default()];
         let mut model_boxes = Vec::new();
         for (m, extra) in beyond.iter_mut().enumerate() {
@@ -312,12 +395,16 @@ impl<'a> GpuVolumeScorer<'a> {
                 extra.span = extra.span.saturating_add(*span);
                 match *placement {
                     Placement::Nothing => {}
-                    Placement::Oversize(n) => extra.oversize = extra.oversize.saturating_add(n),
+                    Placement::Oversize(n) => extra.outside = extra.outside.saturating_add(n),
                     Placement::Box(q) => {
                         rows += (q.extent[1] as u64) * (q.extent[2] as u64);
                         model_boxes.push(q);
                     }
                 }
+            }
+            if let Some(cpu) = rasterised.get(m) {
+                rows += cpu.boxes.iter().map(|q| q.extent[1] as u64).sum::<u64>();
+                model_boxes.extend_from_slice(&cpu.boxes);
             }
             if model_boxes.len() > max_boxes || rows > max_rows {
                 return Err(GpuError::Unsupported(format!(

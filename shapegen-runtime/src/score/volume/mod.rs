@@ -52,8 +52,9 @@
 //! by symbolic perturbation, so that shared edges and vertices count once.
 //!
 //! [`count_batch`](super::count_batch) counts a population on the CPU threads;
-//! [`GpuVolumeScorer`] counts it on the GPU in one submission, with the same counts,
-//! for grammars whose meshes are all boxes.
+//! [`GpuVolumeScorer`] counts it on the GPU in one submission, with the same counts:
+//! box instances are rasterised there, other meshes and facets on the CPU threads
+//! (their covered runs are then counted on the GPU with the boxes).
 //!
 //! ```
 //! use glam::{Affine3A, Quat, Vec3};
