@@ -1,22 +1,27 @@
-//! Volume scoring throughput on the paper's spaceship scene: evaluations per second for
-//! a population of 200 random spaceship genomes (paper limits, initial length 50),
-//! counted single-threaded, on all threads, and on the GPU when one is found.
+//! Volume scoring throughput: evaluations per second for a population of 200 random
+//! models, counted on the CPU threads and on the GPU when one is found. On the paper's
+//! spaceship scene (paper limits, initial length 50; box instances only), also
+//! single-threaded; on lot buildings on an L-shaped lot (initial length 30), whose
+//! generated facets the GPU path rasterises on the CPU threads before counting on the
+//! device.
 
 use std::path::Path;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use generators::lot_building::{self, LotBuilding};
 use generators::spaceship::{PAPER_LIMITS, Spaceship};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use shapegen::Grammar;
 use shapegen::ops::Operators;
-use shapegen_runtime::Mesh;
+use shapegen_runtime::geometry::Polygon;
 use shapegen_runtime::gpu::GpuContext;
-use shapegen_runtime::prelude::Vec3;
+use shapegen_runtime::prelude::{Vec3, vec2};
 use shapegen_runtime::score::volume::{
     Fill, GpuVolumeScorer, Grid, VolumeCounts, VolumeScorer, VolumeTarget,
 };
 use shapegen_runtime::score::{Form, InstanceBatch, count_batch};
+use shapegen_runtime::{Mesh, Site};
 
 const POPULATION: usize = 200;
 
@@ -63,43 +68,102 @@ fn population() -> InstanceBatch {
     batch
 }
 
+/// 200 random lot buildings on an L-shaped lot, and a scorer whose grid cuts them.
+fn lot_buildings() -> (VolumeScorer, InstanceBatch) {
+    let lot = Polygon::new([
+        vec2(-8.0, -6.0),
+        vec2(8.0, -6.0),
+        vec2(8.0, 0.0),
+        vec2(0.0, 0.0),
+        vec2(0.0, 6.0),
+        vec2(-8.0, 6.0),
+    ])
+    .expect("the L is a simple polygon");
+    let mut ops = Operators::<LotBuilding>::new(lot_building::LIMITS).expect("limits are valid");
+    let mut rng = ChaCha8Rng::seed_from_u64(1);
+    let mut batch = InstanceBatch::new().on_site(Site::with_lot(lot));
+    for _ in 0..POPULATION {
+        batch.push_genome(&ops.random(30, &mut rng));
+    }
+    let grid = Grid::new(
+        Vec3::new(-9.0, 0.0, -7.0),
+        Vec3::new(9.0, 12.0, 7.0),
+        [90, 60, 70],
+    )
+    .expect("the grid is valid");
+    let mut mass = Mesh::unit_cube();
+    for p in &mut mass.positions {
+        *p = *p * Vec3::new(12.0, 8.0, 10.0) + Vec3::new(-2.0, 4.0, 0.0);
+    }
+    let target = VolumeTarget {
+        name: "mass".into(),
+        mesh: mass,
+        inside: 1.0,
+        outside: -1.0,
+        fill: Fill::Parity,
+    };
+    let meshes = generators::default_meshes()
+        .bind(LotBuilding::GRAPH)
+        .expect("lot building meshes bind");
+    let scorer = VolumeScorer::new(grid, &[target], &meshes, Form::Weighted { overlap: 0.5 })
+        .expect("the scene scores");
+    (scorer, batch)
+}
+
 fn volume(c: &mut Criterion) {
-    let scorer = paper_scorer();
-    let batch = population();
+    let gpu = GpuContext::new();
+    if let Err(err) = &gpu {
+        eprintln!("no GPU ({err}): volume/*/gpu not measured");
+    }
+    let gpu = gpu.as_ref().ok();
+    measure(
+        c,
+        "volume/spaceship",
+        &paper_scorer(),
+        &population(),
+        true,
+        gpu,
+    );
+    let (scorer, batch) = lot_buildings();
+    measure(c, "volume/lot_building", &scorer, &batch, false, gpu);
+}
+
+/// Times counting `batch` with `scorer` on all threads (and on one with `single`), and on
+/// `gpu` when given, after checking that it counts what the CPU counts.
+fn measure(
+    c: &mut Criterion,
+    name: &str,
+    scorer: &VolumeScorer,
+    batch: &InstanceBatch,
+    single: bool,
+    gpu: Option<&GpuContext>,
+) {
     let mut out = vec![VolumeCounts::default(); batch.len()];
-    let mut group = c.benchmark_group("volume/spaceship");
-    group.throughput(Throughput::Elements(POPULATION as u64));
-    let single = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .expect("a thread pool");
-    group.bench_function("cpu-1-thread", |b| {
-        b.iter(|| single.install(|| count_batch(&scorer, &batch, &mut out)))
-    });
+    let mut group = c.benchmark_group(name);
+    group.throughput(Throughput::Elements(batch.len() as u64));
+    if single {
+        let one = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .expect("a thread pool");
+        group.bench_function("cpu-1-thread", |b| {
+            b.iter(|| one.install(|| count_batch(scorer, batch, &mut out)))
+        });
+    }
     group.bench_function(
         format!("cpu-{}-threads", rayon::current_num_threads()),
-        |b| b.iter(|| count_batch(&scorer, &batch, &mut out)),
+        |b| b.iter(|| count_batch(scorer, batch, &mut out)),
     );
-    match GpuContext::new() {
-        Ok(gpu) => {
-            let on_gpu =
-                GpuVolumeScorer::new(&gpu, &scorer).expect("the spaceship scene runs on the GPU");
-            let mut cpu = vec![VolumeCounts::default(); batch.len()];
-            count_batch(&scorer, &batch, &mut cpu);
-            on_gpu
-                .count_batch(&batch, &mut out)
-                .expect("the GPU counts");
-            assert_eq!(cpu, out, "the GPU counts what the CPU counts");
-            eprintln!("volume/spaceship/gpu runs on {}", gpu.describe());
-            group.bench_function("gpu", |b| {
-                b.iter(|| {
-                    on_gpu
-                        .count_batch(&batch, &mut out)
-                        .expect("the GPU counts")
-                })
-            });
-        }
-        Err(err) => eprintln!("no GPU ({err}): volume/spaceship/gpu not measured"),
+    if let Some(gpu) = gpu {
+        let on_gpu = GpuVolumeScorer::new(gpu, scorer).expect("the scene runs on the GPU");
+        let mut cpu = vec![VolumeCounts::default(); batch.len()];
+        count_batch(scorer, batch, &mut cpu);
+        on_gpu.count_batch(batch, &mut out).expect("the GPU counts");
+        assert_eq!(cpu, out, "the GPU counts what the CPU counts");
+        eprintln!("{name}/gpu runs on {}", gpu.describe());
+        group.bench_function("gpu", |b| {
+            b.iter(|| on_gpu.count_batch(batch, &mut out).expect("the GPU counts"))
+        });
     }
     group.finish();
 }
