@@ -1,4 +1,4 @@
-//! `shapegen score --gpu` end to end, under its own harness so that a missing adapter
+//! `shapegen score --gpu` and `shapegen run --gpu` end to end, under its own harness so that a missing adapter
 //! shows: without one the test is reported as ignored, after a line saying that no
 //! adapter was found, unless `SHAPEGEN_REQUIRE_GPU=1` (as in CI, which installs a
 //! software Vulkan driver), where it fails instead.
@@ -35,6 +35,10 @@ const TESTS: &[GpuTest] = &[
     (
         "a_gpu_search_counts_children_from_their_parents_with_the_same_result",
         a_gpu_search_counts_children_from_their_parents_with_the_same_result,
+    ),
+    (
+        "lot_buildings_fill_a_volume_on_the_gpu_as_on_the_cpu",
+        lot_buildings_fill_a_volume_on_the_gpu_as_on_the_cpu,
     ),
 ];
 
@@ -181,4 +185,60 @@ fn a_gpu_search_counts_children_from_their_parents_with_the_same_result() {
         "{incremental}"
     );
     assert!(full["incremental"].is_null(), "{}", full["incremental"]);
+}
+
+/// Lot buildings (walls, roofs and windows are generated facets) evolved toward a block
+/// on the volume scorer: the GPU run counts what the CPU run counts, so both end with
+/// the same curve and the same best model.
+fn lot_buildings_fill_a_volume_on_the_gpu_as_on_the_cpu() {
+    let dir = tempfile::tempdir().unwrap();
+    let block = "v -5 0 -4\nv 3 0 -4\nv 3 9 -4\nv -5 9 -4\nv -5 0 4\nv 3 0 4\nv 3 9 4\n\
+                 v -5 9 4\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n";
+    fs::write(dir.path().join("block.obj"), block).unwrap();
+    let scene = dir.path().join("lot.toml");
+    fs::write(
+        &scene,
+        r#"generator = "lot_building"
+
+[lot]
+points = [[-8, -6], [8, -6], [8, 0], [0, 0], [0, 6], [-8, 6]]
+
+[limits]
+min_len = 2
+optimal_len = 40
+max_len = 200
+max_depth = 16
+
+[optimizer]
+population = 40
+generations = 6
+
+[volume]
+grid = { min = [-9, 0, -7], max = [9, 12, 7], resolution = [54, 36, 42] }
+good = 2.0
+bad = 15.0
+
+[[volume.target]]
+mesh = "block.obj"
+inside = 1.0
+outside = -1.0
+"#,
+    )
+    .unwrap();
+    let run = |backend: &str| {
+        let out = dir.path().join(backend.trim_start_matches('-'));
+        let run = shapegen(&["run", s(&scene), backend, "--seed", "3", "--out", s(&out)]);
+        let printed = String::from_utf8_lossy(&run.stderr).into_owned();
+        assert!(run.status.success(), "{printed}");
+        (out, printed)
+    };
+    let (cpu, _) = run("--cpu");
+    let (gpu, printed) = run("--gpu");
+    assert!(printed.contains("on GPU: "), "{printed}");
+    assert_eq!(timeless_curve(&cpu), timeless_curve(&gpu));
+    let best = |dir: &std::path::Path| fs::read_to_string(dir.join("best.genome.json")).unwrap();
+    assert_eq!(best(&cpu), best(&gpu));
+    let summary: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(gpu.join("summary.json")).unwrap()).unwrap();
+    assert!(summary["best_fitness"].as_f64().unwrap() > 0.0, "{summary}");
 }
