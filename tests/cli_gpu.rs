@@ -1,7 +1,7 @@
-//! `shapegen score --gpu` and `shapegen run --gpu` end to end, under its own harness so that a missing adapter
-//! shows: without one the test is reported as ignored, after a line saying that no
-//! adapter was found, unless `SHAPEGEN_REQUIRE_GPU=1` (as in CI, which installs a
-//! software Vulkan driver), where it fails instead.
+//! `shapegen score --gpu` and `shapegen run --gpu` end to end, under its own harness so
+//! that a missing adapter shows: without one the test is reported as ignored, after a
+//! line saying that no adapter was found, unless `SHAPEGEN_REQUIRE_GPU=1` (as in CI,
+//! which installs a software Vulkan driver), where it fails instead.
 
 mod support;
 
