@@ -14,6 +14,11 @@
 //! # geojson = "lots/l_lot.geojson"   # or: a GeoJSON file holding one Polygon (no holes)
 //!                                    # any simple polygon, either orientation; laid on
 //!                                    # the ground as x = x, z = -y (see Site)
+//! # coordinates = "degrees"          # optional: "metres" (the default, used as they
+//!                                    # are) or "degrees": [longitude, latitude] on WGS 84,
+//!                                    # as GeoJSON files hold them, laid out in metres
+//!                                    # east and north of the lot's middle
+//! # centre = true                    # optional: move the lot's middle to the origin
 //!
 //! [meshes]                           # optional: replace or add meshes by name
 //! cube = "meshes/cube.obj"           # normalized to unit extent, as the original does

@@ -219,3 +219,121 @@ fn the_project_s_lot_is_an_l() {
     assert_eq!((lot.len(), lot.area()), (6, 144.0));
     assert_eq!(LotBuilding::GRAPH.key, "lot_building");
 }
+
+/// The lengths of `lot`'s edges, from point 0 on.
+fn edge_lengths(lot: &shapegen::geometry::Polygon) -> Vec<f64> {
+    let p = lot.points();
+    (0..p.len())
+        .map(|i| p[i].distance(p[(i + 1) % p.len()]))
+        .collect()
+}
+
+/// Whether `a` is within `relative` of `b`.
+fn near(a: f64, b: f64, relative: f64) -> bool {
+    (a - b).abs() <= relative * b.abs()
+}
+
+/// Longitudes and latitudes (GeoJSON's own coordinates) become metres east and north of
+/// the lot's middle. The reference lengths and areas are geodesics on WGS 84 computed by
+/// PROJ's `Geod(ellps="WGS84")` (pyproj 3.4.1): a 0.0003 x 0.0002 degree lot in Berlin
+/// (south edge 20.363824 m, north 20.363731 m, west 22.255443 m, area 453.20489 m²) and
+/// a 0.002 x 0.001 degree lot across the antimeridian at 60 degrees south (south edge
+/// 111.598319 m, west 111.412287 m, area 12433.6116 m²).
+#[test]
+fn a_lot_in_degrees_is_laid_out_in_metres_around_its_middle() {
+    let fixture = Fixture::new();
+    let berlin = "[[13.4050, 52.5200], [13.4053, 52.5200], [13.4053, 52.5202], [13.4050, 52.5202]]";
+    let scene = load(
+        &fixture,
+        &format!("[lot]\ncoordinates = \"degrees\"\npoints = {berlin}"),
+    )
+    .unwrap();
+    let lot = scene.site.lot().unwrap();
+    let edges = edge_lengths(lot);
+    // Edges 0 and 2 run east, 1 and 3 north.
+    assert!(near(edges[0], 20.363_824, 1e-5), "{edges:?}");
+    assert!(near(edges[2], 20.363_731, 1e-5), "{edges:?}");
+    assert!(near(edges[1], 22.255_443, 1e-5), "{edges:?}");
+    assert!(near(lot.area(), 453.204_89, 1e-5), "{}", lot.area());
+    let (lo, hi) = lot.bounds();
+    assert!((lo + hi).length() < 1e-9, "centred: {lo} {hi}");
+    assert!(lo.x < 0.0 && lo.y < 0.0 && hi.x > 10.0 && hi.y > 11.0);
+    // The same from a GeoJSON file.
+    write(
+        &fixture,
+        "berlin.geojson",
+        &format!(
+            r#"{{"type": "Polygon", "coordinates": [[{}, [13.4050, 52.5200]]]}}"#,
+            &berlin[1..berlin.len() - 1]
+        ),
+    );
+    let from_file = load(
+        &fixture,
+        "[lot]\ngeojson = \"berlin.geojson\"\ncoordinates = \"degrees\"",
+    )
+    .unwrap();
+    assert_eq!(from_file.site, scene.site);
+
+    let across =
+        "[[179.999, -60.0005], [-179.999, -60.0005], [-179.999, -59.9995], [179.999, -59.9995]]";
+    let scene = load(
+        &fixture,
+        &format!("[lot]\ncoordinates = \"degrees\"\npoints = {across}"),
+    )
+    .unwrap();
+    let lot = scene.site.lot().unwrap();
+    let edges = edge_lengths(lot);
+    assert!(near(edges[0], 111.598_319, 1e-4), "{edges:?}");
+    assert!(near(edges[1], 111.412_287, 1e-4), "{edges:?}");
+    assert!(near(lot.area(), 12_433.611_6, 1e-4), "{}", lot.area());
+}
+
+#[test]
+fn a_lot_far_from_the_origin_can_be_centred_on_it() {
+    let fixture = Fixture::new();
+    // The L of L_POINTS in the coordinates of a projected system.
+    let far = "[[499992, 5399994], [500008, 5399994], [500008, 5400000], [500000, 5400000], \
+               [500000, 5400006], [499992, 5400006]]";
+    let centred = load(&fixture, &format!("[lot]\ncentre = true\npoints = {far}")).unwrap();
+    let l = load(&fixture, L_POINTS).unwrap();
+    assert_eq!(centred.site, l.site);
+    let kept = load(&fixture, &format!("[lot]\npoints = {far}")).unwrap();
+    assert_eq!(kept.site.lot().unwrap().bounds().0.x, 499_992.0);
+}
+
+#[test]
+fn lot_coordinates_mistakes_are_refused() {
+    let fixture = Fixture::new();
+    refuses(
+        &fixture,
+        &format!("{L_POINTS}\ncoordinates = \"feet\""),
+        "coordinates",
+        "unknown variant `feet`, expected `metres` or `degrees`",
+    );
+    refuses(
+        &fixture,
+        "[lot]\ncoordinates = \"degrees\"\npoints = [[13.4, 52.5], [13.5, 52.5], [200.0, 52.6]]",
+        "lot.points[2]",
+        "point 2, [200, 52.6], is not [longitude, latitude] in degrees",
+    );
+    // A projected system's metres read as degrees.
+    write(
+        &fixture,
+        "utm.geojson",
+        &L_GEOJSON.replace("[-8, -6]", "[499992, 5399994]"),
+    );
+    refuses(
+        &fixture,
+        "[lot]\ngeojson = \"utm.geojson\"\ncoordinates = \"degrees\"",
+        "lot.geojson",
+        "point 0, [499992, 5399994], is not [longitude, latitude] in degrees; with \
+         coordinates = \"degrees\" a longitude lies in [-180, 180] and a latitude in \
+         [-90, 90] (for metres leave `coordinates` out)",
+    );
+    refuses(
+        &fixture,
+        "[lot]\ncoordinates = \"degrees\"\npoints = [[13.4, 52.5], [13.5, nan], [13.5, 52.6]]",
+        "lot.points[1]",
+        "is not [longitude, latitude]",
+    );
+}
