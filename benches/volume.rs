@@ -14,9 +14,8 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use shapegen::Grammar;
 use shapegen::ops::Operators;
-use shapegen_runtime::geometry::Polygon;
 use shapegen_runtime::gpu::GpuContext;
-use shapegen_runtime::prelude::{Vec3, vec2};
+use shapegen_runtime::prelude::Vec3;
 use shapegen_runtime::score::volume::{
     Fill, GpuVolumeScorer, Grid, VolumeCounts, VolumeScorer, VolumeTarget,
 };
@@ -70,18 +69,9 @@ fn population() -> InstanceBatch {
 
 /// 200 random lot buildings on an L-shaped lot, and a scorer whose grid cuts them.
 fn lot_buildings() -> (VolumeScorer, InstanceBatch) {
-    let lot = Polygon::new([
-        vec2(-8.0, -6.0),
-        vec2(8.0, -6.0),
-        vec2(8.0, 0.0),
-        vec2(0.0, 0.0),
-        vec2(0.0, 6.0),
-        vec2(-8.0, 6.0),
-    ])
-    .expect("the L is a simple polygon");
     let mut ops = Operators::<LotBuilding>::new(lot_building::LIMITS).expect("limits are valid");
     let mut rng = ChaCha8Rng::seed_from_u64(1);
-    let mut batch = InstanceBatch::new().on_site(Site::with_lot(lot));
+    let mut batch = InstanceBatch::new().on_site(Site::with_lot(lot_building::L_LOT.clone()));
     for _ in 0..POPULATION {
         batch.push_genome(&ops.random(30, &mut rng));
     }

@@ -3,7 +3,8 @@
 // Each box is a `QuantBox` quantised on the CPU (shapegen-runtime/src/score/volume/
 // quant.rs); this shader evaluates exactly the same i32 formulas, so its counts equal the
 // CPU's bit for bit. What the CPU rasterises itself (other meshes, facets) arrives as
-// boxes without planes (all coefficients 0), whose every row covers its whole extent. Rows of a pass are numbered through all its boxes: box b owns rows
+// boxes without planes (all coefficients 0), whose every row covers its whole extent.
+// Rows of a pass are numbered through all its boxes: box b owns rows
 // `boxes[b].extent.w ..` (a prefix sum computed on the CPU), `nj * nk` of them.
 //
 // Per model of the pass, `covered` holds a bitset over the grid (32 voxels per word):

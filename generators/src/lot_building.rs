@@ -25,16 +25,11 @@
 //!
 //! ```
 //! use generators::lot_building::{self, LotBuilding};
-//! use glam::vec2;
-//! use shapegen_runtime::geometry::Polygon;
 //! use shapegen_runtime::prelude::*;
 //! use shapegen_runtime::Site;
 //!
-//! // An L-shaped lot, a 9-high mass with windows on the front and a hip roof.
-//! let l = Polygon::new([
-//!     vec2(-8.0, -6.0), vec2(8.0, -6.0), vec2(8.0, 0.0),
-//!     vec2(0.0, 0.0), vec2(0.0, 6.0), vec2(-8.0, 6.0),
-//! ])?;
+//! // The L-shaped lot, a 9-high mass with windows on the front and a hip roof.
+//! let l = lot_building::L_LOT.clone();
 //! let lot = lot_building::Lot { front: 0.0, sides: 0.0 };
 //! let mut g = Genome::<LotBuilding>::with_root(lot)?;
 //! let mass = g.attach(0, "mass", lot_building::Mass { height: 9.0 })?;
@@ -71,6 +66,21 @@ use crate::building::{capped_tile, roof_shape};
 /// [`Building`]: crate::Building
 pub static DEFAULT_LOT: LazyLock<Polygon> = LazyLock::new(|| {
     Polygon::rectangle(crate::building::LOT).expect("a 10 x 10 square is a polygon")
+});
+
+/// An L-shaped lot, the one of the project's building scene
+/// (`scenes/lots/l_lot.geojson`): 16 x 12 centred on the origin, less its 8 x 6 corner
+/// at `x > 0`, `y > 0`.
+pub static L_LOT: LazyLock<Polygon> = LazyLock::new(|| {
+    Polygon::new([
+        vec2(-8.0, -6.0),
+        vec2(8.0, -6.0),
+        vec2(8.0, 0.0),
+        vec2(0.0, 0.0),
+        vec2(0.0, 6.0),
+        vec2(-8.0, 6.0),
+    ])
+    .expect("the L is a simple polygon")
 });
 
 /// The height of the block a lot without a mass holds.

@@ -197,15 +197,7 @@ fn the_volume_scorer_fills_what_a_building_encloses() {
     let scorer =
         VolumeScorer::new(grid, &[target], &meshes, Form::Weighted { overlap: 0.5 }).unwrap();
     let mut scratch = scorer.scratch();
-    let l = Polygon::new([
-        vec2(-8.0, -6.0),
-        vec2(8.0, -6.0),
-        vec2(8.0, 0.0),
-        vec2(0.0, 0.0),
-        vec2(0.0, 6.0),
-        vec2(-8.0, 6.0),
-    ])
-    .unwrap();
+    let l = lot_building::L_LOT.clone();
     let mut checked = 0;
     for building in buildings(&l, 9, 12, 30) {
         let triangles = facet_triangles(&building, &meshes);

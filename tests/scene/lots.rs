@@ -217,6 +217,7 @@ fn the_project_s_lot_is_an_l() {
     let ring = shapegen::scene::geojson_outline(&lots.join("l_lot.geojson"), &text).unwrap();
     let lot = shapegen::geometry::Polygon::from_f64(&ring).unwrap();
     assert_eq!((lot.len(), lot.area()), (6, 144.0));
+    assert_eq!(lot, *generators::lot_building::L_LOT);
     assert_eq!(LotBuilding::GRAPH.key, "lot_building");
 }
 
@@ -233,32 +234,91 @@ fn near(a: f64, b: f64, relative: f64) -> bool {
     (a - b).abs() <= relative * b.abs()
 }
 
+/// A lot in degrees, as `[lot] points`, and what PROJ measures of it: its four edge
+/// lengths from point 0 on and its area, the geodesics on WGS 84 of pyproj 3.4.1's
+/// `Geod(ellps="WGS84")`, and how near the lot laid out in metres must come to them.
+struct Surveyed {
+    points: &'static str,
+    edges: [f64; 4],
+    area: f64,
+    within: f64,
+}
+
+const SURVEYED: [Surveyed; 4] = [
+    // 0.0003 x 0.0002 degrees in Berlin, about 20 x 22 m.
+    Surveyed {
+        points: "[[13.4050, 52.5200], [13.4053, 52.5200], [13.4053, 52.5202], [13.4050, 52.5202]]",
+        edges: [20.363_824, 22.255_443, 20.363_731, 22.255_443],
+        area: 453.204_89,
+        within: 1e-5,
+    },
+    // 0.002 x 0.001 degrees across the antimeridian at 60 degrees south.
+    Surveyed {
+        points: "[[179.999, -60.0005], [-179.999, -60.0005], [-179.999, -59.9995], \
+                 [179.999, -59.9995]]",
+        edges: [111.598_319, 111.412_287, 111.601_687, 111.412_287],
+        area: 12_433.611_63,
+        within: 1e-4,
+    },
+    // 0.006 x 0.003 degrees at 60 degrees north, about 335 x 334 m.
+    Surveyed {
+        points: "[[10.0, 60.0], [10.006, 60.0], [10.006, 60.003], [10.0, 60.003]]",
+        edges: [334.800_009, 334.236_939, 334.769_697, 334.236_939],
+        area: 111_897.464_42,
+        within: 5e-5,
+    },
+    // 0.018 x 0.009 degrees at 60 degrees north, about 1 km across.
+    Surveyed {
+        points: "[[10.0, 60.0], [10.018, 60.0], [10.018, 60.009], [10.0, 60.009]]",
+        edges: [1_004.400_025, 1_002.711_275, 1_004.127_205, 1_002.711_275],
+        area: 1_006_986.445_29,
+        within: 1.5e-4,
+    },
+];
+
 /// Longitudes and latitudes (GeoJSON's own coordinates) become metres east and north of
-/// the lot's middle. The reference lengths and areas are geodesics on WGS 84 computed by
-/// PROJ's `Geod(ellps="WGS84")` (pyproj 3.4.1): a 0.0003 x 0.0002 degree lot in Berlin
-/// (south edge 20.363824 m, north 20.363731 m, west 22.255443 m, area 453.20489 m²) and
-/// a 0.002 x 0.001 degree lot across the antimeridian at 60 degrees south (south edge
-/// 111.598319 m, west 111.412287 m, area 12433.6116 m²).
+/// the lot's middle, as long as PROJ measures them.
 #[test]
 fn a_lot_in_degrees_is_laid_out_in_metres_around_its_middle() {
     let fixture = Fixture::new();
-    let berlin = "[[13.4050, 52.5200], [13.4053, 52.5200], [13.4053, 52.5202], [13.4050, 52.5202]]";
+    for surveyed in &SURVEYED {
+        let scene = load(
+            &fixture,
+            &format!(
+                "[lot]\ncoordinates = \"degrees\"\npoints = {}",
+                surveyed.points
+            ),
+        )
+        .unwrap();
+        let lot = scene.site.lot().unwrap();
+        let edges = edge_lengths(lot);
+        for (edge, reference) in edges.iter().zip(surveyed.edges) {
+            assert!(
+                near(*edge, reference, surveyed.within),
+                "{}: {edges:?}",
+                surveyed.points
+            );
+        }
+        assert!(
+            near(lot.area(), surveyed.area, surveyed.within),
+            "{}: {}",
+            surveyed.points,
+            lot.area()
+        );
+        let (lo, hi) = lot.bounds();
+        assert!((lo + hi).length() < 1e-9, "centred: {lo} {hi}");
+    }
+
+    // Berlin's lot from a GeoJSON file is the same.
+    let berlin = SURVEYED[0].points;
     let scene = load(
         &fixture,
         &format!("[lot]\ncoordinates = \"degrees\"\npoints = {berlin}"),
     )
     .unwrap();
-    let lot = scene.site.lot().unwrap();
-    let edges = edge_lengths(lot);
-    // Edges 0 and 2 run east, 1 and 3 north.
-    assert!(near(edges[0], 20.363_824, 1e-5), "{edges:?}");
-    assert!(near(edges[2], 20.363_731, 1e-5), "{edges:?}");
-    assert!(near(edges[1], 22.255_443, 1e-5), "{edges:?}");
-    assert!(near(lot.area(), 453.204_89, 1e-5), "{}", lot.area());
-    let (lo, hi) = lot.bounds();
-    assert!((lo + hi).length() < 1e-9, "centred: {lo} {hi}");
+    // x east, y north: the lot is about 20 m wide and 22 m deep.
+    let (lo, hi) = scene.site.lot().unwrap().bounds();
     assert!(lo.x < 0.0 && lo.y < 0.0 && hi.x > 10.0 && hi.y > 11.0);
-    // The same from a GeoJSON file.
     write(
         &fixture,
         "berlin.geojson",
@@ -273,19 +333,6 @@ fn a_lot_in_degrees_is_laid_out_in_metres_around_its_middle() {
     )
     .unwrap();
     assert_eq!(from_file.site, scene.site);
-
-    let across =
-        "[[179.999, -60.0005], [-179.999, -60.0005], [-179.999, -59.9995], [179.999, -59.9995]]";
-    let scene = load(
-        &fixture,
-        &format!("[lot]\ncoordinates = \"degrees\"\npoints = {across}"),
-    )
-    .unwrap();
-    let lot = scene.site.lot().unwrap();
-    let edges = edge_lengths(lot);
-    assert!(near(edges[0], 111.598_319, 1e-4), "{edges:?}");
-    assert!(near(edges[1], 111.412_287, 1e-4), "{edges:?}");
-    assert!(near(lot.area(), 12_433.611_6, 1e-4), "{}", lot.area());
 }
 
 #[test]

@@ -7,6 +7,7 @@
 mod support {
     pub mod breeding;
     pub mod city_expanded;
+    pub mod lots;
     pub mod pavilions;
     pub mod scenes;
     pub mod silhouette_scenes;

@@ -201,26 +201,9 @@ fn gpu_matches_cpu_on_generated_facets(gpu: &GpuContext) {
 /// Buildings on an L-shaped lot, their walls, windows, doors and roofs all generated
 /// facets: a site's lot reaches the GPU through the batch as it reaches the CPU.
 fn gpu_matches_cpu_on_lot_buildings(gpu: &GpuContext) {
-    use generators::lot_building::{LIMITS, LotBuilding};
-    use rand::SeedableRng;
-    use shapegen_runtime::geometry::Polygon;
-    use shapegen_runtime::{Operators, Site};
+    use generators::lot_building::LotBuilding;
 
-    let l = Polygon::new([
-        glam::vec2(-8.0, -6.0),
-        glam::vec2(8.0, -6.0),
-        glam::vec2(8.0, 0.0),
-        glam::vec2(0.0, 0.0),
-        glam::vec2(0.0, 6.0),
-        glam::vec2(-8.0, 6.0),
-    ])
-    .unwrap();
-    let mut ops = Operators::<LotBuilding>::new(LIMITS).unwrap();
-    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(41);
-    let mut batch = InstanceBatch::new().on_site(Site::with_lot(l));
-    for _ in 0..30 {
-        batch.push_genome(&ops.random(30, &mut rng));
-    }
+    let batch = crate::support::lots::lot_buildings(30, 41);
     let facets: usize = (0..batch.len()).map(|m| batch.model(m).len()).sum();
     assert!(facets > 10_000, "{facets} instances");
     let meshes = generators::default_meshes()

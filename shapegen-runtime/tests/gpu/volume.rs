@@ -2,18 +2,18 @@
 
 use std::path::Path;
 
-use generators::lot_building::{LIMITS, LotBuilding};
-use glam::{Affine3A, Vec3, vec2};
-use rand::SeedableRng;
+use generators::lot_building::LotBuilding;
+use glam::{Affine3A, Vec3};
 use shapegen_runtime::genome::Limits;
-use shapegen_runtime::geometry::{MeshId, Polygon, facet_transform};
+use shapegen_runtime::geometry::{MeshId, facet_transform};
 use shapegen_runtime::gpu::GpuContext;
 use shapegen_runtime::score::volume::{GpuVolumeScorer, Grid, VolumeCounts, VolumeScorer};
 use shapegen_runtime::score::{Form, InstanceBatch, count_batch};
-use shapegen_runtime::{CUBE, Grammar, Instance, Mesh, MeshLibrary, Operators, Site};
+use shapegen_runtime::{CUBE, Grammar, Instance, Mesh, MeshLibrary};
 
 use crate::GpuTest;
 use crate::support::city_expanded::City;
+use crate::support::lots::lot_buildings;
 use crate::support::scenes::{population, scenes};
 use crate::support::spaceship_expanded::Spaceship;
 use crate::support::volume_scenes::{
@@ -162,6 +162,15 @@ fn the_gpu_counts_exactly_what_the_cpu_counts(gpu: &GpuContext) {
     assert_eq!(cpu, out);
 }
 
+/// Asserts that more than `n` of the models counted as `counts` are `such`.
+fn assert_many(counts: &[VolumeCounts], n: usize, such: impl Fn(&VolumeCounts) -> bool) {
+    let found = counts.iter().filter(|c| such(c)).count();
+    assert!(
+        found > n,
+        "{found} of the models, not more than {n}: {counts:?}"
+    );
+}
+
 /// A tetrahedron of facets, outward-wound, with its right-angle corner at `at` and legs
 /// of `size`.
 fn facet_tetrahedron(at: Vec3, size: f32) -> Vec<Instance> {
@@ -199,37 +208,14 @@ fn the_gpu_counts_other_meshes_and_facets_exactly_as_the_cpu_does(gpu: &GpuConte
         VolumeScorer::new(grid, &[trunk], &meshes, Form::Weighted { overlap: 0.5 }).unwrap();
     let trees = population::<generators::tree::Tree>(30, generators::tree::PAPER_LIMITS, 150, 5);
     let cpu = cpu_counts(&scorer, &trees);
-    assert!(
-        cpu.iter().filter(|c| c.inside > 0 && c.outside > 0).count() > 10,
-        "{cpu:?}"
-    );
-    assert!(
-        cpu.iter().filter(|c| c.out_of_grid_hits > 0).count() > 5,
-        "{cpu:?}"
-    );
-    assert!(
-        cpu.iter().filter(|c| c.overlap_voxels > 0).count() > 5,
-        "{cpu:?}"
-    );
+    assert_many(&cpu, 10, |c| c.inside > 0 && c.outside > 0);
+    assert_many(&cpu, 5, |c| c.out_of_grid_hits > 0);
+    assert_many(&cpu, 5, |c| c.overlap_voxels > 0);
     assert_eq!(cpu, gpu_counts(gpu, &scorer, &trees));
 
     // Lot buildings: generated surfaces, their facets voxelized together by winding
     // number, on a grid that cuts them.
-    let l = Polygon::new([
-        vec2(-8.0, -6.0),
-        vec2(8.0, -6.0),
-        vec2(8.0, 0.0),
-        vec2(0.0, 0.0),
-        vec2(0.0, 6.0),
-        vec2(-8.0, 6.0),
-    ])
-    .unwrap();
-    let mut ops = Operators::<LotBuilding>::new(LIMITS).unwrap();
-    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(41);
-    let mut buildings = InstanceBatch::new().on_site(Site::with_lot(l));
-    for _ in 0..30 {
-        buildings.push_genome(&ops.random(30, &mut rng));
-    }
+    let buildings = lot_buildings(30, 41);
     let meshes = generators::default_meshes()
         .bind(LotBuilding::GRAPH)
         .unwrap();
@@ -248,18 +234,9 @@ fn the_gpu_counts_other_meshes_and_facets_exactly_as_the_cpu_does(gpu: &GpuConte
     let scorer =
         VolumeScorer::new(grid, &[mass], &meshes, Form::Weighted { overlap: 0.5 }).unwrap();
     let cpu = cpu_counts(&scorer, &buildings);
-    assert!(
-        cpu.iter().filter(|c| c.inside > 0 && c.outside > 0).count() > 10,
-        "{cpu:?}"
-    );
-    assert!(
-        cpu.iter().filter(|c| c.out_of_grid_hits > 0).count() > 5,
-        "{cpu:?}"
-    );
-    assert!(
-        cpu.iter().filter(|c| c.span_out_of_grid > 0).count() > 5,
-        "{cpu:?}"
-    );
+    assert_many(&cpu, 10, |c| c.inside > 0 && c.outside > 0);
+    assert_many(&cpu, 5, |c| c.out_of_grid_hits > 0);
+    assert_many(&cpu, 5, |c| c.span_out_of_grid > 0);
     let mut on_gpu = GpuVolumeScorer::new(gpu, &scorer).unwrap();
     let mut out = vec![VolumeCounts::default(); buildings.len()];
     on_gpu.count_batch(&buildings, &mut out).unwrap();

@@ -381,11 +381,8 @@ impl<'a> GpuVolumeScorer<'a> {
                 .collect()
         };
         let starts = batch.starts();
-        let mut beyond: Vec<Beyond> = if rasterised.is_empty() {
-            vec![Beyond::default(); batch.len()]
-        } else {
-            rasterised.iter().map(|r| r.beyond).collect()
-        };
+        let mut beyond: Vec<Beyond> = rasterised.iter().map(|r| r.beyond).collect();
+        beyond.resize(batch.len(), Beyond::default());
         let mut passes = vec![Pass::default()];
         let mut model_boxes = Vec::new();
         for (m, extra) in beyond.iter_mut().enumerate() {
