@@ -1,11 +1,11 @@
-//! Every method returns a best model within the scene's limits, even when the fitness
-//! rewards models shorter than `min_len` (as a target that nothing the generator draws
-//! overlaps rewards the bare axiom): the record of a run takes a genome outside the
-//! limits only until one within them is scored.
+//! Every method scores only genomes within the limits it keeps (`Settings::kept_limits`:
+//! the scene's, or fewer where a method follows the original's rules), and returns the
+//! best of them, even when the fitness rewards models shorter than `min_len` (as a target
+//! that nothing the generator draws overlaps rewards the bare axiom).
 
 use generators::{GeneratorVisitor, Published};
 use shapegen::optimize::{
-    Best, Budget, FnEvaluator, McmcSettings, McmcVariant, Optimizer, RunResult, Silent,
+    Best, Budget, FnEvaluator, McmcSettings, McmcVariant, Optimizer, RunResult, Settings, Silent,
     SmcSettings, SmcVariant,
 };
 use shapegen::registry::Registry;
@@ -37,18 +37,31 @@ struct Search {
 }
 
 impl<G: Grammar> MethodJob<G> for Search {
-    type Output = RunResult<G>;
+    /// The run's result, and the limits the method keeps.
+    type Output = (RunResult<G>, Limits);
 
-    fn run<O: Optimizer<G, Record = Best<G>>>(self, settings: O::Settings) -> RunResult<G> {
+    fn run<O: Optimizer<G, Record = Best<G>>>(self, settings: O::Settings) -> Self::Output {
         let fitness = self.fitness;
-        O::new(settings, self.limits, 3)
+        let kept = settings.kept_limits(self.limits);
+        let mut scored = 0;
+        let evaluate = |g: &Genome<G>| {
+            // Every genome scored keeps the limits the method keeps.
+            if let Err(e) = g.validate_limits(&kept) {
+                panic!("scored outside {kept:?}: {e}");
+            }
+            scored += 1;
+            fitness.of(g)
+        };
+        let result = O::new(settings, self.limits, 3)
             .unwrap()
             .run(
-                &mut FnEvaluator(|g: &Genome<G>| fitness.of(g)),
+                &mut FnEvaluator(evaluate),
                 &Budget::generations(6),
                 &mut Silent,
             )
-            .unwrap()
+            .unwrap();
+        assert!(scored > 0);
+        (result, kept)
     }
 }
 
@@ -88,22 +101,28 @@ impl GeneratorVisitor for EveryMethod<'_> {
         let presets = &self.0.find(G::GRAPH.key).unwrap().defaults.presets;
         for settings in every_method(presets) {
             for fitness in [Fitness::Shorter, Fitness::Empty] {
-                let r = settings.run::<G, _>(Search { limits, fitness });
+                let (r, kept) = settings.run::<G, _>(Search { limits, fitness });
                 let what = format!(
                     "{} with {settings:?} for {fitness:?}: {} genes, depth {}",
                     G::GRAPH.key,
                     r.best.len(),
                     r.best.depth()
                 );
-                assert!(r.best.validate_limits(&limits).is_ok(), "{what}");
+                assert!(r.best.validate_limits(&kept).is_ok(), "{what}");
                 assert_eq!(r.best_fitness, fitness.of(&r.best), "{what}");
+                // The best is the best scored: never below a generation's best or mean.
+                for h in &r.history {
+                    assert!(h.best >= h.mean, "{what}: {h:?}");
+                }
+                let top = r.history.iter().map(|h| h.best).fold(f64::MIN, f64::max);
+                assert_eq!(r.best_fitness, top, "{what}");
             }
         }
     }
 }
 
 #[test]
-fn every_method_returns_a_best_within_the_limits() {
+fn every_method_scores_within_the_limits_it_keeps_and_returns_the_best_it_scored() {
     let registry = Registry::published();
     for generator in Published::ALL {
         generator.visit(EveryMethod(&registry));

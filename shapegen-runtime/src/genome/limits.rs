@@ -68,6 +68,38 @@ impl Limits {
         Ok(limits)
     }
 
+    /// These limits without their depth bound: any depth up to [`DEPTH_CAP`], which every
+    /// genome keeps.
+    ///
+    /// ```
+    /// use shapegen_runtime::genome::{DEPTH_CAP, Limits};
+    ///
+    /// let scene = Limits::new(4, 400, 12).unwrap();
+    /// assert_eq!(scene.without_depth().max_depth, DEPTH_CAP);
+    /// assert_eq!(scene.without_length(), Limits::new(0, u32::MAX, 12).unwrap());
+    /// assert_eq!(scene.without_min_len().min_len, 0);
+    /// ```
+    pub const fn without_depth(self) -> Self {
+        Limits {
+            max_depth: DEPTH_CAP,
+            ..self
+        }
+    }
+
+    /// These limits without their length bounds: any length from the root alone up.
+    pub const fn without_length(self) -> Self {
+        Limits {
+            min_len: 0,
+            max_len: u32::MAX,
+            ..self
+        }
+    }
+
+    /// These limits without their minimum length.
+    pub const fn without_min_len(self) -> Self {
+        Limits { min_len: 0, ..self }
+    }
+
     /// Checks that the bounds can be met together: `min_len <= max_len`, `max_len >= 1`
     /// and `1 <= max_depth <= DEPTH_CAP`.
     pub fn check(&self) -> Result<(), LimitsError> {

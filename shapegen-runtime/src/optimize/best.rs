@@ -13,15 +13,14 @@ use super::run::{
     grammar_struct_traits,
 };
 use crate::derive::Grammar;
-use crate::genome::{Genome, Limits};
+use crate::genome::Genome;
 
 /// The record of a run on one fitness: the best genome so far and the history.
 ///
-/// The best keeps to the run's limits: a genome outside them (shorter than `min_len`,
-/// say, as the original SMC's particles are in their first steps) is taken only while
-/// no genome within them has been scored, and the first within them then replaces it
-/// whatever the two's fitness. So a run returns a model within its limits as soon as it
-/// has scored one, even when a model outside them would score better.
+/// The best is the best genome the run has scored, whatever it is: every genome a
+/// method scores keeps to the limits that method keeps
+/// ([`Settings::kept_limits`](super::Settings::kept_limits)), so the record has nothing
+/// to refuse, and a generation's recorded best is never below its mean.
 #[derive(Serialize, Deserialize)]
 #[serde(bound(serialize = "G: Grammar", deserialize = "G: Grammar"))]
 pub struct Best<G> {
@@ -53,33 +52,21 @@ impl<G> Default for Best<G> {
 impl<G: Grammar> Best<G> {
     /// Records a generation whose fitness values are `fitness` and whose best individual
     /// (the first of equals) is `best`, and appends the generation's best, mean and
-    /// standard deviation to the history. The record keeps to `limits`: a genome
-    /// outside them is taken only while no genome within them has been recorded, and
-    /// one within them then replaces it whatever the two's fitness.
+    /// standard deviation to the history. Takes `best` if it beats the best so far.
     pub(crate) fn record_generation(
         progress: &mut Progress<Self>,
-        limits: &Limits,
         best: Option<(&Genome<G>, f64)>,
         fitness: &[f64],
     ) {
         let r = &mut progress.record;
-        if let Some((genome, f)) = best {
-            let fits = |g: &Genome<G>| g.validate_limits(limits).is_ok();
-            let takes = match &r.best {
-                None => true,
-                Some(held) => match (fits(genome), fits(held)) {
-                    (true, false) => true,
-                    (false, true) => false,
-                    _ => compare(f, r.best_fitness).is_gt(),
-                },
-            };
-            if takes {
-                match &mut r.best {
-                    Some(b) => b.clone_from(genome),
-                    None => r.best = Some(genome.clone()),
-                }
-                r.best_fitness = f;
+        if let Some((genome, f)) = best
+            && (r.best.is_none() || compare(f, r.best_fitness).is_gt())
+        {
+            match &mut r.best {
+                Some(b) => b.clone_from(genome),
+                None => r.best = Some(genome.clone()),
             }
+            r.best_fitness = f;
         }
         let (mean, std) = fitness::mean_std(fitness);
         r.history.push(HistoryEntry {
@@ -93,29 +80,6 @@ impl<G: Grammar> Best<G> {
     }
 }
 
-/// The index of the best of `genomes` by `fitness` (the first of equals) among those
-/// within `limits`, or of the best of all when none is.
-fn best_within<G: Grammar>(
-    genomes: &[Genome<G>],
-    fitness: &[f64],
-    limits: &Limits,
-) -> Option<usize> {
-    let best = fitness::best_index(fitness)?;
-    let fits = |i: &usize| genomes[*i].validate_limits(limits).is_ok();
-    if fits(&best) {
-        return Some(best);
-    }
-    let within = (0..genomes.len()).filter(fits);
-    let best_within = within.reduce(|a, b| {
-        if compare(fitness[b], fitness[a]).is_gt() {
-            b
-        } else {
-            a
-        }
-    });
-    Some(best_within.unwrap_or(best))
-}
-
 impl<G: Grammar> Record<G> for Best<G> {
     type Evaluator<'e> = dyn Evaluator<G> + 'e;
     type Observer<'o> = dyn Observer<G> + 'o;
@@ -125,17 +89,11 @@ impl<G: Grammar> Record<G> for Best<G> {
         !self.history.is_empty()
     }
 
-    /// Takes the best of `genomes` within `limits` if it beats the best so far (the rule
-    /// of [`Best`]), and appends the generation's
-    /// best, mean and standard deviation to the history.
-    fn record(
-        progress: &mut Progress<Self>,
-        limits: &Limits,
-        genomes: &[Genome<G>],
-        fitness: &[f64],
-    ) {
-        let best = best_within(genomes, fitness, limits).map(|i| (&genomes[i], fitness[i]));
-        Best::record_generation(progress, limits, best, fitness);
+    /// Takes the best of `genomes` (the first of equals) if it beats the best so far,
+    /// and appends the generation's best, mean and standard deviation to the history.
+    fn record(progress: &mut Progress<Self>, genomes: &[Genome<G>], fitness: &[f64]) {
+        let best = fitness::best_index(fitness).map(|i| (&genomes[i], fitness[i]));
+        Best::record_generation(progress, best, fitness);
     }
 
     fn observe(progress: &Progress<Self>, observer: &mut Self::Observer<'_>) -> Control {

@@ -65,12 +65,7 @@ pub trait Record<G: Grammar>: Clone + Default {
     /// with the counters (generation, evaluations, elapsed time) already updated: takes
     /// in the current population and its scores (one value per individual, or `k`), and
     /// appends the generation's history entry.
-    fn record(
-        progress: &mut Progress<Self>,
-        limits: &Limits,
-        population: &[Genome<G>],
-        scores: &[f64],
-    );
+    fn record(progress: &mut Progress<Self>, population: &[Genome<G>], scores: &[f64]);
 
     /// Shows the last recorded generation to `observer`; returns whether to go on.
     fn observe(progress: &Progress<Self>, observer: &mut Self::Observer<'_>) -> Control;
@@ -233,9 +228,21 @@ pub trait Optimizer<G: Grammar>: Sized {
     /// progress, whose counters and elapsed time the driver has updated. By default the
     /// record takes in the population and scores of [`parts`](Self::parts); an optimizer
     /// spread over several processes records what they hold together.
+    ///
+    /// A debug build checks that every genome recorded keeps the limits the method
+    /// keeps ([`Settings::kept_limits`]): the record takes the best of them, whatever it
+    /// is.
     fn record(&mut self) {
         let (core, population, scores) = self.parts();
-        Self::Record::record(&mut core.progress, &core.limits, population, scores);
+        if cfg!(debug_assertions) {
+            let kept = core.settings.kept_limits(core.limits);
+            for (i, genome) in population.iter().enumerate() {
+                if let Err(e) = genome.validate_limits(&kept) {
+                    panic!("genome {i} is outside the limits its method keeps ({kept:?}): {e}");
+                }
+            }
+        }
+        Self::Record::record(&mut core.progress, population, scores);
     }
 
     /// Agrees with the other processes of a run spread over several on what happens

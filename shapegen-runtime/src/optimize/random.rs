@@ -37,6 +37,12 @@ impl Default for RandomSearchSettings {
 impl Settings for RandomSearchSettings {
     generations_field!("generations", generations);
 
+    /// The given limits but `min_len`: the generator's own distribution, cut at
+    /// `max_len` and `max_depth`, draws models of any length from the root alone up.
+    fn kept_limits(&self, limits: Limits) -> Limits {
+        limits.without_min_len()
+    }
+
     fn validate(&self) -> Result<(), SettingsError> {
         match self.samples {
             0 => Err(SettingsError::new("samples", 0, "at least 1")),

@@ -8,6 +8,7 @@ use serde::de::DeserializeOwned;
 
 use super::SettingsError;
 use super::run::Budget;
+use crate::genome::Limits;
 
 /// A search method's settings, as scene files give them ([`Optimizer::Settings`](
 /// super::Optimizer::Settings)).
@@ -39,6 +40,27 @@ pub trait Settings: Clone + Debug + PartialEq + Serialize + DeserializeOwned {
 
     /// Checks every field; the error names the first one out of range.
     fn validate(&self) -> Result<(), SettingsError>;
+
+    /// The limits that every genome a run of these settings scores keeps, when the run
+    /// is given `limits` (the scene's): the given limits themselves, unless the method
+    /// follows a rule of the original implementation that keeps fewer of them (its GA's
+    /// operators bound length but not depth; its SMC and RJMCMC bound neither). The run's
+    /// best is the best genome it scored, so it keeps these limits too; a debug build
+    /// checks every recorded population against them.
+    ///
+    /// ```
+    /// use shapegen_runtime::genome::{DEPTH_CAP, Limits};
+    /// use shapegen_runtime::ops::OperatorVariant;
+    /// use shapegen_runtime::optimize::{GaSettings, Settings};
+    ///
+    /// let scene = Limits::new(4, 400, 12).unwrap();
+    /// assert_eq!(GaSettings::default().kept_limits(scene), scene);
+    /// let original = GaSettings { operators: OperatorVariant::Original, ..GaSettings::default() };
+    /// assert_eq!(original.kept_limits(scene), Limits { max_depth: DEPTH_CAP, ..scene });
+    /// ```
+    fn kept_limits(&self, limits: Limits) -> Limits {
+        limits
+    }
 
     /// A budget of [`generations`](Self::generations) generations.
     fn budget(&self) -> Budget {

@@ -13,7 +13,7 @@ use shapegen::optimize::{Best, Control, Optimizer, RunResult, Session, Snapshot}
 use shapegen::scene::{
     Method, MethodJob, MethodSettings, Metrics, Overrides, Scene, SceneEvaluator, SceneScorer,
 };
-use shapegen::{Genome, Grammar, Site};
+use shapegen::{Genome, Grammar, Limits, Site};
 
 use crate::registry::Entry;
 
@@ -118,6 +118,10 @@ struct Summary<'a> {
     backend: &'a str,
     genes: usize,
     instances: usize,
+    /// The limits that every model the run scored kept, the best's included: the
+    /// scene's, or fewer where the method follows a rule of the original's
+    /// (`Settings::kept_limits`).
+    kept_limits: Limits,
     stopped: &'a str,
     /// How bred children were counted; absent when every model was counted from nothing.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -369,6 +373,7 @@ impl Run<'_> {
             backend: backend.describe(),
             genes: result.best.len(),
             instances: instances.len(),
+            kept_limits: goal.settings.kept_limits(self.scene.limits),
             stopped: result.stopped.name(),
             incremental: evaluator.retention().map(Incremental::from),
             metrics: Metrics::of(

@@ -25,6 +25,7 @@ mod error;
 
 use serde::{Deserialize, Serialize};
 use shapegen_runtime::Grammar;
+use shapegen_runtime::genome::Limits;
 use shapegen_runtime::ops::OperatorVariant;
 use shapegen_runtime::optimize::{
     self, Best, GaSettings, HybridSettings, McmcSettings, McmcVariant, Optimizer, Order, Settings,
@@ -119,6 +120,14 @@ macro_rules! methods {
             pub fn generations(&self) -> u64 {
                 match self {
                     $(MethodSettings::$variant(s) => s.generations(),)*
+                }
+            }
+
+            /// The limits every genome a run of these settings scores keeps, given the
+            /// scene's ([`Settings::kept_limits`](crate::optimize::Settings::kept_limits)).
+            pub fn kept_limits(&self, limits: Limits) -> Limits {
+                match self {
+                    $(MethodSettings::$variant(s) => s.kept_limits(limits),)*
                 }
             }
 

@@ -131,6 +131,16 @@ pub enum ParentSelection {
 impl Settings for GaSettings {
     generations_field!("generations", generations);
 
+    /// The given limits with the weighted operators; with the original's, which bound
+    /// no depth, the given lengths at any depth (random genomes keep `max_depth`, but
+    /// their children may grow deeper, as the original's do).
+    fn kept_limits(&self, limits: Limits) -> Limits {
+        match self.operators {
+            OperatorVariant::Weighted => limits,
+            OperatorVariant::Original => limits.without_depth(),
+        }
+    }
+
     /// Checks every field; the error names the first one out of range.
     ///
     /// ```

@@ -58,6 +58,17 @@ impl Default for HybridSettings {
 impl Settings for HybridSettings {
     generations_field!("generations", ga.generations);
 
+    /// Its GA's, but shorter than `min_len` while the seeding grows the first
+    /// population from the axiom (and then while the GA breeds from what it grew).
+    fn kept_limits(&self, limits: Limits) -> Limits {
+        let ga = self.ga.kept_limits(limits);
+        if self.seed_steps > 0 {
+            ga.without_min_len()
+        } else {
+            ga
+        }
+    }
+
     /// Checks every field; the error names the first one out of range.
     fn validate(&self) -> Result<(), SettingsError> {
         self.ga.validate()?;

@@ -98,6 +98,11 @@ pub struct IslandGaSettings {
 impl Settings for IslandGaSettings {
     generations_field!("generations", ga.generations);
 
+    /// Its GA's.
+    fn kept_limits(&self, limits: Limits) -> Limits {
+        self.ga.kept_limits(limits)
+    }
+
     /// Checks every field; the error names the first one out of range (the islands'
     /// under `islands.`).
     ///
@@ -525,8 +530,7 @@ impl<G: Grammar> Optimizer<G> for IslandGa<G> {
     /// Records the generation over all islands, as gathered after it.
     fn record(&mut self) {
         let best = self.whole.best.as_ref().map(|(g, f)| (g, *f));
-        let (progress, limits) = (&mut self.core.progress, &self.core.limits);
-        Best::record_generation(progress, limits, best, &self.whole.fitness);
+        Best::record_generation(&mut self.core.progress, best, &self.whole.fitness);
     }
 
     /// Stops if any process stops (the first reason by rank); saves when rank 0 saves

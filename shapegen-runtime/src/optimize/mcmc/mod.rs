@@ -59,8 +59,7 @@ pub enum McmcVariant {
     /// ignores the genome [`Limits`]: genomes may grow past `max_len` and `max_depth`
     /// and shrink below `min_len` (jumps stop adding genes once the tree reaches level
     /// 25, the original's only bound; [`DEPTH_CAP`](crate::genome::DEPTH_CAP) is kept).
-    /// The run's best is taken among the chains within the limits as soon as there are
-    /// any (see [`Best`](crate::optimize::Best)).
+    /// [`Settings::kept_limits`] says so.
     ///
     /// Oddities of the original, reproduced:
     /// - its integer draw `getRandomValue(min, max)` truncates `min + (max - min) * U`,
@@ -223,6 +222,15 @@ impl Default for McmcSettings {
 
 impl Settings for McmcSettings {
     generations_field!("iterations", iterations);
+
+    /// The original's chains are bounded by neither length nor depth; the tempered
+    /// variant's keep the given limits.
+    fn kept_limits(&self, limits: Limits) -> Limits {
+        match self.variant {
+            McmcVariant::Original => limits.without_length().without_depth(),
+            McmcVariant::Tempered => limits,
+        }
+    }
 
     /// Checks every field the variant reads; the error names the first one out of
     /// range.

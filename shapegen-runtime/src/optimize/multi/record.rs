@@ -7,7 +7,7 @@ use std::time::Duration;
 use serde::{Deserialize, Serialize};
 
 use crate::derive::Grammar;
-use crate::genome::{Genome, Limits};
+use crate::genome::Genome;
 use crate::optimize::fitness::bits_vec;
 use crate::optimize::run::grammar_struct_traits;
 use crate::optimize::{Control, MultiEvaluator, Progress, Record, Sense, Silent, StopReason};
@@ -160,7 +160,7 @@ impl<G: Grammar> Record<G> for Front<G> {
         !self.history.is_empty()
     }
 
-    fn record(progress: &mut Progress<Self>, _: &Limits, _: &[Genome<G>], _: &[f64]) {
+    fn record(progress: &mut Progress<Self>, _: &[Genome<G>], _: &[f64]) {
         let r = &mut progress.record;
         r.history.push(MultiHistoryEntry {
             generation: progress.generation,

@@ -1,5 +1,6 @@
 //! Settings of the multi-objective GA, as scene files give them.
 
+use crate::genome::Limits;
 use crate::optimize::settings::generations_field;
 use serde::{Deserialize, Serialize};
 
@@ -205,6 +206,11 @@ impl Default for MultiGaSettings {
 
 impl Settings for MultiGaSettings {
     generations_field!("generations", ga.generations);
+
+    /// Its GA's.
+    fn kept_limits(&self, limits: Limits) -> Limits {
+        self.ga.kept_limits(limits)
+    }
 
     /// Checks every field; the error names the first one out of range (the GA's fields
     /// by their names in [`GaSettings`]).

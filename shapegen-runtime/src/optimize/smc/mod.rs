@@ -98,9 +98,8 @@ pub enum SmcVariant {
     ///   value is `0 / 0`, no draw reaches one, and all new particles are copies of the
     ///   last one in rank order;
     /// - nothing bounds a genome's length: particles grow past [`Limits::max_len`] (one
-    ///   gene per step), and [`Limits::min_len`] is not enforced (the run's best is
-    ///   taken among the particles within the limits as soon as there are any: see
-    ///   [`Best`]).
+    ///   gene per step), and [`Limits::min_len`] is not enforced (the limits this
+    ///   variant keeps, [`Settings::kept_limits`], bound neither length nor depth).
     ///
     /// As the original, the resampling works in `f32` (fitness values are converted);
     /// ties in rank keep their index order (the original's sort leaves it unspecified).
@@ -201,6 +200,16 @@ impl Default for SmcSettings {
 
 impl Settings for SmcSettings {
     generations_field!("steps", steps);
+
+    /// The original's particles grow one gene a step from the axiom, bounded by neither
+    /// length nor depth; the generative variant's keep the given limits but may be
+    /// shorter than `min_len` while they grow.
+    fn kept_limits(&self, limits: Limits) -> Limits {
+        match self.variant {
+            SmcVariant::Original => limits.without_length().without_depth(),
+            SmcVariant::Generative => limits.without_min_len(),
+        }
+    }
 
     /// Checks every field the variant reads; the error names the first one out of range.
     fn validate(&self) -> Result<(), SettingsError> {
