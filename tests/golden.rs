@@ -99,10 +99,15 @@ const GOLDEN: &[Golden] = &{
             3000,
         ),
         run(
-            "spaceship_hybrid_polish",
+            "spaceship_hybrid_seeded_unpolished",
             SHIP,
             "hybrid",
-            &["--set", "optimizer.polish=8"],
+            &[
+                "--set",
+                "optimizer.seed_share=1",
+                "--set",
+                "optimizer.polish=0",
+            ],
             3000,
         ),
         run("spaceship_islands", SHIP, "ga", &["--islands", "3"], 3000),

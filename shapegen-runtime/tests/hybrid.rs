@@ -17,6 +17,7 @@ use support::runs::{Poisoned, same_result, small_ga, threads};
 fn full() -> HybridSettings {
     HybridSettings {
         seed_steps: 2,
+        seed_share: 0.5,
         refine: 4,
         refine_moves: 3,
         jump_probability: 0.5,
@@ -132,6 +133,7 @@ fn hybrid_refinement_keeps_or_betters_its_elites_when_it_hill_climbs() {
 fn hybrid_seeds_its_first_population_by_sosmc() {
     let s = HybridSettings {
         seed_steps: 2,
+        seed_share: 1.0,
         ..none()
     };
     let mut hybrid = Hybrid::<City>::new(s, city::PAPER_LIMITS, 1).unwrap();
@@ -153,6 +155,44 @@ fn hybrid_seeds_its_first_population_by_sosmc() {
         .run(&mut eval, &Budget::generations(3), &mut Silent)
         .unwrap();
     assert_eq!(r.evaluations, 3 * 40 + 32);
+}
+
+#[test]
+fn hybrid_seeds_a_share_of_its_first_population_and_draws_the_rest_as_the_ga_does() {
+    let s = HybridSettings {
+        seed_steps: 2,
+        seed_share: 0.25,
+        ..none()
+    };
+    let mut hybrid = Hybrid::<City>::new(s, city::PAPER_LIMITS, 1).unwrap();
+    let mut eval = Skyline::new();
+    // 10 of the 40 are seeded: the axiom's 10 particles, a step of 10, then the last
+    // step of 10 with the 30 random genomes.
+    let r = hybrid
+        .run(&mut eval, &Budget::generations(1), &mut Silent)
+        .unwrap();
+    assert_eq!((r.evaluations, eval.genomes), (20, 20));
+    let r = hybrid
+        .run(&mut eval, &Budget::generations(2), &mut Silent)
+        .unwrap();
+    assert_eq!((r.evaluations, eval.genomes), (60, 60));
+    let state = hybrid.checkpoint();
+    assert!(state.seeding.is_none() && state.population.len() == 40);
+    // The random ones are the GA's own first genomes in those places, scored.
+    let mut ga = Ga::<City>::new(small_ga(), city::PAPER_LIMITS, 1).unwrap();
+    ga.run(&mut Skyline::new(), &Budget::generations(0), &mut Silent)
+        .unwrap();
+    let first = ga.checkpoint();
+    assert_eq!(state.population[10..], first.population[10..]);
+    assert_eq!(state.fitness[10..], first.fitness[10..]);
+    // The seeded ones are SOSMC's particles, grown from the axiom, not random genomes.
+    assert_ne!(state.population[..10], first.population[..10]);
+    // A budget that ends on the last seeding step stops before it.
+    let r = Hybrid::<City>::new(s, city::PAPER_LIMITS, 1)
+        .unwrap()
+        .run(&mut Skyline::new(), &Budget::evaluations(59), &mut Silent)
+        .unwrap();
+    assert_eq!(r.evaluations, 20);
 }
 
 #[test]

@@ -532,13 +532,7 @@ mod hybrid_tests {
     fn hybrid_keys_are_its_own_or_its_gas() {
         let paper = generators::spaceship::paper_ga();
         let d = hybrid("").unwrap();
-        assert_eq!(
-            d,
-            HybridSettings {
-                ga: paper,
-                ..HybridSettings::default()
-            }
-        );
+        assert_eq!(d, HybridSettings::over(paper));
         let s = hybrid("refine = 2\nseed_steps = 5\njump_probability = 0.2\npopulation = 60\n")
             .unwrap();
         assert_eq!((s.refine, s.seed_steps, s.jump_probability), (2, 5, 0.2));
@@ -546,6 +540,7 @@ mod hybrid_tests {
             s.ga,
             GaSettings {
                 population: 60,
+                polish: HybridSettings::POLISH,
                 ..paper
             }
         );

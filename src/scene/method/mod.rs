@@ -351,7 +351,7 @@ methods! {
     /// The GA with its first population seeded by SOSMC and its best refined by short
     /// RJMCMC chains.
     Hybrid("hybrid"): optimize::Hybrid, HybridSettings, colour [130, 60, 170],
-        preset |p| HybridSettings { ga: p.ga, ..HybridSettings::default() }, read read_hybrid;
+        preset |p| HybridSettings::over(p.ga), read read_hybrid;
     /// Plain random search, the baseline: models drawn from the generator's own
     /// distribution, as many each generation as the GA scores, the best kept.
     Random("random"): optimize::RandomSearch, optimize::RandomSearchSettings, colour [120, 120, 120],

@@ -30,9 +30,13 @@ use crate::ops::Operators;
 pub struct HybridSettings {
     /// The GA that breeds every generation.
     pub ga: GaSettings,
-    /// SOSMC steps that grow the first population from the axiom before the GA breeds
-    /// it; 0 starts from random genomes, as the GA does.
+    /// SOSMC steps that grow part of the first population from the axiom before the GA
+    /// breeds it; 0 starts from random genomes, as the GA does.
     pub seed_steps: u32,
+    /// The share of the first population that the seeding grows, in `[0, 1]`; the rest
+    /// are random genomes of the GA's `initial_length`, as the GA starts from. 0 starts
+    /// from random genomes alone, 1 from seeded ones alone.
+    pub seed_share: f64,
     /// How many of the best individuals a short chain refines each generation; at most
     /// the population. 0 refines none.
     pub refine: u32,
@@ -44,14 +48,9 @@ pub struct HybridSettings {
 }
 
 impl Default for HybridSettings {
+    /// [`over`](Self::over) the GA's defaults.
     fn default() -> Self {
-        HybridSettings {
-            ga: GaSettings::default(),
-            seed_steps: 3,
-            refine: 4,
-            refine_moves: 2,
-            jump_probability: 0.5,
-        }
+        HybridSettings::over(GaSettings::default())
     }
 }
 
@@ -62,7 +61,7 @@ impl Settings for HybridSettings {
     /// population from the axiom (and then while the GA breeds from what it grew).
     fn kept_limits(&self, limits: Limits) -> Limits {
         let ga = self.ga.kept_limits(limits);
-        if self.seed_steps > 0 {
+        if self.seeded() > 0 {
             ga.without_min_len()
         } else {
             ga
@@ -79,6 +78,7 @@ impl Settings for HybridSettings {
                 "at most the population",
             ));
         }
+        check_range("seed_share", self.seed_share, 0.0, 1.0, "between 0 and 1")?;
         check_range(
             "jump_probability",
             self.jump_probability,
@@ -91,10 +91,48 @@ impl Settings for HybridSettings {
 }
 
 impl HybridSettings {
+    /// The candidates a generation's polishing draws unless the settings say otherwise.
+    pub const POLISH: u32 = 8;
+
+    /// The hybrid's own defaults over the GA `ga` (a generator's published settings,
+    /// say): three seeding steps growing half of the first population, the four best
+    /// refined by two moves each generation, and the best polished by
+    /// [`POLISH`](Self::POLISH) candidates a generation.
+    ///
+    /// ```
+    /// use shapegen_runtime::optimize::{GaSettings, HybridSettings};
+    ///
+    /// let h = HybridSettings::over(GaSettings { population: 60, ..GaSettings::default() });
+    /// assert_eq!((h.ga.population, h.ga.polish), (60, HybridSettings::POLISH));
+    /// assert_eq!((h.seed_steps, h.seed_share), (3, 0.5));
+    /// ```
+    pub fn over(ga: GaSettings) -> Self {
+        HybridSettings {
+            ga: GaSettings {
+                polish: Self::POLISH,
+                ..ga
+            },
+            seed_steps: 3,
+            seed_share: 0.5,
+            refine: 4,
+            refine_moves: 2,
+            jump_probability: 0.5,
+        }
+    }
+
+    /// How many of the first population the seeding grows: `seed_share` of it (rounded
+    /// to the nearest), none without seeding steps.
+    fn seeded(&self) -> u32 {
+        if self.seed_steps == 0 {
+            return 0;
+        }
+        (self.seed_share * f64::from(self.ga.population)).round() as u32
+    }
+
     /// The SOSMC that seeds the first population.
     fn seeding(&self) -> SmcSettings {
         SmcSettings {
-            particles: self.ga.population,
+            particles: self.seeded(),
             steps: u64::from(self.seed_steps),
             order: Order::Stochastic,
             variant: SmcVariant::Generative,
@@ -125,17 +163,22 @@ crate::checkpoint! {
 /// method"); annealed refinement, restarts on stagnation and adaptive operator rates
 /// were tried there and dropped.
 ///
-/// - **Seeding**: with [`seed_steps`](HybridSettings::seed_steps), the first population
-///   is grown by SOSMC (the generative variant, [`SmcVariant::Generative`]) from the
-///   axiom for that many steps, one step per generation, rather than drawn as random
-///   genomes of the GA's `initial_length`: small, well-formed models, cheap to score.
+/// - **Seeding**: with [`seed_steps`](HybridSettings::seed_steps), a share of the first
+///   population ([`seed_share`](HybridSettings::seed_share), half by default) is grown
+///   by SOSMC (the generative variant, [`SmcVariant::Generative`]) from the axiom for
+///   that many steps, one step per generation: small, well-formed models, cheap to
+///   score. The rest are the GA's random genomes of its `initial_length`, drawn and
+///   scored with the last seeding step. Seeded models lead where a goal wants small
+///   models (volumes), random ones where it wants large ones (trees); with both in the
+///   first population, selection takes whichever leads.
 /// - **Refinement**: after each generation is bred and scored, its
 ///   [`refine`](HybridSettings::refine) best individuals each make
 ///   [`refine_moves`](HybridSettings::refine_moves) moves of a short RJMCMC chain, the
 ///   tempered variant's jumps and diffusions ([`McmcVariant::Tempered`](
 ///   super::McmcVariant::Tempered)); a move is kept when it loses nothing (a chain at
 ///   temperature 0). The refined individuals take the place of those they came from.
-/// - **Polishing** (off by default): with [`polish`](GaSettings::polish), the
+/// - **Polishing** ([`HybridSettings::POLISH`] candidates by default): with
+///   [`polish`](GaSettings::polish), the
 ///   continuous parameters of the generation's best are then tuned by a separable
 ///   CMA-ES ([`SepCmaEs`](super::SepCmaEs)) that draws that many candidates; the
 ///   strategy goes on while the best keeps its structure and starts again when another
@@ -148,8 +191,10 @@ crate::checkpoint! {
 /// population comes from the run's seed, its seeding from the seed derived for `2^32`.
 /// Results never depend on the thread count.
 ///
-/// Evaluations: the first population costs `population`, and each seeding step as
-/// much; a generation costs `population - elitism + refine * refine_moves + polish`
+/// Evaluations: with seeding, the first seeded particles cost `k = seed_share *
+/// population` (rounded), each seeding step as much, and the last one `population - k`
+/// more for the random genomes; without, the first population costs `population`. A
+/// generation costs `population - elitism + refine * refine_moves + polish`
 /// (polishing makes none while the best has no continuous parameter).
 ///
 /// ```
@@ -178,8 +223,10 @@ crate::checkpoint! {
 /// let mut eval = FnEvaluator(|g: &Genome<Chain>| -(g.len() as f64 - 12.0).abs());
 /// let result = hybrid.run(&mut eval, &Budget::generations(30), &mut Silent)?;
 /// assert_eq!(result.best.len(), 12);
-/// // The axiom, two seeding steps, then 28 generations.
-/// assert_eq!(result.evaluations, 20 + 2 * 20 + 28 * (16 + 2 * 2));
+/// // Half of the first population seeded: the axiom's 10 particles, a step of 10, the
+/// // last step's 10 with the 10 random genomes; then 28 generations, whose polishing
+/// // draws nothing (a chain has no continuous parameter).
+/// assert_eq!(result.evaluations, 10 + 10 + (10 + 10) + 28 * (16 + 2 * 2));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub struct Hybrid<G> {
@@ -200,19 +247,35 @@ impl<G: Grammar> std::fmt::Debug for Hybrid<G> {
 }
 
 impl<G: Grammar> Hybrid<G> {
-    /// One SOSMC step of the population being seeded; the last puts it in place.
+    /// One SOSMC step of the part of the population being seeded; the last puts it in
+    /// place, beside the random genomes of the rest, drawn and scored then.
     fn seed_step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
+        let (settings, progress) = (&self.core.settings, &mut self.core.progress);
         let smc = self.seeding.as_mut().expect("seeding");
         smc.step(evaluator)?;
         let (seeding, particles, particle_fitness) = smc.parts();
         seeding.progress.generation += 1;
-        self.core.progress.evaluations += particles.len() as u64;
-        if seeding.progress.generation >= u64::from(self.core.settings.seed_steps) {
-            self.breeder.population.clone_from_slice(particles);
-            self.breeder.scores.copy_from_slice(particle_fitness);
+        progress.evaluations += particles.len() as u64;
+        if seeding.progress.generation >= u64::from(settings.seed_steps) {
+            let b = &mut self.breeder;
+            let k = particles.len();
+            b.grow(&settings.ga, progress.seed, 0);
+            b.population[..k].clone_from_slice(particles);
+            b.scores[..k].copy_from_slice(particle_fitness);
+            if k < b.population.len() {
+                evaluator.evaluate(&b.population[k..], &mut b.scores[k..])?;
+                progress.evaluations += (b.population.len() - k) as u64;
+            }
             self.seeding = None;
         }
         Ok(())
+    }
+
+    /// Whether the next step is the seeding's last.
+    fn last_seed_step(&self) -> bool {
+        self.seeding.as_ref().is_some_and(|smc| {
+            smc.core().progress.generation + 1 >= u64::from(self.core.settings.seed_steps)
+        })
     }
 
     /// The evaluations of one refinement.
@@ -324,9 +387,12 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
     }
 
     fn step_cost(&self) -> u64 {
-        let ga = &self.core.settings.ga;
-        if self.seeding.is_some() {
+        let settings = &self.core.settings;
+        let ga = &settings.ga;
+        if self.last_seed_step() {
             u64::from(ga.population)
+        } else if self.seeding.is_some() {
+            u64::from(settings.seeded())
         } else {
             ga.children() + self.refine_cost() + u64::from(ga.polish)
         }
@@ -334,7 +400,7 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
 
     fn start(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
         let (settings, progress) = (&self.core.settings, &mut self.core.progress);
-        if settings.seed_steps == 0 {
+        if settings.seeded() == 0 {
             self.breeder
                 .start(&settings.ga, progress.seed, 0, evaluator)?;
             progress.evaluations += u64::from(settings.ga.population);
@@ -348,7 +414,7 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
         smc.start(evaluator)?;
         // Marks its progress started, so that a checkpoint keeps its particles.
         smc.record();
-        progress.evaluations += u64::from(settings.ga.population);
+        progress.evaluations += u64::from(settings.seeded());
         self.seeding = Some(smc);
         Ok(())
     }
