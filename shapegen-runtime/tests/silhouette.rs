@@ -215,3 +215,29 @@ fn random_trees_score_between_the_bounds() {
         assert!((-1.0..=1.0).contains(&f), "{f}");
     }
 }
+
+#[test]
+fn the_iou_form_is_good_times_the_silhouette_iou_runs_report() {
+    use shapegen_runtime::score::Form;
+    use shapegen_runtime::score::metrics::silhouette_iou;
+    let meshes = generators::default_meshes()
+        .bind(city::City::GRAPH)
+        .unwrap();
+    let target = load("city_whale", "city_target_whale.png", city_camera());
+    let scorer = SilhouetteScorer::new(vec![target], &meshes, Form::Iou { good: 2.0 }).unwrap();
+    let batch = population::<city::City>(40, city::PAPER_LIMITS, 50, 11);
+    let mut counts = vec![SilhouetteCounts::default(); batch.len()];
+    count_batch(&scorer, &batch, &mut counts);
+    let mut positive = 0;
+    for c in &counts {
+        let iou = silhouette_iou(&scorer.targets()[0], &c.targets()[0]);
+        assert_eq!(scorer.fitness(c), 2.0 * iou);
+        assert!((0.0..=1.0).contains(&iou));
+        positive += usize::from(iou > 0.0);
+    }
+    assert!(positive > 30, "{positive} of 40 cities overlap the whale");
+    // A city covering the whole whale and more: below 2, above 0.
+    let full = full_city(vec2(1.98, 1.98), 10.0);
+    let f = scorer.fitness(&scorer.count(&full, &mut scorer.scratch()));
+    assert!(f > 0.0 && f < 2.0, "{f}");
+}

@@ -747,3 +747,30 @@ fn boxes_cover_the_centres_the_original_covers_but_for_ties() {
         "boxes in general position agree everywhere"
     );
 }
+
+#[test]
+fn the_iou_form_is_good_times_the_voxel_iou_and_counts_what_lies_beyond_the_grid() {
+    use shapegen_runtime::score::metrics::voxel_iou;
+    let scorer = unit_scene(Form::Iou { good: 3.0 });
+    let cube = aabb;
+    let fitness = |model: &[Instance]| {
+        let counts = scorer.count(model, &mut scorer.scratch());
+        (scorer.fitness(&counts), voxel_iou(&scorer, &counts))
+    };
+    // The target itself: IoU 1.
+    assert_eq!(fitness(&[cube(Vec3::ZERO, Vec3::splat(5.0))]), (3.0, 1.0));
+    // Two fifths of it: 50 of its 125 voxels.
+    let (f, iou) = fitness(&[cube(Vec3::ZERO, Vec3::new(2.0, 5.0, 5.0))]);
+    assert_eq!((f, iou), (3.0 * (50.0 / 125.0), 50.0 / 125.0));
+    // The target and 25 voxels beside it: 125 / 150.
+    let (f, iou) = fitness(&[cube(Vec3::ZERO, Vec3::new(6.0, 5.0, 5.0))]);
+    assert_eq!((f, iou), (3.0 * (125.0 / 150.0), 125.0 / 150.0));
+    // Nothing: 0.
+    assert_eq!(fitness(&[]), (0.0, 0.0));
+    // The target and a box beyond the grid: the report's IoU is 1 on the grid, the
+    // fitness counts the covered points beyond it in the union.
+    let beyond = cube(Vec3::splat(20.0), Vec3::splat(22.0));
+    let (f, iou) = fitness(&[cube(Vec3::ZERO, Vec3::splat(5.0)), beyond]);
+    assert_eq!(iou, 1.0);
+    assert!(f < 3.0 && f > 0.0, "{f}");
+}

@@ -92,6 +92,8 @@ pub(super) enum FormName {
     Smooth,
     /// The paper's weighted sum.
     Weighted,
+    /// The intersection over union that runs report, times `good`.
+    Iou,
 }
 
 fn one() -> f64 {

@@ -31,7 +31,8 @@
 //! optimal_len = 10                   # optional: see fitness.length_from
 //!
 //! [fitness]
-//! form = "smooth"                    # "smooth" (original implementation) or "weighted" (paper)
+//! form = "smooth"                    # "smooth" (original implementation), "weighted" (paper)
+//!                                    # or "iou": good * the voxel or silhouette IoU runs report
 //! length = 0.1                       # weight * S(min_len, max_len, genes), as the original
 //! length_from = "min_len"            # or "optimal_len": weight * S(optimal_len, max_len, genes)
 //! optimum = 1.0                      # optional, > 0: the best fitness there is (a reachable

@@ -533,9 +533,15 @@ mod hybrid_tests {
         let paper = generators::spaceship::paper_ga();
         let d = hybrid("").unwrap();
         assert_eq!(d, HybridSettings::over(paper));
-        let s = hybrid("refine = 2\nseed_steps = 5\njump_probability = 0.2\npopulation = 60\n")
-            .unwrap();
-        assert_eq!((s.refine, s.seed_steps, s.jump_probability), (2, 5, 0.2));
+        let s = hybrid(
+            "refine = 2\nseed_steps = 5\nseed_share = 1.0\njump_probability = 0.2\n\
+             population = 60\n",
+        )
+        .unwrap();
+        assert_eq!(
+            (s.refine, s.seed_steps, s.seed_share, s.jump_probability),
+            (2, 5, 1.0, 0.2)
+        );
         assert_eq!(
             s.ga,
             GaSettings {
@@ -547,6 +553,7 @@ mod hybrid_tests {
         for (text, key) in [
             ("jump_probability = 2.0", "optimizer.jump_probability"),
             ("seed_steps = -1", "optimizer.seed_steps"),
+            ("seed_share = 1.5", "optimizer.seed_share"),
             ("refine = -1", "optimizer.refine"),
             ("refine = 500", "optimizer.refine"),
             ("jump_probability = \"x\"", "optimizer.jump_probability"),

@@ -313,6 +313,9 @@ impl<'a> Resolver<'a> {
             FormName::Weighted => Form::Weighted {
                 overlap: self.finite(&format!("{table}.overlap"), overlap)?,
             },
+            FormName::Iou => Form::Iou {
+                good: self.finite(&format!("{table}.good"), good)?,
+            },
         })
     }
 

@@ -42,6 +42,16 @@ pub enum Form {
         /// Weight of covering anything else.
         bad: f64,
     },
+    /// The measure runs report: `good` times the intersection over union of the model
+    /// with the target, `on / (T + off)`, where `T` is the number of target voxels or
+    /// pixels, `on` those the model covers and `off` the others it covers (for volumes,
+    /// what it covers beyond the grid included; see
+    /// [`VolumeScorer`](super::volume::VolumeScorer)). Target weights other than their
+    /// sign, shaping and self-intersection do not enter it.
+    Iou {
+        /// The fitness of a model that covers exactly the target.
+        good: f64,
+    },
 }
 
 /// The genome-length term of the smoothstep form: `weight * S(from, to, genes)`,

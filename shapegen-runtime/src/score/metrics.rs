@@ -50,7 +50,8 @@ pub fn voxel_iou(scorer: &VolumeScorer, counts: &VolumeCounts) -> f64 {
     iou(counts.inside, scorer.target_voxels() + counts.outside)
 }
 
-fn iou(intersection: u64, union: u64) -> f64 {
+/// `intersection / union`, 0 when the union is empty.
+pub(crate) fn iou(intersection: u64, union: u64) -> f64 {
     if union == 0 {
         0.0
     } else {

@@ -7,6 +7,7 @@ use super::meshes::{RasterMesh, prepare};
 use super::raster::{Coverage, MAX_POLYGON, clip_triangle, convex_hull, in_front, to_pixels};
 use super::target::ImageTarget;
 use crate::geometry::{BoundMeshes, Instance};
+use crate::score::metrics::silhouette_iou;
 use crate::score::{Form, Scorer, smoothstep};
 
 /// Why a silhouette scorer cannot be built or asked.
@@ -61,7 +62,9 @@ pub enum SilhouetteError {
 /// `good * S(0, T, on_target) - bad * S(0, T, off_target)`, `T` the target's
 /// [target pixels](ImageTarget::target_pixels) (for a [shaped](ImageTarget::shaped)
 /// target, `off_target` is the sum of the covered off-target pixels' shares of the full
-/// cost).
+/// cost); [`Form::Iou`] is the sum over targets of `good` times the silhouette IoU
+/// ([`silhouette_iou`](crate::score::metrics::silhouette_iou)), the measure runs
+/// report.
 ///
 /// ```
 /// use glam::{Affine3A, Vec3};
@@ -313,6 +316,7 @@ pub(super) fn fitness(form: Form, targets: &[ImageTarget], counts: &SilhouetteCo
                 good * smoothstep(0.0, total, f64::from(c.on_target))
                     - bad * smoothstep(0.0, total, t.off_target_cost(c))
             }
+            Form::Iou { good } => good * silhouette_iou(t, c),
         })
         .sum()
 }

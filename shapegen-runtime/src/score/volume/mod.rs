@@ -23,7 +23,11 @@
 //! [`Form::Weighted`] (the paper's text), `sum_c count_c weight_c + out_of_grid_hits
 //! sum_i outside_i - w_self overlap_hits` and, with [`Form::Smooth`] (the original's
 //! code), `good S(0, T, inside) - bad S(0, 2T, outside + overlap_voxels +
-//! span_out_of_grid)` where `T` is the number of target voxels.
+//! span_out_of_grid)` where `T` is the number of target voxels; with [`Form::Iou`],
+//! `good inside / (T + outside + out_of_grid_hits)`: the voxel IoU that runs report
+//! ([`voxel_iou`](crate::score::metrics::voxel_iou)) for a model within the grid, and
+//! below it by what the model covers beyond the grid, so that a search gains nothing by
+//! growing out of it.
 //!
 //! # As the original counts
 //! The original voxelizes each instance on its own over its span, the box of voxel
@@ -124,7 +128,7 @@ pub use gpu::GpuVolumeScorer;
 pub use grid::{Grid, GridError, MAX_VOXELS};
 pub use retained::VolumeState;
 
-use super::{Form, Scorer, smoothstep};
+use super::{Form, Scorer, metrics, smoothstep};
 use crate::geometry::{BoundMeshes, Instance, Mesh, MeshError, MeshId};
 use parts::PartKind;
 
@@ -413,6 +417,10 @@ impl Scorer for VolumeScorer {
                         .saturating_add(counts.span_out_of_grid) as f64;
                 good * smoothstep(0.0, t, counts.inside as f64)
                     - bad * smoothstep(0.0, 2.0 * t, off)
+            }
+            Form::Iou { good } => {
+                let union = self.target_voxels() + counts.outside + counts.out_of_grid_hits;
+                good * metrics::iou(counts.inside, union)
             }
         }
     }

@@ -1,6 +1,6 @@
 //! Golden runs: whole searches through the tool whose results are checked byte for byte,
 //! so that a change that claims to leave results unchanged is proved to, and one that
-//! changes them shows as updated files in `tests/golden/`.
+//! changes them shows as updated files in `tests/golden_runs/`.
 //!
 //! Each run is a scene, a method (with any `--set` overrides), a seed and an evaluation
 //! budget, run on the CPU with one worker thread and with two: both must write exactly
@@ -8,8 +8,12 @@
 //! (for a multi-objective run, `history.csv` but `elapsed_s`, `front.csv` and
 //! `front.genomes.json`). A missing golden file fails the test.
 //!
+//! Each single-objective run is also held to what a run promises whatever its results:
+//! `best` is never below the generation's `mean` in `fitness.csv`, and `shapegen score`
+//! on `best.genome.json` gives the summary's `best_fitness`.
+//!
 //! To record the files anew after a deliberate change of results:
-//! `SHAPEGEN_BLESS_GOLDEN=1 cargo test --test golden`, then review the diff.
+//! `SHAPEGEN_BLESS_GOLDEN=1 cargo test --test golden_runs`, then review the diff.
 
 mod support;
 
@@ -17,11 +21,11 @@ use std::fs;
 use std::path::{Path, PathBuf};
 
 use libtest_mimic::{Arguments, Failed, Trial};
-use support::{ok, s};
+use support::{ok, s, score};
 
 /// One golden run.
 struct Golden {
-    /// Its name: the golden files are `tests/golden/<name>.<file>`.
+    /// Its name: the golden files are `tests/golden_runs/<name>.<file>`.
     name: &'static str,
     /// The scene, relative to the repository.
     scene: &'static str,
@@ -156,7 +160,9 @@ fn root() -> &'static Path {
 
 /// The golden file of run `name`'s `file`.
 fn golden_path(name: &str, file: &str) -> PathBuf {
-    root().join("tests/golden").join(format!("{name}.{file}"))
+    root()
+        .join("tests/golden_runs")
+        .join(format!("{name}.{file}"))
 }
 
 /// Runs `golden` with `threads` worker threads into a new folder under `dir`.
@@ -188,11 +194,43 @@ fn run(golden: &Golden, threads: u32, dir: &Path) -> PathBuf {
     out
 }
 
+/// Checks that the run in `out` returned the best it scored: `best` at or above `mean`
+/// in every row of `fitness.csv`, and the best genome scoring the summary's
+/// `best_fitness`.
+fn returns_its_best(golden: &Golden, out: &Path) -> Result<(), Failed> {
+    let csv = fs::read_to_string(out.join("fitness.csv")).map_err(|e| e.to_string())?;
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
+    let column = |name: &str| header.iter().position(|c| *c == name).unwrap();
+    let (best, mean) = (column("best"), column("mean"));
+    for line in lines {
+        let cells: Vec<f64> = line.split(',').map(|c| c.parse().unwrap()).collect();
+        if cells[best] < cells[mean] {
+            return Err(format!("{}: best below mean in fitness.csv: {line}", golden.name).into());
+        }
+    }
+    let summary: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let scene = root().join(golden.scene);
+    let scored = score(&scene, &out.join("best.genome.json"), "--cpu")[0]["fitness"].as_f64();
+    if scored != summary["best_fitness"].as_f64() {
+        return Err(format!(
+            "{}: best.genome.json scores {scored:?}, the summary says {}",
+            golden.name, summary["best_fitness"]
+        )
+        .into());
+    }
+    Ok(())
+}
+
 /// Runs `golden` at one and two threads and compares (or, blessing, writes) its files.
 fn check(golden: &Golden, bless: bool) -> Result<(), Failed> {
     let dir = tempfile::tempdir().map_err(|e| e.to_string())?;
     for threads in [1, 2] {
         let out = run(golden, threads, dir.path());
+        if threads == 1 && out.join("fitness.csv").exists() {
+            returns_its_best(golden, &out)?;
+        }
         for file in files_of(&out) {
             let text = fs::read_to_string(out.join(file)).map_err(|e| format!("{file}: {e}"))?;
             let got = timeless(file, &text);
@@ -203,7 +241,7 @@ fn check(golden: &Golden, bless: bool) -> Result<(), Failed> {
             }
             let want = fs::read_to_string(&path).map_err(|e| {
                 format!(
-                    "{}: {e} (record it with SHAPEGEN_BLESS_GOLDEN=1 cargo test --test golden)",
+                    "{}: {e} (record it with SHAPEGEN_BLESS_GOLDEN=1 cargo test --test golden_runs)",
                     path.display()
                 )
             })?;
