@@ -21,7 +21,7 @@ use std::fs;
 use std::path::{Path, PathBuf};
 
 use libtest_mimic::{Arguments, Failed, Trial};
-use support::{ok, s, score};
+use support::{ok, s, score, timeless_summary, timeless_table};
 
 /// One golden run.
 struct Golden {
@@ -119,38 +119,30 @@ const GOLDEN: &[Golden] = &{
     ]
 };
 
-/// The files a run in `out` is checked by.
-fn files_of(out: &Path) -> &'static [&'static str] {
+/// The files a run in `out` is checked by, each with whether it is a table whose
+/// `elapsed_s` column is left out.
+fn files_of(out: &Path) -> &'static [(&'static str, bool)] {
     if out.join("front.csv").exists() {
-        &["history.csv", "front.csv", "front.genomes.json"]
+        &[
+            ("history.csv", true),
+            ("front.csv", false),
+            ("front.genomes.json", false),
+        ]
     } else {
-        &["fitness.csv", "best.genome.json"]
+        &[("fitness.csv", true), ("best.genome.json", false)]
     }
 }
 
-/// `text` without its `elapsed_s` column, when a CSV table has one.
-fn timeless(file: &str, text: &str) -> String {
-    if !file.ends_with(".csv") {
-        return text.to_owned();
+/// The text of `file` in `out` as the golden file holds it: a timed table without its
+/// `elapsed_s` column.
+fn golden_text(out: &Path, file: &str, timed: bool) -> Result<String, Failed> {
+    if timed {
+        return Ok(timeless_table(out, file)
+            .iter()
+            .map(|line| format!("{line}\n"))
+            .collect());
     }
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
-    let skip = header.iter().position(|c| *c == "elapsed_s");
-    let keep = |line: &str| -> String {
-        line.split(',')
-            .enumerate()
-            .filter(|(i, _)| Some(*i) != skip)
-            .map(|(_, c)| c)
-            .collect::<Vec<_>>()
-            .join(",")
-    };
-    let mut out = keep(&header.join(","));
-    out.push('\n');
-    for line in lines {
-        out.push_str(&keep(line));
-        out.push('\n');
-    }
-    out
+    fs::read_to_string(out.join(file)).map_err(|e| format!("{file}: {e}").into())
 }
 
 /// The repository's root.
@@ -209,8 +201,7 @@ fn returns_its_best(golden: &Golden, out: &Path) -> Result<(), Failed> {
             return Err(format!("{}: best below mean in fitness.csv: {line}", golden.name).into());
         }
     }
-    let summary: serde_json::Value =
-        serde_json::from_str(&fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = timeless_summary(out);
     let scene = root().join(golden.scene);
     let scored = score(&scene, &out.join("best.genome.json"), "--cpu")[0]["fitness"].as_f64();
     if scored != summary["best_fitness"].as_f64() {
@@ -231,9 +222,8 @@ fn check(golden: &Golden, bless: bool) -> Result<(), Failed> {
         if threads == 1 && out.join("fitness.csv").exists() {
             returns_its_best(golden, &out)?;
         }
-        for file in files_of(&out) {
-            let text = fs::read_to_string(out.join(file)).map_err(|e| format!("{file}: {e}"))?;
-            let got = timeless(file, &text);
+        for &(file, timed) in files_of(&out) {
+            let got = golden_text(&out, file, timed)?;
             let path = golden_path(golden.name, file);
             if bless && threads == 1 {
                 fs::write(&path, &got).map_err(|e| format!("{}: {e}", path.display()))?;

@@ -24,7 +24,7 @@ use std::path::{Path, PathBuf};
 use libtest_mimic::{Arguments, Failed, Trial};
 use serde::{Deserialize, Serialize};
 use shapegen::scene::Method;
-use support::{ok, s};
+use support::{ok, s, timeless_summary};
 
 /// `tests/quality/floors.toml`.
 #[derive(Debug, Serialize, Deserialize)]
@@ -92,9 +92,7 @@ fn mean_best(scene: &SceneFloors, method: &str, seeds: &[u64], dir: &Path) -> f6
             "--out",
             s(&out),
         ]);
-        let summary: serde_json::Value =
-            serde_json::from_str(&fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-        sum += summary["best_fitness"].as_f64().unwrap();
+        sum += timeless_summary(&out)["best_fitness"].as_f64().unwrap();
     }
     sum / seeds.len() as f64
 }

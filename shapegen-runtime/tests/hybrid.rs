@@ -129,6 +129,15 @@ fn hybrid_refinement_keeps_or_betters_its_elites_when_it_hill_climbs() {
     assert_eq!(r.evaluations, 40 + 10 * (32 + 6 * 4));
 }
 
+/// Runs `hybrid` on until it has made `generations` generations; returns how many
+/// evaluations the run reports and how many `eval` made.
+fn run_to(hybrid: &mut Hybrid<City>, eval: &mut Skyline, generations: u64) -> (u64, u64) {
+    let r = hybrid
+        .run(eval, &Budget::generations(generations), &mut Silent)
+        .unwrap();
+    (r.evaluations, eval.genomes)
+}
+
 #[test]
 fn hybrid_seeds_its_first_population_by_sosmc() {
     let s = HybridSettings {
@@ -139,22 +148,13 @@ fn hybrid_seeds_its_first_population_by_sosmc() {
     let mut hybrid = Hybrid::<City>::new(s, city::PAPER_LIMITS, 1).unwrap();
     let mut eval = Skyline::new();
     // The axiom's particles, then two SOSMC steps of 40 each.
-    let r = hybrid
-        .run(&mut eval, &Budget::generations(1), &mut Silent)
-        .unwrap();
-    assert_eq!(r.evaluations, 2 * 40);
+    assert_eq!(run_to(&mut hybrid, &mut eval, 1).0, 2 * 40);
     let state = hybrid.checkpoint();
     assert!(state.seeding.is_some() && state.population.is_empty());
-    let r = hybrid
-        .run(&mut eval, &Budget::generations(2), &mut Silent)
-        .unwrap();
-    assert_eq!(r.evaluations, 3 * 40);
+    assert_eq!(run_to(&mut hybrid, &mut eval, 2).0, 3 * 40);
     let state = hybrid.checkpoint();
     assert!(state.seeding.is_none() && state.population.len() == 40);
-    let r = hybrid
-        .run(&mut eval, &Budget::generations(3), &mut Silent)
-        .unwrap();
-    assert_eq!(r.evaluations, 3 * 40 + 32);
+    assert_eq!(run_to(&mut hybrid, &mut eval, 3).0, 3 * 40 + 32);
 }
 
 #[test]
@@ -168,14 +168,8 @@ fn hybrid_seeds_a_share_of_its_first_population_and_draws_the_rest_as_the_ga_doe
     let mut eval = Skyline::new();
     // 10 of the 40 are seeded: the axiom's 10 particles, a step of 10, then the last
     // step of 10 with the 30 random genomes.
-    let r = hybrid
-        .run(&mut eval, &Budget::generations(1), &mut Silent)
-        .unwrap();
-    assert_eq!((r.evaluations, eval.genomes), (20, 20));
-    let r = hybrid
-        .run(&mut eval, &Budget::generations(2), &mut Silent)
-        .unwrap();
-    assert_eq!((r.evaluations, eval.genomes), (60, 60));
+    assert_eq!(run_to(&mut hybrid, &mut eval, 1), (20, 20));
+    assert_eq!(run_to(&mut hybrid, &mut eval, 2), (60, 60));
     let state = hybrid.checkpoint();
     assert!(state.seeding.is_none() && state.population.len() == 40);
     // The random ones are the GA's own first genomes in those places, scored.

@@ -250,13 +250,14 @@ impl<G: Grammar> Hybrid<G> {
     /// One SOSMC step of the part of the population being seeded; the last puts it in
     /// place, beside the random genomes of the rest, drawn and scored then.
     fn seed_step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
+        let last = self.last_seed_step();
         let (settings, progress) = (&self.core.settings, &mut self.core.progress);
         let smc = self.seeding.as_mut().expect("seeding");
         smc.step(evaluator)?;
         let (seeding, particles, particle_fitness) = smc.parts();
         seeding.progress.generation += 1;
         progress.evaluations += particles.len() as u64;
-        if seeding.progress.generation >= u64::from(settings.seed_steps) {
+        if last {
             let b = &mut self.breeder;
             let k = particles.len();
             b.grow(&settings.ga, progress.seed, 0);
