@@ -1,9 +1,10 @@
 //! Silhouette scoring throughput: evaluations per second of populations of 200 random
 //! models against the paper's city whale and tree sketch targets (800 x 600), on one CPU
 //! thread, on all CPU threads, and on the GPU when there is one; one city of 100
-//! buildings on one thread; and one full evaluation of single 250-gene trees on one
-//! thread, with the published meshes and with the built-in ones. On the GPU also 200
-//! bred trees per operator, counted from nothing and from their parents' kept slots.
+//! buildings on one thread; and single 250-gene trees on one thread, counted in full and
+//! instance by instance as an incremental search counts them, with the published meshes
+//! and with the built-in ones. On the GPU also 200 bred trees per operator, counted from
+//! nothing and from their parents' kept slots.
 
 mod breeding;
 
@@ -17,6 +18,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use shapegen::genome::Limits;
 use shapegen::ops::Operators;
+use shapegen::score::retained::RetainedScorer;
 use shapegen::score::silhouette::{
     Camera, GpuRetention, GpuSilhouetteScorer, ImageTarget, OrbitCamera, SilhouetteCounts,
     SilhouetteScorer,
@@ -234,6 +236,19 @@ fn tree_single(c: &mut Criterion) {
                     b.iter(|| {
                         let counts = scorer.count(black_box(&model), &mut scratch);
                         black_box(scorer.fitness(&counts))
+                    })
+                },
+            );
+            // As an incremental search counts instances: each alone into a fresh
+            // coverage, then into per-pixel instance counts.
+            group.bench_function(
+                BenchmarkId::new(meshes_name, format!("{GENES} genes seed {seed}, retained")),
+                |b| {
+                    b.iter(|| {
+                        let state = scorer
+                            .count_retained(black_box(&model), &mut scratch)
+                            .unwrap();
+                        black_box(scorer.fitness(&scorer.state_counts(&state)))
                     })
                 },
             );

@@ -15,6 +15,10 @@ pub(super) struct RasterMesh {
     pub positions: Vec<Vec3>,
     /// Triangles as index triples into `positions`.
     pub triangles: Vec<[u32; 3]>,
+    /// The positions on the mesh's boundary: the ends of the edges that the triangles
+    /// sharing them do not run as often one way as the other (none for a closed,
+    /// consistently wound mesh), in increasing order.
+    pub boundary: Vec<u32>,
     /// For a convex mesh with at most [`MAX_POLYGON`] distinct vertices: those vertices,
     /// whose projected convex hull is the mesh's silhouette when all are in front of the
     /// camera. A mesh counts as convex when no vertex lies outside any face's plane by
@@ -27,7 +31,7 @@ pub(super) struct RasterMesh {
 const CONVEX_EPS: f32 = 1e-3;
 
 impl RasterMesh {
-    fn new(mesh: &Mesh) -> Self {
+    pub(super) fn new(mesh: &Mesh) -> Self {
         let mut index = HashMap::new();
         let mut positions = Vec::new();
         let slot: Vec<u32> = mesh
@@ -59,11 +63,34 @@ impl RasterMesh {
         let hull =
             (distinct.len() <= MAX_POLYGON && is_convex(mesh, &distinct)).then_some(distinct);
         RasterMesh {
+            boundary: boundary(&triangles),
             positions,
             triangles,
             hull,
         }
     }
+}
+
+/// The ends of the edges of `triangles` that they do not run as often one way as the
+/// other (each `a -> b` counted +1 and `b -> a` -1), sorted and once each.
+fn boundary(triangles: &[[u32; 3]]) -> Vec<u32> {
+    let mut runs: HashMap<[u32; 2], i64> = HashMap::new();
+    for t in triangles {
+        for i in 0..3 {
+            let (a, b) = (t[i], t[(i + 1) % 3]);
+            if a != b {
+                *runs.entry([a.min(b), a.max(b)]).or_default() += if a < b { 1 } else { -1 };
+            }
+        }
+    }
+    let mut ends: Vec<u32> = runs
+        .into_iter()
+        .filter(|&(_, n)| n != 0)
+        .flat_map(|(ends, _)| ends)
+        .collect();
+    ends.sort_unstable();
+    ends.dedup();
+    ends
 }
 
 /// Whether every vertex lies on or behind the plane of every triangle (outward

@@ -50,6 +50,7 @@ mod counts;
 mod gpu;
 mod gpu_draw;
 mod gpu_retained;
+mod mesh_fill;
 mod meshes;
 pub(in crate::score) mod raster;
 mod retained;

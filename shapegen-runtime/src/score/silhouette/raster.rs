@@ -8,6 +8,7 @@
 //! centres, and two polygons sharing an edge split the centres on it exactly.
 
 use glam::{Vec2, Vec4};
+use wide::i32x8;
 
 /// Most vertices a polygon handed to [`fill_convex`] may have.
 pub(super) const MAX_POLYGON: usize = 128;
@@ -172,67 +173,70 @@ impl Coverage {
     /// whose `f32` signed area is zero, or of the other sign than its exact one, covers
     /// nothing (its left and right edges swap, and no span is left between them). So
     /// here the triangle's vertices become integers in `1/256` pixel, its area's `f32`
-    /// sign is checked as `fill_convex` computes it, and each row's span comes from
-    /// exact integer edge tests. Triangles farther out, or not finite, go to
+    /// sign is checked as `fill_convex` computes it ([`f32_agrees`]), and
+    /// [`Coverage::fill_exact`] fills it. Triangles farther out, or not finite, go to
     /// `fill_convex`.
     pub(in crate::score) fn fill_triangle(&mut self, tri: [Vec2; 3]) {
-        let mut area2 = 0.0f32;
-        for i in 0..3 {
-            let (a, b) = (tri[i], tri[(i + 1) % 3]);
-            area2 += a.x * b.y - b.x * a.y;
-        }
-        if area2 == 0.0 || !area2.is_finite() {
+        if !signed_area(&tri).is_finite() {
             return;
         }
-        let in_reach = |p: &Vec2| p.x.abs() <= EXACT_LIMIT && p.y.abs() <= EXACT_LIMIT;
-        if !tri.iter().all(in_reach) {
+        if !tri.iter().all(|p| in_reach(*p)) {
             return self.fill_convex(&tri);
         }
-        debug_assert!(
-            tri.iter()
-                .all(|p| (p.x * SUBPIXEL).fract() == 0.0 && (p.y * SUBPIXEL).fract() == 0.0),
-            "vertices snapped to 1/256 pixel: {tri:?}"
-        );
-        let v = tri.map(|p| [(p.x * SUBPIXEL) as i64, (p.y * SUBPIXEL) as i64]);
-        let exact =
-            (v[1][0] - v[0][0]) * (v[2][1] - v[0][1]) - (v[1][1] - v[0][1]) * (v[2][0] - v[0][0]);
-        if exact == 0 || (exact > 0) != (area2 > 0.0) {
-            return;
+        let v = tri.map(to_fixed);
+        let exact = exact_area(&v);
+        if exact != 0 && f32_agrees(&tri, exact) {
+            self.fill_exact(v, exact > 0);
         }
+    }
+
+    /// Fills the triangle `v` (in `1/256` pixel, within [`EXACT_LIMIT`] pixels of the
+    /// origin; `ccw` whether its exact signed area is positive, which must not be zero),
+    /// each centre decided by exact integer edge tests: one by one in a small box
+    /// ([`Coverage::fill_small`]), by walking the edges row by row otherwise.
+    #[inline]
+    pub(super) fn fill_exact(&mut self, v: [[i32; 2]; 3], ccw: bool) {
         // Rows whose centre lies in [ymin, ymax), columns whose centre lies in
         // [xmin, xmax): no centre outside these is covered.
-        let (ymin, ymax) = (
-            v[0][1].min(v[1][1]).min(v[2][1]),
-            v[0][1].max(v[1][1]).max(v[2][1]),
-        );
-        let (xmin, xmax) = (
-            v[0][0].min(v[1][0]).min(v[2][0]),
-            v[0][0].max(v[1][0]).max(v[2][0]),
-        );
+        let [xmin, xmax, ymin, ymax] = span(v);
         let row0 = first_centre(ymin).max(0);
-        let row1 = first_centre(ymax).min(i64::from(self.height));
+        let row1 = first_centre(ymax).min(self.height as i32);
         let col_lo = first_centre(xmin).max(0);
-        let col_hi = first_centre(xmax).min(i64::from(self.width));
+        let col_hi = first_centre(xmax).min(self.width as i32);
         if row0 >= row1 || col_lo >= col_hi {
             return;
         }
-        // Nothing to add where the triangle's box is covered already.
-        if self.covers_box(
-            row0 as usize..row1 as usize,
+        let (row0, row1, col_lo, col_hi) = (
+            row0 as usize,
+            row1 as usize,
             col_lo as usize,
             col_hi as usize,
-        ) {
+        );
+        // Nothing to add where the triangle's box is covered already.
+        if self.covers_box(row0..row1, col_lo, col_hi) {
             return;
         }
+        let v = v.map(|p| p.map(i64::from));
         let (cols, rows) = (col_hi - col_lo, row1 - row0);
-        if cols <= SMALL_BOX_COLUMNS && cols * rows <= SMALL_BOX_CENTRES {
-            return self.fill_small(&v, exact > 0, [row0, row1], col_lo, cols);
+        let small = cols <= SMALL_BOX_COLUMNS
+            && cols * rows <= SMALL_BOX_CENTRES
+            && xmax - xmin <= SMALL_EXTENT[0]
+            && ymax - ymin <= SMALL_EXTENT[1];
+        if small {
+            return self.fill_small(&v, ccw, [row0, row1], col_lo, cols);
         }
+        self.walk(&v, ccw, [row0, row1], [col_lo, col_hi]);
+    }
+
+    /// Fills the triangle `v` (in `1/256` pixel; `ccw` whether its exact signed area is
+    /// positive) in the box of rows `rows[0]..rows[1]` and columns `cols[0]..cols[1]`
+    /// by walking its left and right edges down the rows ([`FixedEdge`]).
+    fn walk(&mut self, v: &[[i64; 2]; 3], ccw: bool, rows: [usize; 2], cols: [usize; 2]) {
         let mut left = [FixedEdge::default(); 3];
         let mut right = [FixedEdge::default(); 3];
         let (mut n_left, mut n_right) = (0, 0);
-        for (p, q, on_right) in sloped_edges(&v, exact > 0).into_iter().flatten() {
-            let edge = FixedEdge::new(p, q, row0);
+        for (p, q, on_right) in sloped_edges(v, ccw).into_iter().flatten() {
+            let edge = FixedEdge::new(p, q, rows[0] as i64);
             if on_right {
                 right[n_right] = edge;
                 n_right += 1;
@@ -242,7 +246,8 @@ impl Coverage {
             }
         }
         let (left, right) = (&mut left[..n_left], &mut right[..n_right]);
-        for row in row0..row1 {
+        let (col_lo, col_hi) = (cols[0] as i64, cols[1] as i64);
+        for row in rows[0]..rows[1] {
             let mut col0 = col_lo;
             for e in left.iter_mut() {
                 col0 = col0.max(e.c);
@@ -254,53 +259,58 @@ impl Coverage {
                 e.step();
             }
             if col0 < col1 {
-                self.fill_row(row as usize, col0 as usize, col1 as usize);
+                self.fill_row(row, col0 as usize, col1 as usize);
             }
         }
     }
 }
 
 impl Coverage {
-    /// [`Coverage::fill_triangle`] for a small box of pixel centres (`cols` columns from
-    /// `col0`, rows `rows[0]..rows[1]`): every centre tested against every
-    /// non-horizontal edge, the same tests the row walk's columns stand for. `v` are the
+    /// [`Coverage::fill_exact`] for a small box of pixel centres (`cols` columns from
+    /// `col0`, rows `rows[0]..rows[1]`) of a triangle whose vertices span at most
+    /// [`SMALL_EXTENT`]: every centre tested against every non-horizontal edge, the same
+    /// tests the row walk's columns stand for, eight columns at a time. `v` are the
     /// vertices in `1/256` pixel, `ccw` whether their exact signed area is positive.
-    fn fill_small(&mut self, v: &[[i64; 2]; 3], ccw: bool, rows: [i64; 2], col0: i64, cols: i64) {
+    fn fill_small(
+        &mut self,
+        v: &[[i64; 2]; 3],
+        ccw: bool,
+        rows: [usize; 2],
+        col0: usize,
+        cols: usize,
+    ) {
         // Per edge, `g = s f - bias` at the box's first centre and its steps, where
         // `f = (xc - px) dy - (yc - py) dx` (`p` the upper end, `dy > 0`): a centre is
         // inside a left edge (`s = 1`) when `f >= 0`, a right edge (`s = -1`) when
-        // `f < 0`; so inside every edge when every `g >= 0`. A horizontal edge bounds
-        // nothing here (the rows do): `g = 0` throughout.
-        let mut g = [0i64; 3];
-        let mut per_col = [0i64; 3];
-        let mut per_row = [0i64; 3];
-        let (x0, y0) = (256 * col0 + 128, 256 * rows[0] + 128);
+        // `f < 0`; so inside every edge when every `g >= 0`, when the sign bit of
+        // their bitwise or is clear. A horizontal edge bounds nothing here (the rows
+        // do): `g = 0` throughout. Every centre of the box lies within the vertices'
+        // span, so `|f| <= 2 * 2^14 * 2^15 = 2^30` there: `i32` holds every `g`. The
+        // lanes past the box's last column may wrap; their bits are dropped.
+        let mut g = [0i32; 3];
+        let mut per_col = [0i32; 3];
+        let mut per_row = [0i32; 3];
+        let (x0, y0) = (256 * col0 as i64 + 128, 256 * rows[0] as i64 + 128);
         for (i, edge) in sloped_edges(v, ccw).into_iter().enumerate() {
             let Some((p, q, on_right)) = edge else {
                 continue;
             };
             let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
             let (s, bias) = if on_right { (-1, 1) } else { (1, 0) };
-            g[i] = s * ((x0 - p[0]) * dy - (y0 - p[1]) * dx) - bias;
-            per_col[i] = s * 256 * dy;
-            per_row[i] = -s * 256 * dx;
+            g[i] = (s * ((x0 - p[0]) * dy - (y0 - p[1]) * dx) - bias) as i32;
+            per_col[i] = (s * 256 * dy) as i32;
+            per_row[i] = (-s * 256 * dx) as i32;
         }
-        let (word, shift) = ((col0 / 64) as usize, (col0 % 64) as u32);
+        let edges = EdgeLanes::new(per_col);
+        let chunks = cols.div_ceil(LANES);
+        let keep = u64::MAX >> (64 - cols);
+        let (word, shift) = (col0 / 64, (col0 % 64) as u32);
         for row in rows[0]..rows[1] {
-            let mut e = g;
-            let mut bits = 0u64;
-            for c in 0..cols {
-                let inside = (e[0] | e[1] | e[2]) >= 0;
-                bits |= u64::from(inside) << c;
-                for k in 0..3 {
-                    e[k] += per_col[k];
-                }
-            }
-            for k in 0..3 {
-                g[k] += per_row[k];
-            }
+            let bits = edges.outside(g, chunks);
+            let bits = !bits & keep;
+            g = std::array::from_fn(|k| g[k].wrapping_add(per_row[k]));
             if bits != 0 {
-                let base = row as usize * self.stride + word;
+                let base = row * self.stride + word;
                 self.or_word(base, bits << shift);
                 if shift > 0 && bits >> (64 - shift) != 0 {
                     self.or_word(base + 1, bits >> (64 - shift));
@@ -318,6 +328,106 @@ impl Coverage {
         }
         *word |= bits;
     }
+}
+
+/// Columns [`Coverage::fill_small`] tests at once.
+const LANES: usize = 8;
+
+/// The three edge functions of a triangle over [`LANES`] consecutive pixel centres of a
+/// row, as [`Coverage::fill_small`] tests them: per edge, its value at the row's first
+/// centre plus its step per column times the lane, all lanes at once.
+struct EdgeLanes {
+    /// Per edge, the step per column times each lane.
+    ramp: [i32x8; 3],
+    /// Per edge, the step over all [`LANES`].
+    per_chunk: [i32; 3],
+}
+
+impl EdgeLanes {
+    /// The lanes of edges whose values step by `per_col` per column.
+    #[inline]
+    fn new(per_col: [i32; 3]) -> EdgeLanes {
+        const LANE: i32x8 = i32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
+        EdgeLanes {
+            ramp: per_col.map(|p| LANE * i32x8::splat(p)),
+            per_chunk: per_col.map(|p| p.wrapping_mul(LANES as i32)),
+        }
+    }
+
+    /// Of the first `chunks * LANES` centres of a row whose edge values at its first
+    /// centre are `e`, those outside some edge (a negative value: the sign bit of the
+    /// values' bitwise or), as bits.
+    #[inline]
+    fn outside(&self, mut e: [i32; 3], chunks: usize) -> u64 {
+        let mut bits = 0u64;
+        for chunk in 0..chunks {
+            let any = (i32x8::splat(e[0]) + self.ramp[0])
+                | (i32x8::splat(e[1]) + self.ramp[1])
+                | (i32x8::splat(e[2]) + self.ramp[2]);
+            bits |= u64::from(any.to_bitmask()) << (chunk * LANES);
+            e = std::array::from_fn(|k| e[k].wrapping_add(self.per_chunk[k]));
+        }
+        bits
+    }
+}
+
+/// The signed area (twice it) of the triangle `tri`, in `f32`, summed as
+/// [`Coverage::fill_convex`] sums it.
+#[inline]
+fn signed_area(tri: &[Vec2; 3]) -> f32 {
+    let mut area2 = 0.0f32;
+    for i in 0..3 {
+        let (a, b) = (tri[i], tri[(i + 1) % 3]);
+        area2 += a.x * b.y - b.x * a.y;
+    }
+    area2
+}
+
+/// Twice the signed area of the triangle `v` (in `1/256` pixel), exactly.
+#[inline]
+pub(super) fn exact_area(v: &[[i32; 2]; 3]) -> i64 {
+    let v = v.map(|p| p.map(i64::from));
+    (v[1][0] - v[0][0]) * (v[2][1] - v[0][1]) - (v[1][1] - v[0][1]) * (v[2][0] - v[0][0])
+}
+
+/// Whether the `f32` signed area of `tri`, summed as [`Coverage::fill_convex`] sums it,
+/// is not zero and has the sign of its exact one, `exact` (not zero): otherwise
+/// `fill_convex` covers nothing of the triangle, and so neither does
+/// [`Coverage::fill_triangle`].
+#[inline]
+pub(super) fn f32_agrees(tri: &[Vec2; 3], exact: i64) -> bool {
+    let area2 = signed_area(tri);
+    area2 != 0.0 && (exact > 0) == (area2 > 0.0)
+}
+
+/// The span of the points `v` (in `1/256` pixel): `[xmin, xmax, ymin, ymax]`.
+#[inline]
+pub(super) fn span(v: impl IntoIterator<Item = [i32; 2]>) -> [i32; 4] {
+    v.into_iter()
+        .fold([i32::MAX, i32::MIN, i32::MAX, i32::MIN], |s, p| {
+            [
+                s[0].min(p[0]),
+                s[1].max(p[0]),
+                s[2].min(p[1]),
+                s[3].max(p[1]),
+            ]
+        })
+}
+
+/// Whether `p` lies within [`EXACT_LIMIT`] pixels of the origin on both axes.
+#[inline]
+pub(super) fn in_reach(p: Vec2) -> bool {
+    p.x.abs() <= EXACT_LIMIT && p.y.abs() <= EXACT_LIMIT
+}
+
+/// A snapped point [`in_reach`] in `1/256` pixel.
+#[inline]
+pub(super) fn to_fixed(p: Vec2) -> [i32; 2] {
+    debug_assert!(
+        (p.x * SUBPIXEL).fract() == 0.0 && (p.y * SUBPIXEL).fract() == 0.0,
+        "vertices snapped to 1/256 pixel: {p:?}"
+    );
+    [(p.x * SUBPIXEL) as i32, (p.y * SUBPIXEL) as i32]
 }
 
 /// The non-horizontal edges of the triangle `v` (in `1/256` pixel; `ccw` whether its
@@ -344,10 +454,14 @@ type SlopedEdge = ([i64; 2], [i64; 2], bool);
 
 /// Widest box of pixel centres, in columns, that [`Coverage::fill_triangle`] tests
 /// centre by centre rather than walking edges (its row of tests fits one word).
-const SMALL_BOX_COLUMNS: i64 = 32;
+const SMALL_BOX_COLUMNS: usize = 32;
 
 /// Most centres in a box that [`Coverage::fill_triangle`] tests one by one.
-const SMALL_BOX_CENTRES: i64 = 96;
+const SMALL_BOX_CENTRES: usize = 96;
+
+/// Widest and tallest span of a triangle's vertices, in `1/256` pixel (64 and 128
+/// pixels), that [`Coverage::fill_small`] takes, so that its edge values fit `i32`.
+const SMALL_EXTENT: [i32; 2] = [64 * 256, 128 * 256];
 
 /// How far from the origin, in pixels, [`Coverage::fill_triangle`] takes a triangle's
 /// vertices itself: there every crossing `fill_convex` estimates (from coordinates and
@@ -357,7 +471,7 @@ const EXACT_LIMIT: f32 = 2048.0;
 /// The first pixel index whose centre lies at or past `t` (in `1/256` pixel): the
 /// smallest `i` with `256 i + 128 >= t`.
 #[inline]
-fn first_centre(t: i64) -> i64 {
+fn first_centre(t: i32) -> i32 {
     (t - 128 + 255) >> 8
 }
 

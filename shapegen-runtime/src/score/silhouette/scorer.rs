@@ -3,8 +3,11 @@
 use glam::{Mat4, Vec2, Vec4};
 
 use super::counts::{MAX_TARGETS, SilhouetteCounts, TargetCounts};
+use super::mesh_fill::{MeshScratch, ProjectedMesh};
 use super::meshes::{RasterMesh, prepare};
-use super::raster::{Coverage, MAX_POLYGON, clip_triangle, convex_hull, in_front, to_pixels};
+use super::raster::{
+    Coverage, MAX_POLYGON, clip_triangle, convex_hull, in_front, in_reach, to_fixed, to_pixels,
+};
 use super::target::ImageTarget;
 use crate::geometry::{BoundMeshes, Instance};
 use crate::score::metrics::silhouette_iou;
@@ -106,6 +109,10 @@ pub struct SilhouetteScratch {
     clip: Vec<Vec4>,
     /// The same in pixels (or a convex mesh's projected hull points).
     points: Vec<Vec2>,
+    /// The same in `1/256` pixel, when every one is within the exact range.
+    fixed: Vec<[i32; 2]>,
+    /// Working memory of [`Coverage::fill_mesh`].
+    mesh: MeshScratch,
 }
 
 impl SilhouetteScorer {
@@ -245,8 +252,11 @@ impl SilhouetteScorer {
                 return;
             }
         }
-        // Each distinct position projected once; a triangle wholly in front of the near
-        // plane is filled from its corners' pixels, one crossing it is clipped first.
+        // Each distinct position projected once. When every position is in front of the
+        // near plane and within the exact range, every triangle is filled from its
+        // corners' pixels in `1/256` pixel; otherwise each triangle wholly in front is
+        // filled from its corners' pixels, and one crossing the near plane is clipped
+        // first.
         scratch.clip.clear();
         scratch
             .clip
@@ -255,6 +265,20 @@ impl SilhouetteScorer {
         scratch
             .points
             .extend(scratch.clip.iter().map(|&c| to_pixels(c, w, h)));
+        let near = scratch.clip.iter().all(|&c| in_front(c));
+        if near && scratch.points.iter().all(|&p| in_reach(p)) {
+            scratch.fixed.clear();
+            scratch
+                .fixed
+                .extend(scratch.points.iter().map(|&p| to_fixed(p)));
+            let projected = ProjectedMesh {
+                mesh,
+                points: &scratch.points,
+                fixed: &scratch.fixed,
+            };
+            scratch.coverage.fill_mesh(&projected, &mut scratch.mesh);
+            return;
+        }
         for tri in &mesh.triangles {
             let c = tri.map(|i| scratch.clip[i as usize]);
             if c.iter().all(|&v| in_front(v)) {

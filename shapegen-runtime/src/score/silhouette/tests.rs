@@ -752,3 +752,233 @@ fn masks_by_alpha_and_by_distance_from_a_background_colour() {
     assert_eq!(pixels_of(&target(backdrop(12)).unwrap()), [2, 3]);
     assert_eq!(pixels_of(&target(backdrop(11)).unwrap()), [1, 2, 3]);
 }
+
+/// A sphere-like closed mesh of `rings` x `sectors` quads (two triangles each) and two
+/// poles, wound consistently; positions are unit-sphere points (their projection is
+/// chosen by the caller).
+fn closed_mesh(rings: u32, sectors: u32) -> crate::geometry::Mesh {
+    let mut positions = vec![Vec3::Y, -Vec3::Y];
+    for r in 0..rings {
+        let lat = std::f32::consts::PI * (r as f32 + 1.0) / (rings as f32 + 1.0);
+        for s in 0..sectors {
+            let lon = std::f32::consts::TAU * s as f32 / sectors as f32;
+            positions.push(vec3(
+                lat.sin() * lon.cos(),
+                lat.cos(),
+                lat.sin() * lon.sin(),
+            ));
+        }
+    }
+    let at = |r: u32, s: u32| 2 + r * sectors + s % sectors;
+    let mut indices = Vec::new();
+    for s in 0..sectors {
+        indices.extend([0, at(0, s + 1), at(0, s)]);
+        indices.extend([1, at(rings - 1, s), at(rings - 1, s + 1)]);
+        for r in 0..rings - 1 {
+            let (a, b, c, d) = (at(r, s), at(r, s + 1), at(r + 1, s), at(r + 1, s + 1));
+            indices.extend([a, b, d, a, d, c]);
+        }
+    }
+    crate::geometry::Mesh {
+        normals: positions.clone(),
+        positions,
+        indices,
+    }
+}
+
+/// Filling a whole mesh with its negative triangles left out where they cannot add a
+/// pixel covers exactly what filling every triangle covers: on closed meshes, meshes
+/// with holes (triangles taken out), meshes wound inconsistently (triangles turned),
+/// with random positions in the image, tiny and large, on pixel centres and near
+/// collinear, so that ties, slivers and triangles whose `f32` area disagrees with the
+/// exact one all occur. `SHAPEGEN_PROPERTY_SCALE` multiplies the cases.
+#[test]
+fn filling_a_mesh_covers_what_filling_its_triangles_covers() {
+    use super::mesh_fill::{MeshScratch, ProjectedMesh};
+    use super::meshes::RasterMesh;
+    use super::raster::{SUBPIXEL, to_fixed};
+    let (width, height) = (96, 64);
+    let mut rng = ChaCha8Rng::seed_from_u64(21);
+    let scale: usize = std::env::var("SHAPEGEN_PROPERTY_SCALE")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1);
+    let cases = scale * if cfg!(debug_assertions) { 400 } else { 4000 };
+    let (mut whole, mut each) = (Coverage::default(), Coverage::default());
+    whole.shape(width, height);
+    each.shape(width, height);
+    let mut scratch = MeshScratch::default();
+    let (mut left_out, mut with_holes, mut pixels) = (0, 0, 0);
+    for case in 0..cases {
+        let mut mesh = closed_mesh(rng.random_range(1..6), rng.random_range(3..9));
+        match case % 4 {
+            // Holes: some triangles taken out.
+            1 => {
+                let n = mesh.indices.len() / 3;
+                for _ in 0..rng.random_range(1..4) {
+                    let t = rng.random_range(0..mesh.indices.len() / 3);
+                    mesh.indices.drain(3 * t..3 * t + 3);
+                }
+                assert!(mesh.indices.len() / 3 < n);
+            }
+            // Inconsistent winding: some triangles turned.
+            2 => {
+                for _ in 0..rng.random_range(1..3) {
+                    let t = rng.random_range(0..mesh.indices.len() / 3);
+                    mesh.indices.swap(3 * t, 3 * t + 1);
+                }
+            }
+            _ => {}
+        }
+        let raster = RasterMesh::new(&mesh);
+        with_holes += usize::from(!raster.boundary.is_empty());
+        // Positions in the plane: a sphere's projection under a random rotation, or
+        // points anywhere, on a coarse lattice of centres and edges, or all but one
+        // on a line.
+        let centre = vec2(
+            rng.random_range(-10.0..width as f32 + 10.0),
+            rng.random_range(-10.0..height as f32 + 10.0),
+        );
+        let size = [2.0f32, 8.0, 30.0, 120.0][rng.random_range(0..4)];
+        let rotation = glam::Quat::from_euler(
+            glam::EulerRot::XYZ,
+            rng.random_range(0.0..6.3),
+            rng.random_range(0.0..6.3),
+            rng.random_range(0.0..6.3),
+        );
+        let style = rng.random_range(0..4);
+        let points: Vec<Vec2> = raster
+            .positions
+            .iter()
+            .map(|&p| {
+                let q = match style {
+                    0 => (rotation * p).truncate() * size,
+                    1 => vec2(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0)) * size,
+                    2 => ((rotation * p).truncate() * size * 2.0).round() / 2.0,
+                    _ => vec2(
+                        p.y * size,
+                        p.y * size * 0.37 + rng.random_range(-1..=1) as f32 / 256.0,
+                    ),
+                };
+                ((centre + q) * SUBPIXEL).round() / SUBPIXEL
+            })
+            .collect();
+        let fixed: Vec<[i32; 2]> = points.iter().map(|&p| to_fixed(p)).collect();
+        let projected = ProjectedMesh {
+            mesh: &raster,
+            points: &points,
+            fixed: &fixed,
+        };
+        whole.fill_mesh(&projected, &mut scratch);
+        for t in &raster.triangles {
+            each.fill_triangle(t.map(|i| points[i as usize]));
+        }
+        let (w, e) = (drained(&mut whole), drained(&mut each));
+        assert_eq!(w, e, "case {case}");
+        left_out += scratch.left_out();
+        pixels += e
+            .iter()
+            .map(|(_, bits)| bits.count_ones() as usize)
+            .sum::<usize>();
+    }
+    // The cases cover pixels, leave triangles out, and have holes.
+    assert!(pixels > cases * 10, "{pixels} pixels in {cases} cases");
+    assert!(
+        left_out > cases,
+        "{left_out} triangles left out in {cases} cases"
+    );
+    assert!(
+        with_holes > cases / 4,
+        "{with_holes} of {cases} meshes with holes"
+    );
+}
+
+/// A closed mesh of two triangles, one the other turned over, whose positive triangle's
+/// `f32` area disagrees with its exact one while the negative one's agrees: the
+/// positive triangle covers nothing, so the mesh covers what the negative one covers,
+/// which the mesh fill must then fill although the mesh is closed.
+#[test]
+fn a_mesh_whose_positive_triangle_is_dropped_covers_what_its_negative_one_covers() {
+    use super::mesh_fill::{MeshScratch, ProjectedMesh};
+    use super::meshes::RasterMesh;
+    use super::raster::{SUBPIXEL, exact_area, f32_agrees, to_fixed};
+    let (width, height) = (96, 64);
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    // Slivers through the image, their ends `a` and `b` some 1,900 pixels either side of
+    // a pixel centre `c`, the third corner, one lattice step off their line (twice the
+    // area 1/65536 px^2): there the `f32` areas, from coordinates near 2,000 pixels,
+    // err far more than the area. `c`'s corner is nearly flat, so the triangle covers
+    // `c` in about half the cases.
+    let found = (0..100_000).find_map(|_| {
+        let c = [
+            256 * rng.random_range(0..width as i64) + 128,
+            256 * rng.random_range(0..height as i64) + 128,
+        ];
+        let d = [
+            rng.random_range(300_000..480_000i64),
+            rng.random_range(-480_000..480_000i64),
+        ];
+        // e with cross(e, d) = e.x d.y - e.y d.x = 1, near d: (u, v) + k d.
+        let (g, u, v) = extended_gcd(d[1], -d[0]);
+        if g != 1 {
+            return None;
+        }
+        let k = 1 - (u * d[0] + v * d[1]) / (d[0] * d[0] + d[1] * d[1]);
+        let e = [u + k * d[0], v + k * d[1]];
+        let (a, b) = ([c[0] - d[0], c[1] - d[1]], [c[0] + e[0], c[1] + e[1]]);
+        let px = |p: [i64; 2]| vec2(p[0] as f32, p[1] as f32) / SUBPIXEL;
+        let (a, b, c) = (px(a), px(b), px(c));
+        let exact = exact_area(&[a, b, c].map(to_fixed));
+        let (pos, neg) = if exact > 0 {
+            ([a, b, c], [a, c, b])
+        } else {
+            ([a, c, b], [a, b, c])
+        };
+        let exact = exact.abs();
+        let dropped = exact != 0 && !f32_agrees(&pos, exact) && f32_agrees(&neg, -exact);
+        let mut cov = Coverage::default();
+        cov.shape(width, height);
+        cov.fill_triangle(neg);
+        let covered = !drained(&mut cov).is_empty();
+        (dropped && covered).then_some(pos)
+    });
+    let [a, b, c] = found.expect("a sliver whose positive triangle alone is dropped");
+    let mesh = crate::geometry::Mesh {
+        positions: vec![Vec3::X, Vec3::Y, Vec3::Z],
+        normals: vec![Vec3::Z; 3],
+        indices: vec![0, 1, 2, 0, 2, 1],
+    };
+    let raster = RasterMesh::new(&mesh);
+    assert!(
+        raster.boundary.is_empty(),
+        "the two triangles close each other"
+    );
+    let points = vec![a, b, c];
+    let fixed: Vec<[i32; 2]> = points.iter().map(|&p| to_fixed(p)).collect();
+    let (mut whole, mut each) = (Coverage::default(), Coverage::default());
+    whole.shape(width, height);
+    each.shape(width, height);
+    whole.fill_mesh(
+        &ProjectedMesh {
+            mesh: &raster,
+            points: &points,
+            fixed: &fixed,
+        },
+        &mut MeshScratch::default(),
+    );
+    each.fill_triangle([a, b, c]);
+    each.fill_triangle([a, c, b]);
+    let expected = drained(&mut each);
+    assert!(!expected.is_empty());
+    assert_eq!(drained(&mut whole), expected);
+}
+
+/// `(g, u, v)` with `g = gcd(a, b) = a u + b v`.
+fn extended_gcd(a: i64, b: i64) -> (i64, i64, i64) {
+    if b == 0 {
+        (a.abs(), a.signum(), 0)
+    } else {
+        let (g, u, v) = extended_gcd(b, a.rem_euclid(b));
+        (g, v, u - a.div_euclid(b) * v)
+    }
+}
