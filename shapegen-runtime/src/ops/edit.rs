@@ -123,11 +123,59 @@ pub(super) fn record_links(
     }
 }
 
+/// What crossover learns of a parent genome in one forward pass ([`Survey::take`]), and
+/// the position map its [`split`] fills.
+#[derive(Debug, Default)]
+pub(super) struct Survey {
+    /// Every gene's start, in order.
+    pub starts: Vec<u32>,
+    /// Word-indexed: each gene's depth, when tracked.
+    pub depth: Vec<u32>,
+    /// Word-indexed: the deepest gene before each gene (0 for the root), when tracked.
+    pub above: Vec<u32>,
+    /// The genome's depth, when tracked; 0 otherwise.
+    pub max_depth: u32,
+    /// Word-indexed, from a split's root on: what [`split`] maps each gene to.
+    pub map: Vec<u32>,
+}
+
+impl Survey {
+    /// Surveys the valid genome in `words`: its gene starts and, when `track_depth`, the
+    /// depths. O(G).
+    pub(super) fn take(&mut self, kinds: &[KindInfo], words: &[u32], track_depth: bool) {
+        self.max_depth = 0;
+        if !track_depth {
+            super::gene_starts(kinds, words, &mut self.starts);
+            return;
+        }
+        self.starts.clear();
+        cover(&mut self.depth, words.len());
+        cover(&mut self.above, words.len());
+        let mut max = 0;
+        let mut pos = 0u32;
+        while (pos as usize) < words.len() {
+            self.starts.push(pos);
+            let d = if pos == 0 {
+                1
+            } else {
+                self.depth[parent_pos(words, pos) as usize] + 1
+            };
+            self.depth[pos as usize] = d;
+            self.above[pos as usize] = max;
+            max = max.max(d);
+            pos += kinds[words[pos as usize] as usize].gene_words;
+        }
+        self.max_depth = max;
+    }
+}
+
 /// How a genome splits at a link: the subtree below it and the rest.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Split {
     /// Position of the subtree's root.
     pub root: u32,
+    /// Index of the subtree's root among the genome's genes.
+    pub first: usize,
     /// Position of its parent.
     pub parent: u32,
     /// Genes in the subtree.
@@ -142,55 +190,41 @@ pub(super) struct Split {
     pub rest_max_depth: u32,
 }
 
-/// Splits the valid genome in `words` (gene starts `starts`) at the gene `root`: fills
-/// `map` with each gene's position in the rest (compacted) or, marked [`SUB`], relative to
-/// the subtree's start, and `depth` with depths when `track_depth`.
+/// Splits the valid genome in `words`, surveyed into `sv` (with depths when
+/// `track_depth`), at the gene `root`: fills `sv.map`, from `root` on, with each gene's
+/// position in the rest (compacted) or, marked [`SUB`], relative to the subtree's start.
+/// Genes before `root` keep their positions and are not mapped. O(W from `root`).
 pub(super) fn split(
     kinds: &[KindInfo],
     words: &[u32],
-    starts: &[u32],
+    sv: &mut Survey,
     root: u32,
-    map: &mut Vec<u32>,
-    depth: &mut Vec<u32>,
     track_depth: bool,
 ) -> Split {
-    cover(map, words.len());
-    if track_depth {
-        cover(depth, words.len());
-    }
+    cover(&mut sv.map, words.len());
+    let (map, depth) = (&mut sv.map[..], &sv.depth[..]);
+    let depth_at = |pos: u32| if track_depth { depth[pos as usize] } else { 0 };
+    let first = sv.starts.partition_point(|&p| p < root);
     let mut s = Split {
         root,
+        first,
         parent: parent_pos(words, root),
         sub_genes: 0,
         sub_words: 0,
-        root_depth: 0,
+        root_depth: depth_at(root),
         sub_max_depth: 0,
-        rest_max_depth: 0,
+        rest_max_depth: if track_depth { sv.above[root as usize] } else { 0 },
     };
-    let mut kept = 0u32;
-    for &pos in starts {
+    let mut kept = root;
+    for &pos in &sv.starts[first..] {
         let size = kinds[words[pos as usize] as usize].gene_words;
-        let parent = (pos != 0).then(|| parent_pos(words, pos));
-        let d = if !track_depth {
-            0
-        } else if let Some(parent) = parent {
-            depth[parent as usize] + 1
-        } else {
-            1
-        };
-        if track_depth {
-            depth[pos as usize] = d;
-        }
-        let in_sub = pos == root
-            || (pos > root && parent.is_some_and(|p| p >= root && map[p as usize] & SUB != 0));
-        if in_sub {
+        let parent = parent_pos(words, pos);
+        let d = depth_at(pos);
+        if pos == root || (parent >= root && map[parent as usize] & SUB != 0) {
             map[pos as usize] = SUB | s.sub_words;
             s.sub_words += size;
             s.sub_genes += 1;
             s.sub_max_depth = s.sub_max_depth.max(d);
-            if pos == root {
-                s.root_depth = d;
-            }
         } else {
             map[pos as usize] = kept;
             kept += size;
@@ -212,8 +246,8 @@ pub(super) struct Donor<'a> {
 
 /// Writes into `out` the genome `keep` with the subtree `ks` split off and, when given,
 /// the `donor`'s subtree hung in its place (else the link that held it becomes empty),
-/// given `keep`'s gene starts and the map [`split`] filled. The donor's subtree goes after
-/// all kept genes, in its own order.
+/// given the map [`split`] filled. The genes before the subtree's root are copied as one
+/// block; the donor's subtree goes after all kept genes, in its own order.
 pub(super) fn splice(
     kinds: &[KindInfo],
     out: &mut Vec<u32>,
@@ -226,7 +260,25 @@ pub(super) fn splice(
     out.clear();
     let base = keep.len() as u32 - ks.sub_words;
     out.reserve((base + donor.map_or(0, |d| d.split.sub_words)) as usize);
-    for &pos in keep_starts {
+    let root = ks.root;
+    out.extend_from_slice(&keep[..root as usize]);
+    // The genes before the root stay in place; only their links to genes from the root
+    // on change.
+    let root_link = donor.map(|_| base);
+    for &pos in &keep_starts[..ks.first] {
+        let k = kinds[keep[pos as usize] as usize];
+        for w in &mut out[(pos + HEADER_WORDS) as usize..][..k.links as usize] {
+            let child = pos.wrapping_add(*w);
+            if *w != 0 && child >= root {
+                *w = if child != root {
+                    keep_map[child as usize] - pos
+                } else {
+                    root_link.map_or(0, |at| at - pos)
+                };
+            }
+        }
+    }
+    for &pos in &keep_starts[ks.first..] {
         let np = keep_map[pos as usize];
         if np & SUB != 0 {
             continue;
@@ -235,25 +287,22 @@ pub(super) fn splice(
         debug_assert_eq!(np as usize, out.len());
         out.extend_from_slice(&keep[pos as usize..(pos + k.gene_words) as usize]);
         let n = np as usize;
-        if pos != 0 {
-            let parent = parent_pos(keep, pos);
-            out[n + 1] = keep_map[parent as usize].wrapping_sub(np);
-        }
+        let parent = parent_pos(keep, pos);
+        let new_parent = if parent < root {
+            parent
+        } else {
+            keep_map[parent as usize]
+        };
+        out[n + 1] = new_parent.wrapping_sub(np);
         for w in &mut out[n + HEADER_WORDS as usize..][..k.links as usize] {
             if *w != 0 {
-                let child = pos + *w;
-                *w = if child != ks.root {
-                    keep_map[child as usize] - np
-                } else if donor.is_some() {
-                    base - np
-                } else {
-                    0
-                };
+                *w = keep_map[(pos + *w) as usize] - np;
             }
         }
     }
     if let Some(donor) = donor {
-        append_subtree(kinds, out, keep_map[ks.parent as usize], donor);
+        // The root's parent lies before it, so it did not move.
+        append_subtree(kinds, out, ks.parent, donor);
     }
 }
 
@@ -284,26 +333,24 @@ pub(super) fn graft(
 fn append_subtree(kinds: &[KindInfo], out: &mut Vec<u32>, parent: u32, donor: Donor<'_>) {
     let base = out.len() as u32;
     let ds = donor.split;
-    let first = donor.starts.partition_point(|&p| p < ds.root);
-    for &pos in &donor.starts[first..] {
+    for &pos in &donor.starts[ds.first..] {
         let m = donor.map[pos as usize];
-        if m & SUB == 0 {
-            continue;
-        }
-        let np = base + (m & !SUB);
-        let k = kinds[donor.words[pos as usize] as usize];
-        debug_assert_eq!(np as usize, out.len());
-        out.extend_from_slice(&donor.words[pos as usize..(pos + k.gene_words) as usize]);
-        let n = np as usize;
-        let parent_np = if pos == ds.root {
-            parent
-        } else {
-            base + (donor.map[parent_pos(donor.words, pos) as usize] & !SUB)
-        };
-        out[n + 1] = parent_np.wrapping_sub(np);
-        for w in &mut out[n + HEADER_WORDS as usize..][..k.links as usize] {
-            if *w != 0 {
-                *w = base + (donor.map[(pos + *w) as usize] & !SUB) - np;
+        if m & SUB != 0 {
+            let k = kinds[donor.words[pos as usize] as usize];
+            let np = base + (m & !SUB);
+            debug_assert_eq!(np as usize, out.len());
+            out.extend_from_slice(&donor.words[pos as usize..(pos + k.gene_words) as usize]);
+            let n = np as usize;
+            let parent_np = if pos == ds.root {
+                parent
+            } else {
+                base + (donor.map[parent_pos(donor.words, pos) as usize] & !SUB)
+            };
+            out[n + 1] = parent_np.wrapping_sub(np);
+            for w in &mut out[n + HEADER_WORDS as usize..][..k.links as usize] {
+                if *w != 0 {
+                    *w = base + (donor.map[(pos + *w) as usize] & !SUB) - np;
+                }
             }
         }
     }

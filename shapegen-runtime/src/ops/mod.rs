@@ -85,6 +85,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::derive::Grammar;
 use crate::genome::{Limits, LimitsError};
+use edit::Survey;
 use weight::{Fenwick, weight};
 
 /// How many times the weighted crossover draws again after a failed attempt (no link of
@@ -293,13 +294,13 @@ struct LinkInfo {
 #[derive(Default)]
 struct Scratch {
     starts: Vec<u32>,
-    starts_b: Vec<u32>,
     cand: Vec<u32>,
     cum: Vec<u64>,
     depth: Vec<u32>,
-    depth_b: Vec<u32>,
     map: Vec<u32>,
-    map_b: Vec<u32>,
+    /// Crossover's surveys of its first and second parent.
+    pa: Survey,
+    pb: Survey,
     link_of: Vec<u32>,
     fenwick: Fenwick,
     /// Open links of [`Self::fenwick`] or the sampling queue: (gene, link, depth).
