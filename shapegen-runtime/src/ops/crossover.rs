@@ -3,7 +3,7 @@
 
 use rand::Rng;
 
-use super::edit::{Donor, Split, splice, split};
+use super::edit::{Donor, Split, splice, split, survey_pair};
 use super::weight::below;
 use super::{CROSSOVER_RETRIES, OperatorVariant, Operators};
 use crate::derive::Grammar;
@@ -90,8 +90,8 @@ impl<G: Grammar> Operators<G> {
         }
         // A child's depth is at most its length, which is below a.len + b.len.
         let track_depth = self.limits.max_depth < a.len + b.len;
-        self.s.pa.take(&self.kinds, &a.words, track_depth);
-        self.s.pb.take(&self.kinds, &b.words, track_depth);
+        let s = &mut self.s;
+        survey_pair(&self.kinds, (&mut s.pa, &a.words), (&mut s.pb, &b.words), track_depth);
         for _ in 0..=CROSSOVER_RETRIES {
             let s = &mut self.s;
             let ra = s.pa.starts[1 + below(rng, u64::from(a.len - 1)) as usize];
@@ -168,8 +168,8 @@ impl<G: Grammar> Operators<G> {
                 b_edge: format!("{bslot} of `{}`", bn.name),
             });
         }
-        self.s.pa.take(&self.kinds, &a.words, true);
-        self.s.pb.take(&self.kinds, &b.words, true);
+        let s = &mut self.s;
+        survey_pair(&self.kinds, (&mut s.pa, &a.words), (&mut s.pb, &b.words), true);
         let mut c = Genome::from_parts(Vec::new(), 0);
         let mut d = Genome::from_parts(Vec::new(), 0);
         let (sa, sb) = self.split_both(a, a_pos, b, b_pos, true);

@@ -123,7 +123,7 @@ pub(super) fn record_links(
     }
 }
 
-/// What crossover learns of a parent genome in one forward pass ([`Survey::take`]), and
+/// What crossover learns of a parent genome in one forward pass ([`survey_pair`]), and
 /// the position map its [`split`] fills.
 #[derive(Debug, Default)]
 pub(super) struct Survey {
@@ -140,32 +140,57 @@ pub(super) struct Survey {
 }
 
 impl Survey {
-    /// Surveys the valid genome in `words`: its gene starts and, when `track_depth`, the
-    /// depths. O(G).
-    pub(super) fn take(&mut self, kinds: &[KindInfo], words: &[u32], track_depth: bool) {
-        self.max_depth = 0;
-        if !track_depth {
-            super::gene_starts(kinds, words, &mut self.starts);
-            return;
-        }
+    /// Empties the survey for a genome of `words`.
+    fn begin(&mut self, words: &[u32], track_depth: bool) {
         self.starts.clear();
-        cover(&mut self.depth, words.len());
-        cover(&mut self.above, words.len());
-        let mut max = 0;
-        let mut pos = 0u32;
-        while (pos as usize) < words.len() {
-            self.starts.push(pos);
+        self.max_depth = 0;
+        if track_depth {
+            cover(&mut self.depth, words.len());
+            cover(&mut self.above, words.len());
+        }
+    }
+
+    /// Records the gene at `pos` of the genome in `words`, whose earlier genes are
+    /// recorded; returns the next gene's position.
+    #[inline(always)]
+    fn visit(&mut self, kinds: &[KindInfo], words: &[u32], pos: u32, track_depth: bool) -> u32 {
+        self.starts.push(pos);
+        if track_depth {
             let d = if pos == 0 {
                 1
             } else {
                 self.depth[parent_pos(words, pos) as usize] + 1
             };
             self.depth[pos as usize] = d;
-            self.above[pos as usize] = max;
-            max = max.max(d);
-            pos += kinds[words[pos as usize] as usize].gene_words;
+            self.above[pos as usize] = self.max_depth;
+            self.max_depth = self.max_depth.max(d);
         }
-        self.max_depth = max;
+        pos + kinds[words[pos as usize] as usize].gene_words
+    }
+}
+
+/// Surveys the valid genomes in `a.1` and `b.1` into `a.0` and `b.0`: their gene starts
+/// and, when `track_depth`, their depths. Both walks advance in one loop, so that the
+/// processor overlaps their chains of dependent loads. O(G_a + G_b).
+pub(super) fn survey_pair(
+    kinds: &[KindInfo],
+    a: (&mut Survey, &[u32]),
+    b: (&mut Survey, &[u32]),
+    track_depth: bool,
+) {
+    let ((sa, wa), (sb, wb)) = (a, b);
+    sa.begin(wa, track_depth);
+    sb.begin(wb, track_depth);
+    let (mut pa, mut pb) = (0u32, 0u32);
+    while (pa as usize) < wa.len() && (pb as usize) < wb.len() {
+        pa = sa.visit(kinds, wa, pa, track_depth);
+        pb = sb.visit(kinds, wb, pb, track_depth);
+    }
+    while (pa as usize) < wa.len() {
+        pa = sa.visit(kinds, wa, pa, track_depth);
+    }
+    while (pb as usize) < wb.len() {
+        pb = sb.visit(kinds, wb, pb, track_depth);
     }
 }
 
@@ -246,8 +271,9 @@ pub(super) struct Donor<'a> {
 
 /// Writes into `out` the genome `keep` with the subtree `ks` split off and, when given,
 /// the `donor`'s subtree hung in its place (else the link that held it becomes empty),
-/// given the map [`split`] filled. The genes before the subtree's root are copied as one
-/// block; the donor's subtree goes after all kept genes, in its own order.
+/// given `keep`'s gene starts and the map [`split`] filled. The genes before the
+/// subtree's root are copied as one block; the donor's subtree goes after all kept genes,
+/// in its own order.
 pub(super) fn splice(
     kinds: &[KindInfo],
     out: &mut Vec<u32>,
@@ -261,23 +287,10 @@ pub(super) fn splice(
     let base = keep.len() as u32 - ks.sub_words;
     out.reserve((base + donor.map_or(0, |d| d.split.sub_words)) as usize);
     let root = ks.root;
+    // The genes before the root stay in place; of their links, only those to kept genes
+    // from the root on change, which the sweep below patches from the child's side.
     out.extend_from_slice(&keep[..root as usize]);
-    // The genes before the root stay in place; only their links to genes from the root
-    // on change.
-    let root_link = donor.map(|_| base);
-    for &pos in &keep_starts[..ks.first] {
-        let k = kinds[keep[pos as usize] as usize];
-        for w in &mut out[(pos + HEADER_WORDS) as usize..][..k.links as usize] {
-            let child = pos.wrapping_add(*w);
-            if *w != 0 && child >= root {
-                *w = if child != root {
-                    keep_map[child as usize] - pos
-                } else {
-                    root_link.map_or(0, |at| at - pos)
-                };
-            }
-        }
-    }
+    let root_link = link_of(kinds, keep, ks.parent, root - ks.parent);
     for &pos in &keep_starts[ks.first..] {
         let np = keep_map[pos as usize];
         if np & SUB != 0 {
@@ -289,6 +302,10 @@ pub(super) fn splice(
         let n = np as usize;
         let parent = parent_pos(keep, pos);
         let new_parent = if parent < root {
+            // Links patched so far point below `pos - parent`, and the root's still
+            // holds `root - parent`: only this child's link holds `pos - parent`.
+            let at = link_of(kinds, out, parent, pos - parent);
+            out[at] = np - parent;
             parent
         } else {
             keep_map[parent as usize]
@@ -300,10 +317,27 @@ pub(super) fn splice(
             }
         }
     }
+    out[root_link] = if donor.is_some() {
+        base - ks.parent
+    } else {
+        0
+    };
     if let Some(donor) = donor {
         // The root's parent lies before it, so it did not move.
         append_subtree(kinds, out, ks.parent, donor);
     }
+}
+
+/// The word index of the link of the gene at `parent` of `words` that holds the offset
+/// `off`.
+#[inline]
+fn link_of(kinds: &[KindInfo], words: &[u32], parent: u32, off: u32) -> usize {
+    let at = (parent + HEADER_WORDS) as usize;
+    let k = kinds[words[parent as usize] as usize];
+    at + words[at..at + k.links as usize]
+        .iter()
+        .position(|&w| w == off)
+        .expect("a valid genome's parent links to its child")
 }
 
 /// Writes into `out` the genome `keep` unchanged but for the `donor`'s subtree hung on
