@@ -234,6 +234,8 @@ pub struct Operators<G> {
     cross_array_index: bool,
     kinds: Vec<KindInfo>,
     links: Vec<LinkInfo>,
+    /// Words of the largest gene any link takes: what one grow appends at most.
+    child_words: u32,
     s: Scratch,
     _g: PhantomData<fn() -> G>,
 }
@@ -257,6 +259,7 @@ impl<G> Clone for Operators<G> {
             cross_array_index: self.cross_array_index,
             kinds: self.kinds.clone(),
             links: self.links.clone(),
+            child_words: self.child_words,
             s: Scratch::default(),
             _g: PhantomData,
         }
@@ -337,12 +340,18 @@ impl<G: Grammar> Operators<G> {
                 });
             }
         }
+        let child_words = links
+            .iter()
+            .map(|l| kinds[l.child as usize].gene_words)
+            .max()
+            .unwrap_or(0);
         Ok(Operators {
             limits,
             variant: OperatorVariant::Weighted,
             cross_array_index: false,
             kinds,
             links,
+            child_words,
             s: Scratch::default(),
             _g: PhantomData,
         })
