@@ -91,7 +91,12 @@ impl<G: Grammar> Operators<G> {
         // A child's depth is at most its length, which is below a.len + b.len.
         let track_depth = self.limits.max_depth < a.len + b.len;
         let s = &mut self.s;
-        survey_pair(&self.kinds, (&mut s.pa, &a.words), (&mut s.pb, &b.words), track_depth);
+        survey_pair(
+            &self.kinds,
+            (&mut s.pa, &a.words),
+            (&mut s.pb, &b.words),
+            track_depth,
+        );
         for _ in 0..=CROSSOVER_RETRIES {
             let s = &mut self.s;
             let ra = s.pa.starts[1 + below(rng, u64::from(a.len - 1)) as usize];
@@ -169,7 +174,12 @@ impl<G: Grammar> Operators<G> {
             });
         }
         let s = &mut self.s;
-        survey_pair(&self.kinds, (&mut s.pa, &a.words), (&mut s.pb, &b.words), true);
+        survey_pair(
+            &self.kinds,
+            (&mut s.pa, &a.words),
+            (&mut s.pb, &b.words),
+            true,
+        );
         let mut c = Genome::from_parts(Vec::new(), 0);
         let mut d = Genome::from_parts(Vec::new(), 0);
         let (sa, sb) = self.split_both(a, a_pos, b, b_pos, true);
@@ -235,9 +245,25 @@ impl<G: Grammar> Operators<G> {
             },
         );
         let (pa, pb) = (&s.pa, &s.pb);
-        splice(&self.kinds, &mut out_a.words, &a.words, &pa.starts, &pa.map, sa, Some(db));
+        splice(
+            &self.kinds,
+            &mut out_a.words,
+            &a.words,
+            &pa.starts,
+            &pa.map,
+            sa,
+            Some(db),
+        );
         out_a.len = a.len - sa.sub_genes + sb.sub_genes;
-        splice(&self.kinds, &mut out_b.words, &b.words, &pb.starts, &pb.map, sb, Some(da));
+        splice(
+            &self.kinds,
+            &mut out_b.words,
+            &b.words,
+            &pb.starts,
+            &pb.map,
+            sb,
+            Some(da),
+        );
         out_b.len = b.len - sb.sub_genes + sa.sub_genes;
     }
 

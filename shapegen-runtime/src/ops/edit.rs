@@ -238,7 +238,11 @@ pub(super) fn split(
         sub_words: 0,
         root_depth: depth_at(root),
         sub_max_depth: 0,
-        rest_max_depth: if track_depth { sv.above[root as usize] } else { 0 },
+        rest_max_depth: if track_depth {
+            sv.above[root as usize]
+        } else {
+            0
+        },
     };
     let mut kept = root;
     for &pos in &sv.starts[first..] {
@@ -317,11 +321,7 @@ pub(super) fn splice(
             }
         }
     }
-    out[root_link] = if donor.is_some() {
-        base - ks.parent
-    } else {
-        0
-    };
+    out[root_link] = if donor.is_some() { base - ks.parent } else { 0 };
     if let Some(donor) = donor {
         // The root's parent lies before it, so it did not move.
         append_subtree(kinds, out, ks.parent, donor);

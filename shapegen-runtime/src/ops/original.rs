@@ -5,9 +5,7 @@
 use rand::Rng;
 
 use super::draw::{int_value, pick};
-use super::edit::{
-    Donor, cover, graft, record_links, remove_subtree, splice, split, survey_pair,
-};
+use super::edit::{Donor, cover, graft, record_links, remove_subtree, splice, split, survey_pair};
 use super::{KindInfo, ORIGINAL_CROSSOVER_ATTEMPTS, Operators, gene_starts};
 use crate::derive::Grammar;
 use crate::genome::{DEPTH_CAP, Genome, depths, node_of, parent_pos};
@@ -175,7 +173,12 @@ impl<G: Grammar> Operators<G> {
         // A child is shorter than a.len + b.len, and no deeper than long.
         let track = a.len + b.len > DEPTH_CAP;
         let s = &mut self.s;
-        survey_pair(&self.kinds, (&mut s.pa, &a.words), (&mut s.pb, &b.words), track);
+        survey_pair(
+            &self.kinds,
+            (&mut s.pa, &a.words),
+            (&mut s.pb, &b.words),
+            track,
+        );
         for _ in 0..ORIGINAL_CROSSOVER_ATTEMPTS {
             let ra = self.s.pa.starts[random_gene(a.len, rng)];
             let pa = parent_pos(&a.words, ra);
@@ -282,7 +285,15 @@ impl<G: Grammar> Operators<G> {
             }
         }
         let pa = &s.pa;
-        splice(&self.kinds, &mut out_a.words, &a.words, &pa.starts, &pa.map, &sa, None);
+        splice(
+            &self.kinds,
+            &mut out_a.words,
+            &a.words,
+            &pa.starts,
+            &pa.map,
+            &sa,
+            None,
+        );
         out_a.len = a.len - sa.sub_genes;
         let donor = Donor {
             words: &a.words,
