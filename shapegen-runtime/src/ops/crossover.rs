@@ -3,9 +3,9 @@
 
 use rand::Rng;
 
-use super::edit::{Donor, Split, splice, split};
+use super::edit::{Donor, Split, splice, split, survey_pair};
 use super::weight::below;
-use super::{CROSSOVER_RETRIES, OperatorVariant, Operators, gene_starts};
+use super::{CROSSOVER_RETRIES, OperatorVariant, Operators};
 use crate::derive::Grammar;
 use crate::genome::{GeneAt, Genome, GenomeError, node_of, parent_pos, slot_at};
 use crate::graph::HEADER_WORDS;
@@ -88,11 +88,18 @@ impl<G: Grammar> Operators<G> {
         if a.len < 2 || b.len < 2 {
             return false; // no expressed link on one side
         }
-        gene_starts(&self.kinds, &a.words, &mut self.s.starts);
-        gene_starts(&self.kinds, &b.words, &mut self.s.starts_b);
+        // A child's depth is at most its length, which is below a.len + b.len.
+        let track_depth = self.limits.max_depth < a.len + b.len;
+        let s = &mut self.s;
+        survey_pair(
+            &self.kinds,
+            (&mut s.pa, &a.words),
+            (&mut s.pb, &b.words),
+            track_depth,
+        );
         for _ in 0..=CROSSOVER_RETRIES {
             let s = &mut self.s;
-            let ra = s.starts[1 + below(rng, u64::from(a.len - 1)) as usize];
+            let ra = s.pa.starts[1 + below(rng, u64::from(a.len - 1)) as usize];
             let pa = parent_pos(&a.words, ra);
             let kind = a.words[pa as usize];
             let k = self.kinds[kind as usize];
@@ -109,7 +116,7 @@ impl<G: Grammar> Operators<G> {
                 (link, 1)
             };
             s.cand.clear();
-            for &pos in &s.starts_b {
+            for &pos in &s.pb.starts {
                 if b.words[pos as usize] != kind {
                     continue;
                 }
@@ -124,7 +131,7 @@ impl<G: Grammar> Operators<G> {
                 continue;
             }
             let rb = s.cand[below(rng, s.cand.len() as u64) as usize];
-            if self.try_swap(a, ra, b, rb, out_a, out_b) {
+            if self.try_swap(a, ra, b, rb, track_depth, out_a, out_b) {
                 return true;
             }
         }
@@ -167,8 +174,12 @@ impl<G: Grammar> Operators<G> {
             });
         }
         let s = &mut self.s;
-        gene_starts(&self.kinds, &a.words, &mut s.starts);
-        gene_starts(&self.kinds, &b.words, &mut s.starts_b);
+        survey_pair(
+            &self.kinds,
+            (&mut s.pa, &a.words),
+            (&mut s.pb, &b.words),
+            true,
+        );
         let mut c = Genome::from_parts(Vec::new(), 0);
         let mut d = Genome::from_parts(Vec::new(), 0);
         let (sa, sb) = self.split_both(a, a_pos, b, b_pos, true);
@@ -191,7 +202,8 @@ impl<G: Grammar> Operators<G> {
         })
     }
 
-    /// Splits `a` at `ra` and `b` at `rb` (gene starts already in the scratch buffers).
+    /// Splits `a` at `ra` and `b` at `rb`, both surveyed into the scratch buffers (with
+    /// depths when `track_depth`).
     pub(super) fn split_both(
         &mut self,
         a: &Genome<G>,
@@ -200,32 +212,10 @@ impl<G: Grammar> Operators<G> {
         rb: u32,
         track_depth: bool,
     ) -> (Split, Split) {
-        let sa = self.split_first(a, ra, track_depth);
         let s = &mut self.s;
-        let sb = split(
-            &self.kinds,
-            &b.words,
-            &s.starts_b,
-            rb,
-            &mut s.map_b,
-            &mut s.depth_b,
-            track_depth,
-        );
-        (sa, sb)
-    }
-
-    /// Splits the first parent `a` at `ra` (its gene starts already in the scratch
-    /// buffers).
-    pub(super) fn split_first(&mut self, a: &Genome<G>, ra: u32, track_depth: bool) -> Split {
-        let s = &mut self.s;
-        split(
-            &self.kinds,
-            &a.words,
-            &s.starts,
-            ra,
-            &mut s.map,
-            &mut s.depth,
-            track_depth,
+        (
+            split(&self.kinds, &a.words, &mut s.pa, ra, track_depth),
+            split(&self.kinds, &b.words, &mut s.pb, rb, track_depth),
         )
     }
 
@@ -243,23 +233,24 @@ impl<G: Grammar> Operators<G> {
         let (da, db) = (
             Donor {
                 words: &a.words,
-                starts: &s.starts,
-                map: &s.map,
+                starts: &s.pa.starts,
+                map: &s.pa.map,
                 split: sa,
             },
             Donor {
                 words: &b.words,
-                starts: &s.starts_b,
-                map: &s.map_b,
+                starts: &s.pb.starts,
+                map: &s.pb.map,
                 split: sb,
             },
         );
+        let (pa, pb) = (&s.pa, &s.pb);
         splice(
             &self.kinds,
             &mut out_a.words,
             &a.words,
-            &s.starts,
-            &s.map,
+            &pa.starts,
+            &pa.map,
             sa,
             Some(db),
         );
@@ -268,8 +259,8 @@ impl<G: Grammar> Operators<G> {
             &self.kinds,
             &mut out_b.words,
             &b.words,
-            &s.starts_b,
-            &s.map_b,
+            &pb.starts,
+            &pb.map,
             sb,
             Some(da),
         );
@@ -277,19 +268,19 @@ impl<G: Grammar> Operators<G> {
     }
 
     /// Swaps the subtrees at `ra` and `rb` into the outputs if both children meet the
-    /// limits; `false` otherwise.
+    /// limits; `false` otherwise. The parents' surveys hold depths when `track_depth`.
+    #[allow(clippy::too_many_arguments)]
     fn try_swap(
         &mut self,
         a: &Genome<G>,
         ra: u32,
         b: &Genome<G>,
         rb: u32,
+        track_depth: bool,
         out_a: &mut Genome<G>,
         out_b: &mut Genome<G>,
     ) -> bool {
         let lim = self.limits;
-        // A child's depth is at most its length, which is below a.len + b.len.
-        let track_depth = lim.max_depth < a.len + b.len;
         let (sa, sb) = self.split_both(a, ra, b, rb, track_depth);
         let len_a = a.len - sa.sub_genes + sb.sub_genes;
         let len_b = b.len - sb.sub_genes + sa.sub_genes;

@@ -123,11 +123,84 @@ pub(super) fn record_links(
     }
 }
 
+/// What crossover learns of a parent genome in one forward pass ([`survey_pair`]), and
+/// the position map its [`split`] fills.
+#[derive(Debug, Default)]
+pub(super) struct Survey {
+    /// Every gene's start, in order.
+    pub starts: Vec<u32>,
+    /// Word-indexed: each gene's depth, when tracked.
+    pub depth: Vec<u32>,
+    /// Word-indexed: the deepest gene before each gene (0 for the root), when tracked.
+    pub above: Vec<u32>,
+    /// The genome's depth, when tracked; 0 otherwise.
+    pub max_depth: u32,
+    /// Word-indexed, from a split's root on: what [`split`] maps each gene to.
+    pub map: Vec<u32>,
+}
+
+impl Survey {
+    /// Empties the survey for a genome of `words`.
+    fn begin(&mut self, words: &[u32], track_depth: bool) {
+        self.starts.clear();
+        self.max_depth = 0;
+        if track_depth {
+            cover(&mut self.depth, words.len());
+            cover(&mut self.above, words.len());
+        }
+    }
+
+    /// Records the gene at `pos` of the genome in `words`, whose earlier genes are
+    /// recorded; returns the next gene's position.
+    #[inline(always)]
+    fn visit(&mut self, kinds: &[KindInfo], words: &[u32], pos: u32, track_depth: bool) -> u32 {
+        self.starts.push(pos);
+        if track_depth {
+            let d = if pos == 0 {
+                1
+            } else {
+                self.depth[parent_pos(words, pos) as usize] + 1
+            };
+            self.depth[pos as usize] = d;
+            self.above[pos as usize] = self.max_depth;
+            self.max_depth = self.max_depth.max(d);
+        }
+        pos + kinds[words[pos as usize] as usize].gene_words
+    }
+}
+
+/// Surveys the valid genomes in `a.1` and `b.1` into `a.0` and `b.0`: their gene starts
+/// and, when `track_depth`, their depths. Both walks advance in one loop, so that the
+/// processor overlaps their chains of dependent loads. O(G_a + G_b).
+pub(super) fn survey_pair(
+    kinds: &[KindInfo],
+    a: (&mut Survey, &[u32]),
+    b: (&mut Survey, &[u32]),
+    track_depth: bool,
+) {
+    let ((sa, wa), (sb, wb)) = (a, b);
+    sa.begin(wa, track_depth);
+    sb.begin(wb, track_depth);
+    let (mut pa, mut pb) = (0u32, 0u32);
+    while (pa as usize) < wa.len() && (pb as usize) < wb.len() {
+        pa = sa.visit(kinds, wa, pa, track_depth);
+        pb = sb.visit(kinds, wb, pb, track_depth);
+    }
+    while (pa as usize) < wa.len() {
+        pa = sa.visit(kinds, wa, pa, track_depth);
+    }
+    while (pb as usize) < wb.len() {
+        pb = sb.visit(kinds, wb, pb, track_depth);
+    }
+}
+
 /// How a genome splits at a link: the subtree below it and the rest.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Split {
     /// Position of the subtree's root.
     pub root: u32,
+    /// Index of the subtree's root among the genome's genes.
+    pub first: usize,
     /// Position of its parent.
     pub parent: u32,
     /// Genes in the subtree.
@@ -142,55 +215,45 @@ pub(super) struct Split {
     pub rest_max_depth: u32,
 }
 
-/// Splits the valid genome in `words` (gene starts `starts`) at the gene `root`: fills
-/// `map` with each gene's position in the rest (compacted) or, marked [`SUB`], relative to
-/// the subtree's start, and `depth` with depths when `track_depth`.
+/// Splits the valid genome in `words`, surveyed into `sv` (with depths when
+/// `track_depth`), at the gene `root`: fills `sv.map`, from `root` on, with each gene's
+/// position in the rest (compacted) or, marked [`SUB`], relative to the subtree's start.
+/// Genes before `root` keep their positions and are not mapped. O(W from `root`).
 pub(super) fn split(
     kinds: &[KindInfo],
     words: &[u32],
-    starts: &[u32],
+    sv: &mut Survey,
     root: u32,
-    map: &mut Vec<u32>,
-    depth: &mut Vec<u32>,
     track_depth: bool,
 ) -> Split {
-    cover(map, words.len());
-    if track_depth {
-        cover(depth, words.len());
-    }
+    cover(&mut sv.map, words.len());
+    let (map, depth) = (&mut sv.map[..], &sv.depth[..]);
+    let depth_at = |pos: u32| if track_depth { depth[pos as usize] } else { 0 };
+    let first = sv.starts.partition_point(|&p| p < root);
     let mut s = Split {
         root,
+        first,
         parent: parent_pos(words, root),
         sub_genes: 0,
         sub_words: 0,
-        root_depth: 0,
+        root_depth: depth_at(root),
         sub_max_depth: 0,
-        rest_max_depth: 0,
-    };
-    let mut kept = 0u32;
-    for &pos in starts {
-        let size = kinds[words[pos as usize] as usize].gene_words;
-        let parent = (pos != 0).then(|| parent_pos(words, pos));
-        let d = if !track_depth {
-            0
-        } else if let Some(parent) = parent {
-            depth[parent as usize] + 1
+        rest_max_depth: if track_depth {
+            sv.above[root as usize]
         } else {
-            1
-        };
-        if track_depth {
-            depth[pos as usize] = d;
-        }
-        let in_sub = pos == root
-            || (pos > root && parent.is_some_and(|p| p >= root && map[p as usize] & SUB != 0));
-        if in_sub {
+            0
+        },
+    };
+    let mut kept = root;
+    for &pos in &sv.starts[first..] {
+        let size = kinds[words[pos as usize] as usize].gene_words;
+        let parent = parent_pos(words, pos);
+        let d = depth_at(pos);
+        if pos == root || (parent >= root && map[parent as usize] & SUB != 0) {
             map[pos as usize] = SUB | s.sub_words;
             s.sub_words += size;
             s.sub_genes += 1;
             s.sub_max_depth = s.sub_max_depth.max(d);
-            if pos == root {
-                s.root_depth = d;
-            }
         } else {
             map[pos as usize] = kept;
             kept += size;
@@ -212,8 +275,9 @@ pub(super) struct Donor<'a> {
 
 /// Writes into `out` the genome `keep` with the subtree `ks` split off and, when given,
 /// the `donor`'s subtree hung in its place (else the link that held it becomes empty),
-/// given `keep`'s gene starts and the map [`split`] filled. The donor's subtree goes after
-/// all kept genes, in its own order.
+/// given `keep`'s gene starts and the map [`split`] filled. The genes before the
+/// subtree's root are copied as one block; the donor's subtree goes after all kept genes,
+/// in its own order.
 pub(super) fn splice(
     kinds: &[KindInfo],
     out: &mut Vec<u32>,
@@ -226,7 +290,12 @@ pub(super) fn splice(
     out.clear();
     let base = keep.len() as u32 - ks.sub_words;
     out.reserve((base + donor.map_or(0, |d| d.split.sub_words)) as usize);
-    for &pos in keep_starts {
+    let root = ks.root;
+    // The genes before the root stay in place; of their links, only those to kept genes
+    // from the root on change, which the sweep below patches from the child's side.
+    out.extend_from_slice(&keep[..root as usize]);
+    let root_link = link_of(kinds, keep, ks.parent, root - ks.parent);
+    for &pos in &keep_starts[ks.first..] {
         let np = keep_map[pos as usize];
         if np & SUB != 0 {
             continue;
@@ -235,26 +304,40 @@ pub(super) fn splice(
         debug_assert_eq!(np as usize, out.len());
         out.extend_from_slice(&keep[pos as usize..(pos + k.gene_words) as usize]);
         let n = np as usize;
-        if pos != 0 {
-            let parent = parent_pos(keep, pos);
-            out[n + 1] = keep_map[parent as usize].wrapping_sub(np);
-        }
+        let parent = parent_pos(keep, pos);
+        let new_parent = if parent < root {
+            // Links patched so far point below `pos - parent`, and the root's still
+            // holds `root - parent`: only this child's link holds `pos - parent`.
+            let at = link_of(kinds, out, parent, pos - parent);
+            out[at] = np - parent;
+            parent
+        } else {
+            keep_map[parent as usize]
+        };
+        out[n + 1] = new_parent.wrapping_sub(np);
         for w in &mut out[n + HEADER_WORDS as usize..][..k.links as usize] {
             if *w != 0 {
-                let child = pos + *w;
-                *w = if child != ks.root {
-                    keep_map[child as usize] - np
-                } else if donor.is_some() {
-                    base - np
-                } else {
-                    0
-                };
+                *w = keep_map[(pos + *w) as usize] - np;
             }
         }
     }
+    out[root_link] = if donor.is_some() { base - ks.parent } else { 0 };
     if let Some(donor) = donor {
-        append_subtree(kinds, out, keep_map[ks.parent as usize], donor);
+        // The root's parent lies before it, so it did not move.
+        append_subtree(kinds, out, ks.parent, donor);
     }
+}
+
+/// The word index of the link of the gene at `parent` of `words` that holds the offset
+/// `off`.
+#[inline]
+fn link_of(kinds: &[KindInfo], words: &[u32], parent: u32, off: u32) -> usize {
+    let at = (parent + HEADER_WORDS) as usize;
+    let k = kinds[words[parent as usize] as usize];
+    at + words[at..at + k.links as usize]
+        .iter()
+        .position(|&w| w == off)
+        .expect("a valid genome's parent links to its child")
 }
 
 /// Writes into `out` the genome `keep` unchanged but for the `donor`'s subtree hung on
@@ -284,26 +367,24 @@ pub(super) fn graft(
 fn append_subtree(kinds: &[KindInfo], out: &mut Vec<u32>, parent: u32, donor: Donor<'_>) {
     let base = out.len() as u32;
     let ds = donor.split;
-    let first = donor.starts.partition_point(|&p| p < ds.root);
-    for &pos in &donor.starts[first..] {
+    for &pos in &donor.starts[ds.first..] {
         let m = donor.map[pos as usize];
-        if m & SUB == 0 {
-            continue;
-        }
-        let np = base + (m & !SUB);
-        let k = kinds[donor.words[pos as usize] as usize];
-        debug_assert_eq!(np as usize, out.len());
-        out.extend_from_slice(&donor.words[pos as usize..(pos + k.gene_words) as usize]);
-        let n = np as usize;
-        let parent_np = if pos == ds.root {
-            parent
-        } else {
-            base + (donor.map[parent_pos(donor.words, pos) as usize] & !SUB)
-        };
-        out[n + 1] = parent_np.wrapping_sub(np);
-        for w in &mut out[n + HEADER_WORDS as usize..][..k.links as usize] {
-            if *w != 0 {
-                *w = base + (donor.map[(pos + *w) as usize] & !SUB) - np;
+        if m & SUB != 0 {
+            let k = kinds[donor.words[pos as usize] as usize];
+            let np = base + (m & !SUB);
+            debug_assert_eq!(np as usize, out.len());
+            out.extend_from_slice(&donor.words[pos as usize..(pos + k.gene_words) as usize]);
+            let n = np as usize;
+            let parent_np = if pos == ds.root {
+                parent
+            } else {
+                base + (donor.map[parent_pos(donor.words, pos) as usize] & !SUB)
+            };
+            out[n + 1] = parent_np.wrapping_sub(np);
+            for w in &mut out[n + HEADER_WORDS as usize..][..k.links as usize] {
+                if *w != 0 {
+                    *w = base + (donor.map[(pos + *w) as usize] & !SUB) - np;
+                }
             }
         }
     }

@@ -85,6 +85,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::derive::Grammar;
 use crate::genome::{Limits, LimitsError};
+use edit::Survey;
 use weight::{Fenwick, weight};
 
 /// How many times the weighted crossover draws again after a failed attempt (no link of
@@ -233,6 +234,8 @@ pub struct Operators<G> {
     cross_array_index: bool,
     kinds: Vec<KindInfo>,
     links: Vec<LinkInfo>,
+    /// Words of the largest gene any link takes: what one grow appends at most.
+    child_words: u32,
     s: Scratch,
     _g: PhantomData<fn() -> G>,
 }
@@ -256,6 +259,7 @@ impl<G> Clone for Operators<G> {
             cross_array_index: self.cross_array_index,
             kinds: self.kinds.clone(),
             links: self.links.clone(),
+            child_words: self.child_words,
             s: Scratch::default(),
             _g: PhantomData,
         }
@@ -293,13 +297,13 @@ struct LinkInfo {
 #[derive(Default)]
 struct Scratch {
     starts: Vec<u32>,
-    starts_b: Vec<u32>,
     cand: Vec<u32>,
     cum: Vec<u64>,
     depth: Vec<u32>,
-    depth_b: Vec<u32>,
     map: Vec<u32>,
-    map_b: Vec<u32>,
+    /// Crossover's surveys of its first and second parent.
+    pa: Survey,
+    pb: Survey,
     link_of: Vec<u32>,
     fenwick: Fenwick,
     /// Open links of [`Self::fenwick`] or the sampling queue: (gene, link, depth).
@@ -336,12 +340,18 @@ impl<G: Grammar> Operators<G> {
                 });
             }
         }
+        let child_words = links
+            .iter()
+            .map(|l| kinds[l.child as usize].gene_words)
+            .max()
+            .unwrap_or(0);
         Ok(Operators {
             limits,
             variant: OperatorVariant::Weighted,
             cross_array_index: false,
             kinds,
             links,
+            child_words,
             s: Scratch::default(),
             _g: PhantomData,
         })

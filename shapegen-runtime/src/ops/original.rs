@@ -5,7 +5,7 @@
 use rand::Rng;
 
 use super::draw::{int_value, pick};
-use super::edit::{Donor, cover, graft, record_links, remove_subtree, splice};
+use super::edit::{Donor, cover, graft, record_links, remove_subtree, splice, split, survey_pair};
 use super::{KindInfo, ORIGINAL_CROSSOVER_ATTEMPTS, Operators, gene_starts};
 use crate::derive::Grammar;
 use crate::genome::{DEPTH_CAP, Genome, depths, node_of, parent_pos};
@@ -170,15 +170,17 @@ impl<G: Grammar> Operators<G> {
         if a.len < 2 {
             return false; // no non-root gene to draw
         }
-        gene_starts(&self.kinds, &a.words, &mut self.s.starts);
-        gene_starts(&self.kinds, &b.words, &mut self.s.starts_b);
         // A child is shorter than a.len + b.len, and no deeper than long.
         let track = a.len + b.len > DEPTH_CAP;
-        if track {
-            depths::<G>(&b.words, &mut self.s.depth_b);
-        }
+        let s = &mut self.s;
+        survey_pair(
+            &self.kinds,
+            (&mut s.pa, &a.words),
+            (&mut s.pb, &b.words),
+            track,
+        );
         for _ in 0..ORIGINAL_CROSSOVER_ATTEMPTS {
-            let ra = self.s.starts[random_gene(a.len, rng)];
+            let ra = self.s.pa.starts[random_gene(a.len, rng)];
             let pa = parent_pos(&a.words, ra);
             let ka = self.kind_at(&a.words, pa);
             let link_a = (0..ka.links)
@@ -190,7 +192,7 @@ impl<G: Grammar> Operators<G> {
             };
             let mut cand = std::mem::take(&mut self.s.cand);
             cand.clear();
-            for &pos in &self.s.starts_b {
+            for &pos in &self.s.pb.starts {
                 let k = self.kind_at(&b.words, pos);
                 if (0..k.links).any(|l| self.takes(&k, l, sym)) {
                     cand.push(pos);
@@ -260,8 +262,8 @@ impl<G: Grammar> Operators<G> {
 
     /// Writes `a` without its subtree at `ra` into `out_a`, and `b` with that subtree
     /// grafted onto the empty link `link` of its gene `pb` into `out_b`, unless that
-    /// child would be deeper than [`DEPTH_CAP`] (checked when `track`, with `b`'s depths
-    /// in the scratch).
+    /// child would be deeper than [`DEPTH_CAP`] (checked when `track`, with both parents'
+    /// depths surveyed into the scratch).
     #[allow(clippy::too_many_arguments)]
     fn graft_into(
         &mut self,
@@ -274,29 +276,29 @@ impl<G: Grammar> Operators<G> {
         out_a: &mut Genome<G>,
         out_b: &mut Genome<G>,
     ) -> bool {
-        let sa = self.split_first(a, ra, track);
         let s = &mut self.s;
+        let sa = split(&self.kinds, &a.words, &mut s.pa, ra, track);
         if track {
-            let b_depth = s.starts_b.iter().map(|&p| s.depth_b[p as usize]).max();
-            let hung = s.depth_b[pb as usize] + 1 + sa.sub_max_depth - sa.root_depth;
-            if b_depth.unwrap_or(0).max(hung) > DEPTH_CAP {
+            let hung = s.pb.depth[pb as usize] + 1 + sa.sub_max_depth - sa.root_depth;
+            if s.pb.max_depth.max(hung) > DEPTH_CAP {
                 return false;
             }
         }
+        let pa = &s.pa;
         splice(
             &self.kinds,
             &mut out_a.words,
             &a.words,
-            &s.starts,
-            &s.map,
+            &pa.starts,
+            &pa.map,
             &sa,
             None,
         );
         out_a.len = a.len - sa.sub_genes;
         let donor = Donor {
             words: &a.words,
-            starts: &s.starts,
-            map: &s.map,
+            starts: &pa.starts,
+            map: &pa.map,
             split: &sa,
         };
         graft(&self.kinds, &mut out_b.words, &b.words, pb, link, donor);

@@ -65,12 +65,21 @@ impl<G: Grammar> Operators<G> {
     pub fn random_into(&mut self, initial_len: u32, out: &mut Genome<G>, rng: &mut impl Rng) {
         if self.variant == OperatorVariant::Original {
             out.reset_to_axiom(rng);
+            self.reserve_grows(out, initial_len);
             self.grow_original(out, initial_len.saturating_sub(1), rng);
             return;
         }
         let target = self.random_len(initial_len, rng);
         out.reset_to_axiom(rng);
+        self.reserve_grows(out, target);
         self.grow_to(out, target, rng);
+    }
+
+    /// Reserves room in `genome` for growing to `target_len` genes, so that its buffer is
+    /// allocated once.
+    fn reserve_grows(&self, genome: &mut Genome<G>, target_len: u32) {
+        let grows = target_len.saturating_sub(genome.len) as usize;
+        genome.words.reserve(grows * self.child_words as usize);
     }
 
     /// The target length of a weighted random genome: uniform over `[L/2, 3L/2]` for
