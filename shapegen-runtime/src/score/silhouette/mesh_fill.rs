@@ -27,13 +27,14 @@
 //!
 //! The counts in 2 are of the triangles as their exact areas give them, while a
 //! triangle whose `f32` area disagrees with its exact one covers nothing at all
-//! ([`f32_agrees`]). So when a triangle is dropped that way, the negative triangles
-//! left out are filled after all.
+//! ([`f32_agrees`]; no triangle whose exact area is above [`f32_safe_area`] is). So when
+//! a triangle is dropped that way, the negative triangles left out are filled after
+//! all.
 
 use glam::Vec2;
 
 use super::meshes::RasterMesh;
-use super::raster::{Coverage, exact_area, f32_agrees, span};
+use super::raster::{Coverage, exact_area, f32_agrees, f32_safe_area, span};
 
 /// A mesh projected to pixels, as [`Coverage::fill_mesh`] fills it.
 pub(super) struct ProjectedMesh<'a> {
@@ -72,6 +73,8 @@ impl Coverage {
         let boundary = (!mesh.boundary.is_empty())
             .then(|| span(mesh.boundary.iter().map(|&i| fixed[i as usize])));
         scratch.deferred.clear();
+        let reach = fixed.iter().flatten().fold(0, |m, &c| m.max(c.abs()));
+        let safe = f32_safe_area(reach);
         let mut dropped = false;
         for (i, tri) in mesh.triangles.iter().enumerate() {
             let v = tri.map(|k| fixed[k as usize]);
@@ -79,7 +82,7 @@ impl Coverage {
             if exact == 0 {
                 continue;
             }
-            if !f32_agrees(&tri.map(|k| points[k as usize]), exact) {
+            if exact.abs() <= safe && !f32_agrees(&tri.map(|k| points[k as usize]), exact) {
                 dropped = true;
             } else if exact < 0 && boundary.is_none_or(|b| apart(&span(v), &b)) {
                 scratch.deferred.push(i as u32);

@@ -359,15 +359,21 @@ impl EdgeLanes {
     /// values' bitwise or), as bits.
     #[inline]
     fn outside(&self, mut e: [i32; 3], chunks: usize) -> u64 {
-        let mut bits = 0u64;
-        for chunk in 0..chunks {
-            let any = (i32x8::splat(e[0]) + self.ramp[0])
-                | (i32x8::splat(e[1]) + self.ramp[1])
-                | (i32x8::splat(e[2]) + self.ramp[2]);
-            bits |= u64::from(any.to_bitmask()) << (chunk * LANES);
+        let mut bits = u64::from(self.outside_chunk(e));
+        for chunk in 1..chunks {
             e = std::array::from_fn(|k| e[k].wrapping_add(self.per_chunk[k]));
+            bits |= u64::from(self.outside_chunk(e)) << (chunk * LANES);
         }
         bits
+    }
+
+    /// [`EdgeLanes::outside`] for the first [`LANES`] centres.
+    #[inline(always)]
+    fn outside_chunk(&self, e: [i32; 3]) -> u32 {
+        let any = (i32x8::splat(e[0]) + self.ramp[0])
+            | (i32x8::splat(e[1]) + self.ramp[1])
+            | (i32x8::splat(e[2]) + self.ramp[2]);
+        any.to_bitmask()
     }
 }
 
@@ -398,6 +404,20 @@ pub(super) fn exact_area(v: &[[i32; 2]; 3]) -> i64 {
 pub(super) fn f32_agrees(tri: &[Vec2; 3], exact: i64) -> bool {
     let area2 = signed_area(tri);
     area2 != 0.0 && (exact > 0) == (area2 > 0.0)
+}
+
+/// An area (twice it, in `1/256` pixel squared) above which the `f32` signed area of a
+/// triangle whose coordinates are at most `reach` (in `1/256` pixel) from the origin
+/// has its exact one's sign, so that [`f32_agrees`] need not be asked.
+///
+/// With `M` that reach in pixels and `u = 2^-24`, each of the three terms
+/// `a.x b.y - b.x a.y` that [`signed_area`] sums errs by at most `2uM^2` from its two
+/// products and `2uM^2(1 + u)` from their difference, and the two sums by `4uM^2` and
+/// `6uM^2` (their sizes, `4M^2` and `6M^2`, times `u`), less than `23uM^2` in all. In
+/// `1/256` pixel, `23 u M^2 65536 = 23 reach^2 / 2^24`.
+#[inline]
+pub(super) fn f32_safe_area(reach: i32) -> i64 {
+    (23 * i64::from(reach) * i64::from(reach) >> 24) + 1
 }
 
 /// The span of the points `v` (in `1/256` pixel): `[xmin, xmax, ymin, ymax]`.
