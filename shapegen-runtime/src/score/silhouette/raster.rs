@@ -417,7 +417,7 @@ pub(super) fn f32_agrees(tri: &[Vec2; 3], exact: i64) -> bool {
 /// `1/256` pixel, `23 u M^2 65536 = 23 reach^2 / 2^24`.
 #[inline]
 pub(super) fn f32_safe_area(reach: i32) -> i64 {
-    (23 * i64::from(reach) * i64::from(reach) >> 24) + 1
+    ((23 * i64::from(reach) * i64::from(reach)) >> 24) + 1
 }
 
 /// The span of the points `v` (in `1/256` pixel): `[xmin, xmax, ymin, ymax]`.
