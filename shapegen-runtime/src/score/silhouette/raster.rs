@@ -714,6 +714,7 @@ fn clip_plane(poly: &[Vec4; 5], n: usize, out: &mut [Vec4; 5], d: impl Fn(Vec4) 
 /// Writes the convex hull of `points` (at most [`MAX_POLYGON`] of them) into `hull`, in
 /// either winding, and returns its vertex count; collinear points are dropped. Sorts
 /// `points` in place.
+#[inline]
 pub(super) fn convex_hull(points: &mut [Vec2], hull: &mut [Vec2; MAX_POLYGON + 1]) -> usize {
     points.sort_unstable_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
     let cross = |o: Vec2, a: Vec2, b: Vec2| (a - o).perp_dot(b - o);
