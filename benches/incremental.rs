@@ -21,7 +21,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use shapegen::ops::{OperatorVariant, Operators};
 use shapegen::registry::Registry;
-use shapegen::scene::{AnyScorer, MethodSettings, Overrides, Scene, SceneScorer};
+use shapegen::scene::{AnyScorer, Method, MethodSettings, Overrides, Scene, SceneScorer};
 use shapegen::score::Scorer;
 use shapegen::score::retained::{InstanceDiff, RetainedScorer};
 use shapegen::{Genome, Grammar, Instance};
@@ -44,7 +44,7 @@ fn pairs<G: Grammar>(
     length: Option<u32>,
 ) -> Vec<Pair> {
     let MethodSettings::Ga(ga) = scene.optimizer.settings else {
-        panic!("the paper scenes search with the GA");
+        panic!("the scene is opened with the GA");
     };
     let initial = length.unwrap_or(ga.initial_length);
     let mut ops = Operators::<G>::new(scene.limits)
@@ -77,7 +77,12 @@ fn pairs<G: Grammar>(
 /// `None`).
 fn scene_rows<G: Grammar>(c: &mut Criterion, file: &str, length: Option<u32>) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(file);
-    let scene = Scene::open(&path, &Registry::published(), &Overrides::default()).unwrap();
+    // The GA's settings (its initial length), whatever method the scene names.
+    let ga = Overrides {
+        method: Some(Method::Ga),
+        ..Overrides::default()
+    };
+    let scene = Scene::open(&path, &Registry::published(), &ga).unwrap();
     let scorer = SceneScorer::new::<G>(&scene).unwrap();
     let scorers = scorer.scorers();
     let name = path.file_stem().unwrap().to_string_lossy().into_owned();
