@@ -198,9 +198,10 @@ fn random_tree(genes: u32, seed: u64) -> Genome<tree::Tree> {
 }
 
 /// One full silhouette evaluation (`count`, then `fitness`) of single 250-gene trees
-/// against the tree sketch, on the calling thread: with the published meshes (the
-/// paper scene's) and with the built-in ones (the population rows'). Prints each tree's
-/// instances, triangles and counts.
+/// against the tree sketch, on the calling thread, and the same counted instance by
+/// instance into per-pixel counts (`count_retained`, as an incremental search counts):
+/// with the published meshes (the paper scene's) and with the built-in ones (the
+/// population rows'). Prints each tree's instances, triangles and counts.
 fn tree_single(c: &mut Criterion) {
     const GENES: u32 = 250;
     let target = target("tree_sketch1", "tree_target_sketch1.png", TREE_CAMERA);

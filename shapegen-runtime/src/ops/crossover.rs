@@ -90,13 +90,7 @@ impl<G: Grammar> Operators<G> {
         }
         // A child's depth is at most its length, which is below a.len + b.len.
         let track_depth = self.limits.max_depth < a.len + b.len;
-        let s = &mut self.s;
-        survey_pair(
-            &self.kinds,
-            (&mut s.pa, &a.words),
-            (&mut s.pb, &b.words),
-            track_depth,
-        );
+        self.survey_parents(a, b, track_depth);
         for _ in 0..=CROSSOVER_RETRIES {
             let s = &mut self.s;
             let ra = s.pa.starts[1 + below(rng, u64::from(a.len - 1)) as usize];
@@ -173,13 +167,7 @@ impl<G: Grammar> Operators<G> {
                 b_edge: format!("{bslot} of `{}`", bn.name),
             });
         }
-        let s = &mut self.s;
-        survey_pair(
-            &self.kinds,
-            (&mut s.pa, &a.words),
-            (&mut s.pb, &b.words),
-            true,
-        );
+        self.survey_parents(a, b, true);
         let mut c = Genome::from_parts(Vec::new(), 0);
         let mut d = Genome::from_parts(Vec::new(), 0);
         let (sa, sb) = self.split_both(a, a_pos, b, b_pos, true);
@@ -200,6 +188,18 @@ impl<G: Grammar> Operators<G> {
             pos,
             node: node_of::<G>(g.words[pos as usize]).name,
         })
+    }
+
+    /// Surveys the parents `a` and `b` of a crossover into the scratch buffers: their
+    /// gene starts and, when `track_depth`, their depths ([`survey_pair`]).
+    pub(super) fn survey_parents(&mut self, a: &Genome<G>, b: &Genome<G>, track_depth: bool) {
+        let s = &mut self.s;
+        survey_pair(
+            &self.kinds,
+            (&mut s.pa, &a.words),
+            (&mut s.pb, &b.words),
+            track_depth,
+        );
     }
 
     /// Splits `a` at `ra` and `b` at `rb`, both surveyed into the scratch buffers (with

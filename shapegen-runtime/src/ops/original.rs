@@ -5,7 +5,7 @@
 use rand::Rng;
 
 use super::draw::{int_value, pick};
-use super::edit::{Donor, cover, graft, record_links, remove_subtree, splice, split, survey_pair};
+use super::edit::{Donor, cover, graft, record_links, remove_subtree, splice, split};
 use super::{KindInfo, ORIGINAL_CROSSOVER_ATTEMPTS, Operators, gene_starts};
 use crate::derive::Grammar;
 use crate::genome::{DEPTH_CAP, Genome, depths, node_of, parent_pos};
@@ -172,13 +172,7 @@ impl<G: Grammar> Operators<G> {
         }
         // A child is shorter than a.len + b.len, and no deeper than long.
         let track = a.len + b.len > DEPTH_CAP;
-        let s = &mut self.s;
-        survey_pair(
-            &self.kinds,
-            (&mut s.pa, &a.words),
-            (&mut s.pb, &b.words),
-            track,
-        );
+        self.survey_parents(a, b, track);
         for _ in 0..ORIGINAL_CROSSOVER_ATTEMPTS {
             let ra = self.s.pa.starts[random_gene(a.len, rng)];
             let pa = parent_pos(&a.words, ra);

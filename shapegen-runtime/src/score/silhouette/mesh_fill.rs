@@ -34,7 +34,7 @@
 use glam::Vec2;
 
 use super::meshes::RasterMesh;
-use super::raster::{Coverage, exact_area, f32_agrees, f32_safe_area, span};
+use super::raster::{Coverage, exact_area, f32_agrees, f32_safe_area, signed_area, span};
 
 /// A mesh projected to pixels, as [`Coverage::fill_mesh`] fills it.
 pub(super) struct ProjectedMesh<'a> {
@@ -82,7 +82,9 @@ impl Coverage {
             if exact == 0 {
                 continue;
             }
-            if exact.abs() <= safe && !f32_agrees(&tri.map(|k| points[k as usize]), exact) {
+            if exact.abs() <= safe
+                && !f32_agrees(signed_area(&tri.map(|k| points[k as usize])), exact)
+            {
                 dropped = true;
             } else if exact < 0 && boundary.is_none_or(|b| apart(&span(v), &b)) {
                 scratch.deferred.push(i as u32);

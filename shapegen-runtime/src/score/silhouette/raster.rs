@@ -177,7 +177,8 @@ impl Coverage {
     /// [`Coverage::fill_exact`] fills it. Triangles farther out, or not finite, go to
     /// `fill_convex`.
     pub(in crate::score) fn fill_triangle(&mut self, tri: [Vec2; 3]) {
-        if !signed_area(&tri).is_finite() {
+        let area2 = signed_area(&tri);
+        if !area2.is_finite() {
             return;
         }
         if !tri.iter().all(|p| in_reach(*p)) {
@@ -185,7 +186,7 @@ impl Coverage {
         }
         let v = tri.map(to_fixed);
         let exact = exact_area(&v);
-        if exact != 0 && f32_agrees(&tri, exact) {
+        if exact != 0 && f32_agrees(area2, exact) {
             self.fill_exact(v, exact > 0);
         }
     }
@@ -380,7 +381,7 @@ impl EdgeLanes {
 /// The signed area (twice it) of the triangle `tri`, in `f32`, summed as
 /// [`Coverage::fill_convex`] sums it.
 #[inline]
-fn signed_area(tri: &[Vec2; 3]) -> f32 {
+pub(super) fn signed_area(tri: &[Vec2; 3]) -> f32 {
     let mut area2 = 0.0f32;
     for i in 0..3 {
         let (a, b) = (tri[i], tri[(i + 1) % 3]);
@@ -396,13 +397,11 @@ pub(super) fn exact_area(v: &[[i32; 2]; 3]) -> i64 {
     (v[1][0] - v[0][0]) * (v[2][1] - v[0][1]) - (v[1][1] - v[0][1]) * (v[2][0] - v[0][0])
 }
 
-/// Whether the `f32` signed area of `tri`, summed as [`Coverage::fill_convex`] sums it,
-/// is not zero and has the sign of its exact one, `exact` (not zero): otherwise
-/// `fill_convex` covers nothing of the triangle, and so neither does
-/// [`Coverage::fill_triangle`].
+/// Whether a triangle's `f32` signed area `area2` ([`signed_area`]) is not zero and has
+/// the sign of its exact one, `exact` (not zero): otherwise [`Coverage::fill_convex`]
+/// covers nothing of the triangle, and so neither does [`Coverage::fill_triangle`].
 #[inline]
-pub(super) fn f32_agrees(tri: &[Vec2; 3], exact: i64) -> bool {
-    let area2 = signed_area(tri);
+pub(super) fn f32_agrees(area2: f32, exact: i64) -> bool {
     area2 != 0.0 && (exact > 0) == (area2 > 0.0)
 }
 

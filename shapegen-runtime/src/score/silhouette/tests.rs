@@ -901,7 +901,7 @@ fn filling_a_mesh_covers_what_filling_its_triangles_covers() {
 fn a_mesh_whose_positive_triangle_is_dropped_covers_what_its_negative_one_covers() {
     use super::mesh_fill::{MeshScratch, ProjectedMesh};
     use super::meshes::RasterMesh;
-    use super::raster::{SUBPIXEL, exact_area, f32_agrees, to_fixed};
+    use super::raster::{SUBPIXEL, exact_area, f32_agrees, signed_area, to_fixed};
     let (width, height) = (96, 64);
     let mut rng = ChaCha8Rng::seed_from_u64(5);
     // Slivers through the image, their ends `a` and `b` some 1,900 pixels either side of
@@ -935,7 +935,9 @@ fn a_mesh_whose_positive_triangle_is_dropped_covers_what_its_negative_one_covers
             ([a, c, b], [a, b, c])
         };
         let exact = exact.abs();
-        let dropped = exact != 0 && !f32_agrees(&pos, exact) && f32_agrees(&neg, -exact);
+        let dropped = exact != 0
+            && !f32_agrees(signed_area(&pos), exact)
+            && f32_agrees(signed_area(&neg), -exact);
         let mut cov = Coverage::default();
         cov.shape(width, height);
         cov.fill_triangle(neg);
