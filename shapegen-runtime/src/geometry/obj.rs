@@ -40,22 +40,19 @@ impl Mesh {
     /// assert_eq!(bad.to_string(), "cannot parse OBJ `bad` at line 2: position parse error");
     /// ```
     pub fn from_obj_str(name: &str, text: &str) -> Result<Mesh, MeshError> {
-        let mut reader = LineCounter {
-            rest: text.as_bytes(),
-            lines: 0,
+        let parse_error = |(line, what)| MeshError::Parse {
+            name: name.to_owned(),
+            line,
+            what,
         };
-        let loaded = tobj::load_obj_buf(&mut reader, &tobj::GPU_LOAD_OPTIONS, |_| {
-            Ok(Default::default())
-        });
-        let models = match loaded {
-            Ok((models, _materials)) => models,
-            Err(e) => {
-                let line = per_line(&e).then(|| reader.line_at_fault(text));
-                return Err(MeshError::Parse {
-                    name: name.to_owned(),
-                    line,
-                    what: e.to_string(),
-                });
+        let models = match check_indices(text) {
+            Ok(()) => load(text).map_err(parse_error)?,
+            // The first fault is reported: a line before the bad index may not parse.
+            Err(bad) => {
+                return Err(parse_error(match load(&text[..bad.offset]) {
+                    Err(earlier @ (Some(_), _)) => earlier,
+                    _ => (Some(bad.line), bad.what),
+                }));
             }
         };
         let mut mesh = Mesh::default();
@@ -182,6 +179,97 @@ fn vertex_stats(text: &str) -> Option<(Vec3, Vec3)> {
     (count > 0).then(|| (sum / count as f32, hi - lo))
 }
 
+/// Reads OBJ text with tobj: its models, or the line at fault (where known) and what
+/// was wrong.
+fn load(text: &str) -> Result<Vec<tobj::Model>, (Option<usize>, String)> {
+    let mut reader = LineCounter {
+        rest: text.as_bytes(),
+        lines: 0,
+    };
+    tobj::load_obj_buf(&mut reader, &tobj::GPU_LOAD_OPTIONS, |_| {
+        Ok(Default::default())
+    })
+    .map(|(models, _materials)| models)
+    .map_err(|e| {
+        let line = per_line(&e).then(|| reader.line_at_fault(text));
+        (line, e.to_string())
+    })
+}
+
+/// An index of a face or line element that refers to no position, texture coordinate
+/// or normal of the file.
+struct BadIndex {
+    /// The byte offset of the start of its line.
+    offset: usize,
+    /// Its 1-based line.
+    line: usize,
+    what: String,
+}
+
+/// Checks every index of the `f` and `l` lines of OBJ text before tobj reads it: an
+/// index is 1-based and at most the number of its kind in the file, or negative and
+/// at most as many back as precede its line. tobj does not check such indices before
+/// it multiplies them, so one far out of range overflows there. Words that do not
+/// parse as indices are left to tobj, which reports their line.
+fn check_indices(text: &str) -> Result<(), BadIndex> {
+    const KINDS: [(&str, &str); 3] = [
+        ("v", "position"),
+        ("vt", "texture coordinate"),
+        ("vn", "normal"),
+    ];
+    let kind_of = |word| KINDS.iter().position(|&(tag, _)| tag == word);
+    let mut total = [0usize; 3];
+    for line in text.lines() {
+        if let Some(kind) = line.split_whitespace().next().and_then(kind_of) {
+            total[kind] += 1;
+        }
+    }
+    let mut before = [0usize; 3];
+    let mut next = 0;
+    for (number, line) in text.split_inclusive('\n').enumerate() {
+        let offset = next;
+        next += line.len();
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("f" | "l") => {
+                let parts = words.flat_map(|word| word.split('/').enumerate());
+                let indices: Option<Vec<(usize, isize)>> = parts
+                    .filter(|(_, part)| !part.is_empty())
+                    .map(|(kind, part)| Some((kind, part.parse().ok()?)))
+                    .collect();
+                // tobj reports a line that does not parse before it uses any index.
+                let Some(indices) = indices.filter(|i| i.iter().all(|&(kind, _)| kind < 3)) else {
+                    continue;
+                };
+                for (kind, index) in indices {
+                    let (count, range) = match index {
+                        1.. => (total[kind], "in the file"),
+                        _ => (before[kind], "before this line"),
+                    };
+                    if index == 0 || index.unsigned_abs() > count {
+                        let noun = KINDS[kind].1;
+                        return Err(BadIndex {
+                            offset,
+                            line: number + 1,
+                            what: format!(
+                                "{noun} index {index} refers to no {noun}: there are {count} \
+                                 {range} (indices count from 1, or back from -1)"
+                            ),
+                        });
+                    }
+                }
+            }
+            Some(word) => {
+                if let Some(kind) = kind_of(word) {
+                    before[kind] += 1;
+                }
+            }
+            None => {}
+        }
+    }
+    Ok(())
+}
+
 /// Whether tobj raises `e` while reading the line at fault (rather than when it
 /// assembles a finished object).
 fn per_line(e: &tobj::LoadError) -> bool {
@@ -296,7 +384,8 @@ f 4//1 5//1 6//1
         );
         assert_eq!(
             err("v 0 0 0\nv 1 0 0\nf 1 2 3\n"),
-            "cannot parse OBJ `leaf.obj`: face vertex index out of bounds"
+            "cannot parse OBJ `leaf.obj` at line 3: position index 3 refers to no position: \
+             there are 2 in the file (indices count from 1, or back from -1)"
         );
         assert_eq!(
             err("v 0 0 0\n# nothing\n"),
@@ -307,6 +396,51 @@ f 4//1 5//1 6//1
             err("v 0 0 0\nv 1 0 0\nv 0 inf 0\nf 1 2 3\n"),
             "mesh `leaf.obj`: vertex 2 has a non-finite coordinate"
         );
+    }
+
+    /// Indices far out of range (the fuzzer found the first, `fuzz/fuzz_targets/obj_mesh.rs`)
+    /// are errors that name their line, not overflows inside tobj.
+    #[test]
+    fn out_of_range_indices_name_their_line() {
+        let err = |text: &str| Mesh::from_obj_str("fuzz", text).unwrap_err().to_string();
+        let triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvt 0 0\n";
+        assert_eq!(
+            err(&format!("{triangle}f -3/1/-012 -2/1/1 -1/1/1\n")),
+            "cannot parse OBJ `fuzz` at line 6: normal index -12 refers to no normal: there \
+             are 1 before this line (indices count from 1, or back from -1)"
+        );
+        assert_eq!(
+            err(&format!("{triangle}f 1//1 2//6148914691236517206 3//1\n")),
+            "cannot parse OBJ `fuzz` at line 6: normal index 6148914691236517206 refers to no \
+             normal: there are 1 in the file (indices count from 1, or back from -1)"
+        );
+        assert_eq!(
+            err(&format!("{triangle}f 1/0 2 3\n")),
+            "cannot parse OBJ `fuzz` at line 6: texture coordinate index 0 refers to no \
+             texture coordinate: there are 1 before this line (indices count from 1, or back \
+             from -1)"
+        );
+        // A line before the bad index that does not parse is the fault reported.
+        assert_eq!(
+            err("v 0 0 0\nv 0 x 0\nf 1 2 -9\n"),
+            "cannot parse OBJ `fuzz` at line 2: position parse error"
+        );
+        // A face may refer forward to positions later in the file.
+        let forward = Mesh::from_obj_str("fuzz", "f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n");
+        assert_eq!(forward.unwrap().triangle_count(), 1);
+        let fuzzed = "o/\0\0\0 tri\nv 0 0 0\nv 0 0 0\nv 0 1 0\nvn 0 0 1\nvt 0 0\n\
+                      f -3/1/-012/ /1 -1/1/1\ng second\nv 0 0 1\nf 1 2 4\n";
+        for result in [
+            Mesh::from_obj_str("fuzz", fuzzed),
+            Mesh::from_obj_str_normalized("fuzz", fuzzed),
+        ] {
+            assert!(
+                result
+                    .unwrap_err()
+                    .to_string()
+                    .contains("at line 7: normal index -12")
+            );
+        }
     }
 
     /// The paper's scenes' meshes (`scenes/paper/` of the repository).
