@@ -174,6 +174,14 @@ macro_rules! scorer_kinds {
                     _ => unreachable!("a scorer's state is of its own kind"),
                 }
             }
+
+            fn visit_blocks(&self, state: &AnyState, visit: &mut dyn FnMut(usize, usize)) {
+                #[allow(unreachable_patterns)]
+                match (self, state) {
+                    $((AnyScorer::$kind(s), AnyState::$kind(state)) => s.visit_blocks(state, visit),)*
+                    _ => unreachable!("a scorer's state is of its own kind"),
+                }
+            }
         }
 
         impl ScorerGoal {

@@ -29,6 +29,9 @@ pub struct InstanceBatch {
     instances: Vec<Instance>,
     starts: Vec<u32>,
     site: Site,
+    /// Scratch of [`set_genomes`](Self::set_genomes): each chunk's instances and model
+    /// lengths, derived in parallel.
+    chunks: Vec<(Vec<Instance>, Vec<u32>)>,
 }
 
 impl InstanceBatch {
@@ -38,6 +41,7 @@ impl InstanceBatch {
             instances: Vec::new(),
             starts: vec![0],
             site: Site::NONE,
+            chunks: Vec::new(),
         }
     }
 
@@ -91,11 +95,37 @@ impl InstanceBatch {
     }
 
     /// Empties the batch, keeping its memory, and appends the model each of `genomes`
-    /// derives into, in order: a population's batch for an evaluator.
+    /// derives into, in order: a population's batch for an evaluator. The genomes are
+    /// derived in parallel, a few chunks per worker thread, on the current rayon pool.
     pub fn set_genomes<G: Grammar>(&mut self, genomes: &[Genome<G>]) {
         self.clear();
-        for genome in genomes {
-            self.push_genome(genome);
+        let chunk = genomes
+            .len()
+            .div_ceil(4 * rayon::current_num_threads())
+            .max(1);
+        self.chunks
+            .resize_with(genomes.len().div_ceil(chunk), Default::default);
+        let site = &self.site;
+        self.chunks
+            .par_iter_mut()
+            .zip(genomes.par_chunks(chunk))
+            .for_each(|((instances, lengths), genomes)| {
+                instances.clear();
+                lengths.clear();
+                for genome in genomes {
+                    let start = instances.len();
+                    genome.derive_append_on(site, instances);
+                    lengths.push((instances.len() - start) as u32);
+                }
+            });
+        for (instances, lengths) in &self.chunks {
+            let mut start = self.instances.len();
+            self.instances.extend_from_slice(instances);
+            for &n in lengths {
+                start += n as usize;
+                self.starts
+                    .push(u32::try_from(start).expect("a batch holds fewer than 2^32 instances"));
+            }
         }
     }
 

@@ -183,4 +183,7 @@ impl RetainedScorer for ProjectionScorer {
     fn visit_cells(&self, state: &ProjectionState, visit: &mut dyn FnMut(&CellCounts)) {
         visit(state.pixels.cells());
     }
+
+    /// None: the state is its cells and its counts.
+    fn visit_blocks(&self, _state: &ProjectionState, _visit: &mut dyn FnMut(usize, usize)) {}
 }

@@ -29,14 +29,16 @@ use crate::geometry::Instance;
 pub struct InstanceDiff {
     removed: Vec<Instance>,
     added: Vec<Instance>,
-    base_keys: Vec<(Key, u32)>,
-    child_keys: Vec<(Key, u32)>,
+    base_keys: Vec<(InstanceKey, u32)>,
+    child_keys: Vec<(InstanceKey, u32)>,
 }
 
-/// An instance's exact bits: mesh id, then the 12 floats of its transform.
-type Key = [u32; 13];
+/// An instance's exact bits: mesh id, then the 12 floats of its transform. Two
+/// instances with equal keys cover the same cells.
+pub(crate) type InstanceKey = [u32; 13];
 
-fn key(instance: &Instance) -> Key {
+/// The key of `instance`.
+pub(crate) fn instance_key(instance: &Instance) -> InstanceKey {
     let m = instance.transform.matrix3;
     let t = instance.transform.translation;
     let f = [
@@ -55,7 +57,7 @@ impl InstanceDiff {
     pub fn between(&mut self, base: &[Instance], child: &[Instance]) {
         self.removed.clear();
         self.added.clear();
-        let same = |a: &Instance, b: &Instance| key(a) == key(b);
+        let same = |a: &Instance, b: &Instance| instance_key(a) == instance_key(b);
         let prefix = base
             .iter()
             .zip(child)
@@ -75,9 +77,14 @@ impl InstanceDiff {
             self.added.extend_from_slice(child);
             return;
         }
-        let keyed = |models: &[Instance], keys: &mut Vec<(Key, u32)>| {
+        let keyed = |models: &[Instance], keys: &mut Vec<(InstanceKey, u32)>| {
             keys.clear();
-            keys.extend(models.iter().enumerate().map(|(i, m)| (key(m), i as u32)));
+            keys.extend(
+                models
+                    .iter()
+                    .enumerate()
+                    .map(|(i, m)| (instance_key(m), i as u32)),
+            );
             keys.sort_unstable();
         };
         keyed(base, &mut self.base_keys);

@@ -59,6 +59,7 @@ mod retention;
 
 pub use cells::{CellCounts, Changed, Overflow, TILE_BYTES, TILE_WORDS};
 pub use diff::InstanceDiff;
+pub(crate) use diff::{InstanceKey, instance_key};
 pub use pixels::{Hit, PixelCounts};
 pub(crate) use retention::genome_key;
 pub use retention::{DEFAULT_MAX_BYTES, Retention, RetentionStats};
@@ -103,4 +104,9 @@ pub trait RetainedScorer: Scorer {
 
     /// Hands every cell grid of `state` to `visit`, to measure memory.
     fn visit_cells(&self, state: &Self::State, visit: &mut dyn FnMut(&CellCounts));
+
+    /// Hands every other block of memory `state` holds to `visit`, as its address (to
+    /// count a block that states share once) and its bytes, to measure memory. A state
+    /// that holds only cell grids has none.
+    fn visit_blocks(&self, state: &Self::State, visit: &mut dyn FnMut(usize, usize));
 }

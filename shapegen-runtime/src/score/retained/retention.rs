@@ -15,6 +15,23 @@ use crate::{Genome, Grammar, Site};
 struct Kept<S: RetainedScorer> {
     instances: Vec<Instance>,
     states: Vec<S::State>,
+    /// The bytes it holds, counting what it shares with other models as its own.
+    bound: usize,
+}
+
+impl<S: RetainedScorer> Kept<S> {
+    fn new(scorers: &[S], instances: &[Instance], states: Vec<S::State>) -> Self {
+        let mut bound = size_of_val(instances);
+        for (scorer, state) in scorers.iter().zip(&states) {
+            scorer.visit_cells(state, &mut |cells| bound += cells.bytes());
+            scorer.visit_blocks(state, &mut |_, size| bound += size);
+        }
+        Kept {
+            instances: instances.to_vec(),
+            states,
+            bound,
+        }
+    }
 }
 
 /// The default of [`Retention::with_max_bytes`]: 1 GiB.
@@ -173,10 +190,11 @@ impl<S: RetainedScorer> Retention<S> {
         self.kept.clear();
     }
 
-    /// Bytes the kept states hold: instance lists, tile directories and every tile once,
-    /// however many states share it.
+    /// Bytes the kept states hold: instance lists, tile directories, and every tile and
+    /// other block once, however many states share it.
     pub fn memory(&self, scorers: &[S]) -> usize {
         let mut tiles = HashSet::new();
+        let mut blocks = HashMap::new();
         let mut bytes = 0;
         for kept in self.kept.values() {
             bytes += size_of_val(kept.instances.as_slice());
@@ -185,22 +203,18 @@ impl<S: RetainedScorer> Retention<S> {
                     bytes += cells.directory_bytes();
                     tiles.extend(cells.tile_addresses());
                 });
+                scorer.visit_blocks(state, &mut |address, size| {
+                    blocks.insert(address, size);
+                });
             }
         }
-        bytes + tiles.len() * TILE_BYTES
+        bytes + tiles.len() * TILE_BYTES + blocks.values().sum::<usize>()
     }
 
     /// An upper bound of [`memory`](Self::memory), counting shared tiles once per
     /// state, cheap enough to check every call.
-    fn memory_bound(&self, scorers: &[S]) -> usize {
-        let mut bytes = 0;
-        for kept in self.kept.values() {
-            bytes += size_of_val(kept.instances.as_slice());
-            for (scorer, state) in scorers.iter().zip(&kept.states) {
-                scorer.visit_cells(state, &mut |cells| bytes += cells.bytes());
-            }
-        }
-        bytes
+    fn memory_bound(&self) -> usize {
+        self.kept.values().map(|kept| kept.bound).sum()
     }
 
     /// Counts `children` (whose instances are the models of `batch`, in order) with each
@@ -236,26 +250,26 @@ impl<S: RetainedScorer> Retention<S> {
             .map(|key| self.kept.get(key).cloned())
             .collect();
         self.count_missing_parents(scorers, parents, batch.site(), from, &mut bases);
-        let keep =
-            self.memory_bound(scorers) <= self.max_bytes || self.memory(scorers) <= self.max_bytes;
-        let chunks = 4 * rayon::current_num_threads();
-        let chunk = children.len().div_ceil(chunks).max(1);
+        let keep = self.memory_bound() <= self.max_bytes || self.memory(scorers) <= self.max_bytes;
+        // One child at a time: a child counted from nothing costs far more than one
+        // counted from its parent, so fixed chunks would leave threads idle.
         let counted: Vec<Counted<S>> = out
-            .par_chunks_mut(chunk * k)
+            .par_chunks_mut(k)
             .enumerate()
-            .flat_map_iter(|(c, slots)| {
-                let mut worker = Worker::new(scorers);
-                let first = c * chunk;
-                let bases = &bases;
-                (0..slots.len() / k)
-                    .map(|i| {
-                        let child = first + i;
-                        let base = bases[from[child] as usize].as_deref();
-                        let counts = &mut slots[i * k..(i + 1) * k];
-                        count_child(scorers, base, batch.model(child), keep, &mut worker, counts)
-                    })
-                    .collect::<Vec<_>>()
-            })
+            .map_init(
+                || Worker::new(scorers),
+                |worker, (child, counts)| {
+                    let base = &bases[from[child] as usize];
+                    count_child(
+                        scorers,
+                        base.as_deref(),
+                        batch.model(child),
+                        keep,
+                        worker,
+                        counts,
+                    )
+                },
+            )
             .collect();
         let child_keys: Vec<u64> = children.par_iter().map(genome_key).collect();
         let mut kept = HashMap::with_capacity(parents.len() + children.len());
@@ -276,7 +290,9 @@ impl<S: RetainedScorer> Retention<S> {
                 kept.insert(key, state);
             }
         }
-        self.kept = kept;
+        // The states no longer kept are freed in parallel.
+        let old = std::mem::replace(&mut self.kept, kept);
+        old.into_par_iter().for_each(drop);
     }
 
     /// Computes the state of every parent that `from` names and `bases` lacks.
@@ -339,12 +355,7 @@ fn count_child<S: RetainedScorer>(
                 for ((slot, scorer), state) in out.iter_mut().zip(scorers).zip(&states) {
                     *slot = scorer.state_counts(state);
                 }
-                let kept = keep.then(|| {
-                    Arc::new(Kept {
-                        instances: instances.to_vec(),
-                        states,
-                    })
-                });
+                let kept = keep.then(|| Arc::new(Kept::new(scorers, instances, states)));
                 return Counted {
                     kept,
                     incremental: true,
@@ -386,10 +397,7 @@ fn full_state<S: RetainedScorer>(
         .zip(scratch)
         .map(|(scorer, scratch)| scorer.count_retained(instances, scratch).ok())
         .collect::<Option<Vec<_>>>()?;
-    Some(Kept {
-        instances: instances.to_vec(),
-        states,
-    })
+    Some(Kept::new(scorers, instances, states))
 }
 
 /// A 64-bit key of a genome's words, to find a parent's state: equal genomes have equal

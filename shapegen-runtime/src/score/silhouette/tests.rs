@@ -984,3 +984,80 @@ fn extended_gcd(a: i64, b: i64) -> (i64, i64, i64) {
         (g, v, u - a.div_euclid(b) * v)
     }
 }
+
+/// A state keeps what each of its instances covers, shared with the states made from
+/// it: taking an instance away replays its footprint, and the counts stay those of the
+/// model counted from nothing, repeated instances included.
+#[test]
+fn a_state_keeps_and_shares_the_footprint_of_each_instance() {
+    use crate::score::retained::RetainedScorer;
+
+    let camera = Camera::Orbit(orbit(
+        -std::f32::consts::FRAC_PI_2,
+        0.0,
+        6.0,
+        60.0,
+        0.1,
+        100.0,
+    ));
+    let target = ImageTarget::from_mask("white".into(), &white(64, 48), camera, 1.0, -1.0).unwrap();
+    let scorer = cube_scorer(
+        target,
+        Form::Smooth {
+            good: 1.0,
+            bad: 1.0,
+        },
+    );
+    let (a, b, c) = (
+        cube(Vec3::ONE, Vec3::new(-1.0, 0.0, 0.0)),
+        cube(Vec3::splat(0.5), Vec3::ZERO),
+        cube(Vec3::ONE, Vec3::new(0.8, 0.3, 0.0)),
+    );
+    let blocks = |state: &SilhouetteState| {
+        let mut seen = Vec::new();
+        scorer.visit_blocks(state, &mut |address, bytes| seen.push((address, bytes)));
+        seen
+    };
+    let mut scratch = scorer.scratch();
+    let parent = scorer.count_retained(&[a, b, b], &mut scratch).unwrap();
+    assert_eq!(
+        scorer.state_counts(&parent),
+        scorer.count(&[a, b, b], &mut scratch)
+    );
+    // The list, then one footprint per instance, each with the bytes of its words.
+    let before = blocks(&parent);
+    assert_eq!(before.len(), 1 + 3);
+    assert!(before[1..].iter().all(|&(_, bytes)| bytes > 64));
+
+    let mut child = parent.clone();
+    scorer.update(&mut child, &[b], &[c], &mut scratch).unwrap();
+    assert_eq!(
+        scorer.state_counts(&child),
+        scorer.count(&[a, b, c], &mut scratch)
+    );
+    let after = blocks(&child);
+    let shared = after[1..]
+        .iter()
+        .filter(|f| before[1..].contains(f))
+        .count();
+    assert_eq!(
+        (after.len(), shared),
+        (1 + 3, 2),
+        "a and one b shared, c new"
+    );
+
+    scorer
+        .update(&mut child, &[b, a], &[], &mut scratch)
+        .unwrap();
+    assert_eq!(
+        scorer.state_counts(&child),
+        scorer.count(&[c], &mut scratch)
+    );
+    scorer.update(&mut child, &[c], &[], &mut scratch).unwrap();
+    assert_eq!(scorer.state_counts(&child), scorer.count(&[], &mut scratch));
+    // The parent is as it was.
+    assert_eq!(
+        scorer.state_counts(&parent),
+        scorer.count(&[a, b, b], &mut scratch)
+    );
+}

@@ -199,4 +199,12 @@ impl RetainedScorer for VolumeScorer {
     fn visit_cells(&self, state: &VolumeState, visit: &mut dyn FnMut(&CellCounts)) {
         visit(&state.cells);
     }
+
+    /// The facet instances, beside the cells.
+    fn visit_blocks(&self, state: &VolumeState, visit: &mut dyn FnMut(usize, usize)) {
+        visit(
+            state.facets.as_ptr() as usize,
+            size_of_val(state.facets.as_slice()),
+        );
+    }
 }
