@@ -22,7 +22,7 @@ use super::backend::Incremental;
 use super::checkpoint::Checkpoint;
 use super::files::{Files, csv_bytes, save_figure, save_png};
 use super::interrupt;
-use super::memory::{MemoryArgs, check_resumed};
+use super::memory::{MemoryArgs, check_resumed, peak_rss};
 use super::overlay::{projection_overlay, projections};
 use super::plot::{self, Titles};
 use super::progress::ProgressLine;
@@ -66,6 +66,10 @@ struct Summary<'a> {
     /// objective of every model was measured in full.
     #[serde(skip_serializing_if = "Option::is_none")]
     incremental: Option<Incremental>,
+    /// The most memory the process held resident up to the summary (Linux); absent
+    /// where the system does not say.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    peak_rss_bytes: Option<u64>,
 }
 
 /// Where a multi-objective run comes from and goes to.
@@ -208,6 +212,7 @@ impl FrontRun<'_> {
             objectives,
             stopped,
             incremental: evaluator.retention().map(Incremental::from),
+            peak_rss_bytes: peak_rss(),
         };
         let mut files = Files::new();
         files.write(

@@ -163,14 +163,11 @@ pub fn parse_size(text: &str) -> Result<u64, SizeError> {
 /// The memory available now, with where the figure comes from: `MemAvailable`, or what
 /// the process's cgroup limit leaves when that is less.
 fn available() -> Option<(u64, String)> {
-    let meminfo = std::fs::read_to_string("/proc/meminfo").ok();
-    let mem_available = meminfo.as_deref().and_then(|text| {
-        let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
-        let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-        Some((
-            kib * 1024,
+    let mem_available = kib_field("/proc/meminfo", "MemAvailable:").map(|bytes| {
+        (
+            bytes,
             "available (MemAvailable in /proc/meminfo)".to_owned(),
-        ))
+        )
     });
     let cgroup = cgroup_left().map(|(left, dir)| {
         (
@@ -182,6 +179,21 @@ fn available() -> Option<(u64, String)> {
         (Some(a), Some(c)) => Some(if c.0 < a.0 { c } else { a }),
         (a, c) => a.or(c),
     }
+}
+
+/// The most memory this process has held resident so far (`VmHWM` of
+/// `/proc/self/status`), in bytes; `None` where the system does not say.
+pub fn peak_rss() -> Option<u64> {
+    kib_field("/proc/self/status", "VmHWM:")
+}
+
+/// The value in bytes of the line of `file` that starts with `key` and gives a number of
+/// kibibytes (`MemAvailable:   123 kB`).
+fn kib_field(file: &str, key: &str) -> Option<u64> {
+    let text = std::fs::read_to_string(file).ok()?;
+    let line = text.lines().find(|l| l.starts_with(key))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
 }
 
 /// The least memory left under a limit of the process's cgroup or one above it, and

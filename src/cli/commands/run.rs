@@ -24,7 +24,7 @@ use crate::cli::folder::{Existing, Folder, Kind};
 use crate::cli::front::FrontRun;
 use crate::cli::generators::{Generators, Jobs, Visit};
 use crate::cli::interrupt;
-use crate::cli::memory::{MemoryArgs, MemoryCheck, check_resumed};
+use crate::cli::memory::{MemoryArgs, MemoryCheck, check_resumed, peak_rss};
 use crate::cli::overlay::overlay;
 use crate::cli::plot::{self, Line, Titles};
 use crate::cli::processes::Processes;
@@ -128,6 +128,10 @@ struct Summary<'a> {
     incremental: Option<Incremental>,
     /// The best model against the scene's targets in the literature's measures.
     metrics: Metrics,
+    /// The most memory the process held resident up to the summary (Linux); absent
+    /// where the system does not say.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    peak_rss_bytes: Option<u64>,
 }
 
 /// Runs `shapegen run`.
@@ -376,6 +380,7 @@ impl Run<'_> {
             kept_limits: goal.settings.kept_limits(self.scene.limits),
             stopped: result.stopped.name(),
             incremental: evaluator.retention().map(Incremental::from),
+            peak_rss_bytes: peak_rss(),
             metrics: Metrics::of(
                 self.scene,
                 Some(&scorer),
