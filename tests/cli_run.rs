@@ -228,6 +228,11 @@ fn incremental_scoring_changes_nothing_but_the_time() {
         "{counted}"
     );
     assert!(summary(&off).get("incremental").is_none());
+    // The process's peak memory, where the system says (Linux).
+    if cfg!(target_os = "linux") {
+        let peak = summary(&on)["peak_rss_bytes"].as_u64().unwrap();
+        assert!((1 << 20..1 << 40).contains(&peak), "{peak}");
+    }
 
     // RJMCMC's proposals are counted from their chains' states.
     let text = fs::read_to_string(&scene).unwrap();

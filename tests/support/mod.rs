@@ -95,6 +95,7 @@ pub fn timeless_summary(dir: &Path) -> serde_json::Value {
     let mut summary: serde_json::Value = serde_json::from_str(&text).expect("JSON");
     let object = summary.as_object_mut().expect("an object");
     object.remove("elapsed_s");
+    object.remove("peak_rss_bytes");
     // How children were counted (from their parents or from nothing) depends on where a
     // run was resumed, never what they were counted to.
     object.remove("incremental");
