@@ -4,7 +4,9 @@ use super::projection::ProjectionMatch;
 use super::surface::Surface;
 use crate::geometry::{BoundMeshes, Instance};
 use crate::score::Scorer;
-use crate::score::retained::{CellCounts, Hit, Overflow, PixelCounts, RetainedScorer};
+use crate::score::retained::{
+    CellCounts, Footprint, Footprints, Hit, Overflow, PixelCounts, RetainedScorer,
+};
 use crate::score::silhouette::raster::Coverage;
 
 /// A [`ProjectionMatch`] measured on models made of a grammar's meshes: a [`Scorer`]
@@ -69,11 +71,13 @@ pub struct ProjectionScratch {
 }
 
 /// What a [`ProjectionScorer`] keeps of one model: how many of its instances cover each
-/// pixel, and its counts.
+/// pixel, its counts, and the pixels each instance covers (shared with the states of
+/// related models), so that taking an instance away replays them.
 #[derive(Clone, Debug)]
 pub struct ProjectionState {
     pixels: PixelCounts,
     counts: ProjectionCounts,
+    footprints: Footprints,
 }
 
 impl ProjectionScorer {
@@ -87,37 +91,53 @@ impl ProjectionScorer {
         &self.projection
     }
 
-    /// Adds the pixels of `instances`, each rasterized on its own, to `state` or
-    /// removes them from it.
-    fn apply(
-        &self,
-        state: &mut ProjectionState,
-        instances: &[Instance],
-        hit: Hit,
-        scratch: &mut ProjectionScratch,
-    ) -> Result<(), Overflow> {
+    /// Rasterizes `instance` and returns what it covers.
+    fn footprint(&self, instance: &Instance, scratch: &mut ProjectionScratch) -> Footprint {
         let p = &self.projection;
-        let mut result = Ok(());
-        for instance in instances {
+        Footprint::of(instance, 1, |_, words| {
             scratch
                 .surface
                 .fill(std::slice::from_ref(instance), &self.meshes);
             scratch.coverage.shape(p.width(), p.height());
             p.rasterize(&scratch.surface, &mut scratch.coverage);
-            let ProjectionState { pixels, counts } = state;
-            scratch.coverage.drain(|w, bits| {
-                let flipped = pixels.apply(hit, w, bits).unwrap_or_else(|overflow| {
-                    result = Err(overflow);
-                    0
-                });
-                let (before, after) = match hit {
-                    Hit::Add => (0, flipped),
-                    Hit::Remove => (flipped, 0),
-                };
-                counts.mismatched = p.remismatched(counts.mismatched, w, before, after);
-            });
-            result?;
+            scratch
+                .coverage
+                .drain(|w, bits| words.push((w as u32, bits)));
+        })
+    }
+
+    /// Adds the pixels of `footprint` to `state`, or takes them away.
+    fn apply(
+        &self,
+        state: &mut ProjectionState,
+        footprint: &Footprint,
+        hit: Hit,
+    ) -> Result<(), Overflow> {
+        let ProjectionState { pixels, counts, .. } = state;
+        for &(w, bits) in footprint.grid(0) {
+            let flipped = pixels.apply(hit, w as usize, bits)?;
+            let (before, after) = match hit {
+                Hit::Add => (0, flipped),
+                Hit::Remove => (flipped, 0),
+            };
+            counts.mismatched =
+                self.projection
+                    .remismatched(counts.mismatched, w as usize, before, after);
         }
+        Ok(())
+    }
+
+    /// Adds `instance` to `state`: rasterizes it, adds its pixels and keeps its
+    /// footprint.
+    fn add(
+        &self,
+        state: &mut ProjectionState,
+        instance: &Instance,
+        scratch: &mut ProjectionScratch,
+    ) -> Result<(), Overflow> {
+        let footprint = self.footprint(instance, scratch);
+        self.apply(state, &footprint, Hit::Add)?;
+        state.footprints.insert(footprint);
         Ok(())
     }
 }
@@ -160,11 +180,16 @@ impl RetainedScorer for ProjectionScorer {
             counts: ProjectionCounts {
                 mismatched: p.mask_pixels(),
             },
+            footprints: Footprints::with_capacity(instances.len()),
         };
-        self.apply(&mut state, instances, Hit::Add, scratch)?;
+        for instance in instances {
+            self.add(&mut state, instance, scratch)?;
+        }
         Ok(state)
     }
 
+    /// Takes each removed instance away by replaying its kept footprint, and rasterizes
+    /// each added one.
     fn update(
         &self,
         state: &mut ProjectionState,
@@ -172,8 +197,14 @@ impl RetainedScorer for ProjectionScorer {
         added: &[Instance],
         scratch: &mut ProjectionScratch,
     ) -> Result<(), Overflow> {
-        self.apply(state, removed, Hit::Remove, scratch)?;
-        self.apply(state, added, Hit::Add, scratch)
+        for instance in removed {
+            let footprint = state.footprints.take(instance);
+            self.apply(state, &footprint, Hit::Remove)?;
+        }
+        for instance in added {
+            self.add(state, instance, scratch)?;
+        }
+        Ok(())
     }
 
     fn state_counts(&self, state: &ProjectionState) -> ProjectionCounts {
@@ -184,6 +215,7 @@ impl RetainedScorer for ProjectionScorer {
         visit(state.pixels.cells());
     }
 
-    /// None: the state is its cells and its counts.
-    fn visit_blocks(&self, _state: &ProjectionState, _visit: &mut dyn FnMut(usize, usize)) {}
+    fn visit_blocks(&self, state: &ProjectionState, visit: &mut dyn FnMut(usize, usize)) {
+        state.footprints.visit(visit);
+    }
 }

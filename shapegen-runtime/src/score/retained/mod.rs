@@ -54,12 +54,13 @@
 
 mod cells;
 mod diff;
+mod footprint;
 mod pixels;
 mod retention;
 
 pub use cells::{CellCounts, Changed, Overflow, TILE_BYTES, TILE_WORDS};
 pub use diff::InstanceDiff;
-pub(crate) use diff::{InstanceKey, instance_key};
+pub(crate) use footprint::{Footprint, Footprints, MAX_GRIDS};
 pub use pixels::{Hit, PixelCounts};
 pub(crate) use retention::genome_key;
 pub use retention::{DEFAULT_MAX_BYTES, Retention, RetentionStats};

@@ -1,15 +1,15 @@
 //! Incremental silhouette counting: per-pixel instance counts of one model, and what
 //! each of its instances covers.
 
-use std::sync::Arc;
-
-use super::counts::{SilhouetteCounts, TargetCounts};
+use super::counts::{MAX_TARGETS, SilhouetteCounts, TargetCounts};
 use super::scorer::{SilhouetteScorer, SilhouetteScratch};
 use super::target::ImageTarget;
 use crate::geometry::Instance;
 use crate::score::retained::{
-    CellCounts, Hit, InstanceKey, Overflow, PixelCounts, RetainedScorer, instance_key,
+    CellCounts, Footprint, Footprints, Hit, MAX_GRIDS, Overflow, PixelCounts, RetainedScorer,
 };
+
+const _: () = assert!(MAX_TARGETS <= MAX_GRIDS, "a footprint holds every target");
 
 /// What a [`SilhouetteScorer`] keeps of one model: per target, how many of the model's
 /// instances cover each pixel, and the model's counts; and per instance, the pixels it
@@ -18,15 +18,13 @@ use crate::score::retained::{
 /// A pixel's count is the number of instances whose own silhouette covers it (each
 /// instance counts a pixel once, however many of its triangles cover it), so a pixel is
 /// covered by the model exactly when its count is above 0. Tiles are 8 rows of one
-/// 64-pixel word of the target's coverage rows. The footprints are shared between the
-/// states of related models: a child's state holds its parent's, less those of the
-/// instances it lost, plus those of the instances it gained.
+/// 64-pixel word of the target's coverage rows. The instances' footprints are shared
+/// between the states of related models: a child's state holds its parent's, less those
+/// of the instances it lost, plus those of the instances it gained.
 #[derive(Clone, Debug)]
 pub struct SilhouetteState {
     targets: Vec<TargetState>,
-    /// The footprint of every instance of the model, sorted by instance key (an
-    /// instance held twice has two entries).
-    footprints: Vec<Arc<Footprint>>,
+    footprints: Footprints,
 }
 
 /// One target's part of a [`SilhouetteState`].
@@ -45,43 +43,17 @@ impl TargetState {
     }
 }
 
-/// The pixels one instance covers in every target: the non-zero coverage words it
-/// rasterizes to, as (word index, bits).
-#[derive(Debug)]
-struct Footprint {
-    key: InstanceKey,
-    /// Every target's words, target after target.
-    words: Box<[(u32, u64)]>,
-    /// Where each target's words end in `words`.
-    ends: Box<[u32]>,
-}
-
-impl Footprint {
-    /// The words of target `t`.
-    fn target(&self, t: usize) -> &[(u32, u64)] {
-        let start = t.checked_sub(1).map_or(0, |p| self.ends[p] as usize);
-        &self.words[start..self.ends[t] as usize]
-    }
-}
-
 impl SilhouetteScorer {
     /// Rasterizes `instance` into every target and returns what it covers.
     fn footprint(&self, instance: &Instance, scratch: &mut SilhouetteScratch) -> Footprint {
-        let mut words = Vec::new();
-        let mut ends = Vec::with_capacity(self.targets().len());
-        for t in self.targets() {
+        Footprint::of(instance, self.targets().len(), |k, words| {
+            let t = &self.targets()[k];
             scratch.coverage.shape(t.width(), t.height());
             self.rasterize_instance(t, t.view_projection(), instance, scratch);
             scratch
                 .coverage
                 .drain(|w, bits| words.push((w as u32, bits)));
-            ends.push(words.len() as u32);
-        }
-        Footprint {
-            key: instance_key(instance),
-            words: words.into(),
-            ends: ends.into(),
-        }
+        })
     }
 
     /// Adds the pixels of `footprint` to `state`, or takes them away.
@@ -93,7 +65,7 @@ impl SilhouetteScorer {
     ) -> Result<(), Overflow> {
         for (k, (t, part)) in self.targets().iter().zip(&mut state.targets).enumerate() {
             let TargetState { pixels, counts } = part;
-            for &(w, bits) in footprint.target(k) {
+            for &(w, bits) in footprint.grid(k) {
                 let first = pixels.apply(hit, w as usize, bits)?;
                 if first == 0 {
                     continue;
@@ -127,23 +99,8 @@ impl SilhouetteScorer {
     ) -> Result<(), Overflow> {
         let footprint = self.footprint(instance, scratch);
         self.apply(state, &footprint, Hit::Add)?;
-        let at = state.footprints.partition_point(|f| f.key <= footprint.key);
-        state.footprints.insert(at, Arc::new(footprint));
+        state.footprints.insert(footprint);
         Ok(())
-    }
-
-    /// Takes `instance` out of `state` by replaying its kept footprint.
-    ///
-    /// # Panics
-    /// If the model lacks `instance`.
-    fn remove(&self, state: &mut SilhouetteState, instance: &Instance) -> Result<(), Overflow> {
-        let key = instance_key(instance);
-        let at = state
-            .footprints
-            .binary_search_by(|f| f.key.cmp(&key))
-            .expect("an instance taken away is one of the model's");
-        let footprint = state.footprints.remove(at);
-        self.apply(state, &footprint, Hit::Remove)
     }
 }
 
@@ -157,17 +114,16 @@ impl RetainedScorer for SilhouetteScorer {
     ) -> Result<SilhouetteState, Overflow> {
         let mut state = SilhouetteState {
             targets: self.targets().iter().map(TargetState::new).collect(),
-            footprints: Vec::with_capacity(instances.len()),
+            footprints: Footprints::with_capacity(instances.len()),
         };
         for instance in instances {
-            let footprint = self.footprint(instance, scratch);
-            self.apply(&mut state, &footprint, Hit::Add)?;
-            state.footprints.push(Arc::new(footprint));
+            self.add(&mut state, instance, scratch)?;
         }
-        state.footprints.sort_by(|a, b| a.key.cmp(&b.key));
         Ok(state)
     }
 
+    /// Takes each removed instance away by replaying its kept footprint, and rasterizes
+    /// each added one.
     fn update(
         &self,
         state: &mut SilhouetteState,
@@ -176,7 +132,8 @@ impl RetainedScorer for SilhouetteScorer {
         scratch: &mut SilhouetteScratch,
     ) -> Result<(), Overflow> {
         for instance in removed {
-            self.remove(state, instance)?;
+            let footprint = state.footprints.take(instance);
+            self.apply(state, &footprint, Hit::Remove)?;
         }
         for instance in added {
             self.add(state, instance, scratch)?;
@@ -202,13 +159,6 @@ impl RetainedScorer for SilhouetteScorer {
     }
 
     fn visit_blocks(&self, state: &SilhouetteState, visit: &mut dyn FnMut(usize, usize)) {
-        let list = &state.footprints;
-        visit(list.as_ptr() as usize, size_of_val(list.as_slice()));
-        for footprint in &state.footprints {
-            let bytes = size_of::<Footprint>()
-                + size_of_val(&*footprint.words)
-                + size_of_val(&*footprint.ends);
-            visit(Arc::as_ptr(footprint) as usize, bytes);
-        }
+        state.footprints.visit(visit);
     }
 }
