@@ -71,8 +71,9 @@ pub struct ProjectionScratch {
 }
 
 /// What a [`ProjectionScorer`] keeps of one model: how many of its instances cover each
-/// pixel, its counts, and the pixels each instance covers (shared with the states of
-/// related models), so that taking an instance away replays them.
+/// pixel, its counts, and the pixels each instance covers where that is worth keeping
+/// (shared with the states of related models), so that taking an instance away replays
+/// them.
 #[derive(Clone, Debug)]
 pub struct ProjectionState {
     pixels: PixelCounts,
@@ -137,7 +138,11 @@ impl ProjectionScorer {
     ) -> Result<(), Overflow> {
         let footprint = self.footprint(instance, scratch);
         self.apply(state, &footprint, Hit::Add)?;
-        state.footprints.insert(footprint);
+        let triangles = self
+            .meshes
+            .get(instance.mesh)
+            .map_or(0, |m| m.triangle_count());
+        state.footprints.keep(footprint, triangles);
         Ok(())
     }
 }
@@ -188,8 +193,8 @@ impl RetainedScorer for ProjectionScorer {
         Ok(state)
     }
 
-    /// Takes each removed instance away by replaying its kept footprint, and rasterizes
-    /// each added one.
+    /// Takes each removed instance away by replaying its kept footprint (or rasterizing
+    /// it, where none was worth keeping), and rasterizes each added one.
     fn update(
         &self,
         state: &mut ProjectionState,
@@ -198,8 +203,10 @@ impl RetainedScorer for ProjectionScorer {
         scratch: &mut ProjectionScratch,
     ) -> Result<(), Overflow> {
         for instance in removed {
-            let footprint = state.footprints.take(instance);
-            self.apply(state, &footprint, Hit::Remove)?;
+            match state.footprints.take(instance) {
+                Some(footprint) => self.apply(state, &footprint, Hit::Remove)?,
+                None => self.apply(state, &self.footprint(instance, scratch), Hit::Remove)?,
+            }
         }
         for instance in added {
             self.add(state, instance, scratch)?;

@@ -1,10 +1,20 @@
 //! What each instance of a model covers, kept with the model's state so that taking the
 //! instance away again replays it instead of rasterizing the instance a second time.
+//!
+//! A footprint is kept only where replaying it is the cheaper way: when its instance's
+//! rasterization goes through at least [`MIN_COST`] triangles (or hull points) and
+//! through more of them than the footprint holds words. A tree's leaf, 574 small
+//! triangles covering a few dozen words, keeps its footprint; a building's box (12
+//! triangles over hundreds of words) or a window's quad (2 triangles) is rasterized again
+//! instead, which costs about what keeping, finding and freeing its footprint would.
 
 use std::sync::Arc;
 
 use super::diff::{InstanceKey, instance_key};
 use crate::geometry::Instance;
+
+/// The fewest triangles (or hull points) whose rasterization a kept footprint saves.
+pub(crate) const MIN_COST: usize = 32;
 
 /// The most grids (images) one footprint covers: a silhouette scorer's targets.
 pub(crate) const MAX_GRIDS: usize = 8;
@@ -68,23 +78,23 @@ impl Footprints {
         Footprints(Vec::with_capacity(n))
     }
 
-    /// Keeps `footprint`.
-    pub(crate) fn insert(&mut self, footprint: Footprint) {
-        let at = self.0.partition_point(|f| f.key <= footprint.key);
-        self.0.insert(at, Arc::new(footprint));
+    /// Keeps `footprint` if `cost`, the triangles or points that rasterizing its
+    /// instance goes through, is at least [`MIN_COST`] and more than the words it holds
+    /// (see the [module documentation](self)).
+    pub(crate) fn keep(&mut self, footprint: Footprint, cost: usize) {
+        if cost >= MIN_COST && footprint.words.len() < cost {
+            let at = self.0.partition_point(|f| f.key <= footprint.key);
+            self.0.insert(at, Arc::new(footprint));
+        }
     }
 
-    /// Takes out the footprint of `instance`.
-    ///
-    /// # Panics
-    /// If none is kept: the model lacks `instance`.
-    pub(crate) fn take(&mut self, instance: &Instance) -> Arc<Footprint> {
+    /// Takes out the footprint of `instance`, if one was kept: the rule of
+    /// [`keep`](Self::keep) depends on the instance alone, so an instance of the model
+    /// whose footprint was worth keeping finds it.
+    pub(crate) fn take(&mut self, instance: &Instance) -> Option<Arc<Footprint>> {
         let key = instance_key(instance);
-        let at = self
-            .0
-            .binary_search_by(|f| f.key.cmp(&key))
-            .expect("an instance taken away is one of the model's");
-        self.0.remove(at)
+        let at = self.0.binary_search_by(|f| f.key.cmp(&key)).ok()?;
+        Some(self.0.remove(at))
     }
 
     /// Hands the list and every footprint to `visit` as (address, bytes), to measure

@@ -18,7 +18,8 @@ const _: () = assert!(MAX_TARGETS <= MAX_GRIDS, "a footprint holds every target"
 /// A pixel's count is the number of instances whose own silhouette covers it (each
 /// instance counts a pixel once, however many of its triangles cover it), so a pixel is
 /// covered by the model exactly when its count is above 0. Tiles are 8 rows of one
-/// 64-pixel word of the target's coverage rows. The instances' footprints are shared
+/// 64-pixel word of the target's coverage rows. The instances' footprints (where worth
+/// keeping: see `Footprints::keep`) are shared
 /// between the states of related models: a child's state holds its parent's, less those
 /// of the instances it lost, plus those of the instances it gained.
 #[derive(Clone, Debug)]
@@ -99,8 +100,15 @@ impl SilhouetteScorer {
     ) -> Result<(), Overflow> {
         let footprint = self.footprint(instance, scratch);
         self.apply(state, &footprint, Hit::Add)?;
-        state.footprints.insert(footprint);
+        state.footprints.keep(footprint, self.raster_cost(instance));
         Ok(())
+    }
+
+    /// What rasterizing `instance` goes through: its mesh's hull points, or triangles.
+    fn raster_cost(&self, instance: &Instance) -> usize {
+        self.meshes
+            .get(instance.mesh.0 as usize)
+            .map_or(0, |m| m.hull.as_ref().map_or(m.triangles.len(), Vec::len))
     }
 }
 
@@ -122,8 +130,8 @@ impl RetainedScorer for SilhouetteScorer {
         Ok(state)
     }
 
-    /// Takes each removed instance away by replaying its kept footprint, and rasterizes
-    /// each added one.
+    /// Takes each removed instance away by replaying its kept footprint (or rasterizing
+    /// it, where none was worth keeping), and rasterizes each added one.
     fn update(
         &self,
         state: &mut SilhouetteState,
@@ -132,8 +140,10 @@ impl RetainedScorer for SilhouetteScorer {
         scratch: &mut SilhouetteScratch,
     ) -> Result<(), Overflow> {
         for instance in removed {
-            let footprint = state.footprints.take(instance);
-            self.apply(state, &footprint, Hit::Remove)?;
+            match state.footprints.take(instance) {
+                Some(footprint) => self.apply(state, &footprint, Hit::Remove)?,
+                None => self.apply(state, &self.footprint(instance, scratch), Hit::Remove)?,
+            }
         }
         for instance in added {
             self.add(state, instance, scratch)?;
