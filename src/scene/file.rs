@@ -13,7 +13,7 @@ pub(super) struct SceneFile {
     pub meshes: std::collections::BTreeMap<String, MeshFile>,
     pub limits: LimitsFile,
     /// `[lot]`: the footprint a building generator builds on.
-    pub lot: Option<super::lot::LotFile>,
+    pub lot: Option<LotFile>,
     #[serde(default)]
     pub fitness: FitnessFile,
     pub volume: Option<VolumeFile>,
@@ -286,4 +286,36 @@ pub(super) struct ProjectionFile {
     /// The view plane's area the image covers: (x, z) from above, (x, y) from the front.
     pub min: [f32; 2],
     pub max: [f32; 2],
+}
+
+/// `[lot]`: exactly one of `points` and `geojson`, how their numbers are read, and
+/// whether the lot is moved to the origin.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct LotFile {
+    /// The outline's points, `[x, y]` with `y` north, in either orientation.
+    pub points: Option<Vec<Vec<f64>>>,
+    /// A GeoJSON file, relative to the scene's folder, holding one polygon.
+    pub geojson: Option<String>,
+    /// How the outline's numbers are read.
+    #[serde(default)]
+    pub coordinates: Coordinates,
+    /// Whether a lot in metres is moved so that the middle of its bounding box is the
+    /// origin (one in degrees always is).
+    #[serde(default)]
+    pub centre: bool,
+}
+
+/// How a lot's numbers are read (`[lot] coordinates`).
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum Coordinates {
+    /// Metres (the scene's units) of a local or projected system, `[x, y]` with `y`
+    /// north, used as they are.
+    #[default]
+    Metres,
+    /// Longitude and latitude in degrees on WGS 84, as GeoJSON (RFC 7946) writes them:
+    /// projected to metres on the plane touching the ellipsoid at the middle of the
+    /// lot's bounding box, `x` east and `y` north, that middle at the origin.
+    Degrees,
 }

@@ -6,44 +6,12 @@ use std::str::FromStr;
 
 use geojson::{GeoJson, Geometry, GeometryValue, PolygonType};
 use glam::DVec2;
-use serde::Deserialize;
 use shapegen_runtime::Site;
 use shapegen_runtime::geometry::Polygon;
 
 use super::SceneError;
+use super::file::{Coordinates, LotFile};
 use super::resolve::Resolver;
-
-/// `[lot]`: exactly one of `points` and `geojson`, how their numbers are read, and
-/// whether the lot is moved to the origin.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct LotFile {
-    /// The outline's points, `[x, y]` with `y` north, in either orientation.
-    points: Option<Vec<Vec<f64>>>,
-    /// A GeoJSON file, relative to the scene's folder, holding one polygon.
-    geojson: Option<String>,
-    /// How the outline's numbers are read.
-    #[serde(default)]
-    coordinates: Coordinates,
-    /// Whether a lot in metres is moved so that the middle of its bounding box is the
-    /// origin (one in degrees always is).
-    #[serde(default)]
-    centre: bool,
-}
-
-/// How a lot's numbers are read (`[lot] coordinates`).
-#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq)]
-#[serde(rename_all = "lowercase")]
-enum Coordinates {
-    /// Metres (the scene's units) of a local or projected system, `[x, y]` with `y`
-    /// north, used as they are.
-    #[default]
-    Metres,
-    /// Longitude and latitude in degrees on WGS 84, as GeoJSON (RFC 7946) writes them:
-    /// projected to metres on the plane touching the ellipsoid at the middle of the
-    /// lot's bounding box, `x` east and `y` north, that middle at the origin.
-    Degrees,
-}
 
 /// WGS 84: the semi-major axis in metres and the flattening.
 const WGS84_A: f64 = 6_378_137.0;
