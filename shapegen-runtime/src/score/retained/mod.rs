@@ -17,7 +17,9 @@
 //! hands over), computing a parent's state first when none is kept (the first
 //! generation, after a resume), and afterwards keeps only the parents' and the
 //! children's states. Memory is bounded: a state is a tile directory (8 bytes per tile
-//! of 8 x 64 cells) and the tiles it does not share with its relatives, 1 KiB each;
+//! of 8 x 64 cells) and the tiles it does not share with its relatives, 1 KiB each, and
+//! for the silhouette and projection scorers the coverage words of the instances whose
+//! rasterization is worth not repeating (shared between relatives too);
 //! [`Retention::memory`] measures what is held, and above
 //! [`max_bytes`](Retention::with_max_bytes) children are counted but not kept.
 //!
