@@ -4,7 +4,8 @@
 //! the Markdown table at the top of `benches/README.md`:
 //!
 //! ```text
-//! cargo bench --bench throughput
+//! cargo bench --bench throughput            # every scene
+//! cargo bench --bench throughput -- tree    # the scenes whose file names hold `tree`
 //! ```
 //!
 //! - **Derived**: 64 random genomes of the GA's initial length for the scene (seed 1),
