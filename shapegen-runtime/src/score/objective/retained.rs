@@ -5,7 +5,8 @@ use super::surface::Surface;
 use crate::geometry::{BoundMeshes, Instance};
 use crate::score::Scorer;
 use crate::score::retained::{
-    CellCounts, Footprint, Footprints, Hit, Overflow, PixelCounts, RetainedScorer,
+    CellCounts, Footprinted, Footprints, Grids, Hit, Overflow, PixelCounts, Recorder,
+    RetainedScorer,
 };
 use crate::score::silhouette::raster::Coverage;
 
@@ -68,6 +69,7 @@ pub struct ProjectionCounts {
 pub struct ProjectionScratch {
     surface: Surface,
     coverage: Coverage,
+    recorder: Recorder,
 }
 
 /// What a [`ProjectionScorer`] keeps of one model: how many of its instances cover each
@@ -91,31 +93,46 @@ impl ProjectionScorer {
     pub fn projection(&self) -> &ProjectionMatch {
         &self.projection
     }
+}
 
-    /// Rasterizes `instance` and returns what it covers.
-    fn footprint(&self, instance: &Instance, scratch: &mut ProjectionScratch) -> Footprint {
-        let p = &self.projection;
-        Footprint::of(instance, 1, |_, words| {
-            scratch
-                .surface
-                .fill(std::slice::from_ref(instance), &self.meshes);
-            scratch.coverage.shape(p.width(), p.height());
-            p.rasterize(&scratch.surface, &mut scratch.coverage);
-            scratch
-                .coverage
-                .drain(|w, bits| words.push((w as u32, bits)));
-        })
+impl Footprinted for ProjectionScorer {
+    fn grids(&self) -> usize {
+        1
     }
 
-    /// Adds the pixels of `footprint` to `state`, or takes them away.
+    fn rasterize_words(
+        &self,
+        instance: &Instance,
+        _: usize,
+        scratch: &mut ProjectionScratch,
+        words: &mut Vec<(u32, u64)>,
+    ) {
+        let p = &self.projection;
+        scratch
+            .surface
+            .fill(std::slice::from_ref(instance), &self.meshes);
+        scratch.coverage.shape(p.width(), p.height());
+        p.rasterize(&scratch.surface, &mut scratch.coverage);
+        scratch
+            .coverage
+            .drain(|w, bits| words.push((w as u32, bits)));
+    }
+
+    /// Its mesh's triangles.
+    fn raster_cost(&self, instance: &Instance) -> usize {
+        self.meshes
+            .get(instance.mesh)
+            .map_or(0, |m| m.triangle_count())
+    }
+
     fn apply(
         &self,
         state: &mut ProjectionState,
-        footprint: &Footprint,
+        grids: Grids<'_>,
         hit: Hit,
     ) -> Result<(), Overflow> {
         let ProjectionState { pixels, counts, .. } = state;
-        for &(w, bits) in footprint.grid(0) {
+        for &(w, bits) in grids.grid(0) {
             let flipped = pixels.apply(hit, w as usize, bits)?;
             let (before, after) = match hit {
                 Hit::Add => (0, flipped),
@@ -128,22 +145,12 @@ impl ProjectionScorer {
         Ok(())
     }
 
-    /// Adds `instance` to `state`: rasterizes it, adds its pixels and keeps its
-    /// footprint.
-    fn add(
-        &self,
-        state: &mut ProjectionState,
-        instance: &Instance,
-        scratch: &mut ProjectionScratch,
-    ) -> Result<(), Overflow> {
-        let footprint = self.footprint(instance, scratch);
-        self.apply(state, &footprint, Hit::Add)?;
-        let triangles = self
-            .meshes
-            .get(instance.mesh)
-            .map_or(0, |m| m.triangle_count());
-        state.footprints.keep(footprint, triangles);
-        Ok(())
+    fn footprints(state: &mut ProjectionState) -> &mut Footprints {
+        &mut state.footprints
+    }
+
+    fn recorder(scratch: &mut ProjectionScratch) -> &mut Recorder {
+        &mut scratch.recorder
     }
 }
 
@@ -193,8 +200,6 @@ impl RetainedScorer for ProjectionScorer {
         Ok(state)
     }
 
-    /// Takes each removed instance away by replaying its kept footprint (or rasterizing
-    /// it, where none was worth keeping), and rasterizes each added one.
     fn update(
         &self,
         state: &mut ProjectionState,
@@ -202,16 +207,7 @@ impl RetainedScorer for ProjectionScorer {
         added: &[Instance],
         scratch: &mut ProjectionScratch,
     ) -> Result<(), Overflow> {
-        for instance in removed {
-            match state.footprints.take(instance) {
-                Some(footprint) => self.apply(state, &footprint, Hit::Remove)?,
-                None => self.apply(state, &self.footprint(instance, scratch), Hit::Remove)?,
-            }
-        }
-        for instance in added {
-            self.add(state, instance, scratch)?;
-        }
-        Ok(())
+        self.update_instances(state, removed, added, scratch)
     }
 
     fn state_counts(&self, state: &ProjectionState) -> ProjectionCounts {

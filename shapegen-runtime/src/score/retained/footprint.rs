@@ -1,5 +1,6 @@
 //! What each instance of a model covers, kept with the model's state so that taking the
-//! instance away again replays it instead of rasterizing the instance a second time.
+//! instance away again replays it instead of rasterizing the instance a second time,
+//! and the adding, removing and updating of states built on it ([`Footprinted`]).
 //!
 //! A footprint is kept only where replaying it is the cheaper way: when its instance's
 //! rasterization goes through at least [`MIN_COST`] triangles (or hull points) and
@@ -7,10 +8,13 @@
 //! triangles covering a few dozen words, keeps its footprint; a building's box (12
 //! triangles over hundreds of words) or a window's quad (2 triangles) is rasterized again
 //! instead, which costs about what keeping, finding and freeing its footprint would.
+//! Words not kept are recorded in a buffer reused from instance to instance, so such an
+//! instance allocates nothing.
 
 use std::sync::Arc;
 
 use super::diff::{InstanceKey, instance_key};
+use super::{Hit, Overflow, RetainedScorer};
 use crate::geometry::Instance;
 
 /// The fewest triangles (or hull points) whose rasterization a kept footprint saves.
@@ -20,44 +24,64 @@ pub(crate) const MIN_COST: usize = 32;
 pub(crate) const MAX_GRIDS: usize = 8;
 
 /// The cells one instance covers in each grid of a scorer: the non-zero coverage words
-/// it rasterizes to, as (word index, bits), grid after grid. What an instance covers
-/// depends on the instance alone, so two instances with equal keys share a footprint.
+/// it rasterizes to, as (word index, bits), grid after grid.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Grids<'a> {
+    words: &'a [(u32, u64)],
+    /// Where each grid's words end in `words`.
+    ends: &'a [u32; MAX_GRIDS],
+}
+
+impl<'a> Grids<'a> {
+    /// The words of grid `g`.
+    pub(crate) fn grid(self, g: usize) -> &'a [(u32, u64)] {
+        let start = g.checked_sub(1).map_or(0, |p| self.ends[p] as usize);
+        &self.words[start..self.ends[g] as usize]
+    }
+}
+
+/// A buffer that one instance's words are recorded into, reused from instance to
+/// instance.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Recorder {
+    words: Vec<(u32, u64)>,
+    ends: [u32; MAX_GRIDS],
+}
+
+impl Recorder {
+    /// Records `grids` grids (at most [`MAX_GRIDS`]), grid `g`'s words appended to the
+    /// buffer it is given by `fill(g, words)`.
+    fn record(&mut self, grids: usize, mut fill: impl FnMut(usize, &mut Vec<(u32, u64)>)) {
+        self.words.clear();
+        for g in 0..grids {
+            fill(g, &mut self.words);
+            self.ends[g] = self.words.len() as u32;
+        }
+    }
+
+    fn grids(&self) -> Grids<'_> {
+        Grids {
+            words: &self.words,
+            ends: &self.ends,
+        }
+    }
+}
+
+/// The words one instance covers, kept: the instance's key and a copy of what a
+/// [`Recorder`] recorded of it. Two instances with equal keys cover the same cells.
 #[derive(Debug)]
-pub(crate) struct Footprint {
+struct Footprint {
     key: InstanceKey,
     words: Box<[(u32, u64)]>,
-    /// Where each grid's words end in `words`.
     ends: [u32; MAX_GRIDS],
 }
 
 impl Footprint {
-    /// The footprint of `instance` in `grids` grids, grid `g`'s words written by
-    /// `fill(g, words)` (appended to `words`).
-    ///
-    /// # Panics
-    /// If `grids > MAX_GRIDS`.
-    pub(crate) fn of(
-        instance: &Instance,
-        grids: usize,
-        mut fill: impl FnMut(usize, &mut Vec<(u32, u64)>),
-    ) -> Footprint {
-        let mut words = Vec::new();
-        let mut ends = [0; MAX_GRIDS];
-        for (g, end) in ends[..grids].iter_mut().enumerate() {
-            fill(g, &mut words);
-            *end = words.len() as u32;
+    fn grids(&self) -> Grids<'_> {
+        Grids {
+            words: &self.words,
+            ends: &self.ends,
         }
-        Footprint {
-            key: instance_key(instance),
-            words: words.into(),
-            ends,
-        }
-    }
-
-    /// The words of grid `g`.
-    pub(crate) fn grid(&self, g: usize) -> &[(u32, u64)] {
-        let start = g.checked_sub(1).map_or(0, |p| self.ends[p] as usize);
-        &self.words[start..self.ends[g] as usize]
     }
 
     /// The bytes it holds.
@@ -78,11 +102,16 @@ impl Footprints {
         Footprints(Vec::with_capacity(n))
     }
 
-    /// Keeps `footprint` if `cost`, the triangles or points that rasterizing its
-    /// instance goes through, is at least [`MIN_COST`] and more than the words it holds
-    /// (see the [module documentation](self)).
-    pub(crate) fn keep(&mut self, footprint: Footprint, cost: usize) {
-        if cost >= MIN_COST && footprint.words.len() < cost {
+    /// Keeps a copy of the words `recorded` of `instance` if `cost`, the triangles or
+    /// points that rasterizing it goes through, is at least [`MIN_COST`] and more than
+    /// the words (see the [module documentation](self)).
+    fn keep(&mut self, instance: &Instance, recorded: &Recorder, cost: usize) {
+        if cost >= MIN_COST && recorded.words.len() < cost {
+            let footprint = Footprint {
+                key: instance_key(instance),
+                words: recorded.words.as_slice().into(),
+                ends: recorded.ends,
+            };
             let at = self.0.partition_point(|f| f.key <= footprint.key);
             self.0.insert(at, Arc::new(footprint));
         }
@@ -91,18 +120,100 @@ impl Footprints {
     /// Takes out the footprint of `instance`, if one was kept: the rule of
     /// [`keep`](Self::keep) depends on the instance alone, so an instance of the model
     /// whose footprint was worth keeping finds it.
-    pub(crate) fn take(&mut self, instance: &Instance) -> Option<Arc<Footprint>> {
+    fn take(&mut self, instance: &Instance) -> Option<Arc<Footprint>> {
         let key = instance_key(instance);
         let at = self.0.binary_search_by(|f| f.key.cmp(&key)).ok()?;
         Some(self.0.remove(at))
     }
 
     /// Hands the list and every footprint to `visit` as (address, bytes), to measure
-    /// memory ([`RetainedScorer::visit_blocks`](super::RetainedScorer::visit_blocks)).
+    /// memory ([`RetainedScorer::visit_blocks`]).
     pub(crate) fn visit(&self, visit: &mut dyn FnMut(usize, usize)) {
         visit(self.0.as_ptr() as usize, size_of_val(self.0.as_slice()));
         for footprint in &self.0 {
             visit(Arc::as_ptr(footprint) as usize, footprint.bytes());
         }
+    }
+}
+
+/// A [`RetainedScorer`] whose states count, per cell, the instances covering it, and
+/// keep [`Footprints`]: what it says about rasterizing and counting, from which adding
+/// an instance to a state and updating a state follow.
+pub(crate) trait Footprinted: RetainedScorer {
+    /// The grids (images) an instance is rasterized into, at most [`MAX_GRIDS`].
+    fn grids(&self) -> usize;
+
+    /// Appends the non-zero coverage words of `instance` in grid `g` to `words`.
+    fn rasterize_words(
+        &self,
+        instance: &Instance,
+        g: usize,
+        scratch: &mut Self::Scratch,
+        words: &mut Vec<(u32, u64)>,
+    );
+
+    /// The triangles or hull points that rasterizing `instance` goes through.
+    fn raster_cost(&self, instance: &Instance) -> usize;
+
+    /// Adds the cells of `grids` to `state`, or takes them away.
+    fn apply(&self, state: &mut Self::State, grids: Grids<'_>, hit: Hit) -> Result<(), Overflow>;
+
+    /// The footprints `state` keeps.
+    fn footprints(state: &mut Self::State) -> &mut Footprints;
+
+    /// The buffer instances are recorded into.
+    fn recorder(scratch: &mut Self::Scratch) -> &mut Recorder;
+
+    /// Rasterizes `instance` into the scratch's recorder.
+    fn record(&self, instance: &Instance, scratch: &mut Self::Scratch) -> Recorder {
+        let mut recorder = std::mem::take(Self::recorder(scratch));
+        recorder.record(self.grids(), |g, words| {
+            self.rasterize_words(instance, g, scratch, words)
+        });
+        recorder
+    }
+
+    /// Adds `instance` to `state`: rasterizes it, adds its cells and keeps its
+    /// footprint where that is worth it.
+    fn add(
+        &self,
+        state: &mut Self::State,
+        instance: &Instance,
+        scratch: &mut Self::Scratch,
+    ) -> Result<(), Overflow> {
+        let recorded = self.record(instance, scratch);
+        let added = self.apply(state, recorded.grids(), Hit::Add);
+        if added.is_ok() {
+            Self::footprints(state).keep(instance, &recorded, self.raster_cost(instance));
+        }
+        *Self::recorder(scratch) = recorded;
+        added
+    }
+
+    /// Takes each of `removed` out of `state` by replaying its kept footprint (or
+    /// rasterizing it, where none was worth keeping), and adds each of `added`: what
+    /// [`RetainedScorer::update`] does.
+    fn update_instances(
+        &self,
+        state: &mut Self::State,
+        removed: &[Instance],
+        added: &[Instance],
+        scratch: &mut Self::Scratch,
+    ) -> Result<(), Overflow> {
+        for instance in removed {
+            match Self::footprints(state).take(instance) {
+                Some(footprint) => self.apply(state, footprint.grids(), Hit::Remove)?,
+                None => {
+                    let recorded = self.record(instance, scratch);
+                    let taken = self.apply(state, recorded.grids(), Hit::Remove);
+                    *Self::recorder(scratch) = recorded;
+                    taken?;
+                }
+            }
+        }
+        for instance in added {
+            self.add(state, instance, scratch)?;
+        }
+        Ok(())
     }
 }

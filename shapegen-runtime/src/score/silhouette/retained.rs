@@ -6,7 +6,8 @@ use super::scorer::{SilhouetteScorer, SilhouetteScratch};
 use super::target::ImageTarget;
 use crate::geometry::Instance;
 use crate::score::retained::{
-    CellCounts, Footprint, Footprints, Hit, MAX_GRIDS, Overflow, PixelCounts, RetainedScorer,
+    CellCounts, Footprinted, Footprints, Grids, Hit, MAX_GRIDS, Overflow, PixelCounts, Recorder,
+    RetainedScorer,
 };
 
 const _: () = assert!(MAX_TARGETS <= MAX_GRIDS, "a footprint holds every target");
@@ -19,7 +20,7 @@ const _: () = assert!(MAX_TARGETS <= MAX_GRIDS, "a footprint holds every target"
 /// instance counts a pixel once, however many of its triangles cover it), so a pixel is
 /// covered by the model exactly when its count is above 0. Tiles are 8 rows of one
 /// 64-pixel word of the target's coverage rows. The instances' footprints (where worth
-/// keeping: see `Footprints::keep`) are shared
+/// keeping) are shared
 /// between the states of related models: a child's state holds its parent's, less those
 /// of the instances it lost, plus those of the instances it gained.
 #[derive(Clone, Debug)]
@@ -44,29 +45,42 @@ impl TargetState {
     }
 }
 
-impl SilhouetteScorer {
-    /// Rasterizes `instance` into every target and returns what it covers.
-    fn footprint(&self, instance: &Instance, scratch: &mut SilhouetteScratch) -> Footprint {
-        Footprint::of(instance, self.targets().len(), |k, words| {
-            let t = &self.targets()[k];
-            scratch.coverage.shape(t.width(), t.height());
-            self.rasterize_instance(t, t.view_projection(), instance, scratch);
-            scratch
-                .coverage
-                .drain(|w, bits| words.push((w as u32, bits)));
-        })
+impl Footprinted for SilhouetteScorer {
+    fn grids(&self) -> usize {
+        self.targets().len()
     }
 
-    /// Adds the pixels of `footprint` to `state`, or takes them away.
+    fn rasterize_words(
+        &self,
+        instance: &Instance,
+        k: usize,
+        scratch: &mut SilhouetteScratch,
+        words: &mut Vec<(u32, u64)>,
+    ) {
+        let t = &self.targets()[k];
+        scratch.coverage.shape(t.width(), t.height());
+        self.rasterize_instance(t, t.view_projection(), instance, scratch);
+        scratch
+            .coverage
+            .drain(|w, bits| words.push((w as u32, bits)));
+    }
+
+    /// Its mesh's hull points, or triangles.
+    fn raster_cost(&self, instance: &Instance) -> usize {
+        self.meshes
+            .get(instance.mesh.0 as usize)
+            .map_or(0, |m| m.hull.as_ref().map_or(m.triangles.len(), Vec::len))
+    }
+
     fn apply(
         &self,
         state: &mut SilhouetteState,
-        footprint: &Footprint,
+        grids: Grids<'_>,
         hit: Hit,
     ) -> Result<(), Overflow> {
         for (k, (t, part)) in self.targets().iter().zip(&mut state.targets).enumerate() {
             let TargetState { pixels, counts } = part;
-            for &(w, bits) in footprint.grid(k) {
+            for &(w, bits) in grids.grid(k) {
                 let first = pixels.apply(hit, w as usize, bits)?;
                 if first == 0 {
                     continue;
@@ -90,25 +104,12 @@ impl SilhouetteScorer {
         Ok(())
     }
 
-    /// Adds `instance` to `state`: rasterizes it, adds its pixels and keeps its
-    /// footprint.
-    fn add(
-        &self,
-        state: &mut SilhouetteState,
-        instance: &Instance,
-        scratch: &mut SilhouetteScratch,
-    ) -> Result<(), Overflow> {
-        let footprint = self.footprint(instance, scratch);
-        self.apply(state, &footprint, Hit::Add)?;
-        state.footprints.keep(footprint, self.raster_cost(instance));
-        Ok(())
+    fn footprints(state: &mut SilhouetteState) -> &mut Footprints {
+        &mut state.footprints
     }
 
-    /// What rasterizing `instance` goes through: its mesh's hull points, or triangles.
-    fn raster_cost(&self, instance: &Instance) -> usize {
-        self.meshes
-            .get(instance.mesh.0 as usize)
-            .map_or(0, |m| m.hull.as_ref().map_or(m.triangles.len(), Vec::len))
+    fn recorder(scratch: &mut SilhouetteScratch) -> &mut Recorder {
+        &mut scratch.recorder
     }
 }
 
@@ -130,8 +131,6 @@ impl RetainedScorer for SilhouetteScorer {
         Ok(state)
     }
 
-    /// Takes each removed instance away by replaying its kept footprint (or rasterizing
-    /// it, where none was worth keeping), and rasterizes each added one.
     fn update(
         &self,
         state: &mut SilhouetteState,
@@ -139,16 +138,7 @@ impl RetainedScorer for SilhouetteScorer {
         added: &[Instance],
         scratch: &mut SilhouetteScratch,
     ) -> Result<(), Overflow> {
-        for instance in removed {
-            match state.footprints.take(instance) {
-                Some(footprint) => self.apply(state, &footprint, Hit::Remove)?,
-                None => self.apply(state, &self.footprint(instance, scratch), Hit::Remove)?,
-            }
-        }
-        for instance in added {
-            self.add(state, instance, scratch)?;
-        }
-        Ok(())
+        self.update_instances(state, removed, added, scratch)
     }
 
     fn state_counts(&self, state: &SilhouetteState) -> SilhouetteCounts {

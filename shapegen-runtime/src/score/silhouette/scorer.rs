@@ -11,6 +11,7 @@ use super::raster::{
 use super::target::ImageTarget;
 use crate::geometry::{BoundMeshes, Instance};
 use crate::score::metrics::silhouette_iou;
+use crate::score::retained::Recorder;
 use crate::score::{Form, Scorer, smoothstep};
 
 /// Why a silhouette scorer cannot be built or asked.
@@ -113,6 +114,8 @@ pub struct SilhouetteScratch {
     fixed: Vec<[i32; 2]>,
     /// Working memory of [`Coverage::fill_mesh`].
     mesh: MeshScratch,
+    /// One instance's coverage words, as incremental counting records them.
+    pub(super) recorder: Recorder,
 }
 
 impl SilhouetteScorer {
