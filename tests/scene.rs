@@ -341,6 +341,27 @@ fn project_scenes_are_reachable() {
             (fitness - optimum).abs() < 1e-3,
             "{name} in the IoU form: fitness {fitness}"
         );
+        // In the F-score form (volumes only), its surface is the target's: F-score 1.
+        if name.starts_with("spaceship_fill") {
+            let fscore = Overrides {
+                sets: vec!["fitness.form=\"fscore\"".into()],
+                ..Overrides::default()
+            };
+            let path = scenes.join(format!("{name}.toml"));
+            let scene = Scene::open(path, &registry, &fscore).unwrap();
+            let (fitness, counts) = generator.visit(Check(&scene, &genome));
+            let AnyCounts::Volume(v) = &counts.parts()[0] else {
+                panic!("{name}: a volume scene");
+            };
+            assert!(
+                v.surface > 0 && v.surface == v.surface_near,
+                "{name}: {v:?}"
+            );
+            assert!(
+                (fitness - optimum).abs() < 1e-3,
+                "{name} in the F-score form: fitness {fitness}"
+            );
+        }
     }
 }
 
@@ -685,6 +706,47 @@ fn volumes_are_shaped_by_distance_when_asked() {
         &shaping("-1"),
         "volume.shaping_radius",
         "positive number of voxels",
+    );
+}
+
+#[test]
+fn the_fscore_form_takes_its_threshold_from_the_targets_unless_given() {
+    use shapegen::score::Form;
+    let fixture = Fixture::new();
+    let fscore = |extra: &str| {
+        VOLUME.replace("[[volume.target]]", &format!("{extra}\n[[volume.target]]"))
+            + "[fitness]\nform = \"fscore\"\n"
+    };
+    let threshold = |text: &str| {
+        let scene = fixture.load(text).unwrap();
+        let [ScorerGoal::Volume(goal)] = scene.scorers() else {
+            panic!("{:?}", scene.scorers());
+        };
+        match goal.form {
+            Form::FScore { good, threshold } => (good, threshold),
+            form => panic!("{form:?}"),
+        }
+    };
+    // The unit cube's diagonal, sqrt(3): 1 % of it, as runs report the F-score.
+    let (good, t) = threshold(&fscore(""));
+    assert_eq!(good, 1.0);
+    assert!((t - 0.01 * 3f64.sqrt()).abs() < 1e-6, "{t}");
+    assert_eq!(threshold(&fscore("fscore_threshold = 0.3")), (1.0, 0.3));
+    fixture.refuses(
+        &fscore("fscore_threshold = 0"),
+        "volume.fscore_threshold",
+        "not a distance above 0",
+    );
+    // Voxels of 0.25: 16 spans 64 of them.
+    fixture.refuses(
+        &fscore("fscore_threshold = 16"),
+        "volume.fscore_threshold",
+        "spans 64 voxels along x, where at most 63 are supported: give a threshold below 16",
+    );
+    fixture.refuses(
+        &(SILHOUETTE.to_owned() + "[fitness]\nform = \"fscore\"\n"),
+        "fitness.form",
+        "`fscore` is for volume goals",
     );
 }
 

@@ -94,6 +94,8 @@ pub(super) enum FormName {
     Weighted,
     /// The intersection over union that runs report, times `good`.
     Iou,
+    /// Volumes only: the surface F-score at `volume.fscore_threshold`, times `good`.
+    FScore,
 }
 
 fn one() -> f64 {
@@ -118,6 +120,8 @@ pub(super) struct VolumeFile {
     /// Opt-in distance shaping: the distance in voxels over which an off-target voxel's
     /// cost rises to its full weight.
     pub shaping_radius: Option<f64>,
+    /// The `fscore` form's threshold, in world units.
+    pub fscore_threshold: Option<f64>,
     #[serde(default)]
     pub target: Vec<VolumeTargetFile>,
 }

@@ -7,6 +7,7 @@ use std::mem::size_of;
 use shapegen_runtime::graph::{GeneratorGraph, NodeDesc};
 use shapegen_runtime::optimize::multi::MultiGa;
 use shapegen_runtime::optimize::{Best, Held, Optimizer};
+use shapegen_runtime::score::Form;
 use shapegen_runtime::score::objective::Objective;
 use shapegen_runtime::score::retained::DEFAULT_MAX_BYTES;
 use shapegen_runtime::{Grammar, Instance};
@@ -277,6 +278,26 @@ impl Scene {
                 setting: format!("{setting}, --threads {}", shape.threads),
                 bytes: (n / 2).saturating_mul(shape.threads as u64),
             });
+        }
+        for goal in self.scorers() {
+            if let ScorerGoal::Volume(v) = goal
+                && let Form::FScore { threshold, .. } = v.form
+            {
+                // The target's surface, the voxels near it and four edge bitsets; per
+                // thread, the model's surface dilated once per voxel of half-width.
+                let n = v.grid.voxel_count();
+                let half = (threshold / v.grid.cell().x).floor() as u64 + 1;
+                let bitsets = 6 + half.saturating_mul(shape.threads as u64);
+                parts.push(MemoryPart {
+                    what: format!("for the fscore form's {bitsets} bitsets of {n} voxels"),
+                    setting: format!(
+                        "fitness.form = \"fscore\", volume.fscore_threshold = {threshold}, \
+                         --threads {}",
+                        shape.threads
+                    ),
+                    bytes: (n / 8).saturating_mul(bitsets),
+                });
+            }
         }
         if shape.incremental && cells > 0 {
             // 16-bit counts of every cell for each model kept, up to the bound.

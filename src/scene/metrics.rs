@@ -182,13 +182,18 @@ fn surface(scene: &Scene, model: &[Triangle]) -> Option<SurfaceDistance> {
         .flat_map(|volume| volume.targets.iter().filter(|t| t.inside > 0.0))
         .map(|t| &t.mesh)
         .collect();
+    let threshold = f_score_threshold(meshes.iter().copied())?;
+    let target: Vec<Triangle> = meshes.iter().flat_map(|m| mesh_triangles(m)).collect();
+    SurfaceDistance::between(model, &target, threshold, SURFACE_SAMPLES, 0)
+}
+
+/// [`F_SCORE_THRESHOLD`] of the diagonal of the bounding box of `meshes`; `None` when
+/// none has a bounding box.
+pub(super) fn f_score_threshold<'a>(meshes: impl Iterator<Item = &'a Mesh>) -> Option<f64> {
     let (lo, hi) = meshes
-        .iter()
         .filter_map(|m| m.bounds())
         .reduce(|(lo, hi), (l, h)| (lo.min(l), hi.max(h)))?;
-    let target: Vec<Triangle> = meshes.iter().flat_map(|m| mesh_triangles(m)).collect();
-    let threshold = F_SCORE_THRESHOLD * f64::from((hi - lo).length());
-    SurfaceDistance::between(model, &target, threshold, SURFACE_SAMPLES, 0)
+    Some(F_SCORE_THRESHOLD * f64::from((hi - lo).length()))
 }
 
 /// The model's surface against each `chamfer` objective's whole cloud.

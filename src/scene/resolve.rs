@@ -8,7 +8,7 @@ use shapegen_runtime::Site;
 use shapegen_runtime::genome::Limits;
 use shapegen_runtime::geometry::Mesh;
 use shapegen_runtime::score::silhouette::{Camera, ImageTarget, MaskRule, OrbitCamera};
-use shapegen_runtime::score::volume::{Grid, VolumeTarget};
+use shapegen_runtime::score::volume::{Grid, MAX_HALF_WIDTH, VolumeTarget};
 use shapegen_runtime::score::{Form, LengthPenalty};
 
 use super::file::{
@@ -16,6 +16,7 @@ use super::file::{
     SilhouetteFile, VolumeFile,
 };
 use super::image::read_image;
+use super::metrics::f_score_threshold;
 use super::{
     Method, ObjectiveGoal, Overrides, Scene, SceneError, ScorerGoal, SettingsKeyError,
     SilhouetteGoal, ValueError, VolumeGoal,
@@ -297,13 +298,14 @@ impl<'a> Resolver<'a> {
         Ok((limits, l.optimal_len))
     }
 
+    /// The form `form` of table `table` (`volume` or `silhouette`); `threshold` is the
+    /// F-score's, which only a volume has.
     fn form(
         &self,
         table: &str,
         form: FormName,
-        good: f64,
-        bad: f64,
-        overlap: f64,
+        (good, bad, overlap): (f64, f64, f64),
+        threshold: Option<f64>,
     ) -> Result<Form, SceneError> {
         Ok(match form {
             FormName::Smooth => Form::Smooth {
@@ -316,7 +318,61 @@ impl<'a> Resolver<'a> {
             FormName::Iou => Form::Iou {
                 good: self.finite(&format!("{table}.good"), good)?,
             },
+            FormName::FScore => match threshold {
+                Some(threshold) => Form::FScore {
+                    good: self.finite(&format!("{table}.good"), good)?,
+                    threshold,
+                },
+                None => {
+                    return Err(self.invalid(
+                        "fitness.form",
+                        format!(
+                            "`fscore` is for volume goals; a [{table}] takes \"smooth\", \
+                             \"weighted\" or \"iou\""
+                        ),
+                    ));
+                }
+            },
         })
+    }
+
+    /// The `fscore` form's threshold: `volume.fscore_threshold`, or
+    /// [`F_SCORE_THRESHOLD`](super::F_SCORE_THRESHOLD) of the diagonal of the attracting targets' bounding box, as
+    /// runs report the F-score.
+    fn fscore_threshold(
+        &self,
+        v: &VolumeFile,
+        grid: &Grid,
+        targets: &[VolumeTarget],
+    ) -> Result<f64, SceneError> {
+        const KEY: &str = "volume.fscore_threshold";
+        let t = match v.fscore_threshold {
+            Some(t) if !(t.is_finite() && t > 0.0) => {
+                return Err(self.invalid(KEY, format!("{t} is not a distance above 0")));
+            }
+            Some(t) => t,
+            None => f_score_threshold(targets.iter().filter(|t| t.inside > 0.0).map(|t| &t.mesh))
+                .filter(|&t| t > 0.0)
+                .ok_or_else(|| {
+                    self.invalid(
+                        KEY,
+                        "no target attracts (inside above 0) with a bounding box to take \
+                         the threshold from: give it, in world units",
+                    )
+                })?,
+        };
+        let voxels = (t / grid.cell().x).floor();
+        if voxels > MAX_HALF_WIDTH as f64 {
+            return Err(self.invalid(
+                KEY,
+                format!(
+                    "{t} spans {voxels} voxels along x, where at most {MAX_HALF_WIDTH} are \
+                     supported: give a threshold below {} or a coarser grid",
+                    (MAX_HALF_WIDTH + 1) as f64 * grid.cell().x
+                ),
+            ));
+        }
+        Ok(t)
     }
 
     fn volume(&self, v: &VolumeFile, form: FormName) -> Result<VolumeGoal, SceneError> {
@@ -345,7 +401,11 @@ impl<'a> Resolver<'a> {
                 fill: t.fill,
             });
         }
-        let form = self.form("volume", form, v.good, v.bad, v.overlap)?;
+        let threshold = match form {
+            FormName::FScore => Some(self.fscore_threshold(v, &grid, &targets)?),
+            _ => None,
+        };
+        let form = self.form("volume", form, (v.good, v.bad, v.overlap), threshold)?;
         let shaping_radius = match v.shaping_radius {
             Some(r) if !(r.is_finite() && r > 0.0) => {
                 return Err(self.invalid(
@@ -382,7 +442,7 @@ impl<'a> Resolver<'a> {
                     .map_err(|err| self.refused("silhouette.shaping_radius", err)),
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let form = self.form("silhouette", form, s.good, s.bad, 0.0)?;
+        let form = self.form("silhouette", form, (s.good, s.bad, 0.0), None)?;
         Ok(SilhouetteGoal { targets, form })
     }
 

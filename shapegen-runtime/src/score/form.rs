@@ -52,6 +52,18 @@ pub enum Form {
         /// The fitness of a model that covers exactly the target.
         good: f64,
     },
+    /// Volumes only: `good` times the F-score at `threshold` of the model's surface
+    /// against the target's, counted on voxel centres (see
+    /// [`volume`](super::volume#the-f-score-form)): the harmonic mean of the share of the
+    /// model's surface within `threshold` of the target's surface and the share of the
+    /// target's surface within `threshold` of the model's.
+    FScore {
+        /// The fitness of a model whose surface lies within `threshold` of the
+        /// target's everywhere, and the target's of it.
+        good: f64,
+        /// The distance, in world units, within which two surfaces match.
+        threshold: f64,
+    },
 }
 
 /// The genome-length term of the smoothstep form: `weight * S(from, to, genes)`,

@@ -36,7 +36,7 @@ pub type Triangle = [Vec3; 3];
 /// pixels and `T` the target pixels ([`ImageTarget::target_pixels`]); 0 when both are
 /// empty.
 pub fn silhouette_iou(target: &ImageTarget, counts: &TargetCounts) -> f64 {
-    iou(
+    share(
         u64::from(counts.on_target),
         target.target_pixels() + u64::from(counts.off_target),
     )
@@ -47,15 +47,25 @@ pub fn silhouette_iou(target: &ImageTarget, counts: &TargetCounts) -> f64 {
 /// (weight above 0), `outside` the covered other voxels of the grid and `T` the target
 /// voxels; what a model covers beyond the grid is not counted. 0 when both are empty.
 pub fn voxel_iou(scorer: &VolumeScorer, counts: &VolumeCounts) -> f64 {
-    iou(counts.inside, scorer.target_voxels() + counts.outside)
+    share(counts.inside, scorer.target_voxels() + counts.outside)
 }
 
-/// `intersection / union`, 0 when the union is empty.
-pub(crate) fn iou(intersection: u64, union: u64) -> f64 {
-    if union == 0 {
+/// `part / whole`, 0 when the whole is empty: an IoU is the intersection's share of
+/// the union, a precision the share of the model's surface near the target's.
+pub(crate) fn share(part: u64, whole: u64) -> f64 {
+    if whole == 0 {
         0.0
     } else {
-        intersection as f64 / union as f64
+        part as f64 / whole as f64
+    }
+}
+
+/// The harmonic mean of `precision` and `recall`, 0 when both are 0.
+pub(crate) fn f_score(precision: f64, recall: f64) -> f64 {
+    if precision + recall > 0.0 {
+        2.0 * precision * recall / (precision + recall)
+    } else {
+        0.0
     }
 }
 
@@ -154,14 +164,9 @@ impl SurfaceDistance {
     fn of_samples(a: &[DVec3], b: &[DVec3], threshold: f64) -> SurfaceDistance {
         let (a_to_b, precision) = nearest(a, b, threshold);
         let (b_to_a, recall) = nearest(b, a, threshold);
-        let f_score = if precision + recall > 0.0 {
-            2.0 * precision * recall / (precision + recall)
-        } else {
-            0.0
-        };
         SurfaceDistance {
             chamfer: (a_to_b + b_to_a) / 2.0,
-            f_score,
+            f_score: f_score(precision, recall),
             threshold,
             samples: a.len(),
         }
@@ -294,8 +299,10 @@ mod tests {
     }
 
     #[test]
-    fn iou_is_intersection_over_union_and_zero_when_empty() {
-        assert_eq!(iou(3, 12), 0.25);
-        assert_eq!(iou(0, 0), 0.0);
+    fn shares_and_f_scores_are_zero_when_empty() {
+        assert_eq!(share(3, 12), 0.25);
+        assert_eq!(share(0, 0), 0.0);
+        assert_eq!(f_score(0.5, 1.0), 2.0 / 3.0);
+        assert_eq!(f_score(0.0, 0.0), 0.0);
     }
 }

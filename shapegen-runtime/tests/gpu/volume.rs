@@ -30,7 +30,28 @@ pub const TESTS: &[GpuTest] = &[
         "volume::the_gpu_counts_other_meshes_and_facets_exactly_as_the_cpu_does",
         the_gpu_counts_other_meshes_and_facets_exactly_as_the_cpu_does,
     ),
+    (
+        "volume::the_fscore_form_is_refused_on_the_gpu",
+        the_fscore_form_is_refused_on_the_gpu,
+    ),
 ];
+
+/// The F-score form's surface counts are made on the CPU only: the GPU scorer says so
+/// rather than count without them.
+fn the_fscore_form_is_refused_on_the_gpu(gpu: &GpuContext) {
+    let grid = Grid::new(Vec3::splat(-1.0), Vec3::splat(1.0), [8, 8, 8]).unwrap();
+    let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"]).unwrap();
+    let form = Form::FScore {
+        good: 1.0,
+        threshold: 0.3,
+    };
+    let cube = target("cube", block(Vec3::splat(-0.5), Vec3::splat(0.5)), 1.0, -1.0);
+    let scorer = VolumeScorer::new(grid, &[cube], &meshes, form).unwrap();
+    let Err(err) = GpuVolumeScorer::new(gpu, &scorer) else {
+        panic!("the GPU counted the fscore form");
+    };
+    assert!(err.to_string().contains("CPU only"), "{err}");
+}
 
 /// The CPU's counts of every model of `batch`.
 fn cpu_counts(scorer: &VolumeScorer, batch: &InstanceBatch) -> Vec<VolumeCounts> {

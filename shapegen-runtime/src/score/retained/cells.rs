@@ -89,6 +89,34 @@ impl CellCounts {
             .map_or(0, |t| t.counts[word * 64 + bit as usize])
     }
 
+    /// Calls `visit(tile, word, bits)` for each word of every tile in use whose cells
+    /// are not all zero, `bits` the cells holding at least one hit.
+    ///
+    /// ```
+    /// use shapegen_runtime::score::retained::CellCounts;
+    ///
+    /// let mut counts = CellCounts::new(4);
+    /// counts.add(2, 5, 0b1010).unwrap();
+    /// counts.add(2, 5, 0b0010).unwrap();
+    /// let mut seen = Vec::new();
+    /// counts.visit_words(|tile, word, bits| seen.push((tile, word, bits)));
+    /// assert_eq!(seen, [(2, 5, 0b1010)]);
+    /// ```
+    pub fn visit_words(&self, mut visit: impl FnMut(usize, usize, u64)) {
+        for (t, tile) in self.tiles.iter().enumerate() {
+            let Some(tile) = tile else { continue };
+            for (word, cells) in tile.counts.chunks_exact(64).enumerate() {
+                let bits = cells
+                    .iter()
+                    .enumerate()
+                    .fold(0u64, |m, (b, &c)| m | u64::from(c != 0) << b);
+                if bits != 0 {
+                    visit(t, word, bits);
+                }
+            }
+        }
+    }
+
     /// Adds one hit to each cell set in `bits`, in word `word` of tile `tile`. Fails,
     /// leaving the counts unspecified, when a count would pass 65 535.
     ///

@@ -35,6 +35,12 @@ pub enum SilhouetteError {
          self-overlap term, use 0"
     )]
     Overlap(f64),
+    /// The F-score form, which is for volumes.
+    #[error(
+        "the fscore form is for volume goals; a silhouette scorer takes the smooth, \
+         weighted or iou form"
+    )]
+    FScore,
     /// A target index is out of range.
     #[error("target {index} asked for; the scorer has {count} targets (0..{count})")]
     NoSuchTarget {
@@ -139,6 +145,9 @@ impl SilhouetteScorer {
             && overlap != 0.0
         {
             return Err(SilhouetteError::Overlap(overlap));
+        }
+        if let Form::FScore { .. } = form {
+            return Err(SilhouetteError::FScore);
         }
         Ok(SilhouetteScorer {
             targets,
@@ -344,6 +353,7 @@ pub(super) fn fitness(form: Form, targets: &[ImageTarget], counts: &SilhouetteCo
                     - bad * smoothstep(0.0, total, t.off_target_cost(c))
             }
             Form::Iou { good } => good * silhouette_iou(t, c),
+            Form::FScore { .. } => unreachable!("SilhouetteScorer::new refuses the form"),
         })
         .sum()
 }

@@ -15,13 +15,15 @@ const FACET_SNAP: f64 = 4096.0;
 
 /// Working memory of one worker counting models with a [`VolumeScorer`]: a bitset over
 /// the grid of the voxels covered, one of those covered more than once, and the list
-/// of the words of the first that are not zero (the second's are a subset).
+/// of the words of the first that are not zero (the second's are a subset); with the
+/// F-score form, the model's surface dilated along x.
 #[derive(Clone, Debug)]
 pub struct VolumeScratch {
-    covered: Vec<u64>,
+    pub(super) covered: Vec<u64>,
     twice: Vec<u64>,
-    touched: Vec<u32>,
+    pub(super) touched: Vec<u32>,
     pub(super) voxelizer: Voxelizer,
+    pub(super) dilated: Vec<Vec<u64>>,
 }
 
 impl VolumeScratch {
@@ -32,6 +34,7 @@ impl VolumeScratch {
             twice: vec![0; words],
             touched: Vec::new(),
             voxelizer: Voxelizer::default(),
+            dilated: Vec::new(),
         }
     }
 }
@@ -246,6 +249,7 @@ impl VolumeScorer {
             twice,
             touched,
             voxelizer,
+            dilated,
         } = scratch;
         let mut tally = Tally {
             scorer: self,
@@ -258,7 +262,12 @@ impl VolumeScorer {
             self.walk(instance, voxelizer, &mut tally);
         }
         self.walk_facets(instances, voxelizer, &mut tally);
-        let counts = tally.counts;
+        let counts = self.add_surface(
+            tally.counts,
+            covered,
+            touched.iter().map(|&w| w as usize),
+            dilated,
+        );
         if let Some(out) = keep {
             out.clear();
             out.resize(covered.len(), 0);

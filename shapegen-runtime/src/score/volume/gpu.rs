@@ -184,6 +184,12 @@ impl<'a> GpuVolumeScorer<'a> {
     /// largest storage binding; [`GpuError::Device`] when the device rejects the shader
     /// or a buffer.
     pub fn new(ctx: &'a GpuContext, scorer: &'a VolumeScorer) -> Result<Self, GpuError> {
+        if scorer.target_surface_voxels().is_some() {
+            return Err(GpuError::Unsupported(
+                "the fscore form's surface counts are made on the CPU only; count on the CPU"
+                    .into(),
+            ));
+        }
         let boxes_only = scorer
             .meshes()
             .iter()

@@ -29,6 +29,17 @@
 //! below it by what the model covers beyond the grid, so that a search gains nothing by
 //! growing out of it.
 //!
+//! # The F-score form
+//! With [`Form::FScore`], the scorer also counts the model's surface voxels (those it
+//! covers with a face neighbour it does not cover), `surface`, those within the
+//! threshold of the target's surface voxels, `surface_near`, and the target's surface
+//! voxels within the threshold of the model's, `target_surface_near`; the fitness is
+//! `good` times the harmonic mean of the precision `surface_near / (surface +
+//! out_of_grid_hits)` and the recall `target_surface_near / T_s`, `T_s` the target's
+//! surface voxels ([`VolumeScorer::target_surface_voxels`]). These counts are made on
+//! the CPU only ([`GpuVolumeScorer::new`] refuses the form); the other forms leave them
+//! 0.
+//!
 //! # As the original counts
 //! The original voxelizes each instance on its own over its span, the box of voxel
 //! indices between the rounded positions of its transformed vertices (each rounded to
@@ -120,6 +131,7 @@ mod parts;
 mod quant;
 mod retained;
 mod span;
+mod surface;
 mod winding;
 
 pub use classes::{MAX_CLASSES, VoxelClasses};
@@ -127,10 +139,14 @@ pub use count::VolumeScratch;
 pub use gpu::GpuVolumeScorer;
 pub use grid::{Grid, GridError, MAX_VOXELS};
 pub use retained::VolumeState;
+pub use surface::MAX_HALF_WIDTH;
+
+use std::sync::Arc;
 
 use super::{Form, Scorer, metrics, smoothstep};
 use crate::geometry::{BoundMeshes, Instance, Mesh, MeshError, MeshId};
 use parts::PartKind;
+use surface::{SurfaceBand, SurfaceCounts};
 
 /// A volume to fill (or avoid): a mesh in world space, voxelized by its [`Fill`] rule, and the
 /// weights a model's voxel scores inside and outside it.
@@ -199,6 +215,12 @@ pub enum VolumeError {
         /// How many distinct weights there are.
         classes: usize,
     },
+    /// The F-score form's threshold cannot be used.
+    #[error("volume F-score: {reason}")]
+    Threshold {
+        /// What is wrong, and what would be valid.
+        reason: String,
+    },
     /// [Distance shaping](VoxelClasses::shaped) cannot be done.
     #[error("volume distance shaping: {reason}")]
     Shaping {
@@ -232,6 +254,28 @@ pub struct VolumeCounts {
     /// scene lacks stay 0. Not serialized: `inside` and `outside` sum them up.
     #[serde(skip)]
     pub classes: [u64; MAX_CLASSES],
+    /// With [`Form::FScore`], the model's surface voxels in the grid (0 in other forms).
+    #[serde(skip)]
+    pub surface: u64,
+    /// With [`Form::FScore`], those within the threshold of the target's surface.
+    #[serde(skip)]
+    pub surface_near: u64,
+    /// With [`Form::FScore`], the target's surface voxels within the threshold of the
+    /// model's surface.
+    #[serde(skip)]
+    pub target_surface_near: u64,
+}
+
+impl VolumeCounts {
+    /// `self` with the F-score counts `c`.
+    fn with_surface(self, c: SurfaceCounts) -> VolumeCounts {
+        VolumeCounts {
+            surface: c.surface,
+            surface_near: c.near,
+            target_surface_near: c.target_near,
+            ..self
+        }
+    }
 }
 
 /// Scores models by the voxels they cover on a grid against weighted target volumes.
@@ -249,6 +293,8 @@ pub struct VolumeScorer {
     meshes: BoundMeshes,
     form: Form,
     outside_sum: f64,
+    /// With [`Form::FScore`], what its counts need of the grid and the targets.
+    surface: Option<Arc<SurfaceBand>>,
 }
 
 impl VolumeScorer {
@@ -256,23 +302,34 @@ impl VolumeScorer {
     /// against `targets` on `grid`, giving fitness in `form`.
     ///
     /// Fails as [`VoxelClasses::new`] does: a malformed target mesh, a weight that is
-    /// not finite, more than [`MAX_CLASSES`] distinct combined weights. A target mesh
-    /// that is not closed is no error: parity does what it does with it.
+    /// not finite, more than [`MAX_CLASSES`] distinct combined weights; and with
+    /// [`Form::FScore`], on a threshold that is not a distance above 0 or that spans
+    /// more than [`MAX_HALF_WIDTH`] voxels along x. A target mesh that is not closed is
+    /// no error: parity does what it does with it.
     pub fn new(
         grid: Grid,
         targets: &[VolumeTarget],
         meshes: &BoundMeshes,
         form: Form,
     ) -> Result<VolumeScorer, VolumeError> {
+        let classes = VoxelClasses::new(&grid, targets)?;
+        let surface = match form {
+            Form::FScore { threshold, .. } => Some(Arc::new(
+                SurfaceBand::new(&classes, threshold)
+                    .map_err(|reason| VolumeError::Threshold { reason })?,
+            )),
+            _ => None,
+        };
         let mut scorer = VolumeScorer {
             grid,
-            classes: VoxelClasses::new(&grid, targets)?,
+            classes,
             class_bits: Vec::new(),
             class_stride: 0,
             parts: meshes.iter().map(|(_, _, m)| PartKind::of(m)).collect(),
             meshes: meshes.clone(),
             form,
             outside_sum: targets.iter().map(|t| t.outside).sum(),
+            surface,
         };
         scorer.build_class_bits();
         Ok(scorer)
@@ -325,6 +382,35 @@ impl VolumeScorer {
     #[inline]
     pub fn form(&self) -> Form {
         self.form
+    }
+
+    /// With [`Form::FScore`], the number of the target's surface voxels (target voxels
+    /// with a face neighbour that is not one, or outside the grid); `None` in other
+    /// forms.
+    pub fn target_surface_voxels(&self) -> Option<u64> {
+        self.surface.as_ref().map(|s| s.target_count())
+    }
+
+    /// Bytes the scorer holds beyond its classes: with [`Form::FScore`], the target's
+    /// surface and the voxels near it.
+    pub fn surface_bytes(&self) -> usize {
+        self.surface.as_ref().map_or(0, |s| s.bytes())
+    }
+
+    /// The F-score counts of the model covering `covered` (a bitset over the grid whose
+    /// words not in `touched` are zero), added to `counts`; `counts` unchanged in other
+    /// forms.
+    pub(crate) fn add_surface(
+        &self,
+        counts: VolumeCounts,
+        covered: &[u64],
+        touched: impl Iterator<Item = usize>,
+        dilated: &mut Vec<Vec<u64>>,
+    ) -> VolumeCounts {
+        match &self.surface {
+            Some(band) => counts.with_surface(band.count(covered, touched, dilated)),
+            None => counts,
+        }
     }
 
     /// The grammar's meshes.
@@ -420,7 +506,15 @@ impl Scorer for VolumeScorer {
             }
             Form::Iou { good } => {
                 let union = self.target_voxels() + counts.outside + counts.out_of_grid_hits;
-                good * metrics::iou(counts.inside, union)
+                good * metrics::share(counts.inside, union)
+            }
+            Form::FScore { good, .. } => {
+                let model = counts.surface.saturating_add(counts.out_of_grid_hits);
+                let target = self.target_surface_voxels().unwrap_or(0);
+                good * metrics::f_score(
+                    metrics::share(counts.surface_near, model),
+                    metrics::share(counts.target_surface_near, target),
+                )
             }
         }
     }

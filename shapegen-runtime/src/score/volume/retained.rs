@@ -142,6 +142,37 @@ impl VolumeScorer {
     }
 }
 
+impl VolumeScorer {
+    /// With the F-score form, counts the state's surface from its cells (in `scratch`'s
+    /// bitset, cleared again after).
+    fn count_surface(&self, state: &mut VolumeState, scratch: &mut VolumeScratch) {
+        if self.target_surface_voxels().is_none() {
+            return;
+        }
+        let VolumeScratch {
+            covered,
+            touched,
+            dilated,
+            ..
+        } = scratch;
+        state.cells.visit_words(|tile, word, bits| {
+            let w = tile * TILE_WORDS + word;
+            covered[w] = bits;
+            touched.push(w as u32);
+        });
+        state.counts = self.add_surface(
+            state.counts,
+            covered,
+            touched.iter().map(|&w| w as usize),
+            dilated,
+        );
+        for &w in touched.iter() {
+            covered[w as usize] = 0;
+        }
+        touched.clear();
+    }
+}
+
 impl RetainedScorer for VolumeScorer {
     type State = VolumeState;
 
@@ -162,6 +193,7 @@ impl RetainedScorer for VolumeScorer {
         };
         self.apply(&mut state, instances, false, scratch)?;
         self.apply_facets(&mut state, false, scratch)?;
+        self.count_surface(&mut state, scratch);
         Ok(state)
     }
 
@@ -189,6 +221,7 @@ impl RetainedScorer for VolumeScorer {
         if facets_change {
             self.apply_facets(state, false, scratch)?;
         }
+        self.count_surface(state, scratch);
         Ok(())
     }
 

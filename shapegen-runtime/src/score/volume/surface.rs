@@ -1,0 +1,589 @@
+//! The surface F-score of [`Form::FScore`](crate::score::Form::FScore), counted on the
+//! grid's voxels.
+//!
+//! A *surface voxel* of a set of voxels is one of them with a face neighbour outside the
+//! set (or outside the grid). The target's surface voxels are those of its target
+//! voxels (class weight above 0), found once; a model's, those of the voxels it covers.
+//! Two voxels are *within* the threshold `d` when the distance between their centres is
+//! at most `d`. Then, with `S` the model's surface voxels and `T` the target's:
+//!
+//! - precision is the share of `S` within `d` of some voxel of `T`, where every covered
+//!   lattice point beyond the grid counts as a model surface voxel far from it (so that
+//!   a search gains nothing by growing out of the grid);
+//! - recall is the share of `T` within `d` of some voxel of `S`;
+//! - the F-score is their harmonic mean, 0 when both are 0.
+//!
+//! This is the F-score at a threshold that reconstruction papers report (Tatarchenko et
+//! al. 2019), on voxel centres rather than on points sampled from the surfaces: it
+//! differs from the sampled measure runs report
+//! ([`SurfaceDistance`](crate::score::metrics::SurfaceDistance)) by up to about a voxel
+//! in where a surface lies.
+//!
+//! Counting a model costs one pass over the words it covers (its surface) and one over
+//! the words of the target's surface for each row of the ball of radius `d` (recall):
+//! the model's surface near the target is dilated along x once per voxel of the ball's
+//! half-width, then each row of the ball is a shift of whole grid rows.
+
+use super::Grid;
+use super::classes::VoxelClasses;
+
+/// Whether voxels `(dx, dy, dz)` apart on a grid of voxel size `cell` lie within
+/// `threshold` of each other. The one test of the distance, so that every count agrees.
+#[inline]
+pub(crate) fn within(cell: [f64; 3], [dx, dy, dz]: [i64; 3], threshold: f64) -> bool {
+    let (x, y, z) = (
+        dx as f64 * cell[0],
+        dy as f64 * cell[1],
+        dz as f64 * cell[2],
+    );
+    x * x + y * y + z * z <= threshold * threshold
+}
+
+/// The largest half-width along x, in voxels, that the ball may have: a model surface
+/// word is dilated into its neighbours only.
+pub const MAX_HALF_WIDTH: i64 = 63;
+
+/// The word whose bit `b` is bit `64 w + b + offset` of `bits` (0 beyond its ends).
+#[inline]
+fn shifted(bits: &[u64], w: usize, offset: i64) -> u64 {
+    let start = w as i64 * 64 + offset;
+    let (q, r) = (start.div_euclid(64), start.rem_euclid(64) as u32);
+    let word = |i: i64| usize::try_from(i).ok().and_then(|i| bits.get(i)).copied();
+    let lo = word(q).unwrap_or(0);
+    if r == 0 {
+        lo
+    } else {
+        (lo >> r) | (word(q + 1).unwrap_or(0) << (64 - r))
+    }
+}
+
+/// One row of the ball: the voxels `(-half..=half, dy, dz)` from its centre.
+#[derive(Clone, Copy, Debug)]
+struct Row {
+    /// `dy nx + dz nx ny`: where the row lies, in voxel numbers.
+    offset: i64,
+    /// Its half-width along x.
+    half: usize,
+    /// The index of its `dy` in [`SurfaceBand::dys`], `None` for `dy = 0`.
+    dy: Option<usize>,
+}
+
+/// The F-score counts of one model.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct SurfaceCounts {
+    /// Its surface voxels in the grid.
+    pub surface: u64,
+    /// Those within the threshold of the target's surface.
+    pub near: u64,
+    /// The target's surface voxels within the threshold of the model's surface.
+    pub target_near: u64,
+}
+
+/// What the F-score needs of the grid and the targets, made once per scorer (see the
+/// [module](self) docs).
+#[derive(Clone, Debug)]
+pub(crate) struct SurfaceBand {
+    /// `nx` and `nx ny`: the voxel numbers one step along y and along z.
+    steps: [i64; 2],
+    /// Voxels at the first x, the last x, the first y and the last y of the grid.
+    edges: [Vec<u64>; 4],
+    /// The target's surface voxels.
+    target: Vec<u64>,
+    /// The words of `target` that are not zero.
+    target_words: Vec<u32>,
+    /// How many target surface voxels there are.
+    target_count: u64,
+    /// Voxels within the threshold of the target's surface.
+    near: Vec<u64>,
+    /// The words of `near` that are not zero.
+    near_words: Vec<u32>,
+    /// Those words and their neighbours either side, where the dilation along x may
+    /// reach.
+    region: Vec<u32>,
+    /// The rows of the ball.
+    rows: Vec<Row>,
+    /// The distinct `dy` of the rows but 0.
+    dys: Vec<i64>,
+    /// Per word of `target_words` and per `dy` of `dys`, the voxels whose `y + dy` lies
+    /// in the grid.
+    y_masks: Vec<u64>,
+    /// The ball's half-width along x.
+    half: usize,
+}
+
+/// Sets bit `v` of `bits`.
+fn set(bits: &mut [u64], v: usize) {
+    bits[v / 64] |= 1 << (v % 64);
+}
+
+/// Whether bit `v` of `bits` is set.
+fn get(bits: &[u64], v: usize) -> bool {
+    bits[v / 64] >> (v % 64) & 1 == 1
+}
+
+/// The voxels of word `w` whose `y + dy` lies in the grid.
+fn y_mask(grid: &Grid, w: usize, dy: i64) -> u64 {
+    let ny = i64::from(grid.resolution()[1]);
+    let count = grid.voxel_count() as usize;
+    (0..64)
+        .filter(|b| {
+            let v = w * 64 + b;
+            v < count && (0..ny).contains(&(grid.voxel(v)[1] + dy))
+        })
+        .fold(0, |m, b| m | 1 << b)
+}
+
+/// The surface voxels of `inside` (a bitset over `grid`), by their face neighbours.
+pub(crate) fn surface_voxels(grid: &Grid, inside: &[u64]) -> Vec<u64> {
+    let mut out = vec![0u64; inside.len()];
+    for v in (0..grid.voxel_count() as usize).filter(|&v| get(inside, v)) {
+        let [i, j, k] = grid.voxel(v);
+        let open = [
+            [1, 0, 0],
+            [-1, 0, 0],
+            [0, 1, 0],
+            [0, -1, 0],
+            [0, 0, 1],
+            [0, 0, -1],
+        ]
+        .iter()
+        .any(|[a, b, c]| {
+            grid.index([i + a, j + b, k + c])
+                .is_none_or(|n| !get(inside, n))
+        });
+        if open {
+            set(&mut out, v);
+        }
+    }
+    out
+}
+
+/// The words of `bits` that are not zero.
+fn nonzero_words(bits: &[u64]) -> Vec<u32> {
+    (0..bits.len() as u32)
+        .filter(|&w| bits[w as usize] != 0)
+        .collect()
+}
+
+impl SurfaceBand {
+    /// The band of the target voxels of `classes` at `threshold` (world units, above 0
+    /// and finite). Fails, saying why, when the threshold is not such a number or spans
+    /// more than [`MAX_HALF_WIDTH`] voxels along x.
+    pub(crate) fn new(classes: &VoxelClasses, threshold: f64) -> Result<SurfaceBand, String> {
+        let grid = classes.grid();
+        if !(threshold.is_finite() && threshold > 0.0) {
+            return Err(format!(
+                "threshold {threshold} is not a distance (a finite number above 0)"
+            ));
+        }
+        let cell = grid.cell().to_array();
+        let [nx, ny, _] = grid.resolution().map(i64::from);
+        let count = grid.voxel_count() as usize;
+        let words = count.div_ceil(64);
+        let reach = |axis: usize| (threshold / cell[axis]).floor() as i64;
+        if reach(0) > MAX_HALF_WIDTH {
+            return Err(format!(
+                "threshold {threshold} spans {} voxels of {} along x; at most \
+                 {MAX_HALF_WIDTH} are supported (a smaller threshold or coarser grid)",
+                reach(0),
+                cell[0]
+            ));
+        }
+        let mut rows = Vec::new();
+        let mut dys = Vec::new();
+        for dz in -reach(2)..=reach(2) {
+            for dy in -reach(1)..=reach(1) {
+                if !within(cell, [0, dy, dz], threshold) {
+                    continue;
+                }
+                let mut half = 0;
+                while within(cell, [half + 1, dy, dz], threshold) {
+                    half += 1;
+                }
+                let dy_index = (dy != 0).then(|| match dys.iter().position(|&d| d == dy) {
+                    Some(p) => p,
+                    None => {
+                        dys.push(dy);
+                        dys.len() - 1
+                    }
+                });
+                rows.push(Row {
+                    offset: dy * nx + dz * nx * ny,
+                    half: half as usize,
+                    dy: dy_index,
+                });
+            }
+        }
+        let half = rows.iter().map(|r| r.half).max().unwrap_or(0);
+        let mut edges: [Vec<u64>; 4] = std::array::from_fn(|_| vec![0u64; words]);
+        let mut inside = vec![0u64; words];
+        for v in 0..count {
+            let [i, j, _] = grid.voxel(v);
+            for (e, on) in [i == 0, i == nx - 1, j == 0, j == ny - 1]
+                .into_iter()
+                .enumerate()
+            {
+                if on {
+                    set(&mut edges[e], v);
+                }
+            }
+            if classes.is_target(usize::from(classes.voxels()[v])) {
+                set(&mut inside, v);
+            }
+        }
+        let target = surface_voxels(grid, &inside);
+        let target_words = nonzero_words(&target);
+        let mut band = SurfaceBand {
+            steps: [nx, nx * ny],
+            edges,
+            target_count: target.iter().map(|w| u64::from(w.count_ones())).sum(),
+            y_masks: target_words
+                .iter()
+                .flat_map(|&w| dys.iter().map(move |&dy| y_mask(grid, w as usize, dy)))
+                .collect(),
+            target,
+            target_words,
+            near: Vec::new(),
+            near_words: Vec::new(),
+            region: Vec::new(),
+            rows,
+            dys,
+            half,
+        };
+        band.near = band.near_target(grid);
+        band.near_words = nonzero_words(&band.near);
+        let mut region: Vec<u32> = band
+            .near_words
+            .iter()
+            .flat_map(|&w| [w.saturating_sub(1), w, w + 1])
+            .filter(|&w| (w as usize) < words)
+            .collect();
+        region.sort_unstable();
+        region.dedup();
+        band.region = region;
+        Ok(band)
+    }
+
+    /// The voxels within the threshold of the target's surface: the same dilation as a
+    /// model's recall, over the whole grid.
+    fn near_target(&self, grid: &Grid) -> Vec<u64> {
+        let words = self.target.len();
+        let all: Vec<u32> = (0..words as u32).collect();
+        let mut dilated = vec![self.target.clone()];
+        self.dilate_x(&all, &mut dilated);
+        let mut near = vec![0u64; words];
+        for (w, out) in near.iter_mut().enumerate() {
+            for row in &self.rows {
+                let mut m = shifted(&dilated[row.half], w, -row.offset);
+                if let Some(d) = row.dy {
+                    m &= y_mask(grid, w, -self.dys[d]);
+                }
+                *out |= m;
+            }
+        }
+        near
+    }
+
+    /// Fills `dilated[h]` (for `h` in `1..=half`) on the words `over` with `dilated[0]`
+    /// dilated by `h` voxels along x, within rows.
+    fn dilate_x(&self, over: &[u32], dilated: &mut Vec<Vec<u64>>) {
+        let words = self.target.len();
+        dilated.resize_with(self.half + 1, || vec![0; words]);
+        let [first, last, ..] = &self.edges;
+        for h in 1..=self.half {
+            let (done, rest) = dilated.split_at_mut(h);
+            let (prev, next) = (&done[h - 1], &mut rest[0]);
+            for &w in over {
+                let w = w as usize;
+                next[w] =
+                    prev[w] | (shifted(prev, w, 1) & !last[w]) | (shifted(prev, w, -1) & !first[w]);
+            }
+        }
+    }
+
+    /// The surface voxels of word `w` of `covered`.
+    #[inline]
+    fn surface_word(&self, covered: &[u64], w: usize) -> u64 {
+        let c = covered[w];
+        if c == 0 {
+            return 0;
+        }
+        let [x_first, x_last, y_first, y_last] = &self.edges;
+        let [ny, nz] = self.steps;
+        let interior = shifted(covered, w, 1)
+            & !x_last[w]
+            & shifted(covered, w, -1)
+            & !x_first[w]
+            & shifted(covered, w, ny)
+            & !y_last[w]
+            & shifted(covered, w, -ny)
+            & !y_first[w]
+            & shifted(covered, w, nz)
+            & shifted(covered, w, -nz);
+        c & !interior
+    }
+
+    /// The counts of the model covering `covered` (a bitset over the grid whose words
+    /// not listed in `touched` are zero), with `dilated` as working memory.
+    pub(crate) fn count(
+        &self,
+        covered: &[u64],
+        touched: impl Iterator<Item = usize>,
+        dilated: &mut Vec<Vec<u64>>,
+    ) -> SurfaceCounts {
+        let mut counts = SurfaceCounts::default();
+        for w in touched {
+            let s = self.surface_word(covered, w);
+            counts.surface += u64::from(s.count_ones());
+            counts.near += u64::from((s & self.near[w]).count_ones());
+        }
+        if counts.near == 0 {
+            return counts;
+        }
+        if dilated.is_empty() {
+            dilated.push(vec![0; self.target.len()]);
+        }
+        for &w in &self.near_words {
+            let w = w as usize;
+            dilated[0][w] = self.surface_word(covered, w) & self.near[w];
+        }
+        self.dilate_x(&self.region, dilated);
+        let dys = self.dys.len();
+        for (p, &w) in self.target_words.iter().enumerate() {
+            let (w, target) = (w as usize, self.target[w as usize]);
+            let mut hit = 0;
+            for row in &self.rows {
+                let mut m = shifted(&dilated[row.half], w, row.offset);
+                if let Some(d) = row.dy {
+                    m &= self.y_masks[p * dys + d];
+                }
+                hit |= m;
+                if hit & target == target {
+                    break;
+                }
+            }
+            counts.target_near += u64::from((hit & target).count_ones());
+        }
+        counts
+    }
+
+    /// How many surface voxels the target has.
+    pub(crate) fn target_count(&self) -> u64 {
+        self.target_count
+    }
+
+    /// Bytes held, for memory estimates.
+    pub(crate) fn bytes(&self) -> usize {
+        let words = self.edges.iter().map(Vec::len).sum::<usize>()
+            + self.target.len()
+            + self.near.len()
+            + self.y_masks.len();
+        words * 8 + (self.target_words.len() + self.near_words.len() + self.region.len()) * 4
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{Affine3A, Quat, Vec3};
+    use rand::{RngExt, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    use super::super::{Fill, VolumeCounts, VolumeScorer, VolumeTarget};
+    use super::*;
+    use crate::geometry::{CUBE, Instance, Mesh, MeshLibrary};
+    use crate::score::retained::RetainedScorer;
+    use crate::score::{Form, Scorer};
+
+    /// A box target of the given half-size and centre.
+    fn box_target(half: Vec3, centre: Vec3) -> VolumeTarget {
+        let mut mesh = Mesh::unit_cube();
+        for p in &mut mesh.positions {
+            *p = *p * 2.0 * half + centre;
+        }
+        VolumeTarget {
+            name: "box".into(),
+            mesh,
+            inside: 1.0,
+            outside: -1.0,
+            fill: Fill::Parity,
+        }
+    }
+
+    fn random_box(rng: &mut ChaCha8Rng) -> Instance {
+        let size = Vec3::new(
+            rng.random_range(0.1..1.5),
+            rng.random_range(0.1..1.5),
+            rng.random_range(0.1..1.5),
+        );
+        let turn = Quat::from_rotation_z(rng.random_range(-0.6f32..0.6));
+        let centre = Vec3::new(
+            rng.random_range(-1.6..1.6),
+            rng.random_range(-1.6..1.6),
+            rng.random_range(-1.6..1.6),
+        );
+        Instance {
+            transform: Affine3A::from_scale_rotation_translation(size, turn, centre),
+            mesh: CUBE,
+        }
+    }
+
+    /// The F-score counts of `covered` on `scorer`'s grid, by the definition: face
+    /// neighbours and every pair of surface voxels.
+    fn by_definition(scorer: &VolumeScorer, covered: &[u64], threshold: f64) -> [u64; 3] {
+        let grid = scorer.grid();
+        let cell = grid.cell().to_array();
+        let target: Vec<u64> = {
+            let mut inside = vec![0u64; covered.len()];
+            for (v, &c) in scorer.classes().voxels().iter().enumerate() {
+                if scorer.classes().is_target(usize::from(c)) {
+                    set(&mut inside, v);
+                }
+            }
+            surface_voxels(grid, &inside)
+        };
+        let model = surface_voxels(grid, covered);
+        let voxels = |bits: &[u64]| -> Vec<[i64; 3]> {
+            (0..grid.voxel_count() as usize)
+                .filter(|&v| get(bits, v))
+                .map(|v| grid.voxel(v))
+                .collect()
+        };
+        let (s, t) = (voxels(&model), voxels(&target));
+        let near = |a: &[i64; 3], b: &[[i64; 3]]| {
+            b.iter()
+                .any(|b| within(cell, [a[0] - b[0], a[1] - b[1], a[2] - b[2]], threshold))
+        };
+        [
+            s.len() as u64,
+            s.iter().filter(|a| near(a, &t)).count() as u64,
+            t.iter().filter(|a| near(a, &s)).count() as u64,
+        ]
+    }
+
+    fn surface_of(c: &VolumeCounts) -> [u64; 3] {
+        [c.surface, c.surface_near, c.target_surface_near]
+    }
+
+    #[test]
+    fn surface_counts_are_those_of_the_definition_counted_from_nothing_or_kept() {
+        let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"]).unwrap();
+        // Rows of 70 voxels cross words; rows of 5 share them; voxels of three sizes.
+        for (resolution, threshold) in [([70, 9, 8], 0.45), ([5, 31, 13], 0.3), ([12, 10, 9], 0.05)]
+        {
+            let grid = Grid::new(Vec3::splat(-2.0), Vec3::new(2.0, 2.0, 2.5), resolution).unwrap();
+            let target = box_target(Vec3::new(1.1, 0.7, 0.9), Vec3::new(0.2, -0.1, 0.3));
+            let form = Form::FScore {
+                good: 1.0,
+                threshold,
+            };
+            let scorer = VolumeScorer::new(grid, &[target], &meshes, form).unwrap();
+            let mut rng = ChaCha8Rng::seed_from_u64(resolution[0] as u64);
+            let mut scratch = scorer.scratch();
+            let mut covered = Vec::new();
+            let mut seen = [0; 3];
+            for _ in 0..12 {
+                let n = rng.random_range(1..5);
+                let model: Vec<Instance> = (0..n).map(|_| random_box(&mut rng)).collect();
+                let counts = scorer.coverage(&model, &mut scratch, &mut covered);
+                let expected = by_definition(&scorer, &covered, threshold);
+                assert_eq!(surface_of(&counts), expected, "{resolution:?}, {n} boxes");
+                seen = [0, 1, 2].map(|i| seen[i] + expected[i]);
+                // Kept: the parent's state with one box replaced counts the child.
+                let mut state = scorer.count_retained(&model, &mut scratch).unwrap();
+                assert_eq!(surface_of(&scorer.state_counts(&state)), expected);
+                let mut child = model.clone();
+                child[0] = random_box(&mut rng);
+                scorer
+                    .update(&mut state, &model[..1], &child[..1], &mut scratch)
+                    .unwrap();
+                let full = scorer.count(&child, &mut scratch);
+                assert_eq!(scorer.state_counts(&state), full);
+                assert_eq!(
+                    surface_of(&full),
+                    by_definition(
+                        &scorer,
+                        &{
+                            scorer.coverage(&child, &mut scratch, &mut covered);
+                            covered.clone()
+                        },
+                        threshold
+                    )
+                );
+            }
+            assert!(seen.iter().all(|&n| n > 0), "{resolution:?}: {seen:?}");
+        }
+    }
+
+    #[test]
+    fn the_target_itself_scores_good_and_nothing_scores_zero() {
+        let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"]).unwrap();
+        let grid = Grid::new(Vec3::splat(-1.0), Vec3::splat(1.0), [8, 8, 8]).unwrap();
+        let target = box_target(Vec3::splat(0.5), Vec3::ZERO);
+        let form = Form::FScore {
+            good: 2.0,
+            threshold: 0.2,
+        };
+        let scorer = VolumeScorer::new(grid, &[target], &meshes, form).unwrap();
+        let mut scratch = scorer.scratch();
+        // The 4^3 target voxels: their 56 outer voxels are its surface.
+        assert_eq!(scorer.target_surface_voxels(), Some(56));
+        let exact = [Instance {
+            transform: Affine3A::IDENTITY,
+            mesh: CUBE,
+        }];
+        assert_eq!(scorer.fitness(&scorer.count(&exact, &mut scratch)), 2.0);
+        assert_eq!(scorer.fitness(&scorer.count(&[], &mut scratch)), 0.0);
+        // A box one voxel (0.25) larger each way, 6^3 voxels: its 152 surface voxels lie
+        // a voxel beyond the target's, outside the threshold of 0.2.
+        let larger = [Instance {
+            transform: Affine3A::from_scale(Vec3::splat(1.5)),
+            mesh: CUBE,
+        }];
+        let counts = scorer.count(&larger, &mut scratch);
+        assert_eq!(surface_of(&counts), [152, 0, 0]);
+        assert_eq!(scorer.fitness(&counts), 0.0);
+        // With a threshold of a voxel, the 96 voxels of its faces are within reach of
+        // the target's surface, those of its 12 edges and 8 corners are not; every
+        // target surface voxel has one of its face voxels a voxel away.
+        let reach = |threshold| {
+            let form = Form::FScore {
+                good: 2.0,
+                threshold,
+            };
+            let target = box_target(Vec3::splat(0.5), Vec3::ZERO);
+            VolumeScorer::new(grid, &[target], &meshes, form).unwrap()
+        };
+        let one = reach(0.25);
+        let counts = one.count(&larger, &mut scratch);
+        assert_eq!(surface_of(&counts), [152, 96, 56]);
+        let precision = 96.0 / 152.0;
+        let f = 2.0 * precision / (precision + 1.0);
+        assert_eq!(one.fitness(&counts), 2.0 * f);
+        // With the diagonal of a voxel, all are.
+        let diagonal = reach(0.25 * 3f64.sqrt() + 1e-9);
+        let counts = diagonal.count(&larger, &mut scratch);
+        assert_eq!(surface_of(&counts), [152, 152, 56]);
+        assert_eq!(diagonal.fitness(&counts), 2.0);
+    }
+
+    #[test]
+    fn thresholds_that_are_no_distance_or_too_wide_are_refused() {
+        let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"]).unwrap();
+        let grid = Grid::new(Vec3::splat(-1.0), Vec3::splat(1.0), [200, 4, 4]).unwrap();
+        for (threshold, says) in [
+            (0.0, "not a distance"),
+            (f64::NAN, "not a distance"),
+            (0.65, "spans 65 voxels of 0.01 along x; at most 63"),
+        ] {
+            let form = Form::FScore {
+                good: 1.0,
+                threshold,
+            };
+            let target = box_target(Vec3::splat(0.5), Vec3::ZERO);
+            let err = VolumeScorer::new(grid, &[target], &meshes, form)
+                .unwrap_err()
+                .to_string();
+            assert!(err.contains(says), "{err}");
+        }
+    }
+}
