@@ -45,7 +45,12 @@ fn the_fscore_form_is_refused_on_the_gpu(gpu: &GpuContext) {
         good: 1.0,
         threshold: 0.3,
     };
-    let cube = target("cube", block(Vec3::splat(-0.5), Vec3::splat(0.5)), 1.0, -1.0);
+    let cube = target(
+        "cube",
+        block(Vec3::splat(-0.5), Vec3::splat(0.5)),
+        1.0,
+        -1.0,
+    );
     let scorer = VolumeScorer::new(grid, &[cube], &meshes, form).unwrap();
     let Err(err) = GpuVolumeScorer::new(gpu, &scorer) else {
         panic!("the GPU counted the fscore form");

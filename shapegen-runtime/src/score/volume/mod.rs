@@ -391,12 +391,6 @@ impl VolumeScorer {
         self.surface.as_ref().map(|s| s.target_count())
     }
 
-    /// Bytes the scorer holds beyond its classes: with [`Form::FScore`], the target's
-    /// surface and the voxels near it.
-    pub fn surface_bytes(&self) -> usize {
-        self.surface.as_ref().map_or(0, |s| s.bytes())
-    }
-
     /// The F-score counts of the model covering `covered` (a bitset over the grid whose
     /// words not in `touched` are zero), added to `counts`; `counts` unchanged in other
     /// forms.

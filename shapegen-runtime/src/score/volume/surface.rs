@@ -371,15 +371,6 @@ impl SurfaceBand {
     pub(crate) fn target_count(&self) -> u64 {
         self.target_count
     }
-
-    /// Bytes held, for memory estimates.
-    pub(crate) fn bytes(&self) -> usize {
-        let words = self.edges.iter().map(Vec::len).sum::<usize>()
-            + self.target.len()
-            + self.near.len()
-            + self.y_masks.len();
-        words * 8 + (self.target_words.len() + self.near_words.len() + self.region.len()) * 4
-    }
 }
 
 #[cfg(test)]
