@@ -204,7 +204,6 @@ pub(crate) struct Polisher<G> {
     state: Option<PolishState<G>>,
     genomes: Vec<Genome<G>>,
     fitness: Vec<f64>,
-    from: Vec<u32>,
 }
 
 impl<G: Grammar> Polisher<G> {
@@ -214,7 +213,6 @@ impl<G: Grammar> Polisher<G> {
             state: None,
             genomes: Vec::new(),
             fitness: Vec::new(),
-            from: Vec::new(),
         }
     }
 
@@ -235,7 +233,7 @@ impl<G: Grammar> Polisher<G> {
 
     /// Polishes the best of `population` (see the [module](self) docs) in the
     /// generation (step, iteration) that follows `progress`, with a method's `polish`
-    /// and `polish_sigma` settings, scoring the candidates as children of it and
+    /// and `polish_sigma` settings, scoring the candidates from nothing and
     /// counting them in `progress`. Nothing happens when `polish` is under 2 or the best
     /// has no coordinates.
     pub(crate) fn polish<R>(
@@ -280,9 +278,11 @@ impl<G: Grammar> Polisher<G> {
         }
         self.fitness.clear();
         self.fitness.resize(points.len(), f64::NAN);
-        self.from.clear();
-        self.from.resize(points.len(), best as u32);
-        evaluator.evaluate_bred(&self.genomes, population, &self.from, &mut self.fitness)?;
+        // Scored from nothing, not as children of the best: a candidate moves every
+        // continuous parameter, so counting it from the best's kept state would count
+        // all its instances again anyway, and keeping the state of every candidate, of
+        // which at most one stays, costs more than it saves.
+        evaluator.evaluate(&self.genomes, &mut self.fitness)?;
         polishing.strategy.tell(&points, &self.fitness);
         if let Some(top) = best_index(&self.fitness)
             && !self.fitness[top].is_nan()
