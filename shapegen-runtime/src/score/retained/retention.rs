@@ -405,15 +405,22 @@ fn full_state<S: RetainedScorer>(
 /// always updated from the instances it was counted from.
 pub(crate) fn genome_key<G: Grammar>(genome: &Genome<G>) -> u64 {
     const K: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mix = |h: u64, w: u64| (h.rotate_left(23) ^ w).wrapping_mul(K);
     let words = genome.words();
-    let mut h = (genome.len() as u64).wrapping_mul(K);
-    let mut pairs = words.chunks_exact(2);
-    for pair in &mut pairs {
-        let w = u64::from(pair[0]) | u64::from(pair[1]) << 32;
-        h = (h.rotate_left(23) ^ w).wrapping_mul(K);
+    // Four lanes of two words each, independent of one another, so that the processor
+    // overlaps their multiplications.
+    let mut lanes = [1, 2, 3, 4].map(|i: u64| (genome.len() as u64 + i).wrapping_mul(K));
+    let mut chunks = words.chunks_exact(8);
+    for chunk in &mut chunks {
+        for (lane, pair) in lanes.iter_mut().zip(chunk.chunks_exact(2)) {
+            *lane = mix(*lane, u64::from(pair[0]) | u64::from(pair[1]) << 32);
+        }
     }
-    for &w in pairs.remainder() {
-        h = (h.rotate_left(23) ^ u64::from(w) ^ 1 << 63).wrapping_mul(K);
+    for (i, &w) in chunks.remainder().iter().enumerate() {
+        lanes[i % 4] = mix(lanes[i % 4], u64::from(w) ^ 1 << 63);
     }
+    let h = lanes.iter().enumerate().fold(0u64, |h, (i, &lane)| {
+        mix(h, lane.rotate_left(16 * i as u32))
+    });
     h ^ h >> 29
 }
