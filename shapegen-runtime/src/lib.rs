@@ -16,6 +16,7 @@ pub mod evaluate;
 pub mod export;
 pub mod genome;
 pub mod geometry;
+#[cfg(feature = "gpu")]
 pub mod gpu;
 pub mod graph;
 pub mod ops;

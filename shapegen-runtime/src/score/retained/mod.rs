@@ -64,6 +64,7 @@ pub use cells::{CellCounts, Changed, Overflow, TILE_BYTES, TILE_WORDS};
 pub use diff::InstanceDiff;
 pub(crate) use footprint::{Footprinted, Footprints, Grids, MAX_GRIDS, Recorder};
 pub use pixels::{Hit, PixelCounts};
+#[cfg(feature = "gpu")]
 pub(crate) use retention::genome_key;
 pub use retention::{DEFAULT_MAX_BYTES, Retention, RetentionStats};
 

@@ -47,8 +47,11 @@
 
 mod camera;
 mod counts;
+#[cfg(feature = "gpu")]
 mod gpu;
+#[cfg(feature = "gpu")]
 mod gpu_draw;
+#[cfg(feature = "gpu")]
 mod gpu_retained;
 mod mesh_fill;
 mod meshes;
@@ -61,7 +64,9 @@ mod tests;
 
 pub use camera::{Camera, CameraError, OrbitCamera};
 pub use counts::{MAX_TARGETS, SilhouetteCounts, TargetCounts};
+#[cfg(feature = "gpu")]
 pub use gpu::GpuSilhouetteScorer;
+#[cfg(feature = "gpu")]
 pub use gpu_retained::GpuRetention;
 pub use retained::SilhouetteState;
 pub use scorer::{SilhouetteError, SilhouetteScorer, SilhouetteScratch};

@@ -124,6 +124,7 @@
 
 mod classes;
 mod count;
+#[cfg(feature = "gpu")]
 mod gpu;
 mod grid;
 mod parity;
@@ -136,6 +137,7 @@ mod winding;
 
 pub use classes::{MAX_CLASSES, VoxelClasses};
 pub use count::VolumeScratch;
+#[cfg(feature = "gpu")]
 pub use gpu::GpuVolumeScorer;
 pub use grid::{Grid, GridError, MAX_VOXELS};
 pub use retained::VolumeState;
