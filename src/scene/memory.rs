@@ -10,6 +10,7 @@ use shapegen_runtime::optimize::{Best, Held, Optimizer};
 use shapegen_runtime::score::Form;
 use shapegen_runtime::score::objective::Objective;
 use shapegen_runtime::score::retained::DEFAULT_MAX_BYTES;
+use shapegen_runtime::score::volume::fscore_half_width;
 use shapegen_runtime::{Grammar, Instance};
 
 use super::{MethodJob, OptimizerGoal, Scene, ScorerGoal};
@@ -286,8 +287,8 @@ impl Scene {
                 // The target's surface, the voxels near it and four edge bitsets; per
                 // thread, the model's surface dilated once per voxel of half-width.
                 let n = v.grid.voxel_count();
-                let half = (threshold / v.grid.cell().x).floor() as u64 + 1;
-                let bitsets = 6 + half.saturating_mul(shape.threads as u64);
+                let dilated = fscore_half_width(&v.grid, threshold) as u64 + 1;
+                let bitsets = 6 + dilated.saturating_mul(shape.threads as u64);
                 parts.push(MemoryPart {
                     what: format!("for the fscore form's {bitsets} bitsets of {n} voxels"),
                     setting: format!(

@@ -8,7 +8,7 @@ use shapegen_runtime::Site;
 use shapegen_runtime::genome::Limits;
 use shapegen_runtime::geometry::Mesh;
 use shapegen_runtime::score::silhouette::{Camera, ImageTarget, MaskRule, OrbitCamera};
-use shapegen_runtime::score::volume::{Grid, MAX_HALF_WIDTH, VolumeTarget};
+use shapegen_runtime::score::volume::{Grid, MAX_HALF_WIDTH, VolumeTarget, fscore_half_width};
 use shapegen_runtime::score::{Form, LengthPenalty};
 
 use super::file::{
@@ -337,8 +337,8 @@ impl<'a> Resolver<'a> {
     }
 
     /// The `fscore` form's threshold: `volume.fscore_threshold`, or
-    /// [`F_SCORE_THRESHOLD`](super::F_SCORE_THRESHOLD) of the diagonal of the attracting targets' bounding box, as
-    /// runs report the F-score.
+    /// [`F_SCORE_THRESHOLD`](super::F_SCORE_THRESHOLD) of the diagonal of the attracting
+    /// targets' bounding box, as runs report the F-score.
     fn fscore_threshold(
         &self,
         v: &VolumeFile,
@@ -361,7 +361,7 @@ impl<'a> Resolver<'a> {
                     )
                 })?,
         };
-        let voxels = (t / grid.cell().x).floor();
+        let voxels = fscore_half_width(grid, t);
         if voxels > MAX_HALF_WIDTH as f64 {
             return Err(self.invalid(
                 KEY,

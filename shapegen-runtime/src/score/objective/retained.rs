@@ -195,7 +195,7 @@ impl RetainedScorer for ProjectionScorer {
             footprints: Footprints::with_capacity(instances.len()),
         };
         for instance in instances {
-            self.add(&mut state, instance, scratch)?;
+            self.rasterize_into(&mut state, instance, Hit::Add, scratch)?;
         }
         Ok(state)
     }

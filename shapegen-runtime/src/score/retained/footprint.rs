@@ -173,21 +173,22 @@ pub(crate) trait Footprinted: RetainedScorer {
         recorder
     }
 
-    /// Adds `instance` to `state`: rasterizes it, adds its cells and keeps its
-    /// footprint where that is worth it.
-    fn add(
+    /// Rasterizes `instance` and adds its cells to `state` or takes them away (`hit`);
+    /// an added instance's footprint is kept where that is worth it.
+    fn rasterize_into(
         &self,
         state: &mut Self::State,
         instance: &Instance,
+        hit: Hit,
         scratch: &mut Self::Scratch,
     ) -> Result<(), Overflow> {
         let recorded = self.record(instance, scratch);
-        let added = self.apply(state, recorded.grids(), Hit::Add);
-        if added.is_ok() {
+        let applied = self.apply(state, recorded.grids(), hit);
+        if applied.is_ok() && hit == Hit::Add {
             Self::footprints(state).keep(instance, &recorded, self.raster_cost(instance));
         }
         *Self::recorder(scratch) = recorded;
-        added
+        applied
     }
 
     /// Takes each of `removed` out of `state` by replaying its kept footprint (or
@@ -203,16 +204,11 @@ pub(crate) trait Footprinted: RetainedScorer {
         for instance in removed {
             match Self::footprints(state).take(instance) {
                 Some(footprint) => self.apply(state, footprint.grids(), Hit::Remove)?,
-                None => {
-                    let recorded = self.record(instance, scratch);
-                    let taken = self.apply(state, recorded.grids(), Hit::Remove);
-                    *Self::recorder(scratch) = recorded;
-                    taken?;
-                }
+                None => self.rasterize_into(state, instance, Hit::Remove, scratch)?,
             }
         }
         for instance in added {
-            self.add(state, instance, scratch)?;
+            self.rasterize_into(state, instance, Hit::Add, scratch)?;
         }
         Ok(())
     }

@@ -29,7 +29,7 @@ use super::quant::{Placement, QuantBox, quantize};
 use super::span::span_out_of_grid;
 use super::{VolumeCounts, VolumeScorer};
 use crate::gpu::{GpuContext, GpuError};
-use crate::score::InstanceBatch;
+use crate::score::{Form, InstanceBatch};
 
 /// Invocations per workgroup (`@workgroup_size` in the shader).
 const WORKGROUP: u64 = 64;
@@ -184,7 +184,7 @@ impl<'a> GpuVolumeScorer<'a> {
     /// largest storage binding; [`GpuError::Device`] when the device rejects the shader
     /// or a buffer.
     pub fn new(ctx: &'a GpuContext, scorer: &'a VolumeScorer) -> Result<Self, GpuError> {
-        if scorer.target_surface_voxels().is_some() {
+        if let Form::FScore { .. } = scorer.form() {
             return Err(GpuError::Unsupported(
                 "the fscore form's surface counts are made on the CPU only; count on the CPU"
                     .into(),

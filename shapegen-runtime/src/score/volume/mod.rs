@@ -141,7 +141,7 @@ pub use count::VolumeScratch;
 pub use gpu::GpuVolumeScorer;
 pub use grid::{Grid, GridError, MAX_VOXELS};
 pub use retained::VolumeState;
-pub use surface::MAX_HALF_WIDTH;
+pub use surface::{MAX_HALF_WIDTH, fscore_half_width};
 
 use std::sync::Arc;
 

@@ -140,13 +140,11 @@ impl VolumeScorer {
         state.facets = facets;
         if overflow { Err(Overflow) } else { Ok(()) }
     }
-}
 
-impl VolumeScorer {
     /// With the F-score form, counts the state's surface from its cells (in `scratch`'s
     /// bitset, cleared again after).
     fn count_surface(&self, state: &mut VolumeState, scratch: &mut VolumeScratch) {
-        if self.target_surface_voxels().is_none() {
+        if self.surface.is_none() {
             return;
         }
         let VolumeScratch {

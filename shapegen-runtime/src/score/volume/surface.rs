@@ -30,7 +30,7 @@ use super::classes::VoxelClasses;
 /// Whether voxels `(dx, dy, dz)` apart on a grid of voxel size `cell` lie within
 /// `threshold` of each other. The one test of the distance, so that every count agrees.
 #[inline]
-pub(crate) fn within(cell: [f64; 3], [dx, dy, dz]: [i64; 3], threshold: f64) -> bool {
+fn within(cell: [f64; 3], [dx, dy, dz]: [i64; 3], threshold: f64) -> bool {
     let (x, y, z) = (
         dx as f64 * cell[0],
         dy as f64 * cell[1],
@@ -42,6 +42,21 @@ pub(crate) fn within(cell: [f64; 3], [dx, dy, dz]: [i64; 3], threshold: f64) -> 
 /// The largest half-width along x, in voxels, that the ball may have: a model surface
 /// word is dilated into its neighbours only.
 pub const MAX_HALF_WIDTH: i64 = 63;
+
+/// How many voxels of `grid` the F-score's `threshold` spans along x: what may be at
+/// most [`MAX_HALF_WIDTH`].
+///
+/// ```
+/// use glam::Vec3;
+/// use shapegen_runtime::score::volume::{Grid, fscore_half_width};
+///
+/// let grid = Grid::new(Vec3::splat(-1.0), Vec3::splat(1.0), [8, 8, 8])?;
+/// assert_eq!(fscore_half_width(&grid, 0.6), 2.0); // voxels of 0.25
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn fscore_half_width(grid: &Grid, threshold: f64) -> f64 {
+    (threshold / grid.cell().x).floor()
+}
 
 /// The word whose bit `b` is bit `64 w + b + offset` of `bits` (0 beyond its ends).
 #[inline]
@@ -134,7 +149,7 @@ fn y_mask(grid: &Grid, w: usize, dy: i64) -> u64 {
 }
 
 /// The surface voxels of `inside` (a bitset over `grid`), by their face neighbours.
-pub(crate) fn surface_voxels(grid: &Grid, inside: &[u64]) -> Vec<u64> {
+fn surface_voxels(grid: &Grid, inside: &[u64]) -> Vec<u64> {
     let mut out = vec![0u64; inside.len()];
     for v in (0..grid.voxel_count() as usize).filter(|&v| get(inside, v)) {
         let [i, j, k] = grid.voxel(v);
@@ -181,11 +196,11 @@ impl SurfaceBand {
         let count = grid.voxel_count() as usize;
         let words = count.div_ceil(64);
         let reach = |axis: usize| (threshold / cell[axis]).floor() as i64;
-        if reach(0) > MAX_HALF_WIDTH {
+        let half_width = fscore_half_width(grid, threshold);
+        if half_width > MAX_HALF_WIDTH as f64 {
             return Err(format!(
-                "threshold {threshold} spans {} voxels of {} along x; at most \
+                "threshold {threshold} spans {half_width} voxels of {} along x; at most \
                  {MAX_HALF_WIDTH} are supported (a smaller threshold or coarser grid)",
-                reach(0),
                 cell[0]
             ));
         }
@@ -272,11 +287,15 @@ impl SurfaceBand {
         let mut dilated = vec![self.target.clone()];
         self.dilate_x(&all, &mut dilated);
         let mut near = vec![0u64; words];
+        let mut masks = vec![0u64; self.dys.len()];
         for (w, out) in near.iter_mut().enumerate() {
+            for (mask, &dy) in masks.iter_mut().zip(&self.dys) {
+                *mask = y_mask(grid, w, -dy);
+            }
             for row in &self.rows {
                 let mut m = shifted(&dilated[row.half], w, -row.offset);
                 if let Some(d) = row.dy {
-                    m &= y_mask(grid, w, -self.dys[d]);
+                    m &= masks[d];
                 }
                 *out |= m;
             }
@@ -332,20 +351,25 @@ impl SurfaceBand {
         dilated: &mut Vec<Vec<u64>>,
     ) -> SurfaceCounts {
         let mut counts = SurfaceCounts::default();
-        for w in touched {
-            let s = self.surface_word(covered, w);
-            counts.surface += u64::from(s.count_ones());
-            counts.near += u64::from((s & self.near[w]).count_ones());
-        }
-        if counts.near == 0 {
-            return counts;
-        }
+        // The model's surface near the target, in `dilated[0]`, whose other words stay
+        // zero: the near words cleared, then each covered word's written.
         if dilated.is_empty() {
             dilated.push(vec![0; self.target.len()]);
         }
         for &w in &self.near_words {
-            let w = w as usize;
-            dilated[0][w] = self.surface_word(covered, w) & self.near[w];
+            dilated[0][w as usize] = 0;
+        }
+        for w in touched {
+            let s = self.surface_word(covered, w);
+            let near = s & self.near[w];
+            counts.surface += u64::from(s.count_ones());
+            counts.near += u64::from(near.count_ones());
+            if near != 0 {
+                dilated[0][w] = near;
+            }
+        }
+        if counts.near == 0 {
+            return counts;
         }
         self.dilate_x(&self.region, dilated);
         let dys = self.dys.len();
