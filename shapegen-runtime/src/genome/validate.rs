@@ -87,171 +87,12 @@ pub(crate) fn validate_words<G: Grammar>(words: &[u32], len: u32) -> Result<(), 
             axiom: graph.node_unchecked(graph.axiom).name,
         });
     }
-    let n = words.len();
-
-    // Pass 1: genes tile the buffer; remember where each starts (index + 1, 0 = none).
-    let mut index_at = vec![0u32; n];
-    let mut starts = Vec::new();
-    let mut pos = 0usize;
-    while pos < n {
-        let index = starts.len() as u32;
-        let kind = words[pos];
-        let node = graph.node(kind).ok_or(GenomeError::UnknownKind {
-            index,
-            pos: pos as u32,
-            kind,
-            generator: graph.name,
-            kinds: graph.nodes.len() as u32,
-        })?;
-        let need = node.gene_words() as usize;
-        if need > n - pos {
-            return Err(GenomeError::Truncated {
-                at: GeneAt {
-                    index,
-                    pos: pos as u32,
-                    node: node.name,
-                },
-                need: need as u32,
-                left: (n - pos) as u32,
-            });
-        }
-        index_at[pos] = index + 1;
-        starts.push(pos as u32);
-        pos += need;
-    }
-    let at = |pos: usize| GeneAt {
-        index: index_at[pos] - 1,
-        pos: pos as u32,
-        node: node_of::<G>(words[pos]).name,
-    };
-    let is_gene =
-        |target: i64| target >= 0 && (target as usize) < n && index_at[target as usize] != 0;
-
-    let root = node_of::<G>(words[0]);
-    if words[0] != graph.axiom {
-        return Err(GenomeError::RootNotAxiom {
-            node: root.name,
-            generator: graph.name,
-            axiom: graph.node_unchecked(graph.axiom).name,
-        });
-    }
-    if words[1] != 0 {
-        return Err(GenomeError::RootHasParent {
-            offset: words[1] as i32,
-        });
-    }
-
-    // Pass 2: parent offsets point back to genes.
-    for &pos in &starts[1..] {
-        let pos = pos as usize;
-        let offset = words[pos + 1] as i32;
-        if offset >= 0 {
-            return Err(GenomeError::ParentNotBefore {
-                at: at(pos),
-                offset,
-            });
-        }
-        let target = pos as i64 + i64::from(offset);
-        if !is_gene(target) {
-            return Err(GenomeError::ParentNotGene {
-                at: at(pos),
-                offset,
-                target,
-            });
-        }
-    }
-
-    // Pass 3: links point forward to genes of the slot's kind whose parent is this gene.
-    // Count the links reaching each gene.
-    let mut incoming = vec![0u32; n];
-    for &pos in &starts {
-        let pos = pos as usize;
-        let node = node_of::<G>(words[pos]);
-        for slot in node.slots {
-            for link in slot.first_link..slot.first_link + slot.count {
-                let offset = words[pos + (HEADER_WORDS + link) as usize] as i32;
-                if offset == 0 {
-                    continue;
-                }
-                let slot_at = slot_at_in(slot, link);
-                if offset < 0 {
-                    return Err(GenomeError::LinkNotForward {
-                        at: at(pos),
-                        slot: slot_at,
-                        offset,
-                    });
-                }
-                let target = pos as i64 + i64::from(offset);
-                if !is_gene(target) {
-                    return Err(GenomeError::LinkNotGene {
-                        at: at(pos),
-                        slot: slot_at,
-                        offset,
-                        target,
-                    });
-                }
-                let child = target as usize;
-                if words[child] != slot.child {
-                    return Err(GenomeError::WrongChildKind {
-                        at: at(pos),
-                        slot: slot_at,
-                        child: at(child),
-                        expected: node_of::<G>(slot.child).name,
-                    });
-                }
-                let child_parent = child as i64 + i64::from(words[child + 1] as i32);
-                if child_parent != pos as i64 {
-                    return Err(GenomeError::ForeignChild {
-                        at: at(pos),
-                        slot: slot_at,
-                        child: at(child),
-                        child_parent,
-                    });
-                }
-                incoming[child] += 1;
-            }
-        }
-    }
-
-    // Pass 4, in buffer order so parents come first: each gene linked back exactly once,
-    // depth, parameters.
-    let mut depth = vec![0u32; n];
-    for &pos in &starts {
-        let pos = pos as usize;
-        let node = node_of::<G>(words[pos]);
-        if pos == 0 {
-            depth[0] = 1;
-        } else {
-            let parent = (pos as i64 + i64::from(words[pos + 1] as i32)) as usize;
-            if incoming[pos] != 1 {
-                return Err(GenomeError::NotLinkedBack {
-                    at: at(pos),
-                    parent: at(parent),
-                    links: incoming[pos],
-                });
-            }
-            depth[pos] = depth[parent] + 1;
-            if depth[pos] > DEPTH_CAP {
-                return Err(GenomeError::TooDeep {
-                    at: at(pos),
-                    depth: depth[pos],
-                    cap: DEPTH_CAP,
-                });
-            }
-        }
-        let params = pos + (HEADER_WORDS + node.links) as usize;
-        for p in node.params {
-            param::check(&p.dist, &words[params + p.offset as usize..]).map_err(|reason| {
-                GenomeError::Param {
-                    at: at(pos),
-                    param: p.name,
-                    reason,
-                }
-            })?;
-        }
-    }
-
-    let actual = starts.len() as u32;
+    let tiling = Tiling::of::<G>(words)?;
+    tiling.check_root::<G>()?;
+    tiling.check_parents::<G>()?;
+    let incoming = tiling.check_links::<G>()?;
+    tiling.check_genes::<G>(&incoming)?;
+    let actual = tiling.starts.len() as u32;
     if actual != len {
         return Err(GenomeError::CountMismatch {
             recorded: len,
@@ -259,4 +100,223 @@ pub(crate) fn validate_words<G: Grammar>(words: &[u32], len: u32) -> Result<(), 
         });
     }
     Ok(())
+}
+
+/// A genome's buffer cut into genes: where each starts, checked by the passes of
+/// [`validate_words`] in turn.
+struct Tiling<'a> {
+    words: &'a [u32],
+    /// Per word, the index + 1 of the gene starting there (0: none).
+    index_at: Vec<u32>,
+    /// Where each gene starts, in buffer order.
+    starts: Vec<u32>,
+}
+
+impl<'a> Tiling<'a> {
+    /// Pass 1: the genes of `words` (not empty) tile the buffer.
+    fn of<G: Grammar>(words: &'a [u32]) -> Result<Tiling<'a>, GenomeError> {
+        let graph = G::GRAPH;
+        let n = words.len();
+        let mut index_at = vec![0u32; n];
+        let mut starts = Vec::new();
+        let mut pos = 0usize;
+        while pos < n {
+            let index = starts.len() as u32;
+            let kind = words[pos];
+            let node = graph.node(kind).ok_or(GenomeError::UnknownKind {
+                index,
+                pos: pos as u32,
+                kind,
+                generator: graph.name,
+                kinds: graph.nodes.len() as u32,
+            })?;
+            let need = node.gene_words() as usize;
+            if need > n - pos {
+                return Err(GenomeError::Truncated {
+                    at: GeneAt {
+                        index,
+                        pos: pos as u32,
+                        node: node.name,
+                    },
+                    need: need as u32,
+                    left: (n - pos) as u32,
+                });
+            }
+            index_at[pos] = index + 1;
+            starts.push(pos as u32);
+            pos += need;
+        }
+        Ok(Tiling {
+            words,
+            index_at,
+            starts,
+        })
+    }
+
+    /// The gene starting at `pos`, named for people.
+    fn at<G: Grammar>(&self, pos: usize) -> GeneAt {
+        GeneAt {
+            index: self.index_at[pos] - 1,
+            pos: pos as u32,
+            node: node_of::<G>(self.words[pos]).name,
+        }
+    }
+
+    /// Whether a gene starts at word `target`.
+    fn is_gene(&self, target: i64) -> bool {
+        target >= 0 && (target as usize) < self.words.len() && self.index_at[target as usize] != 0
+    }
+
+    /// The root is the axiom and has no parent.
+    fn check_root<G: Grammar>(&self) -> Result<(), GenomeError> {
+        let graph = G::GRAPH;
+        let words = self.words;
+        if words[0] != graph.axiom {
+            return Err(GenomeError::RootNotAxiom {
+                node: node_of::<G>(words[0]).name,
+                generator: graph.name,
+                axiom: graph.node_unchecked(graph.axiom).name,
+            });
+        }
+        if words[1] != 0 {
+            return Err(GenomeError::RootHasParent {
+                offset: words[1] as i32,
+            });
+        }
+        Ok(())
+    }
+
+    /// Pass 2: every other gene's parent offset points back to a gene.
+    fn check_parents<G: Grammar>(&self) -> Result<(), GenomeError> {
+        for &pos in &self.starts[1..] {
+            let pos = pos as usize;
+            let offset = self.words[pos + 1] as i32;
+            if offset >= 0 {
+                return Err(GenomeError::ParentNotBefore {
+                    at: self.at::<G>(pos),
+                    offset,
+                });
+            }
+            let target = pos as i64 + i64::from(offset);
+            if !self.is_gene(target) {
+                return Err(GenomeError::ParentNotGene {
+                    at: self.at::<G>(pos),
+                    offset,
+                    target,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Pass 3: links point forward to genes of the slot's kind whose parent is the
+    /// linking gene. Returns, per word, the links reaching the gene starting there.
+    fn check_links<G: Grammar>(&self) -> Result<Vec<u32>, GenomeError> {
+        let words = self.words;
+        let mut incoming = vec![0u32; words.len()];
+        for &pos in &self.starts {
+            let pos = pos as usize;
+            for slot in node_of::<G>(words[pos]).slots {
+                for link in slot.first_link..slot.first_link + slot.count {
+                    let offset = words[pos + (HEADER_WORDS + link) as usize] as i32;
+                    if offset != 0 {
+                        let child = self.check_link::<G>(pos, slot, link, offset)?;
+                        incoming[child] += 1;
+                    }
+                }
+            }
+        }
+        Ok(incoming)
+    }
+
+    /// One non-empty link of pass 3: link `link` of slot `slot` of the gene at `pos`,
+    /// holding `offset`. Returns where its child starts.
+    fn check_link<G: Grammar>(
+        &self,
+        pos: usize,
+        slot: &SlotDesc,
+        link: u32,
+        offset: i32,
+    ) -> Result<usize, GenomeError> {
+        let words = self.words;
+        let slot_at = slot_at_in(slot, link);
+        if offset < 0 {
+            return Err(GenomeError::LinkNotForward {
+                at: self.at::<G>(pos),
+                slot: slot_at,
+                offset,
+            });
+        }
+        let target = pos as i64 + i64::from(offset);
+        if !self.is_gene(target) {
+            return Err(GenomeError::LinkNotGene {
+                at: self.at::<G>(pos),
+                slot: slot_at,
+                offset,
+                target,
+            });
+        }
+        let child = target as usize;
+        if words[child] != slot.child {
+            return Err(GenomeError::WrongChildKind {
+                at: self.at::<G>(pos),
+                slot: slot_at,
+                child: self.at::<G>(child),
+                expected: node_of::<G>(slot.child).name,
+            });
+        }
+        let child_parent = child as i64 + i64::from(words[child + 1] as i32);
+        if child_parent != pos as i64 {
+            return Err(GenomeError::ForeignChild {
+                at: self.at::<G>(pos),
+                slot: slot_at,
+                child: self.at::<G>(child),
+                child_parent,
+            });
+        }
+        Ok(child)
+    }
+
+    /// Pass 4, in buffer order so parents come first: each gene but the root linked
+    /// back exactly once (`incoming`, from pass 3), its depth within [`DEPTH_CAP`], its
+    /// parameters within their distributions.
+    fn check_genes<G: Grammar>(&self, incoming: &[u32]) -> Result<(), GenomeError> {
+        let words = self.words;
+        let mut depth = vec![0u32; words.len()];
+        for &pos in &self.starts {
+            let pos = pos as usize;
+            let node = node_of::<G>(words[pos]);
+            if pos == 0 {
+                depth[0] = 1;
+            } else {
+                let parent = (pos as i64 + i64::from(words[pos + 1] as i32)) as usize;
+                if incoming[pos] != 1 {
+                    return Err(GenomeError::NotLinkedBack {
+                        at: self.at::<G>(pos),
+                        parent: self.at::<G>(parent),
+                        links: incoming[pos],
+                    });
+                }
+                depth[pos] = depth[parent] + 1;
+                if depth[pos] > DEPTH_CAP {
+                    return Err(GenomeError::TooDeep {
+                        at: self.at::<G>(pos),
+                        depth: depth[pos],
+                        cap: DEPTH_CAP,
+                    });
+                }
+            }
+            let params = pos + (HEADER_WORDS + node.links) as usize;
+            for p in node.params {
+                param::check(&p.dist, &words[params + p.offset as usize..]).map_err(|reason| {
+                    GenomeError::Param {
+                        at: self.at::<G>(pos),
+                        param: p.name,
+                        reason,
+                    }
+                })?;
+            }
+        }
+        Ok(())
+    }
 }
