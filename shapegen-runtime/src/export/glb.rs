@@ -53,15 +53,7 @@ pub fn glb_bytes(
     meshes: &BoundMeshes,
     palette: &Palette,
 ) -> Result<Vec<u8>, ExportError> {
-    let mut root = json::Root {
-        asset: json::Asset {
-            generator: Some("shapegen".to_owned()),
-            ..Default::default()
-        },
-        ..Default::default()
-    };
-    let mut bin = Vec::new();
-    let mut nodes = Vec::new();
+    let mut file = GlbFile::default();
     for id in used_meshes(instances, meshes)? {
         let name = meshes.name(id).unwrap_or_default();
         let baked = bake(instances, id, &meshes[id], name)?;
@@ -69,6 +61,39 @@ pub fn glb_bytes(
             // No finite instance, or no triangle: an accessor must hold an element.
             continue;
         }
+        file.add_mesh(&baked, name, palette.color(id, name));
+    }
+    file.finish()
+}
+
+/// A glTF document and its binary buffer as [`glb_bytes`] builds them, one mesh (with
+/// its material and node) at a time.
+struct GlbFile {
+    root: json::Root,
+    bin: Vec<u8>,
+    nodes: Vec<json::Index<json::Node>>,
+}
+
+impl Default for GlbFile {
+    fn default() -> Self {
+        GlbFile {
+            root: json::Root {
+                asset: json::Asset {
+                    generator: Some("shapegen".to_owned()),
+                    ..Default::default()
+                },
+                ..Default::default()
+            },
+            bin: Vec::new(),
+            nodes: Vec::new(),
+        }
+    }
+}
+
+impl GlbFile {
+    /// Adds `baked` (with at least one triangle) as the glTF mesh `name`, with a node and
+    /// a material of colour `rgb`.
+    fn add_mesh(&mut self, baked: &Baked, name: &str, rgb: [f32; 3]) {
         let views = [
             (
                 as_bytes(&baked.positions),
@@ -80,20 +105,8 @@ pub fn glb_bytes(
                 json::buffer::Target::ElementArrayBuffer,
             ),
         ]
-        .map(|(bytes, target)| {
-            let view = json::buffer::View {
-                buffer: json::Index::new(0),
-                byte_length: USize64::from(bytes.len()),
-                byte_offset: Some(USize64::from(bin.len())),
-                byte_stride: None,
-                name: None,
-                target: Some(Valid(target)),
-                extensions: None,
-                extras: Default::default(),
-            };
-            bin.extend_from_slice(&bytes);
-            root.push(view)
-        });
+        .map(|(bytes, target)| self.push_view(&bytes, target));
+        let root = &mut self.root;
         let (lo, hi) = bounds(&baked.positions);
         let vec3 = |view, min_max: Option<(Vec3, Vec3)>| json::Accessor {
             buffer_view: Some(view),
@@ -123,17 +136,6 @@ pub fn glb_bytes(
             max: None,
             ..vec3(views[2], None)
         });
-        let [r, g, b] = palette.color(id, name);
-        let material = root.push(json::Material {
-            name: Some(name.to_owned()),
-            pbr_metallic_roughness: json::material::PbrMetallicRoughness {
-                base_color_factor: json::material::PbrBaseColorFactor([r, g, b, 1.0]),
-                metallic_factor: json::material::StrengthFactor(0.0),
-                roughness_factor: json::material::StrengthFactor(0.8),
-                ..Default::default()
-            },
-            ..Default::default()
-        });
         let primitive = json::mesh::Primitive {
             attributes: BTreeMap::from([
                 (Valid(json::mesh::Semantic::Positions), position),
@@ -142,43 +144,86 @@ pub fn glb_bytes(
             extensions: None,
             extras: Default::default(),
             indices: Some(indices),
-            material: Some(material),
+            material: Some(self.push_material(name, rgb)),
             mode: Valid(json::mesh::Mode::Triangles),
             targets: None,
         };
-        let mesh = root.push(json::Mesh {
+        self.push_node(name, primitive);
+    }
+
+    /// Appends `bytes` to the binary buffer as a view for `target`.
+    fn push_view(
+        &mut self,
+        bytes: &[u8],
+        target: json::buffer::Target,
+    ) -> json::Index<json::buffer::View> {
+        let view = json::buffer::View {
+            buffer: json::Index::new(0),
+            byte_length: USize64::from(bytes.len()),
+            byte_offset: Some(USize64::from(self.bin.len())),
+            byte_stride: None,
+            name: None,
+            target: Some(Valid(target)),
+            extensions: None,
+            extras: Default::default(),
+        };
+        self.bin.extend_from_slice(bytes);
+        self.root.push(view)
+    }
+
+    /// A metallic-roughness material `name` of colour `rgb`.
+    fn push_material(&mut self, name: &str, [r, g, b]: [f32; 3]) -> json::Index<json::Material> {
+        self.root.push(json::Material {
+            name: Some(name.to_owned()),
+            pbr_metallic_roughness: json::material::PbrMetallicRoughness {
+                base_color_factor: json::material::PbrBaseColorFactor([r, g, b, 1.0]),
+                metallic_factor: json::material::StrengthFactor(0.0),
+                roughness_factor: json::material::StrengthFactor(0.8),
+                ..Default::default()
+            },
+            ..Default::default()
+        })
+    }
+
+    /// The mesh `name` of one primitive, and a node holding it.
+    fn push_node(&mut self, name: &str, primitive: json::mesh::Primitive) {
+        let mesh = self.root.push(json::Mesh {
             extensions: None,
             extras: Default::default(),
             name: Some(name.to_owned()),
             primitives: vec![primitive],
             weights: None,
         });
-        nodes.push(root.push(json::Node {
+        self.nodes.push(self.root.push(json::Node {
             mesh: Some(mesh),
             name: Some(name.to_owned()),
             ..Default::default()
         }));
     }
-    if !bin.is_empty() {
-        root.push(json::Buffer {
-            byte_length: USize64::from(bin.len()),
-            name: None,
-            uri: None,
-            extensions: None,
-            extras: Default::default(),
-        });
+
+    /// The file's bytes: the buffer and the scene, where there is anything to hold.
+    fn finish(mut self) -> Result<Vec<u8>, ExportError> {
+        if !self.bin.is_empty() {
+            self.root.push(json::Buffer {
+                byte_length: USize64::from(self.bin.len()),
+                name: None,
+                uri: None,
+                extensions: None,
+                extras: Default::default(),
+            });
+        }
+        if !self.nodes.is_empty() {
+            let scene = self.root.push(json::Scene {
+                extensions: None,
+                extras: Default::default(),
+                name: None,
+                nodes: self.nodes,
+            });
+            self.root.scene = Some(scene);
+        }
+        let json = self.root.to_vec().map_err(std::io::Error::from)?;
+        pack(json, self.bin)
     }
-    if !nodes.is_empty() {
-        let scene = root.push(json::Scene {
-            extensions: None,
-            extras: Default::default(),
-            name: None,
-            nodes,
-        });
-        root.scene = Some(scene);
-    }
-    let json = root.to_vec().map_err(std::io::Error::from)?;
-    pack(json, bin)
 }
 
 /// Writes [`glb_bytes`] to `writer`.

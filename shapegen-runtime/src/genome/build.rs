@@ -4,7 +4,7 @@ use super::error::{GeneAt, GenomeError};
 use super::validate::slot_at_in;
 use super::{DEPTH_CAP, Genome, node_of, parent_pos};
 use crate::derive::{Grammar, NodeParams};
-use crate::graph::{HEADER_WORDS, NodeDesc};
+use crate::graph::{HEADER_WORDS, NodeDesc, SlotDesc};
 use crate::param;
 
 impl<G: Grammar> Genome<G> {
@@ -122,44 +122,8 @@ impl<G: Grammar> Genome<G> {
     ) -> Result<u32, GenomeError> {
         let parent_index = self.gene_index(parent)?;
         let pnode = node_of::<G>(self.words[parent as usize]);
-        let Some(sdesc) = pnode.slots.iter().find(|s| s.name == slot) else {
-            let valid = pnode
-                .slots
-                .iter()
-                .map(|s| match s.count {
-                    1 => format!("`{}`", s.name),
-                    n => format!("`{}[{n}]`", s.name),
-                })
-                .collect::<Vec<_>>();
-            return Err(GenomeError::UnknownSlot {
-                node: pnode.name,
-                slot: slot.to_owned(),
-                valid: if valid.is_empty() {
-                    "none".to_owned()
-                } else {
-                    valid.join(", ")
-                },
-            });
-        };
-        let link = match index {
-            None if sdesc.count != 1 => {
-                return Err(GenomeError::NeedsIndex {
-                    node: pnode.name,
-                    slot: sdesc.name,
-                    count: sdesc.count,
-                });
-            }
-            None => sdesc.first_link,
-            Some(i) if i >= sdesc.count => {
-                return Err(GenomeError::SlotIndex {
-                    node: pnode.name,
-                    slot: sdesc.name,
-                    index: i,
-                    count: sdesc.count,
-                });
-            }
-            Some(i) => sdesc.first_link + i,
-        };
+        let sdesc = find_slot(pnode, slot)?;
+        let link = slot_link(pnode, sdesc, index)?;
         let node = node_for::<G, P>()?;
         if P::KIND != sdesc.child {
             return Err(GenomeError::WrongNode {
@@ -187,12 +151,7 @@ impl<G: Grammar> Genome<G> {
             pos,
             node: node.name,
         };
-        let mut depth = 2;
-        let mut up = parent;
-        while up != 0 {
-            up = parent_pos(&self.words, up);
-            depth += 1;
-        }
+        let depth = depth_of(&self.words, parent) + 1;
         if depth > DEPTH_CAP {
             return Err(GenomeError::TooDeep {
                 at,
@@ -215,6 +174,60 @@ impl<G: Grammar> Genome<G> {
         self.len += 1;
         Ok(pos)
     }
+}
+
+/// The slot of `node` named `slot`, or an error listing the node's slots.
+fn find_slot<'g>(node: &'g NodeDesc, slot: &str) -> Result<&'g SlotDesc, GenomeError> {
+    node.slots.iter().find(|s| s.name == slot).ok_or_else(|| {
+        let valid = node
+            .slots
+            .iter()
+            .map(|s| match s.count {
+                1 => format!("`{}`", s.name),
+                n => format!("`{}[{n}]`", s.name),
+            })
+            .collect::<Vec<_>>();
+        GenomeError::UnknownSlot {
+            node: node.name,
+            slot: slot.to_owned(),
+            valid: if valid.is_empty() {
+                "none".to_owned()
+            } else {
+                valid.join(", ")
+            },
+        }
+    })
+}
+
+/// The link of `node`'s slot `slot` that `index` names: none for a slot of one link,
+/// one below the slot's count otherwise.
+fn slot_link(node: &NodeDesc, slot: &SlotDesc, index: Option<u32>) -> Result<u32, GenomeError> {
+    match index {
+        None if slot.count != 1 => Err(GenomeError::NeedsIndex {
+            node: node.name,
+            slot: slot.name,
+            count: slot.count,
+        }),
+        None => Ok(slot.first_link),
+        Some(i) if i >= slot.count => Err(GenomeError::SlotIndex {
+            node: node.name,
+            slot: slot.name,
+            index: i,
+            count: slot.count,
+        }),
+        Some(i) => Ok(slot.first_link + i),
+    }
+}
+
+/// The depth of the gene at `pos` in `words` (the root's is 1), up its parents.
+fn depth_of(words: &[u32], pos: u32) -> u32 {
+    let mut depth = 1;
+    let mut up = pos;
+    while up != 0 {
+        up = parent_pos(words, up);
+        depth += 1;
+    }
+    depth
 }
 
 /// The node type whose parameters `P` holds, if `P` fits one of `G`'s nodes.

@@ -71,8 +71,49 @@ impl<G: Grammar> Operators<G> {
         // their root, so only a subtree rooted among the first `min_len` genes can be that
         // large: genes from `sure_from` on are always cuttable.
         let max_cut = len - min_len;
-        let s = &mut self.s;
         let words = &genome.words[..];
+        let (m, total, sure_from) = self.survey_cuts(words, len, min_len);
+        if total == 0 {
+            return false;
+        }
+        let s = &mut self.s;
+        let (cand, cum) = (&s.cand[..m], &mut s.cum[..m]);
+        let r = below(rng, total);
+        let mut child = cand[cum.partition_point(|&c| c <= r)];
+        if child < sure_from
+            && subtree_len(&self.kinds, words, child, &s.map, &mut s.depth, max_cut) > max_cut
+        {
+            // Drawn too large: draw again among the cuttable links only. Accepting the
+            // first draw when it fits and redrawing exactly otherwise gives each cuttable
+            // link its weight over the cuttable links' total weight.
+            gene_starts(&self.kinds, words, &mut s.starts);
+            subtree_sizes(&s.starts, &s.map, &mut s.depth);
+            let total = cuttable_weights(cand, cum, &s.depth, max_cut);
+            if total == 0 {
+                return false;
+            }
+            let r = below(rng, total);
+            child = cand[cum.partition_point(|&c| c <= r)];
+        }
+        let removed = remove_subtree(
+            &self.kinds,
+            &mut genome.words,
+            child,
+            &mut s.map,
+            &s.link_of,
+        );
+        genome.len -= removed;
+        true
+    }
+
+    /// The cut candidates of the genome in `words` (`len` genes, at least `min_len + 1`):
+    /// every expressed link of weight `1 - p > 0`, its child written to `s.cand` and
+    /// the running total of the weights to `s.cum`, each gene's parent and link to
+    /// `s.map` and `s.link_of`. Returns the candidates' count, their total weight, and
+    /// where the genes from index `min_len` on start (subtrees rooted there are never
+    /// too large to cut; `u32::MAX` if none).
+    fn survey_cuts(&mut self, words: &[u32], len: u32, min_len: u32) -> (usize, u64, u32) {
+        let s = &mut self.s;
         let n = words.len();
         cover(&mut s.map, n);
         cover(&mut s.link_of, n);
@@ -119,45 +160,7 @@ impl<G: Grammar> Operators<G> {
             }
             pos += k.gene_words;
         }
-        if total == 0 {
-            return false;
-        }
-        let (cand, cum) = (&s.cand[..m], &mut s.cum[..m]);
-        let r = below(rng, total);
-        let mut child = cand[cum.partition_point(|&c| c <= r)];
-        if child < sure_from
-            && subtree_len(&self.kinds, words, child, &s.map, &mut s.depth, max_cut) > max_cut
-        {
-            // Drawn too large: draw again among the cuttable links only. Accepting the
-            // first draw when it fits and redrawing exactly otherwise gives each cuttable
-            // link its weight over the cuttable links' total weight.
-            gene_starts(&self.kinds, words, &mut s.starts);
-            subtree_sizes(&s.starts, &s.map, &mut s.depth);
-            let mut prev = 0;
-            total = 0;
-            for (c, w) in cand.iter().zip(cum.iter_mut()) {
-                let own = *w - prev;
-                prev = *w;
-                if s.depth[*c as usize] <= max_cut {
-                    total += own;
-                }
-                *w = total;
-            }
-            if total == 0 {
-                return false;
-            }
-            let r = below(rng, total);
-            child = cand[cum.partition_point(|&c| c <= r)];
-        }
-        let removed = remove_subtree(
-            &self.kinds,
-            &mut genome.words,
-            child,
-            &mut s.map,
-            &s.link_of,
-        );
-        genome.len -= removed;
-        true
+        (m, total, sure_from)
     }
 
     /// Removes the gene at word `pos` and its subtree, whatever its link's probability;
@@ -196,6 +199,22 @@ impl<G: Grammar> Operators<G> {
         genome.len -= removed;
         Ok(removed)
     }
+}
+
+/// Rewrites the running totals `cum` of the candidates `cand` to count only those whose
+/// subtree (`size`, per word position) has at most `max_cut` genes; returns their total.
+fn cuttable_weights(cand: &[u32], cum: &mut [u64], size: &[u32], max_cut: u32) -> u64 {
+    let mut prev = 0;
+    let mut total = 0;
+    for (c, w) in cand.iter().zip(cum.iter_mut()) {
+        let own = *w - prev;
+        prev = *w;
+        if size[*c as usize] <= max_cut {
+            total += own;
+        }
+        *w = total;
+    }
+    total
 }
 
 /// Number of genes in the subtree of the gene at `root`, counted up to `limit + 1`, given

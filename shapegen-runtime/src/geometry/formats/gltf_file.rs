@@ -40,96 +40,124 @@ impl Mesh {
         };
         let unchecked =
             Gltf::from_slice_without_validation(bytes).map_err(|e| fail(e.to_string()))?;
-        // gltf-json's validation indexes a primitive's POSITION accessor before it checks
-        // that the accessor exists: check every attribute's index first.
-        let accessors = unchecked.document.as_json().accessors.len();
-        for (m, mesh) in unchecked.document.as_json().meshes.iter().enumerate() {
-            for primitive in &mesh.primitives {
-                let named = primitive
-                    .attributes
-                    .values()
-                    .chain(primitive.indices.as_ref());
-                if let Some(bad) = named.map(|a| a.value()).find(|&a| a >= accessors) {
-                    return Err(fail(format!(
-                        "mesh {m} names accessor {bad}, but the file has {accessors}"
-                    )));
-                }
-            }
-        }
+        check_attributes(&unchecked).map_err(&fail)?;
         let gltf = Gltf::from_slice(bytes).map_err(|e| fail(e.to_string()))?;
-        let buffers = gltf
-            .buffers()
-            .map(|buffer| {
-                let data = match buffer.source() {
-                    gltf::buffer::Source::Bin => blob
-                        .map(<[u8]>::to_vec)
-                        .ok_or_else(|| fail("the binary chunk is missing".into()))?,
-                    gltf::buffer::Source::Uri(uri) => external(uri, folder).map_err(&fail)?,
-                };
-                if data.len() < buffer.length() {
-                    return Err(fail(format!(
-                        "buffer {} holds {} bytes of the {} it declares",
-                        buffer.index(),
-                        data.len(),
-                        buffer.length()
-                    )));
-                }
-                Ok(data)
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-
-        // (mesh, world transform) pairs: the scene's node tree, or every mesh.
-        let mut placed = Vec::new();
-        match gltf.default_scene().or_else(|| gltf.scenes().next()) {
-            Some(scene) => {
-                let mut stack: Vec<_> = scene.nodes().map(|n| (n, Mat4::IDENTITY)).collect();
-                let mut visits = 0;
-                while let Some((node, parent)) = stack.pop() {
-                    visits += 1;
-                    if visits > gltf.nodes().len() {
-                        return Err(fail("the scene's nodes do not form a tree".into()));
-                    }
-                    let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
-                    if let Some(mesh) = node.mesh() {
-                        placed.push((mesh, world));
-                    }
-                    stack.extend(node.children().map(|c| (c, world)));
-                }
-            }
-            None => placed.extend(gltf.meshes().map(|m| (m, Mat4::IDENTITY))),
-        }
-
-        let (mut positions, mut indices) = (Vec::new(), Vec::new());
-        for (mesh, world) in placed {
-            for primitive in mesh.primitives() {
-                if primitive.mode() != Mode::Triangles {
-                    continue;
-                }
-                let at = format!("mesh {} primitive {}", mesh.index(), primitive.index());
-                let accessor = primitive
-                    .get(&Semantic::Positions)
-                    .ok_or_else(|| fail(format!("{at} has no POSITION")))?;
-                let local = read_positions(&accessor, &buffers)
-                    .map_err(|what| fail(format!("{at}: POSITION {what}")))?;
-                let base = positions.len() as u32;
-                let corners = match primitive.indices() {
-                    Some(accessor) => read_indices(&accessor, &buffers)
-                        .map_err(|what| fail(format!("{at}: indices {what}")))?,
-                    None => (0..local.len() as u32).collect(),
-                };
-                if let Some(&i) = corners.iter().find(|&&i| i as usize >= local.len()) {
-                    return Err(fail(format!(
-                        "{at}: index {i} is out of range for {} vertices",
-                        local.len()
-                    )));
-                }
-                positions.extend(local.iter().map(|&p| world.transform_point3(p)));
-                let whole = corners.len() - corners.len() % 3;
-                indices.extend(corners[..whole].iter().map(|&i| base + i));
-            }
-        }
+        let buffers = read_buffers(&gltf, blob, folder).map_err(&fail)?;
+        let placed = placed_meshes(&gltf).map_err(&fail)?;
+        let (positions, indices) = triangles(placed, &buffers).map_err(&fail)?;
         Mesh::from_triangles(name, positions, indices)
     }
+}
+
+/// Checks that every attribute and index accessor a primitive names exists: gltf-json's
+/// validation indexes a primitive's POSITION accessor before it checks that.
+fn check_attributes(unchecked: &Gltf) -> Result<(), String> {
+    let accessors = unchecked.document.as_json().accessors.len();
+    for (m, mesh) in unchecked.document.as_json().meshes.iter().enumerate() {
+        for primitive in &mesh.primitives {
+            let named = primitive
+                .attributes
+                .values()
+                .chain(primitive.indices.as_ref());
+            if let Some(bad) = named.map(|a| a.value()).find(|&a| a >= accessors) {
+                return Err(format!(
+                    "mesh {m} names accessor {bad}, but the file has {accessors}"
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The data of every buffer of `gltf`: from the binary chunk `blob`, a `data:` URI, or a
+/// file in `folder`; each at least as long as it declares.
+fn read_buffers(
+    gltf: &Gltf,
+    blob: Option<&[u8]>,
+    folder: Option<&Path>,
+) -> Result<Vec<Vec<u8>>, String> {
+    gltf.buffers()
+        .map(|buffer| {
+            let data = match buffer.source() {
+                gltf::buffer::Source::Bin => blob
+                    .map(<[u8]>::to_vec)
+                    .ok_or_else(|| "the binary chunk is missing".to_owned())?,
+                gltf::buffer::Source::Uri(uri) => external(uri, folder)?,
+            };
+            if data.len() < buffer.length() {
+                return Err(format!(
+                    "buffer {} holds {} bytes of the {} it declares",
+                    buffer.index(),
+                    data.len(),
+                    buffer.length()
+                ));
+            }
+            Ok(data)
+        })
+        .collect()
+}
+
+/// The meshes to read with their world transforms: those of the default scene's node
+/// tree (or the first scene's), or every mesh where there is no scene.
+fn placed_meshes(gltf: &Gltf) -> Result<Vec<(gltf::Mesh<'_>, Mat4)>, String> {
+    let mut placed = Vec::new();
+    match gltf.default_scene().or_else(|| gltf.scenes().next()) {
+        Some(scene) => {
+            let mut stack: Vec<_> = scene.nodes().map(|n| (n, Mat4::IDENTITY)).collect();
+            let mut visits = 0;
+            while let Some((node, parent)) = stack.pop() {
+                visits += 1;
+                if visits > gltf.nodes().len() {
+                    return Err("the scene's nodes do not form a tree".into());
+                }
+                let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+                if let Some(mesh) = node.mesh() {
+                    placed.push((mesh, world));
+                }
+                stack.extend(node.children().map(|c| (c, world)));
+            }
+        }
+        None => placed.extend(gltf.meshes().map(|m| (m, Mat4::IDENTITY))),
+    }
+    Ok(placed)
+}
+
+/// The world positions and triangle indices of the triangle-list primitives of
+/// `placed`, read from `buffers`.
+fn triangles(
+    placed: Vec<(gltf::Mesh<'_>, Mat4)>,
+    buffers: &[Vec<u8>],
+) -> Result<(Vec<Vec3>, Vec<u32>), String> {
+    let (mut positions, mut indices) = (Vec::new(), Vec::new());
+    for (mesh, world) in placed {
+        for primitive in mesh.primitives() {
+            if primitive.mode() != Mode::Triangles {
+                continue;
+            }
+            let at = format!("mesh {} primitive {}", mesh.index(), primitive.index());
+            let accessor = primitive
+                .get(&Semantic::Positions)
+                .ok_or_else(|| format!("{at} has no POSITION"))?;
+            let local = read_positions(&accessor, buffers)
+                .map_err(|what| format!("{at}: POSITION {what}"))?;
+            let base = positions.len() as u32;
+            let corners = match primitive.indices() {
+                Some(accessor) => read_indices(&accessor, buffers)
+                    .map_err(|what| format!("{at}: indices {what}"))?,
+                None => (0..local.len() as u32).collect(),
+            };
+            if let Some(&i) = corners.iter().find(|&&i| i as usize >= local.len()) {
+                return Err(format!(
+                    "{at}: index {i} is out of range for {} vertices",
+                    local.len()
+                ));
+            }
+            positions.extend(local.iter().map(|&p| world.transform_point3(p)));
+            let whole = corners.len() - corners.len() % 3;
+            indices.extend(corners[..whole].iter().map(|&i| base + i));
+        }
+    }
+    Ok((positions, indices))
 }
 
 /// The JSON chunk and the binary chunk, if any, of a binary glTF (`.glb`): a 12-byte
