@@ -113,80 +113,93 @@ pub(super) fn sweep(
         };
         let next_t = t + dt;
         for outline in &mut outlines {
-            let moved: Vec<DVec2> = outline.iter().map(|c| c.at + c.velocity * dt).collect();
-            if dt > 0.0 {
-                let m = outline.len();
-                for i in 0..m {
-                    let j = (i + 1) % m;
-                    solid.quad(
-                        outline[i].at.extend(height(t)),
-                        outline[j].at.extend(height(t)),
-                        moved[j].extend(height(next_t)),
-                        moved[i].extend(height(next_t)),
-                    );
-                }
-            }
-            for (c, at) in outline.iter_mut().zip(moved) {
-                c.at = at;
-            }
+            advance(outline, dt, [height(t), height(next_t)], solid);
         }
         t = next_t;
-        match event {
-            Event::Collapse { outline, at } => {
-                let o = &mut outlines[outline];
-                let m = o.len();
-                let next = (at + 1) % m;
-                let (a, b) = (o[at], o[next]);
-                if a.original && b.original {
-                    sweep.triangle_face[a.edge] = true;
-                }
-                o[next] = Corner {
-                    at: (a.at + b.at) / 2.0,
-                    original: false,
-                    ..b
-                };
-                o.remove(at);
-            }
-            Event::Split {
-                outline,
-                corner,
-                edge,
-            } => {
-                let o = outlines.swap_remove(outline);
-                let m = o.len();
-                let r = o[corner];
-                let hit = Corner {
-                    original: false,
-                    ..r
-                };
-                // One side: the corner with its edge out, on to the hit edge's start.
-                let mut first = vec![hit];
-                let mut k = (corner + 1) % m;
-                loop {
-                    first.push(o[k]);
-                    if k == edge {
-                        break;
-                    }
-                    k = (k + 1) % m;
-                }
-                // The other: the corner on the hit edge, on to the corner before.
-                let mut second = vec![Corner {
-                    edge: o[edge].edge,
-                    ..hit
-                }];
-                let mut k = (edge + 1) % m;
-                while k != corner {
-                    second.push(o[k]);
-                    k = (k + 1) % m;
-                }
-                outlines.push(first);
-                outlines.push(second);
-            }
-        }
+        happen(event, &mut outlines, &mut sweep.triangle_face);
     }
     Err(RoofError::Degenerate {
         points: polygon.len(),
     })
+}
+
+/// Moves the corners of `outline` on by `dt`, adding the quad each of its edges sweeps
+/// from height `z[0]` to `z[1]` to `solid` (none when `dt` is 0).
+fn advance(outline: &mut [Corner], dt: f64, z: [f64; 2], solid: &mut Solid) {
+    let moved: Vec<DVec2> = outline.iter().map(|c| c.at + c.velocity * dt).collect();
+    if dt > 0.0 {
+        let m = outline.len();
+        for i in 0..m {
+            let j = (i + 1) % m;
+            solid.quad(
+                outline[i].at.extend(z[0]),
+                outline[j].at.extend(z[0]),
+                moved[j].extend(z[1]),
+                moved[i].extend(z[1]),
+            );
+        }
+    }
+    for (c, at) in outline.iter_mut().zip(moved) {
+        c.at = at;
+    }
+}
+
+/// Changes `outlines` as `event` does: a collapsing edge's corners merge (marking its
+/// polygon edge's face a triangle in `triangle_face` when both were the polygon's own
+/// corners), a split cuts an outline in two at the reflex corner.
+fn happen(event: Event, outlines: &mut Vec<Vec<Corner>>, triangle_face: &mut [bool]) {
+    match event {
+        Event::Collapse { outline, at } => {
+            let o = &mut outlines[outline];
+            let m = o.len();
+            let next = (at + 1) % m;
+            let (a, b) = (o[at], o[next]);
+            if a.original && b.original {
+                triangle_face[a.edge] = true;
+            }
+            o[next] = Corner {
+                at: (a.at + b.at) / 2.0,
+                original: false,
+                ..b
+            };
+            o.remove(at);
+        }
+        Event::Split {
+            outline,
+            corner,
+            edge,
+        } => {
+            let o = outlines.swap_remove(outline);
+            let m = o.len();
+            let r = o[corner];
+            let hit = Corner {
+                original: false,
+                ..r
+            };
+            // One side: the corner with its edge out, on to the hit edge's start.
+            let mut first = vec![hit];
+            let mut k = (corner + 1) % m;
+            loop {
+                first.push(o[k]);
+                if k == edge {
+                    break;
+                }
+                k = (k + 1) % m;
+            }
+            // The other: the corner on the hit edge, on to the corner before.
+            let mut second = vec![Corner {
+                edge: o[edge].edge,
+                ..hit
+            }];
+            let mut k = (edge + 1) % m;
+            while k != corner {
+                second.push(o[k]);
+                k = (k + 1) % m;
+            }
+            outlines.push(first);
+            outlines.push(second);
+        }
+    }
 }
 
 /// Drops corners that fold straight back and outlines with no area left, and sets every

@@ -93,42 +93,7 @@ impl<G: Grammar> Mcmc<G> {
             if self.retry.is_empty() {
                 break;
             }
-            let n = self.retry.len();
-            while self.retry_genomes.len() < n {
-                self.retry_genomes.push(Genome::from_parts(Vec::new(), 0));
-            }
-            self.retry_fitness.resize(n, f64::NAN);
-            for (k, &i) in self.retry.iter().enumerate() {
-                let i = i as usize;
-                self.ops.alter(&mut self.proposals[i], &mut self.rngs[i]);
-                self.retry_genomes[k].clone_from(&self.proposals[i]);
-            }
-            evaluator.evaluate_bred(
-                &self.retry_genomes[..n],
-                &self.chains,
-                &self.retry,
-                &mut self.retry_fitness[..n],
-            )?;
-            self.core.progress.evaluations += n as u64;
-            let mut kept = 0;
-            for k in 0..n {
-                let i = self.retry[k] as usize;
-                let (m, t) = (self.moves[i], self.temperatures[i]);
-                if accept(
-                    self.fitness[i],
-                    self.retry_fitness[k],
-                    t,
-                    m.log_q,
-                    &mut self.rngs[i],
-                ) {
-                    std::mem::swap(&mut self.chains[i], &mut self.proposals[i]);
-                    self.fitness[i] = self.retry_fitness[k];
-                } else {
-                    self.retry[kept] = i as u32;
-                    kept += 1;
-                }
-            }
-            self.retry.truncate(kept);
+            self.retry_rejected(evaluator)?;
         }
         self.swap_temperatures(&mut stream(seed, generation, 1 << 31));
         if generation.is_multiple_of(self.core.settings.anneal_interval) {
@@ -136,6 +101,51 @@ impl<G: Grammar> Mcmc<G> {
                 *t /= self.core.settings.anneal_factor;
             }
         }
+        Ok(())
+    }
+
+    /// One round of delayed rejection: the chains in `retry`, whose jump was rejected,
+    /// propose again by an alter of the rejected proposal; those accepted leave `retry`.
+    fn retry_rejected<E: Evaluator<G> + ?Sized>(
+        &mut self,
+        evaluator: &mut E,
+    ) -> Result<(), OptimizeError> {
+        let n = self.retry.len();
+        while self.retry_genomes.len() < n {
+            self.retry_genomes.push(Genome::from_parts(Vec::new(), 0));
+        }
+        self.retry_fitness.resize(n, f64::NAN);
+        for (k, &i) in self.retry.iter().enumerate() {
+            let i = i as usize;
+            self.ops.alter(&mut self.proposals[i], &mut self.rngs[i]);
+            self.retry_genomes[k].clone_from(&self.proposals[i]);
+        }
+        evaluator.evaluate_bred(
+            &self.retry_genomes[..n],
+            &self.chains,
+            &self.retry,
+            &mut self.retry_fitness[..n],
+        )?;
+        self.core.progress.evaluations += n as u64;
+        let mut kept = 0;
+        for k in 0..n {
+            let i = self.retry[k] as usize;
+            let (m, t) = (self.moves[i], self.temperatures[i]);
+            if accept(
+                self.fitness[i],
+                self.retry_fitness[k],
+                t,
+                m.log_q,
+                &mut self.rngs[i],
+            ) {
+                std::mem::swap(&mut self.chains[i], &mut self.proposals[i]);
+                self.fitness[i] = self.retry_fitness[k];
+            } else {
+                self.retry[kept] = i as u32;
+                kept += 1;
+            }
+        }
+        self.retry.truncate(kept);
         Ok(())
     }
 

@@ -295,6 +295,27 @@ impl GpuRetention {
         }
         self.count_unslotted(scorer, batch, &slots, out)?;
 
+        self.keep_children(children, batch, &slots, &uses_base, &diffs, out);
+        for (key, base) in parent_keys.into_iter().zip(bases) {
+            if let Some(base) = base {
+                self.kept.entry(key).or_insert(base);
+            }
+        }
+        Ok(())
+    }
+
+    /// Counts each child in the stats (from its parent where `uses_base` says so, with
+    /// the changes of `diffs`) and keeps each child given a slot in `slots`, with its
+    /// counts `out`.
+    fn keep_children<G: Grammar>(
+        &mut self,
+        children: &[Genome<G>],
+        batch: &InstanceBatch,
+        slots: &[Option<u32>],
+        uses_base: &[bool],
+        diffs: &[InstanceDiff],
+        out: &[SilhouetteCounts],
+    ) {
         for (child, slot) in slots.iter().enumerate() {
             if uses_base[child] {
                 self.stats.incremental += 1;
@@ -312,12 +333,6 @@ impl GpuRetention {
                 self.kept.insert(genome_key(&children[child]), kept);
             }
         }
-        for (key, base) in parent_keys.into_iter().zip(bases) {
-            if let Some(base) = base {
-                self.kept.entry(key).or_insert(base);
-            }
-        }
-        Ok(())
     }
 
     /// The slots `0..issued` not in `used`, lowest last (taken first).

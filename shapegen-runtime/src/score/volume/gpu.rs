@@ -367,25 +367,7 @@ impl<'a> GpuVolumeScorer<'a> {
                 _ => (Placement::Nothing, 0),
             })
             .collect_into_vec(&mut placements);
-        // Rasterise every model's other instances and its facets on the CPU threads.
-        let rasterised: Vec<Rows> = if self.boxes_only {
-            Vec::new()
-        } else {
-            (0..batch.len())
-                .into_par_iter()
-                .map_init(Voxelizer::default, |voxelizer, m| {
-                    let model = batch.model(m);
-                    let mut rows = Rows::new(grid.resolution());
-                    for instance in model {
-                        if self.scorer.part(instance.mesh) != Some(&PartKind::Box) {
-                            self.scorer.walk(instance, voxelizer, &mut rows);
-                        }
-                    }
-                    self.scorer.walk_facets(model, voxelizer, &mut rows);
-                    rows
-                })
-                .collect()
-        };
+        let rasterised = self.rasterise_rest(batch);
         let starts = batch.starts();
         let mut beyond: Vec<Beyond> = rasterised.iter().map(|r| r.beyond).collect();
         beyond.resize(batch.len(), Beyond::default());
@@ -436,6 +418,29 @@ impl<'a> GpuVolumeScorer<'a> {
             pass.models += 1;
         }
         Ok((passes, beyond))
+    }
+
+    /// Rasterises every model's instances other than boxes, and its facets, on the CPU
+    /// threads (nothing when the grammar has only boxes).
+    fn rasterise_rest(&self, batch: &InstanceBatch) -> Vec<Rows> {
+        if self.boxes_only {
+            return Vec::new();
+        }
+        let grid = self.scorer.grid();
+        (0..batch.len())
+            .into_par_iter()
+            .map_init(Voxelizer::default, |voxelizer, m| {
+                let model = batch.model(m);
+                let mut rows = Rows::new(grid.resolution());
+                for instance in model {
+                    if self.scorer.part(instance.mesh) != Some(&PartKind::Box) {
+                        self.scorer.walk(instance, voxelizer, &mut rows);
+                    }
+                }
+                self.scorer.walk_facets(model, voxelizer, &mut rows);
+                rows
+            })
+            .collect()
     }
 
     /// Records one pass: clear its bitsets, dispatch its rows.

@@ -125,11 +125,27 @@ impl Voxelizer {
         triangles: impl Iterator<Item = [u32; 3]>,
         bounds: Bounds,
         rule: Rule,
-        mut emit: impl FnMut(i64, i64, i64, i64),
+        emit: impl FnMut(i64, i64, i64, i64),
     ) -> Result<(), TooLarge> {
         if self.points.iter().any(|p| !p.is_finite()) || self.points.is_empty() {
             return Ok(());
         }
+        let Some(lattice) = self.lattice(bounds)? else {
+            return Ok(());
+        };
+        self.crossings.clear();
+        for triangle in triangles {
+            self.cross(triangle, &lattice);
+        }
+        self.crossings
+            .sort_unstable_by(|p, q| p.0.cmp(&q.0).then(p.1.total_cmp(&q.1)));
+        self.emit_runs(&lattice, rule, emit);
+        Ok(())
+    }
+
+    /// The lattice points the placed points' box holds (within the grid, for
+    /// [`Bounds::Grid`]), or `None` when it holds none.
+    fn lattice(&self, bounds: Bounds) -> Result<Option<Lattice>, TooLarge> {
         let (mut lo, mut hi) = self
             .points
             .iter()
@@ -149,60 +165,67 @@ impl Voxelizer {
             }
             Bounds::Lattice => true,
         };
-        let Some((first, count)) = lattice_box(lo, hi, limited).map_err(|()| TooLarge)? else {
-            return Ok(());
-        };
-        let [i0, j0, k0] = first;
-        let (i1, j1, k1) = (i0 + count[0] - 1, j0 + count[1] - 1, k0 + count[2] - 1);
-        let nj = count[1];
+        let found = lattice_box(lo, hi, limited).map_err(|()| TooLarge)?;
+        Ok(found.map(|(first, count)| Lattice {
+            first,
+            last: std::array::from_fn(|a| first[a] + count[a] - 1),
+        }))
+    }
 
-        self.crossings.clear();
-        for [a, b, c] in triangles {
-            let [pa, pb, mut pc] = [a, b, c].map(|v| self.points[v as usize]);
-            let mut pb = pb;
-            // The x component of the triangle's normal: positive where it faces +x.
-            let area = edge(pa.yz(), pb.yz(), pc.yz());
-            if area == 0.0 {
-                continue;
-            }
-            let sign = if area > 0.0 { 1 } else { -1 };
-            if area < 0.0 {
-                std::mem::swap(&mut pb, &mut pc);
-            }
-            let (a2, b2, c2) = (pa.yz(), pb.yz(), pc.yz());
-            let lo2 = a2.min(b2).min(c2);
-            let hi2 = a2.max(b2).max(c2);
-            let (ja, jb) = (
-                (lo2.x.ceil() as i64).max(j0),
-                (hi2.x.floor() as i64).min(j1),
-            );
-            let (ka, kb) = (
-                (lo2.y.ceil() as i64).max(k0),
-                (hi2.y.floor() as i64).min(k1),
-            );
-            for k in ka..=kb {
-                for j in ja..=jb {
-                    let p = DVec2::new(j as f64, k as f64);
-                    if !(left_of(a2, b2, p) && left_of(b2, c2, p) && left_of(c2, a2, p)) {
-                        continue;
-                    }
-                    let (wa, wb, wc) = (edge(b2, c2, p), edge(c2, a2, p), edge(a2, b2, p));
-                    let sum = wa + wb + wc;
-                    let x = if sum > 0.0 {
-                        (wa * pa.x + wb * pb.x + wc * pc.x) / sum
-                    } else {
-                        (pa.x + pb.x + pc.x) / 3.0
-                    };
-                    let row = ((k - k0) * nj + (j - j0)) as u64;
-                    self.crossings.push((row, x, sign));
+    /// Adds the crossings of the x-parallel lines through `lattice`'s (J, K) points
+    /// with the triangle `[a, b, c]` of the placed points: per line (its row, `K` major),
+    /// where it crosses and the sign of the triangle's normal's x.
+    fn cross(&mut self, [a, b, c]: [u32; 3], lattice: &Lattice) {
+        let [_, j0, k0] = lattice.first;
+        let [_, j1, k1] = lattice.last;
+        let nj = j1 - j0 + 1;
+        let [pa, mut pb, mut pc] = [a, b, c].map(|v| self.points[v as usize]);
+        // The x component of the triangle's normal: positive where it faces +x.
+        let area = edge(pa.yz(), pb.yz(), pc.yz());
+        if area == 0.0 {
+            return;
+        }
+        let sign = if area > 0.0 { 1 } else { -1 };
+        if area < 0.0 {
+            std::mem::swap(&mut pb, &mut pc);
+        }
+        let (a2, b2, c2) = (pa.yz(), pb.yz(), pc.yz());
+        let lo2 = a2.min(b2).min(c2);
+        let hi2 = a2.max(b2).max(c2);
+        let (ja, jb) = (
+            (lo2.x.ceil() as i64).max(j0),
+            (hi2.x.floor() as i64).min(j1),
+        );
+        let (ka, kb) = (
+            (lo2.y.ceil() as i64).max(k0),
+            (hi2.y.floor() as i64).min(k1),
+        );
+        for k in ka..=kb {
+            for j in ja..=jb {
+                let p = DVec2::new(j as f64, k as f64);
+                if !(left_of(a2, b2, p) && left_of(b2, c2, p) && left_of(c2, a2, p)) {
+                    continue;
                 }
+                let (wa, wb, wc) = (edge(b2, c2, p), edge(c2, a2, p), edge(a2, b2, p));
+                let sum = wa + wb + wc;
+                let x = if sum > 0.0 {
+                    (wa * pa.x + wb * pb.x + wc * pc.x) / sum
+                } else {
+                    (pa.x + pb.x + pc.x) / 3.0
+                };
+                let row = ((k - k0) * nj + (j - j0)) as u64;
+                self.crossings.push((row, x, sign));
             }
         }
-        self.crossings
-            .sort_unstable_by(|p, q| p.0.cmp(&q.0).then(p.1.total_cmp(&q.1)));
+    }
 
-        // Lattice point I counts the crossings c > I; between consecutive crossings that
-        // count, and their signs' sum, are constant.
+    /// Emits the runs of `lattice` points inside by `rule`, from the sorted crossings:
+    /// lattice point I counts the crossings c > I; between consecutive crossings that
+    /// count, and their signs' sum, are constant.
+    fn emit_runs(&self, lattice: &Lattice, rule: Rule, mut emit: impl FnMut(i64, i64, i64, i64)) {
+        let [i0, j0, k0] = lattice.first;
+        let i1 = lattice.last[0];
+        let nj = lattice.last[1] - j0 + 1;
         let (below, above) = ((i0 - 1) as f64, (i1 + 1) as f64);
         let first_after = |c: f64| c.clamp(below, above).ceil() as i64;
         let mut rest = &self.crossings[..];
@@ -241,8 +264,13 @@ impl Voxelizer {
                 }
             }
         }
-        Ok(())
     }
+}
+
+/// The lattice points a sweep visits: the first and the last along each axis.
+struct Lattice {
+    first: [i64; 3],
+    last: [i64; 3],
 }
 
 #[cfg(test)]

@@ -180,6 +180,66 @@ fn nonzero_words(bits: &[u64]) -> Vec<u32> {
         .collect()
 }
 
+/// The rows of the ball of radius `threshold` (world units) in `grid`'s voxels, each
+/// spanning `-half..=half` along x, and the distinct non-zero y offsets they have.
+fn ball_rows(grid: &Grid, threshold: f64) -> (Vec<Row>, Vec<i64>) {
+    let cell = grid.cell().to_array();
+    let [nx, ny, _] = grid.resolution().map(i64::from);
+    let reach = |axis: usize| (threshold / cell[axis]).floor() as i64;
+    let mut rows = Vec::new();
+    let mut dys = Vec::new();
+    for dz in -reach(2)..=reach(2) {
+        for dy in -reach(1)..=reach(1) {
+            if !within(cell, [0, dy, dz], threshold) {
+                continue;
+            }
+            let mut half = 0;
+            while within(cell, [half + 1, dy, dz], threshold) {
+                half += 1;
+            }
+            let dy_index = (dy != 0).then(|| match dys.iter().position(|&d| d == dy) {
+                Some(p) => p,
+                None => {
+                    dys.push(dy);
+                    dys.len() - 1
+                }
+            });
+            rows.push(Row {
+                offset: dy * nx + dz * nx * ny,
+                half: half as usize,
+                dy: dy_index,
+            });
+        }
+    }
+    (rows, dys)
+}
+
+/// The voxels of `classes`' grid on each of its four x and y edges (`x = 0`, `x` last,
+/// `y = 0`, `y` last), and its target voxels, as bitsets.
+fn edges_and_inside(classes: &VoxelClasses) -> ([Vec<u64>; 4], Vec<u64>) {
+    let grid = classes.grid();
+    let [nx, ny, _] = grid.resolution().map(i64::from);
+    let count = grid.voxel_count() as usize;
+    let words = count.div_ceil(64);
+    let mut edges: [Vec<u64>; 4] = std::array::from_fn(|_| vec![0u64; words]);
+    let mut inside = vec![0u64; words];
+    for v in 0..count {
+        let [i, j, _] = grid.voxel(v);
+        for (e, on) in [i == 0, i == nx - 1, j == 0, j == ny - 1]
+            .into_iter()
+            .enumerate()
+        {
+            if on {
+                set(&mut edges[e], v);
+            }
+        }
+        if classes.is_target(usize::from(classes.voxels()[v])) {
+            set(&mut inside, v);
+        }
+    }
+    (edges, inside)
+}
+
 impl SurfaceBand {
     /// The band of the target voxels of `classes` at `threshold` (world units, above 0
     /// and finite). Fails, saying why, when the threshold is not such a number or spans
@@ -193,9 +253,7 @@ impl SurfaceBand {
         }
         let cell = grid.cell().to_array();
         let [nx, ny, _] = grid.resolution().map(i64::from);
-        let count = grid.voxel_count() as usize;
-        let words = count.div_ceil(64);
-        let reach = |axis: usize| (threshold / cell[axis]).floor() as i64;
+        let words = (grid.voxel_count() as usize).div_ceil(64);
         let half_width = fscore_half_width(grid, threshold);
         if half_width > MAX_HALF_WIDTH as f64 {
             return Err(format!(
@@ -204,48 +262,9 @@ impl SurfaceBand {
                 cell[0]
             ));
         }
-        let mut rows = Vec::new();
-        let mut dys = Vec::new();
-        for dz in -reach(2)..=reach(2) {
-            for dy in -reach(1)..=reach(1) {
-                if !within(cell, [0, dy, dz], threshold) {
-                    continue;
-                }
-                let mut half = 0;
-                while within(cell, [half + 1, dy, dz], threshold) {
-                    half += 1;
-                }
-                let dy_index = (dy != 0).then(|| match dys.iter().position(|&d| d == dy) {
-                    Some(p) => p,
-                    None => {
-                        dys.push(dy);
-                        dys.len() - 1
-                    }
-                });
-                rows.push(Row {
-                    offset: dy * nx + dz * nx * ny,
-                    half: half as usize,
-                    dy: dy_index,
-                });
-            }
-        }
+        let (rows, dys) = ball_rows(grid, threshold);
         let half = rows.iter().map(|r| r.half).max().unwrap_or(0);
-        let mut edges: [Vec<u64>; 4] = std::array::from_fn(|_| vec![0u64; words]);
-        let mut inside = vec![0u64; words];
-        for v in 0..count {
-            let [i, j, _] = grid.voxel(v);
-            for (e, on) in [i == 0, i == nx - 1, j == 0, j == ny - 1]
-                .into_iter()
-                .enumerate()
-            {
-                if on {
-                    set(&mut edges[e], v);
-                }
-            }
-            if classes.is_target(usize::from(classes.voxels()[v])) {
-                set(&mut inside, v);
-            }
-        }
+        let (edges, inside) = edges_and_inside(classes);
         let target = surface_voxels(grid, &inside);
         let target_words = nonzero_words(&target);
         let mut band = SurfaceBand {

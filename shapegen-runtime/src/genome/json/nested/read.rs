@@ -261,6 +261,16 @@ fn read_node_params(
     Ok(())
 }
 
+/// The error for a `children` key `name` that is no slot of `node` (at place `place`).
+fn unknown_slot(node: &NodeDesc, name: &str, places: &Places, place: PlaceId) -> JsonError {
+    JsonError::UnknownSlotAt {
+        path: places.path(place),
+        node: node.name,
+        slot: name.to_owned(),
+        valid: names_or_none(slot_names(node)),
+    }
+}
+
 /// Pushes the children written in `object`'s `children`, of the node of type `node` at
 /// word `pos` and place `place`, onto `stack`.
 fn push_children<'a>(
@@ -284,16 +294,11 @@ fn push_children<'a>(
         }
     };
     for (name, value) in children {
-        let slot =
-            node.slots
-                .iter()
-                .find(|s| s.name == name)
-                .ok_or_else(|| JsonError::UnknownSlotAt {
-                    path: places.path(place),
-                    node: node.name,
-                    slot: name.clone(),
-                    valid: names_or_none(slot_names(node)),
-                })?;
+        let slot = node
+            .slots
+            .iter()
+            .find(|s| s.name == name)
+            .ok_or_else(|| unknown_slot(node, name, places, place))?;
         let hang = |index: u32| Hang {
             parent: pos,
             parent_node: node,
