@@ -14,6 +14,7 @@ use proc_macro::TokenStream;
 mod check;
 mod consteval;
 mod ctxt;
+mod dist;
 mod expand;
 mod fallback;
 mod layout;
