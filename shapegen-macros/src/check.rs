@@ -27,34 +27,7 @@ const TYPES: &str = "`f32`, `Vec2`, `Vec3`, `i32`, `u32` and `bool`";
 /// Builds the model of `g`, reporting every mistake in `cx`.
 pub fn check<'a>(g: &'a parse::Generator, cx: &Ctxt) -> Generator<'a> {
     // Nodes first: everything else refers to them by name.
-    let mut node_asts: Vec<&parse::Node> = Vec::new();
-    let mut any_dropped = false;
-    for item in &g.items {
-        let Item::Node(n) = item else { continue };
-        if n.name == g.name {
-            any_dropped = true;
-            cx.error(
-                &n.name,
-                format_args!(
-                    "node `{0}` has the same name as its generator; rename one (node `{0}` \
-                     names a parameter struct and generator `{0}` a unit struct, in the same \
-                     module)",
-                    n.name
-                ),
-            );
-        } else if node_asts.iter().any(|m| m.name == n.name) {
-            any_dropped = true;
-            cx.error(
-                &n.name,
-                format_args!(
-                    "node `{}` is declared twice; give each node its own name",
-                    n.name
-                ),
-            );
-        } else {
-            node_asts.push(n);
-        }
-    }
+    let (node_asts, any_dropped) = distinct_nodes(g, cx);
     check_no_cfg(
         &g.attrs,
         "a generator; put the `generator!` in a `#[cfg(..)]` module instead",
@@ -95,27 +68,7 @@ pub fn check<'a>(g: &'a parse::Generator, cx: &Ctxt) -> Generator<'a> {
             .iter()
             .all(|n| n.slots.iter().all(|s| s.child.is_some()));
     if let (Some(axiom), true) = (axiom, graph_known) {
-        let mut seen = vec![false; nodes.len()];
-        let mut queue = VecDeque::from([axiom]);
-        seen[axiom as usize] = true;
-        while let Some(k) = queue.pop_front() {
-            for child in nodes[k as usize].slots.iter().filter_map(|s| s.child) {
-                if !std::mem::replace(&mut seen[child as usize], true) {
-                    queue.push_back(child);
-                }
-            }
-        }
-        for (n, _) in nodes.iter().zip(&seen).filter(|(_, seen)| !**seen) {
-            cx.error(
-                n.name,
-                format_args!(
-                    "node `{}` cannot be reached from the axiom `{}`: no chain of children \
-                     leads to it, so it can never appear in a genome; make it a child of a \
-                     reachable node, or remove it",
-                    n.name, names[axiom as usize]
-                ),
-            );
-        }
+        report_unreachable(&nodes, axiom, &names, cx);
     }
 
     Generator {
@@ -125,6 +78,65 @@ pub fn check<'a>(g: &'a parse::Generator, cx: &Ctxt) -> Generator<'a> {
         axiom,
         meshes,
         nodes,
+    }
+}
+
+/// The nodes of `g`, each name once: a node named like the generator, or like an
+/// earlier node, is reported and dropped (the `bool` says whether any was).
+fn distinct_nodes<'a>(g: &'a parse::Generator, cx: &Ctxt) -> (Vec<&'a parse::Node>, bool) {
+    let mut node_asts: Vec<&parse::Node> = Vec::new();
+    let mut any_dropped = false;
+    for item in &g.items {
+        let Item::Node(n) = item else { continue };
+        if n.name == g.name {
+            any_dropped = true;
+            cx.error(
+                &n.name,
+                format_args!(
+                    "node `{0}` has the same name as its generator; rename one (node `{0}` \
+                     names a parameter struct and generator `{0}` a unit struct, in the same \
+                     module)",
+                    n.name
+                ),
+            );
+        } else if node_asts.iter().any(|m| m.name == n.name) {
+            any_dropped = true;
+            cx.error(
+                &n.name,
+                format_args!(
+                    "node `{}` is declared twice; give each node its own name",
+                    n.name
+                ),
+            );
+        } else {
+            node_asts.push(n);
+        }
+    }
+    (node_asts, any_dropped)
+}
+
+/// Reports every node that no chain of children leads to from `axiom`.
+fn report_unreachable(nodes: &[Node], axiom: u32, names: &[String], cx: &Ctxt) {
+    let mut seen = vec![false; nodes.len()];
+    let mut queue = VecDeque::from([axiom]);
+    seen[axiom as usize] = true;
+    while let Some(k) = queue.pop_front() {
+        for child in nodes[k as usize].slots.iter().filter_map(|s| s.child) {
+            if !std::mem::replace(&mut seen[child as usize], true) {
+                queue.push_back(child);
+            }
+        }
+    }
+    for (n, _) in nodes.iter().zip(&seen).filter(|(_, seen)| !**seen) {
+        cx.error(
+            n.name,
+            format_args!(
+                "node `{}` cannot be reached from the axiom `{}`: no chain of children \
+                 leads to it, so it can never appear in a genome; make it a child of a \
+                 reachable node, or remove it",
+                n.name, names[axiom as usize]
+            ),
+        );
     }
 }
 
@@ -249,107 +261,204 @@ fn check_node<'a>(
     cx: &Ctxt,
 ) -> Node<'a> {
     check_no_cfg(&n.attrs, PARTS_CFG, cx);
-    let mut whole = !n.broken;
-    let mut bindings_ok = true;
-    let mut rule = Rule::Default;
-    let (mut params_ast, mut slots_ast) = (None, None);
-    let (mut params_seen, mut children_seen, mut derive_seen) = (false, false, false);
-    for section in &n.sections {
-        let (keyword, seen) = match section {
-            Section::Params { keyword, params } => {
-                params_ast.get_or_insert(params);
-                (keyword, &mut params_seen)
-            }
-            Section::Children { keyword, slots } => {
-                slots_ast.get_or_insert(slots);
-                (keyword, &mut children_seen)
-            }
-            Section::Derive {
-                keyword,
-                mutability,
-                scope,
-                body,
-            } => {
-                if !derive_seen {
-                    rule = Rule::Body {
-                        mutability: mutability.as_ref(),
-                        scope,
-                        body,
-                    };
-                }
-                (keyword, &mut derive_seen)
-            }
-        };
-        // Keep the first of a duplicated section.
-        if std::mem::replace(seen, true) {
-            whole = false;
-            cx.error(
-                keyword,
-                format_args!(
-                    "node `{}` has a second `{keyword}` section; put everything in one",
-                    n.name
-                ),
-            );
-        }
-    }
-
+    let mut check = NodeCheck {
+        n,
+        cx,
+        whole: !n.broken,
+        bindings_ok: true,
+    };
+    let (params_ast, slots_ast, rule) = check.sections();
     let scope = match &rule {
         Rule::Body { scope, .. } => Some(*scope),
         Rule::Default => None,
     };
+    let params = check.params(params_ast, scope);
+    let slots = check.slots(slots_ast, &params, scope, names, kinds);
+    check.gene_size(&params, &slots);
+    Node {
+        attrs: &n.attrs,
+        name: &n.name,
+        kind,
+        rule_fn: format_ident!("__rule_{}", snake_case(&n.name.to_string())),
+        params,
+        slots,
+        rule,
+        whole: check.whole,
+        bindings_ok: check.bindings_ok,
+    }
+}
 
-    let mut params: Vec<Param<'a>> = Vec::new();
-    for p in params_ast.into_iter().flatten() {
-        if params.iter().any(|q| *q.name == p.name) {
-            cx.error(
-                &p.name,
-                format_args!(
-                    "parameter `{}` is declared twice in node `{}`; give each parameter its \
-                     own name",
-                    p.name, n.name
-                ),
-            );
-            continue;
+/// The checking of one node: what it found so far, whether the node is whole (its rule
+/// can be generated) and whether its bindings are sound.
+struct NodeCheck<'a, 'c> {
+    n: &'a parse::Node,
+    cx: &'c Ctxt,
+    whole: bool,
+    bindings_ok: bool,
+}
+
+/// A node's parameter and slot declarations, as parsed.
+type ParamsAst<'a> = Option<&'a Vec<parse::Param>>;
+type SlotsAst<'a> = Option<&'a Vec<parse::Slot>>;
+
+impl<'a> NodeCheck<'a, '_> {
+    /// The node's sections: its parameters, slots and rule, each the first of its kind
+    /// (a second is reported).
+    fn sections(&mut self) -> (ParamsAst<'a>, SlotsAst<'a>, Rule<'a>) {
+        let n = self.n;
+        let mut rule = Rule::Default;
+        let (mut params_ast, mut slots_ast) = (None, None);
+        let (mut params_seen, mut children_seen, mut derive_seen) = (false, false, false);
+        for section in &n.sections {
+            let (keyword, seen) = match section {
+                Section::Params { keyword, params } => {
+                    params_ast.get_or_insert(params);
+                    (keyword, &mut params_seen)
+                }
+                Section::Children { keyword, slots } => {
+                    slots_ast.get_or_insert(slots);
+                    (keyword, &mut children_seen)
+                }
+                Section::Derive {
+                    keyword,
+                    mutability,
+                    scope,
+                    body,
+                } => {
+                    if !derive_seen {
+                        rule = Rule::Body {
+                            mutability: mutability.as_ref(),
+                            scope,
+                            body,
+                        };
+                    }
+                    (keyword, &mut derive_seen)
+                }
+            };
+            // Keep the first of a duplicated section.
+            if std::mem::replace(seen, true) {
+                self.whole = false;
+                self.cx.error(
+                    keyword,
+                    format_args!(
+                        "node `{}` has a second `{keyword}` section; put everything in one",
+                        n.name
+                    ),
+                );
+            }
         }
-        if let Some(scope) = scope.filter(|s| **s == p.name) {
-            bindings_ok = false;
-            cx.error(
-                scope,
-                format_args!(
-                    "the rule's scope is named `{scope}`, like a parameter of node `{}`; \
-                     rename one, both are bound in the rule's body",
-                    n.name
-                ),
-            );
-        }
-        check_no_cfg(&p.attrs, PARTS_CFG, cx);
-        let ty = param_type(&p.ty);
-        if ty.is_none() {
-            whole = false;
-            let written = p.ty.to_token_stream().to_string();
-            cx.error(
-                &p.ty,
-                format_args!(
-                    "unsupported parameter type `{written}`; the supported types are {TYPES}"
-                ),
-            );
-        }
-        let dist = ty.and_then(|ty| check_dist(ty, p, cx));
-        params.push(Param {
-            attrs: &p.attrs,
-            name: &p.name,
-            ty,
-            dist,
-        });
+        (params_ast, slots_ast, rule)
     }
 
-    let mut slots: Vec<Slot<'a>> = Vec::new();
-    for s in slots_ast.into_iter().flatten() {
-        check_doc_only(&s.attrs, "child slots", cx);
-        // A clashing slot stays in the model, so that the graph keeps its edge (and the
-        // node it leads to is not reported unreachable); the bindings are marked bad.
+    /// The node's parameters: names unique and apart from the rule's `scope`, types
+    /// supported, distributions fitting them.
+    fn params(&mut self, params_ast: ParamsAst<'a>, scope: Option<&Ident>) -> Vec<Param<'a>> {
+        let (n, cx) = (self.n, self.cx);
+        let mut params: Vec<Param<'a>> = Vec::new();
+        for p in params_ast.into_iter().flatten() {
+            if params.iter().any(|q| *q.name == p.name) {
+                cx.error(
+                    &p.name,
+                    format_args!(
+                        "parameter `{}` is declared twice in node `{}`; give each parameter \
+                         its own name",
+                        p.name, n.name
+                    ),
+                );
+                continue;
+            }
+            if let Some(scope) = scope.filter(|s| **s == p.name) {
+                self.bindings_ok = false;
+                cx.error(
+                    scope,
+                    format_args!(
+                        "the rule's scope is named `{scope}`, like a parameter of node `{}`; \
+                         rename one, both are bound in the rule's body",
+                        n.name
+                    ),
+                );
+            }
+            check_no_cfg(&p.attrs, PARTS_CFG, cx);
+            let ty = param_type(&p.ty);
+            if ty.is_none() {
+                self.whole = false;
+                let written = p.ty.to_token_stream().to_string();
+                cx.error(
+                    &p.ty,
+                    format_args!(
+                        "unsupported parameter type `{written}`; the supported types are {TYPES}"
+                    ),
+                );
+            }
+            let dist = ty.and_then(|ty| check_dist(ty, p, cx));
+            params.push(Param {
+                attrs: &p.attrs,
+                name: &p.name,
+                ty,
+                dist,
+            });
+        }
+        params
+    }
+
+    /// The node's child slots: names unique and apart from its `params` and the rule's
+    /// `scope`, naming known nodes, array lengths and probabilities valid.
+    fn slots(
+        &mut self,
+        slots_ast: SlotsAst<'a>,
+        params: &[Param<'a>],
+        scope: Option<&Ident>,
+        names: &[String],
+        kinds: &HashMap<&str, u32>,
+    ) -> Vec<Slot<'a>> {
+        let cx = self.cx;
+        let mut slots: Vec<Slot<'a>> = Vec::new();
+        for s in slots_ast.into_iter().flatten() {
+            check_doc_only(&s.attrs, "child slots", cx);
+            // A clashing slot stays in the model, so that the graph keeps its edge (and
+            // the node it leads to is not reported unreachable); the bindings are marked
+            // bad.
+            self.slot_name(s, &slots, params, scope);
+            let node = s.target.node();
+            let child = kinds.get(node.to_string().as_str()).copied();
+            if child.is_none() {
+                self.bindings_ok = false;
+                cx.error(
+                    node,
+                    format_args!("unknown node `{node}`; {}", known_nodes(node, names)),
+                );
+            }
+            let array = match &s.target {
+                SlotTarget::Single(_) => None,
+                SlotTarget::Array { node, len, .. } => {
+                    let n = check_array_len(node, len, cx);
+                    self.bindings_ok &= n.is_some();
+                    Some(n)
+                }
+            };
+            let probability = check_probability(&s.probability, cx);
+            slots.push(Slot {
+                name: &s.name,
+                node,
+                child,
+                array,
+                probability,
+            });
+        }
+        slots
+    }
+
+    /// Reports a slot `s` whose name another slot, a parameter or the rule's scope has.
+    fn slot_name(
+        &mut self,
+        s: &parse::Slot,
+        slots: &[Slot<'a>],
+        params: &[Param<'a>],
+        scope: Option<&Ident>,
+    ) {
+        let (n, cx) = (self.n, self.cx);
         if slots.iter().any(|t| *t.name == s.name) {
-            bindings_ok = false;
+            self.bindings_ok = false;
             cx.error(
                 &s.name,
                 format_args!(
@@ -359,7 +468,7 @@ fn check_node<'a>(
                 ),
             );
         } else if params.iter().any(|p| *p.name == s.name) {
-            bindings_ok = false;
+            self.bindings_ok = false;
             cx.error(
                 &s.name,
                 format_args!(
@@ -370,7 +479,7 @@ fn check_node<'a>(
             );
         }
         if let Some(scope) = scope.filter(|sc| **sc == s.name) {
-            bindings_ok = false;
+            self.bindings_ok = false;
             cx.error(
                 scope,
                 format_args!(
@@ -380,64 +489,30 @@ fn check_node<'a>(
                 ),
             );
         }
-        let node = s.target.node();
-        let child = kinds.get(node.to_string().as_str()).copied();
-        if child.is_none() {
-            bindings_ok = false;
-            cx.error(
-                node,
-                format_args!("unknown node `{node}`; {}", known_nodes(node, names)),
+    }
+
+    /// Reports a gene too large for the genome's 32-bit word positions.
+    fn gene_size(&mut self, params: &[Param<'a>], slots: &[Slot<'a>]) {
+        let n = self.n;
+        let links: Option<u64> = slots.iter().map(|s| s.count().map(u64::from)).sum();
+        let words: u64 = params
+            .iter()
+            .filter_map(|p| p.ty)
+            .map(|t| u64::from(t.words()))
+            .sum();
+        if let Some(links) = links
+            && u64::from(HEADER_WORDS) + links + words > u64::from(u32::MAX)
+        {
+            self.bindings_ok = false;
+            self.cx.error(
+                &n.name,
+                format_args!(
+                    "node `{}` has {links} child links, more than a gene can hold; use fewer \
+                     or shorter array slots",
+                    n.name
+                ),
             );
         }
-        let array = match &s.target {
-            SlotTarget::Single(_) => None,
-            SlotTarget::Array { node, len, .. } => {
-                let n = check_array_len(node, len, cx);
-                bindings_ok &= n.is_some();
-                Some(n)
-            }
-        };
-        let probability = check_probability(&s.probability, cx);
-        slots.push(Slot {
-            name: &s.name,
-            node,
-            child,
-            array,
-            probability,
-        });
-    }
-
-    // Gene size must fit the genome's 32-bit word positions.
-    let links: Option<u64> = slots.iter().map(|s| s.count().map(u64::from)).sum();
-    let words: u64 = params
-        .iter()
-        .filter_map(|p| p.ty)
-        .map(|t| u64::from(t.words()))
-        .sum();
-    if let Some(links) = links
-        && u64::from(HEADER_WORDS) + links + words > u64::from(u32::MAX)
-    {
-        bindings_ok = false;
-        cx.error(
-            &n.name,
-            format_args!(
-                "node `{}` has {links} child links, more than a gene can hold; use fewer or \
-                 shorter array slots",
-                n.name
-            ),
-        );
-    }
-
-    Node {
-        attrs: &n.attrs,
-        name: &n.name,
-        kind,
-        rule_fn: format_ident!("__rule_{}", snake_case(&n.name.to_string())),
-        params,
-        slots,
-        rule,
-        whole,
-        bindings_ok,
     }
 }
 

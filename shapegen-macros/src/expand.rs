@@ -343,22 +343,8 @@ impl<'a> Expander<'a> {
             rules.extend(self.rule_fn(node, layout));
             descs.push(self.node_desc(node, layout)?);
 
-            let ty = node.name;
-            let bytes = Literal::usize_unsuffixed(4 * layout.words as usize);
-            let msg = format!("the parameter struct of node `{ty}` does not match its gene words");
-            // `bool` takes one byte in the struct but a whole word in the gene.
-            asserts.extend(
-                if node.params.iter().any(|q| q.ty == Some(ParamType::Bool)) {
-                    quote!(::core::assert!(::core::mem::size_of::<#ty>() <= #bytes, #msg);)
-                } else {
-                    quote!(::core::assert!(::core::mem::size_of::<#ty>() == #bytes, #msg);)
-                },
-            );
-
-            let (kind, f) = (Literal::u32_unsuffixed(node.kind), &node.rule_fn);
-            let shape = Ident::new("shape", Span::mixed_site());
-            let gene = Ident::new("gene", Span::mixed_site());
-            arms.extend(quote!(#kind => Self::#f(#shape, #gene),));
+            asserts.extend(size_assert(node, layout));
+            arms.extend(dispatch_arm(node));
         }
         let gene = Ident::new("gene", Span::mixed_site());
         let arms = quote! {
@@ -565,4 +551,25 @@ pub fn f32_lit(v: f32) -> TokenStream {
 fn i32_lit(v: i32) -> TokenStream {
     let lit = Literal::u32_unsuffixed(v.unsigned_abs());
     if v < 0 { quote!(-#lit) } else { quote!(#lit) }
+}
+
+/// The assertion that `node`'s parameter struct holds exactly its gene words (`bool`
+/// takes one byte in the struct but a whole word in the gene, so there at most).
+fn size_assert(node: &Node, layout: &NodeLayout) -> TokenStream {
+    let ty = node.name;
+    let bytes = Literal::usize_unsuffixed(4 * layout.words as usize);
+    let msg = format!("the parameter struct of node `{ty}` does not match its gene words");
+    if node.params.iter().any(|q| q.ty == Some(ParamType::Bool)) {
+        quote!(::core::assert!(::core::mem::size_of::<#ty>() <= #bytes, #msg);)
+    } else {
+        quote!(::core::assert!(::core::mem::size_of::<#ty>() == #bytes, #msg);)
+    }
+}
+
+/// The arm of the rule dispatch that runs `node`'s rule on a gene of its kind.
+fn dispatch_arm(node: &Node) -> TokenStream {
+    let (kind, f) = (Literal::u32_unsuffixed(node.kind), &node.rule_fn);
+    let shape = Ident::new("shape", Span::mixed_site());
+    let gene = Ident::new("gene", Span::mixed_site());
+    quote!(#kind => Self::#f(#shape, #gene),)
 }

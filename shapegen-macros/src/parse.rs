@@ -401,48 +401,7 @@ fn parse_section(input: ParseStream, cx: &Ctxt) -> Result<(Option<Section>, bool
             let (slots, ok) = parse_list(&content, cx, Slot::parse);
             Ok((Some(Section::Children { keyword, slots }), ok))
         }
-        "derive" => {
-            if !input.peek(token::Paren) {
-                return Err(Error::new(
-                    keyword.span(),
-                    "`derive` names the scope it works in: `derive(s) { s.emit(CUBE); }`",
-                ));
-            }
-            let args;
-            parenthesized!(args in input);
-            let mutability: Option<Token![mut]> = args.parse()?;
-            let scope: Ident = args.parse().map_err(|e| {
-                Error::new(
-                    e.span(),
-                    "expected the name of the scope: `derive(s) { .. }` or `derive(mut s) { .. }`",
-                )
-            })?;
-            if !args.is_empty() {
-                return Err(args.error(
-                    "`derive` takes only the scope's name: `derive(s) { .. }`; parameters and \
-                     children are bound by their own names",
-                ));
-            }
-            match input.parse::<TokenTree>() {
-                Ok(TokenTree::Group(body)) if body.delimiter() == Delimiter::Brace => Ok((
-                    Some(Section::Derive {
-                        keyword,
-                        mutability,
-                        scope,
-                        body,
-                    }),
-                    true,
-                )),
-                Ok(tt) => Err(Error::new_spanned(
-                    tt,
-                    format!("expected the rule's body in braces: `derive({scope}) {{ .. }}`"),
-                )),
-                Err(e) => Err(Error::new(
-                    e.span(),
-                    format!("expected the rule's body in braces: `derive({scope}) {{ .. }}`"),
-                )),
-            }
-        }
+        "derive" => parse_derive(input, keyword).map(|section| (Some(section), true)),
         other => {
             let hint = match other {
                 "param" | "parameters" | "params_" => " (did you mean `params`?)",
@@ -462,6 +421,48 @@ fn parse_section(input: ParseStream, cx: &Ctxt) -> Result<(Option<Section>, bool
             }
             Ok((None, false))
         }
+    }
+}
+
+/// The rest of a `derive` section after its `keyword`: the scope's name in parentheses
+/// (with `mut` if written), then the rule's body in braces.
+fn parse_derive(input: ParseStream, keyword: Ident) -> Result<Section> {
+    if !input.peek(token::Paren) {
+        return Err(Error::new(
+            keyword.span(),
+            "`derive` names the scope it works in: `derive(s) { s.emit(CUBE); }`",
+        ));
+    }
+    let args;
+    parenthesized!(args in input);
+    let mutability: Option<Token![mut]> = args.parse()?;
+    let scope: Ident = args.parse().map_err(|e| {
+        Error::new(
+            e.span(),
+            "expected the name of the scope: `derive(s) { .. }` or `derive(mut s) { .. }`",
+        )
+    })?;
+    if !args.is_empty() {
+        return Err(args.error(
+            "`derive` takes only the scope's name: `derive(s) { .. }`; parameters and \
+             children are bound by their own names",
+        ));
+    }
+    match input.parse::<TokenTree>() {
+        Ok(TokenTree::Group(body)) if body.delimiter() == Delimiter::Brace => Ok(Section::Derive {
+            keyword,
+            mutability,
+            scope,
+            body,
+        }),
+        Ok(tt) => Err(Error::new_spanned(
+            tt,
+            format!("expected the rule's body in braces: `derive({scope}) {{ .. }}`"),
+        )),
+        Err(e) => Err(Error::new(
+            e.span(),
+            format!("expected the rule's body in braces: `derive({scope}) {{ .. }}`"),
+        )),
     }
 }
 
