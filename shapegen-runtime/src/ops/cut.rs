@@ -8,7 +8,6 @@ use super::weight::{ONE, below};
 use super::{KindInfo, OperatorVariant, Operators, gene_starts};
 use crate::derive::Grammar;
 use crate::genome::{Genome, GenomeError};
-use crate::graph::HEADER_WORDS;
 
 impl<G: Grammar> Operators<G> {
     /// Cuts one subtree: picks an expressed link `(k, l)` with probability
@@ -114,9 +113,6 @@ impl<G: Grammar> Operators<G> {
     /// too large to cut; `u32::MAX` if none).
     fn survey_cuts(&mut self, words: &[u32], len: u32, min_len: u32) -> (usize, u64, u32) {
         let s = &mut self.s;
-        let n = words.len();
-        cover(&mut s.map, n);
-        cover(&mut s.link_of, n);
         // Every gene but the root hangs from one expressed link: `len - 1` candidates at
         // most, written by index.
         if s.cand.len() < len as usize {
@@ -125,41 +121,27 @@ impl<G: Grammar> Operators<G> {
         if s.cum.len() < len as usize {
             s.cum.resize(len as usize, 0);
         }
-        let (parent, link) = (&mut s.map[..n], &mut s.link_of[..n]);
         let (cand, cum) = (&mut s.cand[..], &mut s.cum[..]);
         let mut m = 0;
         let mut total = 0u64;
-        let mut pos = 0u32;
-        let mut index = 0u32;
-        let mut sure_from = u32::MAX;
-        while (pos as usize) < n {
-            let k = self.kinds[words[pos as usize] as usize];
-            if index == min_len {
-                sure_from = pos;
-            }
-            index += 1;
-            let at = (pos + HEADER_WORDS) as usize;
-            let infos = &self.links[k.first_link as usize..][..k.links as usize];
-            for (l, (&off, info)) in words[at..at + k.links as usize]
-                .iter()
-                .zip(infos)
-                .enumerate()
-            {
-                if off != 0 {
-                    let child = pos + off;
-                    parent[child as usize] = pos;
-                    link[child as usize] = l as u32;
-                    let w = ONE - info.grow;
-                    if w > 0 {
-                        total += w;
-                        cand[m] = child;
-                        cum[m] = total;
-                        m += 1;
-                    }
+        record_links(
+            &self.kinds,
+            &self.links,
+            words,
+            &mut s.map,
+            &mut s.link_of,
+            Some(&mut s.starts),
+            |child, info| {
+                let w = ONE - info.grow;
+                if w > 0 {
+                    total += w;
+                    cand[m] = child;
+                    cum[m] = total;
+                    m += 1;
                 }
-            }
-            pos += k.gene_words;
-        }
+            },
+        );
+        let sure_from = s.starts.get(min_len as usize).copied().unwrap_or(u32::MAX);
         (m, total, sure_from)
     }
 
@@ -168,16 +150,8 @@ impl<G: Grammar> Operators<G> {
     /// is the root or not the start of a gene, or if the genome would become shorter than
     /// `min_len`. The same with either [`OperatorVariant`]. O(W).
     pub fn cut_at(&mut self, genome: &mut Genome<G>, pos: u32) -> Result<u32, GenomeError> {
+        self.map_links(&genome.words);
         let s = &mut self.s;
-        record_links(
-            &self.kinds,
-            &self.links,
-            &genome.words,
-            &mut s.map,
-            &mut s.link_of,
-            Some(&mut s.starts),
-            |_, _| {},
-        );
         if s.starts.binary_search(&pos).is_err() {
             return Err(GenomeError::NotAGene {
                 pos,

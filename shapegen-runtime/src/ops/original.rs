@@ -5,7 +5,7 @@
 use rand::Rng;
 
 use super::draw::{int_value, pick};
-use super::edit::{Donor, cover, graft, record_links, remove_subtree, splice, split};
+use super::edit::{Donor, cover, graft, remove_subtree, splice, split};
 use super::{KindInfo, ORIGINAL_CROSSOVER_ATTEMPTS, Operators, gene_starts};
 use crate::derive::Grammar;
 use crate::genome::{DEPTH_CAP, Genome, depths, node_of, parent_pos};
@@ -121,16 +121,8 @@ impl<G: Grammar> Operators<G> {
         if genome.len <= 1 {
             return false;
         }
+        self.map_links(&genome.words);
         let s = &mut self.s;
-        record_links(
-            &self.kinds,
-            &self.links,
-            &genome.words,
-            &mut s.map,
-            &mut s.link_of,
-            Some(&mut s.starts),
-            |_, _| {},
-        );
         let pos = s.starts[random_gene(genome.len, rng)];
         genome.len -= remove_subtree(&self.kinds, &mut genome.words, pos, &mut s.map, &s.link_of);
         if genome.len == 1 {
