@@ -157,13 +157,26 @@ fn merge(table: &mut toml::Table, extra: toml::Table) {
     }
 }
 
-/// The scene of `table` with `settings` merged in, its targets from `sources`.
+/// The scene of `generator` with `goal` (its `[volume]` or `[silhouette]` table) and
+/// `settings` merged in, the generator's own limits where they give none, its targets
+/// from `sources`.
 fn build(
     module: &Bound<'_, PyModule>,
-    mut table: toml::Table,
+    generator: &str,
+    goal: (&str, toml::Table),
     settings: Option<&Bound<'_, PyDict>>,
     sources: Sources,
 ) -> PyResult<Scene> {
+    let catalog = catalog(module)?;
+    let limits = catalog.find(generator).map_err(Error::from)?.0.defaults.limits;
+    let mut table = toml::Table::new();
+    table.insert("generator".into(), generator.into());
+    let mut written = toml::Table::new();
+    written.insert("min_len".into(), i64::from(limits.min_len).into());
+    written.insert("max_len".into(), i64::from(limits.max_len).into());
+    written.insert("max_depth".into(), i64::from(limits.max_depth).into());
+    table.insert("limits".into(), toml::Value::Table(written));
+    table.insert(goal.0.into(), toml::Value::Table(goal.1));
     if let Some(settings) = settings {
         merge(&mut table, arrays::toml_table("", settings)?);
     }
@@ -174,7 +187,7 @@ fn build(
         path: PathBuf::from("scene.toml"),
         sources,
     };
-    Scene::read(&catalog(module)?, origin, Default::default())
+    Scene::read(&catalog, origin, Default::default())
 }
 
 /// A scene whose goal is to fill the mesh of `vertices` (N x 3) and `faces` (M x 3) with
@@ -182,7 +195,8 @@ fn build(
 /// its size on each side, in cubic voxels, `resolution` along its longest side. `target`
 /// adds keys to the `[[volume.target]]` table (`inside`, `outside`, `fill = "winding"`
 /// for an open mesh), `settings` to the scene (`{"optimizer": {"method": "ga"}}`,
-/// `{"fitness": {"form": "iou"}}`, `{"limits": {...}}`). The mesh is used where it is:
+/// `{"fitness": {"form": "iou"}}`, `{"limits": {...}}`; the generator's own limits
+/// otherwise). The mesh is used where it is:
 /// place it where the generator builds.
 #[pyfunction]
 #[pyo3(pass_module, signature = (generator, vertices, faces, *, resolution = 64, margin = 0.05, target = None, settings = None))]
@@ -235,10 +249,8 @@ fn volume_scene(
         "target".into(),
         toml::Value::Array(vec![toml::Value::Table(target_table)]),
     );
-    let mut table = toml::Table::new();
-    table.insert("generator".into(), generator.into());
-    table.insert("volume".into(), toml::Value::Table(volume));
-    build(module, table, settings, Sources::new().mesh("target", mesh))
+    let sources = Sources::new().mesh("target", mesh);
+    build(module, &generator, ("volume", volume), settings, sources)
 }
 
 /// A scene whose goal is the silhouette `image` (an H x W array: grey levels, the
@@ -273,13 +285,6 @@ fn silhouette_scene(
         "target".into(),
         toml::Value::Array(vec![toml::Value::Table(target_table)]),
     );
-    let mut table = toml::Table::new();
-    table.insert("generator".into(), generator.into());
-    table.insert("silhouette".into(), toml::Value::Table(silhouette));
-    build(
-        module,
-        table,
-        settings,
-        Sources::new().image("target", image),
-    )
+    let sources = Sources::new().image("target", image);
+    build(module, &generator, ("silhouette", silhouette), settings, sources)
 }
