@@ -150,7 +150,8 @@ class Genome:
         """The packed JSON form, as the tool saves genomes (`best.genome.json`), or the
         nested form, made to be read and edited."""
     def __len__(self) -> int: ...
-    def __eq__(self, other: object) -> bool: ...
+    def __eq__(self, other: object) -> bool:
+        """Equal when the packed forms are: the same genes in the same order."""
     def __hash__(self) -> int: ...
 
 class Model:
