@@ -168,7 +168,12 @@ fn build(
     sources: Sources,
 ) -> PyResult<Scene> {
     let catalog = catalog(module)?;
-    let limits = catalog.find(generator).map_err(Error::from)?.0.defaults.limits;
+    let limits = catalog
+        .find(generator)
+        .map_err(Error::from)?
+        .0
+        .defaults
+        .limits;
     let mut table = toml::Table::new();
     table.insert("generator".into(), generator.into());
     let mut written = toml::Table::new();
@@ -286,5 +291,11 @@ fn silhouette_scene(
         toml::Value::Array(vec![toml::Value::Table(target_table)]),
     );
     let sources = Sources::new().image("target", image);
-    build(module, &generator, ("silhouette", silhouette), settings, sources)
+    build(
+        module,
+        &generator,
+        ("silhouette", silhouette),
+        settings,
+        sources,
+    )
 }
