@@ -61,6 +61,24 @@ def open_scene(
     arguments override its `[optimizer]` as the tool's flags do; `set` holds
     `key=value` overrides of any key, as the tool's `--set`."""
 
+def resume(
+    folder: Union[str, PathLike],
+    *,
+    threads: Optional[int] = None,
+    progress: Optional[Callable[[Progress], Optional[bool]]] = None,
+    backend: str = "auto",
+    method: Optional[str] = None,
+    seed: Optional[int] = None,
+    seconds: Optional[float] = None,
+    evaluations: Optional[int] = None,
+    generations: Optional[int] = None,
+    set: Optional[Sequence[str]] = None,
+) -> Run:
+    """Goes on with the search saved in run folder `folder` (its `checkpoint.json`,
+    written by `Scene.run(checkpoint=...)` or by `shapegen run`) to its budget, saving
+    there as it goes. The scene is the one the checkpoint names; the keyword arguments
+    override the settings it started with, as the tool's flags do with `--resume`."""
+
 def scene_from_toml(
     text: str,
     *,
@@ -257,13 +275,18 @@ class Scene:
         threads: Optional[int] = None,
         progress: Optional[Callable[[Progress], Optional[bool]]] = None,
         backend: str = "auto",
+        checkpoint: Optional[Union[str, PathLike]] = None,
+        resume: bool = False,
     ) -> Run:
         """Searches to the budget, with the GIL released (other Python threads run).
         The keyword arguments override the scene's settings as `open_scene`'s do; the
         same scene and seed give the tool's `shapegen run` result, for any `threads`.
         `progress(p)` is called after every generation; returning `False` stops the
         run, an exception it raises stops it and is raised here. `backend` is
-        `"auto"` (a hardware GPU when there is one), `"cpu"` or `"gpu"`."""
+        `"auto"` (a hardware GPU when there is one), `"cpu"` or `"gpu"`. With
+        `checkpoint` (a folder) the search saves `checkpoint.json` there as the tool
+        does (every second and at the end); with `resume=True` it goes on from the one
+        there, ending as a search never interrupted."""
     def score(self, genomes: Sequence[Genome], *, backend: str = "auto") -> List[float]:
         """The fitness of each genome, as `shapegen score` gives it."""
     def sample(self, count: int = 1, *, seed: int = 0) -> List[Genome]:

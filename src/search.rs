@@ -48,6 +48,14 @@ pub enum SearchError {
     /// The method could not start or go on.
     #[error(transparent)]
     Session(#[from] SessionError),
+    /// The state to resume from is not a checkpoint of the scene's method.
+    #[error("the checkpoint is not one of a {method} run: {source}")]
+    Checkpoint {
+        /// The scene's method.
+        method: &'static str,
+        /// What the reader said.
+        source: serde_json::Error,
+    },
 }
 
 impl From<OptimizeError> for SearchError {
@@ -73,7 +81,13 @@ pub struct Search<'s> {
     gpu: Option<&'s GpuContext>,
     incremental: bool,
     stop: Option<&'s AtomicBool>,
+    resume: Option<&'s str>,
 }
+
+/// Called with the search's state, as JSON, every second or so and at the end: what
+/// [`Search::resume`] goes on from (the `search` of the tool's `checkpoint.json`).
+pub type SaveHook<'h> =
+    dyn FnMut(&str) -> Result<(), Box<dyn std::error::Error + Send + Sync>> + 'h;
 
 impl<'s> Search<'s> {
     /// A search of `scene` with its method, settings, seed and budget, counting on the
@@ -86,6 +100,17 @@ impl<'s> Search<'s> {
             gpu: None,
             incremental: true,
             stop: None,
+            resume: None,
+        }
+    }
+
+    /// Goes on from `state`, the JSON a [`SaveHook`] was given (or the `search` of a
+    /// `checkpoint.json` the tool wrote for this scene), to the scene's budget: the run
+    /// ends as one that was never interrupted.
+    pub fn resume(self, state: &'s str) -> Self {
+        Search {
+            resume: Some(state),
+            ..self
         }
     }
 
@@ -126,6 +151,20 @@ impl<'s> Search<'s> {
     /// method's batches; [`SearchError::Session`] when the method's settings cannot
     /// start or the counting fails.
     pub fn run<G: Grammar>(self, observer: &mut dyn Observer<G>) -> Result<Found<G>, SearchError> {
+        self.run_saving(observer, None)
+    }
+
+    /// [`run`](Self::run), saving the search's state through `save` every second or so
+    /// and at the end.
+    ///
+    /// # Errors
+    /// Those of [`run`](Self::run); [`SearchError::Checkpoint`] when the state to resume
+    /// from is not one of the scene's method; [`SearchError::Session`] when `save` fails.
+    pub fn run_saving<G: Grammar>(
+        self,
+        observer: &mut dyn Observer<G>,
+        save: Option<&mut SaveHook<'_>>,
+    ) -> Result<Found<G>, SearchError> {
         let scorer = SceneScorer::new::<G>(self.scene)?;
         let backend = scorer.on(self.choice, self.gpu)?;
         let mut evaluator = SceneEvaluator::new(&backend).with_incremental(self.incremental);
@@ -134,6 +173,7 @@ impl<'s> Search<'s> {
             backend: &backend,
             evaluator: &mut evaluator,
             observer,
+            save,
         };
         let result = self.scene.optimizer.run::<G, _>(job)?;
         Ok(Found {
@@ -144,24 +184,41 @@ impl<'s> Search<'s> {
 }
 
 /// The run, with the method's optimizer.
-struct Job<'s, 'b, 'e, 'o, G> {
+struct Job<'s, 'b, 'e, 'o, 'h, 'k, G> {
     search: Search<'s>,
     backend: &'b Backend<'b>,
     evaluator: &'e mut SceneEvaluator<'b>,
     observer: &'o mut dyn Observer<G>,
+    save: Option<&'h mut SaveHook<'k>>,
 }
 
-impl<G: Grammar> MethodJob<G> for Job<'_, '_, '_, '_, G> {
+impl<G: Grammar> MethodJob<G> for Job<'_, '_, '_, '_, '_, '_, G> {
     type Output = Result<RunResult<G>, SearchError>;
 
     fn run<O: Optimizer<G, Record = Best<G>>>(self, settings: O::Settings) -> Self::Output {
         self.backend.check_held(&O::genomes_held(&settings))?;
         let scene = self.search.scene;
-        let optimizer = O::new(settings, scene.limits, scene.optimizer.seed)?;
+        let optimizer = match self.search.resume {
+            Some(json) => {
+                let state =
+                    serde_json::from_str(json).map_err(|source| SearchError::Checkpoint {
+                        method: scene.optimizer.method().name(),
+                        source,
+                    })?;
+                O::resume(state)?
+            }
+            None => O::new(settings, scene.limits, scene.optimizer.seed)?,
+        };
         let mut session =
             Session::new(optimizer, scene.optimizer.budget()).on_progress(self.observer);
         if let Some(stop) = self.search.stop {
             session = session.stop_flag(stop);
+        }
+        if let Some(save) = self.save {
+            session = session.on_save(move |s| {
+                let json = serde_json::to_string(&s.state)?;
+                save(&json)
+            });
         }
         Ok(session.run(self.evaluator)?)
     }

@@ -86,6 +86,18 @@ impl Error {
     }
 }
 
+impl std::fmt::Display for Error {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Error::Scene(m)
+            | Error::Genome(m)
+            | Error::Search(m)
+            | Error::Generator(m)
+            | Error::Value(m) => f.write_str(m),
+        }
+    }
+}
+
 impl From<shapegen::registry::RegistryError> for Error {
     fn from(error: shapegen::registry::RegistryError) -> Self {
         Error::Generator(error.to_string())

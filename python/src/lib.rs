@@ -47,6 +47,7 @@ extern crate self as shapegen_python;
 
 mod arrays;
 mod catalog;
+mod checkpoint;
 mod error;
 mod module;
 mod objects;

@@ -46,6 +46,7 @@ pub fn init(
     module.add_function(wrap_pyfunction!(self::generators, module)?)?;
     module.add_function(wrap_pyfunction!(generator, module)?)?;
     module.add_function(wrap_pyfunction!(open_scene, module)?)?;
+    module.add_function(wrap_pyfunction!(resume, module)?)?;
     module.add_function(wrap_pyfunction!(scene_from_toml, module)?)?;
     module.add_function(wrap_pyfunction!(volume_scene, module)?)?;
     module.add_function(wrap_pyfunction!(silhouette_scene, module)?)?;
@@ -92,20 +93,45 @@ fn generator(module: &Bound<'_, PyModule>, name: &str) -> PyResult<Generator> {
 /// arguments override its `[optimizer]` as the tool's flags do, and `set` any key as
 /// `--set` does.
 #[pyfunction]
-#[pyo3(pass_module, signature = (path, *, method = None, seed = None, seconds = None, evaluations = None, generations = None, set = None))]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(pass_module, signature = (path, **settings))]
 fn open_scene(
     module: &Bound<'_, PyModule>,
     path: PathBuf,
-    method: Option<&str>,
-    seed: Option<u64>,
-    seconds: Option<f64>,
-    evaluations: Option<u64>,
-    generations: Option<u64>,
-    set: Option<Vec<String>>,
+    settings: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Scene> {
-    let overrides = overrides(method, seed, seconds, evaluations, generations, set)?;
+    let overrides = overrides(settings)?;
     Scene::read(&catalog(module)?, Origin::File(path), overrides)
+}
+
+/// Goes on with the search saved in run folder `folder` (its `checkpoint.json`, written
+/// by `Scene.run(checkpoint=...)` or by `shapegen run`) to its budget, saving there as
+/// it goes; the keyword arguments override the settings it was started with, as the
+/// tool's flags do with `--resume`.
+#[pyfunction]
+#[pyo3(pass_module, signature = (folder, *, threads = None, progress = None, backend = "auto", **settings))]
+fn resume(
+    module: &Bound<'_, PyModule>,
+    folder: PathBuf,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+    backend: &str,
+    settings: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Run> {
+    let saved = crate::checkpoint::read(&folder)?;
+    let scene = Scene::read(
+        &catalog(module)?,
+        Origin::File(saved.scene),
+        saved.overrides,
+    )?;
+    scene.run(
+        module.py(),
+        threads,
+        progress,
+        backend,
+        Some(folder),
+        true,
+        settings,
+    )
 }
 
 /// The scene written in `text` (a scene file's TOML), read as if from `path` (paths in

@@ -13,9 +13,11 @@ use shapegen::optimize::Control;
 use shapegen::scene::{BackendChoice, Method, Overrides, Scene as Goal, Sources};
 
 use crate::catalog::Catalog;
+use crate::checkpoint;
 use crate::error::Error;
 use crate::objects::{self, Genome, Model, Progress, Run, limits_dict};
 use crate::typed::{Counting, Erased, Step};
+use shapegen::search::SaveHook;
 
 /// Where a scene was read from, to read it again with other overrides.
 #[derive(Clone)]
@@ -60,28 +62,63 @@ pub struct Scene {
     erased: Arc<dyn Erased>,
 }
 
-/// The overrides of a scene's `[optimizer]` that the keyword arguments give.
-pub fn overrides(
-    method: Option<&str>,
-    seed: Option<u64>,
-    seconds: Option<f64>,
-    evaluations: Option<u64>,
-    generations: Option<u64>,
-    set: Option<Vec<String>>,
-) -> Result<Overrides, Error> {
-    let method = method
-        .map(|m| m.parse::<Method>())
-        .transpose()
-        .map_err(|err| Error::Value(err.to_string()))?;
-    Ok(Overrides {
-        method,
-        seed,
-        seconds,
-        evaluations,
-        generations,
-        islands: None,
-        sets: set.unwrap_or_default(),
-    })
+/// The keyword arguments that override a scene's settings, as the tool's flags.
+const SETTINGS: &str = "method, seed, seconds, evaluations, generations and set";
+
+/// The overrides of a scene's settings that keyword arguments give: `method`, `seed`,
+/// `seconds`, `evaluations` and `generations` as the tool's flags, `set` as its
+/// `--set`s.
+pub fn overrides(settings: Option<&Bound<'_, PyDict>>) -> PyResult<Overrides> {
+    let mut overrides = Overrides::default();
+    for (key, value) in settings.into_iter().flat_map(|d| d.iter()) {
+        let key: String = key.extract()?;
+        let value = &value;
+        let bad = |what: &str| Error::Value(format!("{key} must be {what}"));
+        match key.as_str() {
+            _ if value.is_none() => {}
+            "method" => {
+                let name: String = value.extract().map_err(|_| bad("a method's name"))?;
+                let method = name.parse::<Method>();
+                overrides.method = Some(method.map_err(|err| Error::Value(err.to_string()))?);
+            }
+            "seed" => {
+                overrides.seed = Some(value.extract().map_err(|_| bad("a whole number >= 0"))?)
+            }
+            "seconds" => {
+                overrides.seconds = Some(value.extract().map_err(|_| bad("a number of seconds"))?)
+            }
+            "evaluations" => {
+                overrides.evaluations =
+                    Some(value.extract().map_err(|_| bad("a whole number > 0"))?);
+            }
+            "generations" => {
+                overrides.generations =
+                    Some(value.extract().map_err(|_| bad("a whole number >= 0"))?);
+            }
+            "set" => {
+                overrides.sets = value
+                    .extract()
+                    .map_err(|_| bad("a list of \"key=value\" strings"))?;
+            }
+            _ => {
+                return Err(Error::Value(format!(
+                    "unknown setting `{key}`; the settings are {SETTINGS}"
+                ))
+                .into());
+            }
+        }
+    }
+    Ok(overrides)
+}
+
+/// A run folder a search saves its checkpoint in, and the state it goes on from.
+pub struct Folder {
+    /// The folder.
+    pub dir: PathBuf,
+    /// The overrides the checkpoint records.
+    pub overrides: Overrides,
+    /// The saved state to resume from, as JSON.
+    pub resume: Option<String>,
 }
 
 /// The GPU, opened once per process; `None` where there is none.
@@ -144,6 +181,7 @@ impl Scene {
         counting: Counting<'_>,
         threads: Option<usize>,
         progress: Option<Py<PyAny>>,
+        folder: Option<Folder>,
     ) -> PyResult<Run> {
         let pool = match threads {
             Some(0) => return Err(Error::Value("threads must be at least 1".into()).into()),
@@ -185,8 +223,18 @@ impl Scene {
                 }
             })
         };
+        let resume = folder.as_ref().and_then(|f| f.resume.as_deref());
+        let mut save = |state: &str| -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
+            let Some(f) = &folder else { return Ok(()) };
+            checkpoint::write(&f.dir, &goal.path, &f.overrides, state)
+                .map_err(|err| err.to_string().into())
+        };
+        let saves = folder.is_some();
         let outcome = py.detach(|| {
-            let mut run = || erased.search(goal, counting, &stop, &mut observer);
+            let mut run = || {
+                let save: Option<&mut SaveHook<'_>> = if saves { Some(&mut save) } else { None };
+                erased.search(goal, counting, &stop, &mut observer, resume, save)
+            };
             match &pool {
                 Some(pool) => pool.install(run),
                 None => run(),
@@ -235,17 +283,9 @@ impl Scene {
 
     /// The same scene with other settings: the `[optimizer]` keys the keyword arguments
     /// name, and `set`, `key=value` overrides of any scene key (as the tool's `--set`).
-    #[pyo3(signature = (*, method = None, seed = None, seconds = None, evaluations = None, generations = None, set = None))]
-    fn with_settings(
-        &self,
-        method: Option<&str>,
-        seed: Option<u64>,
-        seconds: Option<f64>,
-        evaluations: Option<u64>,
-        generations: Option<u64>,
-        set: Option<Vec<String>>,
-    ) -> PyResult<Scene> {
-        let later = overrides(method, seed, seconds, evaluations, generations, set)?;
+    #[pyo3(signature = (**settings))]
+    fn with_settings(&self, settings: Option<&Bound<'_, PyDict>>) -> PyResult<Scene> {
+        let later = overrides(settings)?;
         let overrides = self.overrides.clone().then(&later);
         Scene::read(&self.catalog, self.origin.clone(), overrides)
     }
@@ -255,31 +295,49 @@ impl Scene {
     /// `threads` worker threads count (all cores by default; the result does not depend
     /// on it). `progress(p)` is called after every generation with a `Progress`; it
     /// stops the run by returning `False`, and an exception it raises stops the run and
-    /// is raised here. Other Python threads run meanwhile.
-    #[pyo3(signature = (*, method = None, seed = None, seconds = None, evaluations = None, generations = None, set = None, threads = None, progress = None, backend = "auto"))]
+    /// is raised here. Other Python threads run meanwhile. With `checkpoint` (a folder)
+    /// the search saves `checkpoint.json` there as `shapegen run` does (every second and
+    /// at the end), and with `resume=True` it goes on from the one there, to the same end
+    /// as a search never interrupted.
+    #[pyo3(signature = (*, threads = None, progress = None, backend = "auto", checkpoint = None, resume = false, **settings))]
     #[allow(clippy::too_many_arguments)]
-    fn run(
+    pub(crate) fn run(
         &self,
         py: Python<'_>,
-        method: Option<&str>,
-        seed: Option<u64>,
-        seconds: Option<f64>,
-        evaluations: Option<u64>,
-        generations: Option<u64>,
-        set: Option<Vec<String>>,
         threads: Option<usize>,
         progress: Option<Py<PyAny>>,
         backend: &str,
+        checkpoint: Option<PathBuf>,
+        resume: bool,
+        settings: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Run> {
         let counting = counting(backend)?;
-        let later = overrides(method, seed, seconds, evaluations, generations, set)?;
+        let later = overrides(settings)?;
+        let all = self.overrides.clone().then(&later);
+        let folder = match (checkpoint, resume) {
+            (None, true) => {
+                return Err(Error::Value(
+                    "resume=True goes on from the checkpoint in a folder: give checkpoint=".into(),
+                )
+                .into());
+            }
+            (None, false) => None,
+            (Some(dir), resume) => {
+                let resume = resume
+                    .then(|| checkpoint::read(&dir).map(|saved| saved.state))
+                    .transpose()?;
+                Some(Folder {
+                    dir,
+                    overrides: all.clone(),
+                    resume,
+                })
+            }
+        };
         if later == Overrides::default() {
-            return self.search(py, &self.goal, counting, threads, progress);
+            return self.search(py, &self.goal, counting, threads, progress, folder);
         }
-        let goal = self
-            .origin
-            .read(&self.catalog, &self.overrides.clone().then(&later))?;
-        self.search(py, &goal, counting, threads, progress)
+        let goal = self.origin.read(&self.catalog, &all)?;
+        self.search(py, &goal, counting, threads, progress, folder)
     }
 
     /// The fitness of each genome in this scene, as `shapegen score` gives it.

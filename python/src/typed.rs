@@ -13,7 +13,7 @@ use shapegen::gpu::GpuContext;
 use shapegen::optimize::{Control, HistoryEntry, Snapshot};
 use shapegen::scene::{BackendChoice, Scene, SceneScorer};
 use shapegen::score::InstanceBatch;
-use shapegen::search::Search;
+use shapegen::search::{SaveHook, Search};
 use shapegen::{Genome, Grammar, Limits, MeshLibrary, Operators, Site};
 
 use crate::error::Error;
@@ -100,13 +100,16 @@ pub struct Triangles {
 
 /// What the Python objects ask of one generator.
 pub trait Erased: Send + Sync {
-    /// Runs `scene`'s search (its generator is this one) to its budget.
+    /// Runs `scene`'s search (its generator is this one) to its budget, from the saved
+    /// state `resume` if given, saving its state through `save` if given.
     fn search(
         &self,
         scene: &Scene,
         counting: Counting<'_>,
         stop: &AtomicBool,
         observer: &mut dyn FnMut(Step) -> Control,
+        resume: Option<&str>,
+        save: Option<&mut SaveHook<'_>>,
     ) -> Result<Outcome, Error>;
 
     /// The fitness of each of `genomes` in `scene`.
@@ -152,6 +155,8 @@ impl<G: Grammar> Erased for Typed<G> {
         counting: Counting<'_>,
         stop: &AtomicBool,
         observer: &mut dyn FnMut(Step) -> Control,
+        resume: Option<&str>,
+        save: Option<&mut SaveHook<'_>>,
     ) -> Result<Outcome, Error> {
         let mut shown = f64::NAN;
         let mut watch = |s: &Snapshot<'_, G>| {
@@ -166,10 +171,14 @@ impl<G: Grammar> Erased for Typed<G> {
                 best: changed.then(|| GenomeText::of(s.best)),
             })
         };
-        let found = Search::new(scene)
+        let mut search = Search::new(scene)
             .backend(counting.choice, counting.gpu)
-            .stop_flag(stop)
-            .run::<G>(&mut watch)
+            .stop_flag(stop);
+        if let Some(state) = resume {
+            search = search.resume(state);
+        }
+        let found = search
+            .run_saving::<G>(&mut watch, save)
             .map_err(Error::search)?;
         let result = found.result;
         Ok(Outcome {

@@ -94,6 +94,20 @@ def test_a_scene_file_opens_with_overrides(scenes):
     assert plain.with_settings(set=["optimizer.seed=9"]).seed == 9
 
 
+def test_settings_are_checked_by_name_and_type(scenes):
+    path = scenes / "paper" / "spaceship_volume.toml"
+    with pytest.raises(shapegen.ShapegenError, match="unknown setting `population`; the settings are method, seed"):
+        shapegen.open_scene(path, population=3)
+    with pytest.raises(shapegen.ShapegenError, match="seed must be a whole number >= 0"):
+        shapegen.open_scene(path, seed=-1)
+    with pytest.raises(shapegen.SceneError, match="--seconds"):
+        shapegen.open_scene(path, seconds=-2.0)
+    scene = shapegen.open_scene(path)
+    with pytest.raises(shapegen.ShapegenError, match="unknown setting `seeds`"):
+        scene.run(seeds=3)
+    assert shapegen.open_scene(path, seed=None).seed == scene.seed
+
+
 def test_scene_errors_name_the_file_and_the_key(scenes, tmp_path):
     with pytest.raises(shapegen.SceneError, match="nope.toml"):
         shapegen.open_scene(tmp_path / "nope.toml")

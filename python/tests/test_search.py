@@ -113,3 +113,46 @@ def test_the_same_best_genome_as_the_tool(scenes, tool, tmp_path, scene, method)
     assert np.array_equal(tool_curve[:, 1], ours["evaluations"])
     assert np.array_equal(tool_curve[:, 2], ours["best"])
     assert np.array_equal(tool_curve[:, 3], ours["mean"])
+
+
+def test_a_stopped_search_resumes_to_the_same_end(volume, tmp_path):
+    whole = volume.run(method="ga", generations=12, seed=4)
+    stopped = volume.run(method="ga", generations=12, seed=4, checkpoint=tmp_path,
+                         progress=lambda p: p.generation < 5)
+    assert stopped.stopped == "interrupted" and stopped.generations == 5
+    assert (tmp_path / "checkpoint.json").is_file()
+    resumed = shapegen.resume(tmp_path)
+    assert resumed.best == whole.best
+    assert (resumed.best_fitness, resumed.evaluations, resumed.generations) == (
+        whole.best_fitness, whole.evaluations, whole.generations)
+    assert np.array_equal(resumed.history["best"], whole.history["best"])
+    # The scene object goes on from a folder too.
+    again = volume.run(method="ga", generations=12, seed=4, checkpoint=tmp_path, resume=True)
+    assert again.best == whole.best
+
+
+def test_resuming_needs_a_checkpoint(volume, tmp_path):
+    with pytest.raises(shapegen.ShapegenError, match="give checkpoint="):
+        volume.run(resume=True)
+    with pytest.raises(shapegen.SearchError, match="is not a checkpoint"):
+        shapegen.resume(tmp_path)
+    volume.run(method="ga", generations=2, seed=1, checkpoint=tmp_path)
+    with pytest.raises(shapegen.SearchError, match="not one of a smc run"):
+        volume.run(method="smc", checkpoint=tmp_path, resume=True)
+
+
+def test_the_tool_and_the_package_go_on_from_each_others_checkpoints(scenes, tool, tmp_path):
+    path = scenes / "paper" / "city_whale.toml"
+    scene = shapegen.open_scene(path, method="ga", seed=2)
+    whole = scene.run(generations=20, backend="cpu")
+    # Started by the tool, finished from Python.
+    first = tmp_path / "tool-first"
+    subprocess.run(tool + ["run", str(path), "--method", "ga", "--seed", "2", "--generations", "8",
+                           "--cpu", "--out", str(first)], check=True, capture_output=True)
+    assert shapegen.resume(first, generations=20, backend="cpu").best == whole.best
+    # Started from Python, finished by the tool.
+    second = tmp_path / "python-first"
+    scene.run(generations=8, checkpoint=second, backend="cpu")
+    subprocess.run(tool + ["run", "--resume", str(second), "--generations", "20", "--cpu"],
+                   check=True, capture_output=True)
+    assert (second / "best.genome.json").read_text() == whole.best.to_json()
