@@ -285,8 +285,8 @@ class Scene:
         run, an exception it raises stops it and is raised here. `backend` is
         `"auto"` (a hardware GPU when there is one), `"cpu"` or `"gpu"`. With
         `checkpoint` (a folder) the search saves `checkpoint.json` there as the tool
-        does (every second and at the end); with `resume=True` it goes on from the one
-        there, ending as a search never interrupted."""
+        does (every second and at the end, replacing one there); with `resume=True`
+        it goes on from the one there, ending as a search never interrupted."""
     def score(self, genomes: Sequence[Genome], *, backend: str = "auto") -> List[float]:
         """The fitness of each genome, as `shapegen score` gives it."""
     def sample(self, count: int = 1, *, seed: int = 0) -> List[Genome]:
