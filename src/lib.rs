@@ -9,3 +9,4 @@ pub use shapegen_runtime::*;
 pub mod cli;
 pub mod registry;
 pub mod scene;
+pub mod search;

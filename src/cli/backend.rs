@@ -65,10 +65,7 @@ impl BackendArgs {
 /// method scores at once (`held`) must fit its storage bindings
 /// ([`Backend::check_batch`]).
 pub fn check_batches(backend: &Backend<'_>, held: &[Held]) -> anyhow::Result<()> {
-    for h in held {
-        backend.check_batch(h.saved, &format!("{} = {}", h.setting, h.value))?;
-    }
-    Ok(())
+    Ok(backend.check_held(held)?)
 }
 
 /// How a run's bred children were counted, for its summary.

@@ -11,7 +11,7 @@
 use serde::{Serialize, Serializer};
 use shapegen_runtime::geometry::BoundMeshes;
 use shapegen_runtime::gpu::{GpuContext, GpuError, wgpu};
-use shapegen_runtime::optimize::{EvaluateError, Evaluator};
+use shapegen_runtime::optimize::{EvaluateError, Evaluator, Held};
 use shapegen_runtime::score::retained::{
     CellCounts, Overflow, RetainedScorer, Retention, RetentionStats,
 };
@@ -555,6 +555,16 @@ impl Backend<'_> {
             .into()),
             _ => Ok(()),
         }
+    }
+
+    /// Checks [`check_batch`](Self::check_batch) for each batch a method holds at once
+    /// ([`Optimizer::genomes_held`](shapegen_runtime::optimize::Optimizer::genomes_held)):
+    /// the models a checkpoint saves of it, named by the setting that sets them.
+    pub fn check_held(&self, held: &[Held]) -> Result<(), SceneError> {
+        for h in held {
+            self.check_batch(h.saved, &format!("{} = {}", h.setting, h.value))?;
+        }
+        Ok(())
     }
 
     /// Counts every model of `batch` into `out`, resized to the batch.

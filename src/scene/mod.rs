@@ -152,6 +152,7 @@ mod metrics;
 mod objective;
 mod optimizer;
 mod resolve;
+mod sources;
 
 use std::path::{Path, PathBuf};
 
@@ -182,6 +183,7 @@ pub use metrics::{
 };
 pub use objective::ObjectiveEvaluator;
 pub use optimizer::{OptimizerGoal, Overrides};
+pub use sources::Sources;
 
 /// A loaded and checked scene.
 #[derive(Clone, Debug)]
@@ -297,6 +299,19 @@ impl Scene {
         registry: &Registry,
         overrides: &Overrides,
     ) -> Result<Scene, SceneError> {
+        Scene::parse_with(text, path, registry, overrides, &Sources::new())
+    }
+
+    /// Checks the scene written in `text`, as if read from `path`, naming one of
+    /// `registry`'s generators, with `overrides` applied, its targets taken from
+    /// `sources` where it names one they hold (see [`Sources`]).
+    pub fn parse_with(
+        text: &str,
+        path: &Path,
+        registry: &Registry,
+        overrides: &Overrides,
+        sources: &Sources,
+    ) -> Result<Scene, SceneError> {
         let syntax = |message: String| SceneError::Syntax {
             path: path.to_owned(),
             message: message.trim_end().to_owned(),
@@ -316,7 +331,7 @@ impl Scene {
                 .try_into()
                 .map_err(|err: toml::de::Error| syntax(format!("after --set: {}", err.message())))?
         };
-        resolve::Resolver::new(path).scene(file, registry, overrides)
+        resolve::Resolver::new(path, sources).scene(file, registry, overrides)
     }
 
     /// The scene's optimizer goal had it named `method`: the `[optimizer]` keys and the

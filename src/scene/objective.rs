@@ -297,7 +297,7 @@ mod tests {
         let path = dir.path().join("scene.toml");
         let kinds = kinds();
         assert!(kinds.len() > 1, "{kinds:?}");
-        let set = Resolver::new(&path)
+        let set = Resolver::new(&path, &crate::scene::Sources::new())
             .objectives(
                 kinds.iter().map(|k| table(k)).collect(),
                 &["cube", "wall", "roof", "window"],

@@ -19,7 +19,7 @@ use super::image::read_image;
 use super::metrics::f_score_threshold;
 use super::{
     Method, ObjectiveGoal, Overrides, Scene, SceneError, ScorerGoal, SettingsKeyError,
-    SilhouetteGoal, ValueError, VolumeGoal,
+    SilhouetteGoal, Sources, ValueError, VolumeGoal,
 };
 use crate::registry::Registry;
 
@@ -30,12 +30,16 @@ const DEFAULT_BACKGROUND_TOLERANCE: u16 = 32;
 pub(super) struct Resolver<'a> {
     path: &'a Path,
     dir: PathBuf,
+    /// Targets given in memory, looked up before files.
+    sources: &'a Sources,
 }
 
 impl<'a> Resolver<'a> {
-    pub fn new(path: &'a Path) -> Self {
+    /// A resolver of the scene at `path` that takes the targets `sources` holds from
+    /// there.
+    pub fn new(path: &'a Path, sources: &'a Sources) -> Self {
         let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-        Resolver { path, dir }
+        Resolver { path, dir, sources }
     }
 
     pub(super) fn invalid(&self, key: impl Into<String>, reason: impl Into<String>) -> SceneError {
@@ -391,8 +395,13 @@ impl<'a> Resolver<'a> {
         let mut targets = Vec::with_capacity(v.target.len());
         for (i, t) in v.target.iter().enumerate() {
             let key = format!("volume.target[{i}]");
-            let path = self.file(&format!("{key}.mesh"), &t.mesh)?;
-            let mesh = Mesh::load(&path).map_err(|err| self.refused(format!("{key}.mesh"), err))?;
+            let mesh = match self.sources.get_mesh(&t.mesh) {
+                Some(mesh) => mesh.clone(),
+                None => {
+                    let path = self.file(&format!("{key}.mesh"), &t.mesh)?;
+                    Mesh::load(&path).map_err(|err| self.refused(format!("{key}.mesh"), err))?
+                }
+            };
             targets.push(VolumeTarget {
                 name: t.mesh.clone(),
                 mesh,
@@ -449,8 +458,13 @@ impl<'a> Resolver<'a> {
     fn image_target(&self, key: &str, t: &ImageTargetFile) -> Result<ImageTarget, SceneError> {
         let camera = self.camera(&format!("{key}.camera"), &t.camera)?;
         let image_key = format!("{key}.image");
-        let path = self.file(&image_key, &t.image)?;
-        let image = read_image(&path).map_err(|err| self.refused(&image_key, err))?;
+        let image = match self.sources.get_image(&t.image) {
+            Some(image) => image.clone(),
+            None => {
+                let path = self.file(&image_key, &t.image)?;
+                read_image(&path).map_err(|err| self.refused(&image_key, err))?
+            }
+        };
         let (width, height) = (image.width(), image.height());
         if (width, height) != (t.camera.width, t.camera.height) {
             return Err(self.invalid(
