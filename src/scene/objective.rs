@@ -14,10 +14,11 @@ use shapegen_runtime::score::objective::{
 use shapegen_runtime::score::retained::RetentionStats;
 use shapegen_runtime::{Genome, Grammar};
 
+use super::error::{SceneError, ValueError};
 use super::file::{ObjectiveFile, ProjectionFile};
 use super::image::read_image;
+use super::loaded::Scene;
 use super::resolve::Resolver;
-use super::{Scene, SceneError, ValueError};
 
 impl Resolver<'_> {
     /// The objectives of `[[objective]]` tables, in order, for a generator whose meshes
