@@ -41,8 +41,9 @@ pub struct Scene {
     /// of a reachable target's own genome. `compare` and `sweep` then measure the gap to
     /// it and the time to fractions of it.
     pub optimum: Option<f64>,
-    /// The scorers' settings, at most one of each [kind](crate::scene::ScorerKind), in the order of
-    /// [`ScorerKind::ALL`](crate::scene::ScorerKind::ALL); read them with [`scorers`](Self::scorers).
+    /// The scorers' settings, at most one of each [kind](crate::scene::ScorerKind), in
+    /// the order of [`ScorerKind::ALL`](crate::scene::ScorerKind::ALL); read them with
+    /// [`scorers`](Self::scorers).
     pub(super) scorers: Vec<ScorerGoal>,
     /// The objectives of a multi-objective scene (`[[objective]]` tables), which has no
     /// scorers.
@@ -62,7 +63,8 @@ pub struct Scene {
 
 impl Scene {
     /// The scene's scorers' settings, at most one of each kind, in the order of
-    /// [`ScorerKind::ALL`](crate::scene::ScorerKind::ALL); empty for a scene with [`objectives`](Scene::objectives).
+    /// [`ScorerKind::ALL`](crate::scene::ScorerKind::ALL); empty for a scene with
+    /// [`objectives`](Scene::objectives).
     pub fn scorers(&self) -> &[ScorerGoal] {
         &self.scorers
     }

@@ -384,7 +384,7 @@ pub struct SceneScorer {
 }
 
 impl SceneScorer {
-    /// The site the scene's models grow on ([`Scene::site`]).
+    /// The site the scene's models grow on ([`Scene::site`](crate::scene::Scene::site)).
     pub fn site(&self) -> &Site {
         &self.site
     }

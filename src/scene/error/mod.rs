@@ -1,6 +1,7 @@
 //! Why a scene could not be loaded, scored or searched: [`SceneError`], and the typed
 //! causes it carries, each in a module of what it is about (those of the `[optimizer]`
-//! table, [`SettingsKeyError`](crate::scene::SettingsKeyError), beside the table of methods that reads it).
+//! table, [`SettingsKeyError`](crate::scene::SettingsKeyError), beside the table of
+//! methods that reads it).
 //!
 //! A [`SceneError`]'s message is whole: the file, the key at fault and the cause with its
 //! own chain of causes. So that printing the chain (`{:#}` of an `anyhow::Error`) does
