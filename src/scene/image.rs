@@ -19,7 +19,7 @@ use std::path::Path;
 use image::{DynamicImage, ImageReader, Limits};
 use shapegen_runtime::score::silhouette::MAX_TARGET_PIXELS;
 
-use super::{DecodeError, ImageError};
+use super::error::{DecodeError, ImageError};
 
 /// Bytes a decoder may allocate: the largest target at 16-bit RGBA, and a little more.
 const MAX_DECODE_BYTES: u64 = MAX_TARGET_PIXELS * 8 + (1 << 20);

@@ -13,7 +13,10 @@ use shapegen_runtime::score::retained::DEFAULT_MAX_BYTES;
 use shapegen_runtime::score::volume::fscore_half_width;
 use shapegen_runtime::{Grammar, Instance};
 
-use super::{MethodJob, OptimizerGoal, Scene, ScorerGoal};
+use super::loaded::Scene;
+use super::method::MethodJob;
+use super::optimizer::OptimizerGoal;
+use super::scorer::ScorerGoal;
 
 /// Bytes of checkpoint text per genome word, about: a tree-sketch genome of 380 genes
 /// of 11 words takes 64 KiB of JSON, some 15 bytes a word.
@@ -358,7 +361,8 @@ mod tests {
 
     use super::{MemoryEstimate, bytes};
     use crate::registry::Registry;
-    use crate::scene::{Overrides, Scene};
+    use crate::scene::loaded::Scene;
+    use crate::scene::optimizer::Overrides;
 
     /// `path` with `--set`s.
     fn scene(path: &str, sets: &[&str]) -> Scene {
@@ -416,7 +420,7 @@ mod tests {
         assert_eq!(scratch(&four, 4), 4 * scratch(&one, 1));
         let scene = scene("scenes/paper/spaceship_volume.toml", &[]);
         let r = match &scene.scorers()[0] {
-            crate::scene::ScorerGoal::Volume(v) => v.grid.resolution(),
+            crate::scene::scorer::ScorerGoal::Volume(v) => v.grid.resolution(),
             _ => unreachable!("the spaceship's scene has a volume"),
         };
         let voxels: u64 = r.iter().map(|&x| u64::from(x)).product();

@@ -11,7 +11,8 @@ use shapegen_runtime::score::metrics::{
 use shapegen_runtime::score::objective::Objective;
 use shapegen_runtime::{BoundMeshes, Genome, Grammar, Instance, Mesh};
 
-use super::{Scene, SceneScorer, ScorerGoal};
+use super::loaded::Scene;
+use super::scorer::{SceneScorer, ScorerGoal};
 
 /// Points sampled on each surface for the Chamfer distance and the F-score.
 pub const SURFACE_SAMPLES: usize = 4096;

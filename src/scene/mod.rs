@@ -137,14 +137,16 @@
 //!
 //! Unknown keys, missing files, values out of range and images whose size differs from
 //! their camera's are all refused with the file, the key and the reason.
-//! [`Scene::open`] reads a scene naming any generator of a [`Registry`], with the
+//! [`Scene::open`] reads a scene naming any generator of a [`Registry`](crate::registry::Registry), with the
 //! command line's [`Overrides`]: typed flags, and `key=value` overrides (`--set`) applied
 //! before checking.
 
 mod error;
 mod evaluate;
 mod file;
+mod goal;
 mod image;
+mod loaded;
 mod lot;
 mod memory;
 mod method;
@@ -152,28 +154,17 @@ mod metrics;
 mod objective;
 mod optimizer;
 mod resolve;
+mod scorer;
 mod sources;
 
-use std::path::{Path, PathBuf};
-
-use crate::registry::{Presets, Registry};
-use shapegen_runtime::Site;
-use shapegen_runtime::genome::Limits;
-use shapegen_runtime::geometry::MeshLibrary;
-use shapegen_runtime::optimize::islands::IslandSettings;
-use shapegen_runtime::optimize::multi::{MultiGaSettings, Selection};
-use shapegen_runtime::score::objective::ObjectiveSet;
-use shapegen_runtime::score::silhouette::ImageTarget;
-use shapegen_runtime::score::volume::{Grid, VolumeTarget};
-use shapegen_runtime::score::{Form, LengthPenalty};
-
-pub use error::{BackendError, DecodeError, ImageError, SceneError, SetError, ValueError};
-pub use evaluate::{
-    AnyCounts, AnyScorer, Backend, BackendChoice, SceneCounts, SceneEvaluator, SceneScorer,
-    ScorerGoal, ScorerKind,
+pub use error::{
+    BackendError, DecodeError, ImageError, LotError, SceneError, SetError, ValueError,
 };
+pub use evaluate::{Backend, BackendChoice, SceneEvaluator};
+pub use goal::{ObjectiveGoal, SilhouetteGoal, VolumeGoal};
 pub use image::{decode_image, read_image};
-pub use lot::{LotError, geojson_outline};
+pub use loaded::Scene;
+pub use lot::geojson_outline;
 pub use memory::{JSON_BYTES_PER_WORD, MemoryError, MemoryEstimate, MemoryPart, RunShape};
 pub use method::{
     Method, MethodJob, MethodSettings, SettingsCause, SettingsKeyError, UnknownMethod,
@@ -183,210 +174,5 @@ pub use metrics::{
 };
 pub use objective::ObjectiveEvaluator;
 pub use optimizer::{OptimizerGoal, Overrides};
+pub use scorer::{AnyCounts, AnyScorer, SceneCounts, SceneScorer, ScorerGoal, ScorerKind};
 pub use sources::Sources;
-
-/// A loaded and checked scene.
-#[derive(Clone, Debug)]
-pub struct Scene {
-    /// The scene file.
-    pub path: PathBuf,
-    /// The name of the generator whose models are scored, as registered.
-    pub generator: String,
-    /// The generator's default meshes with the scene's replacements and additions.
-    pub meshes: MeshLibrary,
-    /// Genome limits of the search.
-    pub limits: Limits,
-    /// The site models grow on (`[lot]`): the lot a building generator builds on, or
-    /// [`Site::NONE`] when the scene gives none. Derive a scene's genomes on it
-    /// ([`Genome::derive_on`](shapegen_runtime::Genome::derive_on)); its evaluators do.
-    pub site: Site,
-    /// The optimal genome length, when the scene gives one (`limits.optimal_len`); the
-    /// length penalty starts there if `fitness.length_from = "optimal_len"`.
-    pub optimal_len: Option<u32>,
-    /// The genome-length term of the fitness.
-    pub length: LengthPenalty,
-    /// The best fitness the scene can reach, when it says (`fitness.optimum`): the score
-    /// of a reachable target's own genome. `compare` and `sweep` then measure the gap to
-    /// it and the time to fractions of it.
-    pub optimum: Option<f64>,
-    /// The scorers' settings, at most one of each [kind](ScorerKind), in the order of
-    /// [`ScorerKind::ALL`]; read them with [`scorers`](Self::scorers).
-    scorers: Vec<ScorerGoal>,
-    /// The objectives of a multi-objective scene (`[[objective]]` tables), which has no
-    /// scorers.
-    pub objectives: Option<ObjectiveGoal>,
-    /// The optimizer, its settings, seed and budget. A multi-objective scene's method
-    /// is the GA, whose settings breed for [`multi_settings`](Self::multi_settings).
-    pub optimizer: OptimizerGoal,
-    /// The `[optimizer]` table as written and overridden, for the goals of other methods.
-    optimizer_table: toml::Table,
-    /// The `[islands]` table as written and overridden, likewise.
-    islands: Option<IslandSettings>,
-    /// The generator's presets.
-    presets: Presets,
-    /// The overrides the scene was read with.
-    overrides: Overrides,
-}
-
-/// The `[[objective]]` tables and the `[selection]` table, resolved.
-#[derive(Clone, Debug)]
-pub struct ObjectiveGoal {
-    /// The objectives, under their names, in the file's order.
-    pub set: ObjectiveSet,
-    /// How their values are ranked for selection.
-    pub selection: Selection,
-    /// Most models kept in the non-dominated archive (`optimizer.archive`).
-    pub archive: u32,
-}
-
-/// The `[volume]` table, resolved: the grid, the targets loaded, and the fitness form.
-#[derive(Clone, Debug)]
-pub struct VolumeGoal {
-    /// The voxel grid.
-    pub grid: Grid,
-    /// The target meshes and their weights.
-    pub targets: Vec<VolumeTarget>,
-    /// How counts become fitness.
-    pub form: Form,
-    /// Opt-in distance shaping ([`VolumeScorer::shaped`](shapegen_runtime::score::volume::VolumeScorer::shaped)):
-    /// the distance in voxels over which an off-target voxel's cost rises to its full
-    /// weight; `None` scores as published.
-    pub shaping_radius: Option<f64>,
-}
-
-/// The `[silhouette]` table, resolved: the target images with their cameras, and the
-/// fitness form.
-#[derive(Clone, Debug)]
-pub struct SilhouetteGoal {
-    /// The target images.
-    pub targets: Vec<ImageTarget>,
-    /// How counts become fitness.
-    pub form: Form,
-}
-
-impl Scene {
-    /// Loads and checks the scene file at `path`, which names a published generator.
-    pub fn load(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
-        Scene::open(path, &Registry::published(), &Overrides::default())
-    }
-
-    /// Loads the scene file at `path`, naming one of `registry`'s generators, with
-    /// `overrides` applied.
-    pub fn open(
-        path: impl AsRef<Path>,
-        registry: &Registry,
-        overrides: &Overrides,
-    ) -> Result<Scene, SceneError> {
-        let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
-            path: path.to_owned(),
-            source,
-        })?;
-        Scene::parse_in(&text, path, registry, overrides)
-    }
-
-    /// Checks the scene written in `text`, as if read from `path` (paths in it are
-    /// relative to `path`'s folder), naming a published generator.
-    pub fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
-        Scene::parse_in(text, path, &Registry::published(), &Overrides::default())
-    }
-
-    /// Checks the scene written in `text`, as if read from `path`, naming one of
-    /// `registry`'s generators, with `overrides` applied.
-    pub fn parse_in(
-        text: &str,
-        path: &Path,
-        registry: &Registry,
-        overrides: &Overrides,
-    ) -> Result<Scene, SceneError> {
-        Scene::parse_with(text, path, registry, overrides, &Sources::new())
-    }
-
-    /// Checks the scene written in `text`, as if read from `path`, naming one of
-    /// `registry`'s generators, with `overrides` applied, its targets taken from
-    /// `sources` where it names one they hold (see [`Sources`]).
-    pub fn parse_with(
-        text: &str,
-        path: &Path,
-        registry: &Registry,
-        overrides: &Overrides,
-        sources: &Sources,
-    ) -> Result<Scene, SceneError> {
-        let syntax = |message: String| SceneError::Syntax {
-            path: path.to_owned(),
-            message: message.trim_end().to_owned(),
-        };
-        let file: file::SceneFile = if overrides.sets.is_empty() {
-            toml::from_str(text).map_err(|err| syntax(err.to_string()))?
-        } else {
-            let mut table: toml::Table =
-                toml::from_str(text).map_err(|err| syntax(err.to_string()))?;
-            optimizer::apply_overrides(&mut table, &overrides.sets).map_err(|error| {
-                SceneError::Set {
-                    path: path.to_owned(),
-                    error,
-                }
-            })?;
-            toml::Value::Table(table)
-                .try_into()
-                .map_err(|err: toml::de::Error| syntax(format!("after --set: {}", err.message())))?
-        };
-        resolve::Resolver::new(path, sources).scene(file, registry, overrides)
-    }
-
-    /// The scene's optimizer goal had it named `method`: the `[optimizer]` keys and the
-    /// overrides read as that method's (`shapegen compare` runs each method so).
-    ///
-    /// # Errors
-    /// [`SceneError::Optimizer`] when a key of the table is not one of the method's
-    /// settings, or out of range.
-    pub fn optimizer_for(&self, method: Method) -> Result<OptimizerGoal, SceneError> {
-        let overrides = Overrides {
-            method: Some(method),
-            ..self.overrides.clone()
-        };
-        optimizer::resolve(
-            &self.presets,
-            self.optimizer_table.clone(),
-            self.islands,
-            &overrides,
-        )
-        .map_err(|error| SceneError::Optimizer {
-            path: self.path.clone(),
-            error: Box::new(error),
-        })
-    }
-
-    /// The multi-objective GA's settings of a scene with objectives: the `[optimizer]`
-    /// table's GA settings with the `[selection]` and the archive size; `None` for a
-    /// scene without objectives.
-    pub fn multi_settings(&self) -> Option<MultiGaSettings> {
-        let goal = self.objectives.as_ref()?;
-        let MethodSettings::Ga(ga) = self.optimizer.settings else {
-            return None;
-        };
-        Some(MultiGaSettings {
-            ga,
-            selection: goal.selection.clone(),
-            archive: goal.archive,
-        })
-    }
-
-    /// An error about `key` of this scene.
-    pub(crate) fn invalid(&self, key: &str, reason: String) -> SceneError {
-        SceneError::Invalid {
-            path: self.path.clone(),
-            key: key.to_owned(),
-            reason,
-        }
-    }
-
-    /// An error about `key` of this scene, whose value cannot be used for `cause`.
-    pub(crate) fn refused(&self, key: &str, cause: impl Into<ValueError>) -> SceneError {
-        SceneError::Value {
-            path: self.path.clone(),
-            key: key.to_owned(),
-            cause: Box::new(cause.into()),
-        }
-    }
-}

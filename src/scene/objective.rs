@@ -14,10 +14,11 @@ use shapegen_runtime::score::objective::{
 use shapegen_runtime::score::retained::RetentionStats;
 use shapegen_runtime::{Genome, Grammar};
 
+use super::error::{SceneError, ValueError};
 use super::file::{ObjectiveFile, ProjectionFile};
 use super::image::read_image;
+use super::loaded::Scene;
 use super::resolve::Resolver;
-use super::{Scene, SceneError, ValueError};
 
 impl Resolver<'_> {
     /// The objectives of `[[objective]]` tables, in order, for a generator whose meshes
@@ -297,7 +298,7 @@ mod tests {
         let path = dir.path().join("scene.toml");
         let kinds = kinds();
         assert!(kinds.len() > 1, "{kinds:?}");
-        let set = Resolver::new(&path, &crate::scene::Sources::new())
+        let set = Resolver::new(&path, &crate::scene::sources::Sources::new())
             .objectives(
                 kinds.iter().map(|k| table(k)).collect(),
                 &["cube", "wall", "roof", "window"],

@@ -9,7 +9,7 @@ use shapegen_runtime::optimize::islands::{IslandGa, IslandGaSettings, IslandSett
 use shapegen_runtime::optimize::multi::MultiGaSettings;
 use shapegen_runtime::optimize::{Budget, Settings};
 
-use super::SetError;
+use super::error::SetError;
 use super::method::{Method, MethodJob, MethodSettings, SettingsCause, SettingsKeyError};
 
 /// The `[optimizer]` table, resolved. Keys the method does not know are refused.

@@ -11,21 +11,95 @@ use shapegen_runtime::score::silhouette::{Camera, ImageTarget, MaskRule, OrbitCa
 use shapegen_runtime::score::volume::{Grid, MAX_HALF_WIDTH, VolumeTarget, fscore_half_width};
 use shapegen_runtime::score::{Form, LengthPenalty};
 
+use super::error::{SceneError, ValueError};
 use super::file::{
     CameraFile, FormName, ImageKind, ImageTargetFile, LengthFrom, LimitsFile, MeshFile, SceneFile,
     SilhouetteFile, VolumeFile,
 };
+use super::goal::{ObjectiveGoal, SilhouetteGoal, VolumeGoal};
 use super::image::read_image;
+use super::loaded::Scene;
+use super::method::{Method, SettingsKeyError};
 use super::metrics::f_score_threshold;
-use super::{
-    Method, ObjectiveGoal, Overrides, Scene, SceneError, ScorerGoal, SettingsKeyError,
-    SilhouetteGoal, Sources, ValueError, VolumeGoal,
-};
+use super::optimizer::{self, Overrides};
+use super::scorer::ScorerGoal;
+use super::sources::Sources;
 use crate::registry::Registry;
 
 /// The RGB distance from a mask's `background` colour within which a pixel is backdrop,
 /// when the scene gives no `tolerance`.
 const DEFAULT_BACKGROUND_TOLERANCE: u16 = 32;
+
+impl Scene {
+    /// Loads and checks the scene file at `path`, which names a published generator.
+    pub fn load(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
+        Scene::open(path, &Registry::published(), &Overrides::default())
+    }
+
+    /// Loads the scene file at `path`, naming one of `registry`'s generators, with
+    /// `overrides` applied.
+    pub fn open(
+        path: impl AsRef<Path>,
+        registry: &Registry,
+        overrides: &Overrides,
+    ) -> Result<Scene, SceneError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+            path: path.to_owned(),
+            source,
+        })?;
+        Scene::parse_in(&text, path, registry, overrides)
+    }
+
+    /// Checks the scene written in `text`, as if read from `path` (paths in it are
+    /// relative to `path`'s folder), naming a published generator.
+    pub fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
+        Scene::parse_in(text, path, &Registry::published(), &Overrides::default())
+    }
+
+    /// Checks the scene written in `text`, as if read from `path`, naming one of
+    /// `registry`'s generators, with `overrides` applied.
+    pub fn parse_in(
+        text: &str,
+        path: &Path,
+        registry: &Registry,
+        overrides: &Overrides,
+    ) -> Result<Scene, SceneError> {
+        Scene::parse_with(text, path, registry, overrides, &Sources::new())
+    }
+
+    /// Checks the scene written in `text`, as if read from `path`, naming one of
+    /// `registry`'s generators, with `overrides` applied, its targets taken from
+    /// `sources` where it names one they hold (see [`Sources`]).
+    pub fn parse_with(
+        text: &str,
+        path: &Path,
+        registry: &Registry,
+        overrides: &Overrides,
+        sources: &Sources,
+    ) -> Result<Scene, SceneError> {
+        let syntax = |message: String| SceneError::Syntax {
+            path: path.to_owned(),
+            message: message.trim_end().to_owned(),
+        };
+        let file: SceneFile = if overrides.sets.is_empty() {
+            toml::from_str(text).map_err(|err| syntax(err.to_string()))?
+        } else {
+            let mut table: toml::Table =
+                toml::from_str(text).map_err(|err| syntax(err.to_string()))?;
+            optimizer::apply_overrides(&mut table, &overrides.sets).map_err(|error| {
+                SceneError::Set {
+                    path: path.to_owned(),
+                    error,
+                }
+            })?;
+            toml::Value::Table(table)
+                .try_into()
+                .map_err(|err: toml::de::Error| syntax(format!("after --set: {}", err.message())))?
+        };
+        Resolver::new(path, sources).scene(file, registry, overrides)
+    }
+}
 
 pub(super) struct Resolver<'a> {
     path: &'a Path,
@@ -217,8 +291,7 @@ impl<'a> Resolver<'a> {
                 .validate()
                 .and_then(|()| selection.check_objectives(set.len()))
                 .map_err(|err| self.refused(err.field, err))?;
-            let archive =
-                super::optimizer::take_archive(&mut table).map_err(|err| self.optimizer(err))?;
+            let archive = optimizer::take_archive(&mut table).map_err(|err| self.optimizer(err))?;
             // The multi-objective GA searches it, whatever the default method.
             table
                 .entry("method")
@@ -230,7 +303,7 @@ impl<'a> Resolver<'a> {
             })
         };
 
-        let optimizer = super::optimizer::resolve(&presets, table.clone(), file.islands, overrides)
+        let optimizer = optimizer::resolve(&presets, table.clone(), file.islands, overrides)
             .map_err(|err| self.optimizer(err))?;
         if objectives.is_some() && optimizer.islands.is_some() {
             return Err(self.invalid(
@@ -635,5 +708,52 @@ impl<'a> Resolver<'a> {
         };
         camera.validate().map_err(|err| self.refused(key, err))?;
         Ok(camera)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::error::Error;
+
+    use super::Scene;
+
+    /// A silhouette scene whose target image is `bytes`, in a folder of its own.
+    fn with_image(bytes: &[u8]) -> (tempfile::TempDir, super::SceneError) {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("target.png"), bytes).unwrap();
+        let text = r#"
+generator = "city"
+[limits]
+min_len = 1
+max_len = 201
+max_depth = 8
+[[silhouette.target]]
+image = "target.png"
+camera = { phi = 0, theta = 0, radius = 5, lookat = [0, 0, 0], fov = 60, near = 0.1, far = 100, width = 8, height = 6 }
+"#;
+        let err = Scene::parse(text, &dir.path().join("scene.toml")).unwrap_err();
+        (dir, err)
+    }
+
+    #[test]
+    fn a_cause_is_printed_once_and_not_chained() {
+        let (dir, err) = with_image(b"\x89PNG\r\n\x1a\n");
+        let super::SceneError::Value { key, cause, .. } = &err else {
+            panic!("{err}");
+        };
+        assert_eq!(key, "silhouette.target[0].image");
+        assert!(matches!(**cause, super::ValueError::Image(_)), "{cause:?}");
+        let image = dir.path().join("target.png");
+        let message = err.to_string();
+        let want = format!(
+            "scene `{}`: `silhouette.target[0].image`: `{}`: ",
+            dir.path().join("scene.toml").display(),
+            image.display()
+        );
+        assert!(message.starts_with(&want), "{message}");
+        assert!(
+            err.source().is_none(),
+            "the cause is in the message: {message}"
+        );
     }
 }

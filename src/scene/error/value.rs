@@ -7,8 +7,8 @@ use shapegen_runtime::score::objective::ObjectiveError;
 use shapegen_runtime::score::silhouette::{CameraError, SilhouetteError, TargetError};
 use shapegen_runtime::score::volume::{GridError, VolumeError};
 
-use super::ImageError;
-use crate::scene::LotError;
+use super::image::ImageError;
+use super::lot::LotError;
 
 /// Why the value of a scene's key cannot be used: the runtime's error about it, the
 /// target image it names, or serde's message about a value of the wrong type.

@@ -246,10 +246,10 @@ fn cell_text(text: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::super::cell::Record;
-    use super::super::plan::{Axis, StudyBudget};
     use super::*;
     use crate::cli::backend::BackendArgs;
+    use crate::cli::commands::sweep::cell::Record;
+    use crate::cli::commands::sweep::plan::{Axis, StudyBudget};
     use shapegen::optimize::HistoryEntry;
 
     fn plan() -> Plan {
