@@ -202,7 +202,8 @@ fn token_paths(tokens: TokenStream, out: &mut Vec<Vec<String>>) {
     }
 }
 
-/// Gathers the paths of a module's code, outside its `use` items and inline modules.
+/// Gathers the paths written in a module's items but its `use` items and inline modules,
+/// which are read apart.
 #[derive(Default)]
 struct Paths {
     /// The paths, as the names they are made of.
