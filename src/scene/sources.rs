@@ -1,46 +1,49 @@
-//! Targets given in memory: meshes and images that a scene's text names in place of
-//! files, for programs that hold their targets as arrays (the Python package, an editor).
-//!
-//! A name written where the scene reads a file (`[[volume.target]] mesh`,
-//! `[[silhouette.target]] image`) is looked up in the [`Sources`] first; a name they do
-//! not hold is read as a path, as usual. Everything else about the target (weights, fill
-//! rule, mask rule, the camera's size) is read and checked as for a file.
-//!
-//! ```
-//! use std::path::Path;
-//! use shapegen::geometry::Mesh;
-//! use shapegen::registry::Registry;
-//! use shapegen::scene::{Overrides, Scene, ScorerGoal, Sources};
-//!
-//! let text = r#"
-//! generator = "spaceship"
-//! [volume]
-//! grid = { min = [-1, -1, -1], max = [1, 1, 1], resolution = [16, 16, 16] }
-//! [[volume.target]]
-//! mesh = "block"
-//! "#;
-//! let sources = Sources::new().mesh("block", Mesh::unit_cube());
-//! let scene = Scene::parse_with(
-//!     text,
-//!     Path::new("block.toml"),
-//!     &Registry::published(),
-//!     &Overrides::default(),
-//!     &sources,
-//! )?;
-//! let ScorerGoal::Volume(volume) = &scene.scorers()[0] else { unreachable!() };
-//! assert_eq!(volume.targets[0].name, "block");
-//! // Without the source, `block` is a file that is not there.
-//! assert!(Scene::parse(text, Path::new("block.toml")).is_err());
-//! # Ok::<(), Box<dyn std::error::Error>>(())
-//! ```
+//! Targets given in memory: [`Sources`].
 
 use std::collections::BTreeMap;
 
 use image::DynamicImage;
 use shapegen_runtime::geometry::Mesh;
 
-/// Meshes and images by the names a scene's text gives them; see the
-/// [module documentation](self).
+/// Targets given in memory: meshes and images that a scene's text names in place of
+/// files, for programs that hold their targets as arrays (the Python package, an editor).
+///
+/// A name written where the scene reads a file (`[[volume.target]] mesh`,
+/// `[[silhouette.target]] image`) is looked up in the [`Sources`] first; a name they do
+/// not hold is read as a path, as usual. Everything else about the target (weights, fill
+/// rule, mask rule, the camera's size) is read and checked as for a file.
+///
+/// ```
+/// use std::path::Path;
+/// use shapegen::geometry::Mesh;
+/// use shapegen::registry::Registry;
+/// use shapegen::scene::{Overrides, Scene, ScorerGoal, Sources};
+///
+/// let text = r#"
+/// generator = "spaceship"
+/// [limits]
+/// min_len = 1
+/// max_len = 50
+/// max_depth = 10
+/// [volume]
+/// grid = { min = [-1, -1, -1], max = [1, 1, 1], resolution = [16, 16, 16] }
+/// [[volume.target]]
+/// mesh = "block"
+/// "#;
+/// let sources = Sources::new().mesh("block", Mesh::unit_cube());
+/// let scene = Scene::parse_with(
+///     text,
+///     Path::new("block.toml"),
+///     &Registry::published(),
+///     &Overrides::default(),
+///     &sources,
+/// )?;
+/// let ScorerGoal::Volume(volume) = &scene.scorers()[0] else { unreachable!() };
+/// assert_eq!(volume.targets[0].name, "block");
+/// // Without the source, `block` is a file that is not there.
+/// assert!(Scene::parse(text, Path::new("block.toml")).is_err());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug, Default)]
 pub struct Sources {
     meshes: BTreeMap<String, Mesh>,
