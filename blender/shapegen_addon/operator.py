@@ -14,23 +14,23 @@ from .search import Background
 current = None
 
 
-_GENERATORS = []
+try:
+    import shapegen
+except ImportError as err:
+    raise ImportError(
+        "the shapegen add-on needs the `shapegen` Python package in Blender's Python; "
+        "install its wheel with Blender's python -m pip (README, \"The Blender add-on\")"
+    ) from err
 
-
-def _generators(self, context):
-    """The package's generators; the list is kept, as Blender wants of enum items."""
-    if not _GENERATORS:
-        import shapegen
-
-        _GENERATORS.extend((g, g, f"the {g} generator") for g in shapegen.generators())
-    return _GENERATORS
-
+# A fixed list: Blender (4.2 as a Python module) crashes at exit after an enum whose
+# items come from a function.
+GENERATORS = [(g, g, f"the {g} generator") for g in shapegen.generators()]
 
 METHODS = [(m, m, f"search with {m}") for m in ("hybrid", "ga", "smc", "sosmc", "rjmcmc", "random")]
 
 
 class Settings(bpy.types.PropertyGroup):
-    generator: bpy.props.EnumProperty(name="Generator", items=_generators)
+    generator: bpy.props.EnumProperty(name="Generator", items=GENERATORS)
     target: bpy.props.EnumProperty(
         name="Target",
         items=[
@@ -71,8 +71,6 @@ def lot_points(obj):
 def make_scene(context, settings):
     """The shapegen scene of the panel's settings and the selected object, and the
     placement that maps the target to where the generator builds."""
-    import shapegen
-
     obj = context.active_object
     if obj is None or obj.type != "MESH":
         raise ValueError("select the target: a mesh object")

@@ -1,13 +1,12 @@
-//! Targets given in memory, in place of the files a scene names ([`Sources`]).
+//! Targets given in memory: [`Sources`].
 
 use std::collections::BTreeMap;
 
 use image::DynamicImage;
 use shapegen_runtime::geometry::Mesh;
 
-/// Targets given in memory: meshes and images by the names a scene's text gives them in
-/// place of files, for programs that hold their targets as arrays (the Python package,
-/// an editor).
+/// Targets given in memory: meshes and images that a scene's text names in place of
+/// files, for programs that hold their targets as arrays (the Python package, an editor).
 ///
 /// A name written where the scene reads a file (`[[volume.target]] mesh`,
 /// `[[silhouette.target]] image`) is looked up in the [`Sources`] first; a name they do
@@ -22,6 +21,10 @@ use shapegen_runtime::geometry::Mesh;
 ///
 /// let text = r#"
 /// generator = "spaceship"
+/// [limits]
+/// min_len = 1
+/// max_len = 50
+/// max_depth = 10
 /// [volume]
 /// grid = { min = [-1, -1, -1], max = [1, 1, 1], resolution = [16, 16, 16] }
 /// [[volume.target]]
