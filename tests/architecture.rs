@@ -1,5 +1,5 @@
-//! The facade crate's modules import one another without loops, and no module imports
-//! from a module above it (its parent's hub, or further up): the types that children
+//! The modules of the facade crate (and of the generators and macro crates) import one
+//! another without loops, and no module imports from a module above it (its parent's hub, or further up): the types that children
 //! share live in a module of their own, and a parent's `mod.rs` declares its children and
 //! re-exports what it offers outside (`docs/architecture.md`, "Modules").
 //!
@@ -12,7 +12,8 @@
 //! item, so that `crate::scene::Scene` is an import of the module that defines `Scene`,
 //! not of `scene`; an item no module defines by name (one a macro makes) belongs to the
 //! module the path names. An inline module (`mod tests { ... }`) counts as part of its
-//! file's module.
+//! file's module, and so does a module of tests in a file of its own (`check/tests.rs`,
+//! declared `#[cfg(test)] mod tests;`).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -253,19 +254,24 @@ impl Crate {
                 continue;
             };
             let ast = syn::parse_file(text).unwrap_or_else(|err| panic!("{file}: {err}"));
-            parsed.push((file.clone(), module, ast));
+            // A file of tests counts as part of the module that declares it.
+            let mut owner = module.clone();
+            if owner.last().is_some_and(|last| last == "tests") {
+                owner.pop();
+            }
+            parsed.push((file.clone(), owner, module, ast));
         }
         let mut krate = Crate {
             scopes: BTreeMap::new(),
             edges: BTreeMap::new(),
             upward: BTreeSet::new(),
         };
-        for (_, module, ast) in &parsed {
-            krate.add_scope(module, module, &ast.items);
+        for (_, owner, module, ast) in &parsed {
+            krate.add_scope(owner, module, &ast.items);
         }
-        for (file, module, ast) in &parsed {
-            krate.edges.entry(module.clone()).or_default();
-            krate.add_imports(file, module, module, &ast.items);
+        for (file, owner, module, ast) in &parsed {
+            krate.edges.entry(owner.clone()).or_default();
+            krate.add_imports(file, owner, module, &ast.items);
         }
         krate
     }
@@ -590,6 +596,23 @@ fn the_facade_crate_has_no_import_loop_and_no_upward_import() {
 }
 
 #[test]
+fn the_generators_and_macro_crates_have_no_import_loop_and_no_upward_import() {
+    for dir in ["generators/src", "shapegen-macros/src"] {
+        let src = Path::new(env!("CARGO_MANIFEST_DIR")).join(dir);
+        let mut files = Vec::new();
+        read_dir(&src, &src, &mut files);
+        let krate = Crate::read(&files);
+        assert!(
+            krate.edges.len() > 5,
+            "{dir}: {} modules read",
+            krate.edges.len()
+        );
+        let problems = krate.problems();
+        assert!(problems.is_empty(), "{dir}:\n{}", problems.join("\n"));
+    }
+}
+
+#[test]
 fn a_loop_of_imports_is_found_directly_and_around_modules() {
     let direct = problems_of(&[
         ("lib.rs", "mod a; mod b;"),
@@ -668,8 +691,20 @@ fn tests_modules_visibility_and_other_crates_import_nothing() {
         ),
         (
             "b.rs",
-            "use crate::Other; use crate::a::A; fn f() -> shapegen::Thing { todo!() }",
+            "use crate::Other; use crate::a::A; fn f() -> shapegen::Thing { todo!() } \
+             #[cfg(test)] mod tests;",
         ),
+        ("b/tests.rs", "use super::*; use crate::a::A;"),
     ]);
     assert_eq!(problems, Vec::<String>::new());
+    // A file of tests is part of the module that declares it: its imports are that
+    // module's.
+    let looped = problems_of(&[
+        ("lib.rs", "mod a; mod b;"),
+        ("a.rs", "pub struct A; fn f() -> crate::b::B { todo!() }"),
+        ("b.rs", "pub struct B; #[cfg(test)] mod tests;"),
+        ("b/tests.rs", "use crate::a::A;"),
+    ]);
+    assert_eq!(looped.len(), 1, "{looped:?}");
+    assert!(looped[0].contains("import loop among a, b"), "{looped:?}");
 }
