@@ -99,6 +99,7 @@ impl ParamValue for bool {
 }
 
 /// Draws a value from `dist` and writes it into the first `dist.words()` words of `out`.
+#[inline(always)]
 pub fn sample(dist: &Distribution, rng: &mut impl Rng, out: &mut [u32]) {
     match *dist {
         Distribution::Uniform { lo, hi } | Distribution::Angle { lo, hi, .. } => {
@@ -123,13 +124,29 @@ pub fn sample(dist: &Distribution, rng: &mut impl Rng, out: &mut [u32]) {
 }
 
 /// Uniform `f32` over the closed interval `[lo, hi]`; `lo == hi` gives `lo`.
+///
+/// Exactly the value `rng.random_range(lo..=hi)` gives (rand's `UniformFloat`: the top 23
+/// bits of one `u32` as a float in `[1, 2)`, less one, times `hi - lo`, plus `lo`), from
+/// the same single draw, without the checks and the `Result` that a general range
+/// needs: bounds come from a checked distribution. A test holds the two equal.
 #[inline]
 fn uniform_f32(rng: &mut impl Rng, lo: f32, hi: f32) -> f32 {
-    if lo < hi {
-        rng.random_range(lo..=hi)
+    let scale = hi - lo;
+    if lo < hi && scale.is_finite() {
+        uniform_in(rng, lo, scale)
+    } else if lo < hi {
+        rng.random_range(lo..=hi) // a span past f32's range, refused there
     } else {
         lo
     }
+}
+
+/// A uniform `f32` in `[lo, lo + scale]` for a finite `scale > 0`, from one `u32` of
+/// `rng`, as rand's `UniformFloat` makes it (see [`uniform_f32`]).
+#[inline]
+pub(crate) fn uniform_in(rng: &mut impl Rng, lo: f32, scale: f32) -> f32 {
+    let value1_2 = f32::from_bits((rng.next_u32() >> 9) | 0x3f80_0000);
+    (value1_2 - 1.0) * scale + lo
 }
 
 /// Index `i` with probability `weights[i] / sum(weights)`.
@@ -203,6 +220,31 @@ mod tests {
     use super::*;
     use rand::SeedableRng;
     use rand_chacha::ChaCha8Rng;
+
+    #[test]
+    fn uniform_draws_are_rands_from_the_same_stream() {
+        let bounds = [
+            (0.0, 1.0),
+            (-0.5, 0.5),
+            (0.6, 1.5),
+            (35f32.to_radians(), 85f32.to_radians()),
+            (-1e30, 1e30),
+            (1.0, 1.0 + f32::EPSILON),
+        ];
+        let (mut ours, mut rands) = (ChaCha8Rng::seed_from_u64(9), ChaCha8Rng::seed_from_u64(9));
+        for _ in 0..20_000 {
+            for &(lo, hi) in &bounds {
+                let want: f32 = rands.random_range(lo..=hi);
+                assert_eq!(uniform_f32(&mut ours, lo, hi).to_bits(), want.to_bits());
+            }
+        }
+        assert_eq!(uniform_f32(&mut ours, 2.0, 2.0), 2.0);
+        assert_eq!(
+            ours.next_u32(),
+            rands.next_u32(),
+            "an empty span draws nothing"
+        );
+    }
 
     #[test]
     fn values_round_trip_through_words() {

@@ -26,11 +26,13 @@
 mod build;
 mod display;
 mod error;
+mod fresh;
 mod json;
 mod limits;
 pub(crate) mod validate;
 
 pub use error::{GeneAt, GenomeError, SlotAt};
+pub(crate) use fresh::FreshGenes;
 pub use json::{GenomeSet, JsonError, JsonLayout};
 pub use limits::{Limits, LimitsError};
 pub(crate) use validate::slot_at;
@@ -41,8 +43,7 @@ use rand::Rng;
 
 use crate::derive::{Derivation, GeneView, Grammar, Site};
 use crate::geometry::Instance;
-use crate::graph::{GeneratorGraph, HEADER_WORDS, NodeDesc};
-use crate::param;
+use crate::graph::{GeneratorGraph, NodeDesc};
 
 /// The deepest tree any genome may hold: bounds the recursion of derivation.
 pub const DEPTH_CAP: u32 = 1024;
@@ -188,32 +189,6 @@ impl<G: Grammar> Genome<G> {
     /// instances to what `out` already holds.
     pub fn derive_append_on(&self, site: &Site, out: &mut Vec<Instance>) {
         Derivation::run::<G>(&self.words, site, out);
-    }
-
-    /// Appends a gene of kind `kind` with parameters drawn from `rng`, linked from
-    /// `parent` on link `link` when given; returns its word position. O(1).
-    pub(crate) fn push_gene(
-        &mut self,
-        kind: u32,
-        parent: Option<(u32, u32)>,
-        rng: &mut impl Rng,
-    ) -> u32 {
-        let node = node_of::<G>(kind);
-        let pos = self.words.len() as u32;
-        self.words
-            .resize(self.words.len() + node.gene_words() as usize, 0);
-        self.words[pos as usize] = kind;
-        if let Some((parent, link)) = parent {
-            self.words[pos as usize + 1] = (parent as i32 - pos as i32) as u32;
-            self.words[(parent + HEADER_WORDS + link) as usize] = pos - parent;
-        }
-        let params_at = (pos + HEADER_WORDS + node.links) as usize;
-        for p in node.params {
-            let at = params_at + p.offset as usize;
-            param::sample(&p.dist, rng, &mut self.words[at..]);
-        }
-        self.len += 1;
-        pos
     }
 }
 

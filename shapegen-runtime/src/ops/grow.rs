@@ -123,7 +123,7 @@ impl<G: Grammar> Operators<G> {
             }
             let l = self.link(&k, link);
             if r < l.grow {
-                genome.push_gene(l.child, Some((pos, link)), rng);
+                self.fresh.push(genome, l.child, Some((pos, link)), rng);
                 return true;
             }
             r -= l.grow;

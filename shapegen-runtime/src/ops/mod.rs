@@ -84,7 +84,7 @@ use std::marker::PhantomData;
 use serde::{Deserialize, Serialize};
 
 use crate::derive::Grammar;
-use crate::genome::{Limits, LimitsError};
+use crate::genome::{FreshGenes, Limits, LimitsError};
 use edit::Survey;
 use weight::{Fenwick, weight};
 
@@ -236,6 +236,8 @@ pub struct Operators<G> {
     links: Vec<LinkInfo>,
     /// Words of the largest gene any link takes: what one grow appends at most.
     child_words: u32,
+    /// How new genes are written.
+    fresh: FreshGenes<G>,
     s: Scratch,
     _g: PhantomData<fn() -> G>,
 }
@@ -260,6 +262,7 @@ impl<G> Clone for Operators<G> {
             kinds: self.kinds.clone(),
             links: self.links.clone(),
             child_words: self.child_words,
+            fresh: self.fresh.clone(),
             s: Scratch::default(),
             _g: PhantomData,
         }
@@ -352,6 +355,7 @@ impl<G: Grammar> Operators<G> {
             kinds,
             links,
             child_words,
+            fresh: FreshGenes::new(),
             s: Scratch::default(),
             _g: PhantomData,
         })

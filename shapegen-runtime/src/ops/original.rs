@@ -101,17 +101,23 @@ impl<G: Grammar> Operators<G> {
     ) -> (u32, usize) {
         let k = self.kind_at(&genome.words, pos);
         let at = (pos + HEADER_WORDS) as usize;
-        let empty = genome.words[at..at + k.links as usize]
-            .iter()
-            .filter(|&&w| w == 0)
-            .count();
-        let j = pick(rng, empty);
-        let link = (0..k.links)
-            .filter(|&l| genome.words[at + l as usize] == 0)
-            .nth(j)
-            .expect("the drawn index lies among the empty links");
+        let links = &genome.words[at..at + k.links as usize];
+        let (link, empty) = if links.len() == 1 {
+            (0, 1) // the one link, empty: a pick among one draws nothing
+        } else {
+            let empty = links.iter().filter(|&&w| w == 0).count();
+            let j = pick(rng, empty);
+            let link = (0..k.links)
+                .filter(|&l| links[l as usize] == 0)
+                .nth(j)
+                .expect("the drawn index lies among the empty links");
+            (link, empty)
+        };
         let child_kind = self.link(&k, link).child;
-        (genome.push_gene(child_kind, Some((pos, link)), rng), empty)
+        (
+            self.fresh.push(genome, child_kind, Some((pos, link)), rng),
+            empty,
+        )
     }
 
     /// The original's cut (`do_symbol_cut`): removes the subtree of a uniformly drawn

@@ -132,7 +132,7 @@ impl<G: Grammar> Operators<G> {
             let k = self.kinds[genome.words[pos as usize] as usize];
             let l = self.links[(k.first_link + link) as usize];
             s.fenwick.sub(i, l.grow);
-            let child = genome.push_gene(l.child, Some((pos, link)), rng);
+            let child = self.fresh.push(genome, l.child, Some((pos, link)), rng);
             if d + 1 < max_depth {
                 let ck = self.kinds[l.child as usize];
                 for link in 0..ck.links {
@@ -209,7 +209,7 @@ impl<G: Grammar> Operators<G> {
                 }
                 let l = self.links[(k.first_link + link) as usize];
                 if chance(rng, l.grow) {
-                    let child = out.push_gene(l.child, Some((pos, link)), rng);
+                    let child = self.fresh.push(out, l.child, Some((pos, link)), rng);
                     queue.push((child, 0, d + 1));
                 }
             }
