@@ -38,8 +38,8 @@ use shapegen::registry::Registry;
 use shapegen::scene::{Method, MethodSettings, Overrides, Scene};
 use shapegen::{Genome, Grammar, Instance, Site};
 
-/// Every published generator, with the scene it is measured on.
-const SCENES: [(Published, &str); Published::ALL.len()] = [
+/// The published generators measured, each with the scene it is measured on.
+const SCENES: &[(Published, &str)] = &[
     (Published::Spaceship, "scenes/paper/spaceship_volume.toml"),
     (Published::Tree, "scenes/paper/tree_sketch1.toml"),
     (Published::City, "scenes/paper/city_whale.toml"),
@@ -65,7 +65,7 @@ fn main() {
     );
     println!("|---|---|---|---|---|---|---|");
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    for (generator, file) in SCENES {
+    for &(generator, file) in SCENES {
         if filter.as_deref().is_some_and(|f| !file.contains(f)) {
             continue;
         }

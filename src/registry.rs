@@ -37,45 +37,11 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub use generators::Presets;
 use generators::{GeneratorVisitor, Published};
 use shapegen_runtime::Grammar;
 use shapegen_runtime::genome::Limits;
 use shapegen_runtime::geometry::MeshLibrary;
-use shapegen_runtime::optimize::multi::MultiGaSettings;
-use shapegen_runtime::optimize::{GaSettings, McmcSettings, Order, SmcSettings};
-
-/// Each search method's settings for one generator, taken where a scene's `[optimizer]`
-/// table leaves a field out.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Presets {
-    /// The genetic algorithm's (and the multi-objective GA's breeding).
-    pub ga: GaSettings,
-    /// SMC's (its order is always [`Order::Chromosome`]).
-    pub smc: SmcSettings,
-    /// SOSMC's (its order is always [`Order::Stochastic`]).
-    pub sosmc: SmcSettings,
-    /// RJMCMC's.
-    pub rjmcmc: McmcSettings,
-}
-
-impl Default for Presets {
-    /// Every method's own defaults.
-    fn default() -> Self {
-        let smc = SmcSettings::default();
-        Presets {
-            ga: GaSettings::default(),
-            smc: SmcSettings {
-                order: Order::Chromosome,
-                ..smc
-            },
-            sosmc: SmcSettings {
-                order: Order::Stochastic,
-                ..smc
-            },
-            rjmcmc: McmcSettings::default(),
-        }
-    }
-}
 
 /// What a generator brings besides its grammar.
 #[derive(Clone, Debug)]
@@ -265,41 +231,7 @@ fn published_defaults(generator: Published, meshes: &MeshLibrary) -> Defaults {
     Defaults {
         meshes: meshes.clone(),
         limits: generator.paper_limits(),
-        presets: paper_presets(generator),
-    }
-}
-
-/// The original's settings of every method for a published generator's paper scene; the
-/// buildings, which have no paper scene, breeds with the thesis's GA and takes the city's
-/// settings of the other methods.
-fn paper_presets(generator: Published) -> Presets {
-    let (ga, smc, rjmcmc): (GaSettings, fn(Order) -> SmcSettings, McmcSettings) = match generator {
-        Published::Spaceship => (
-            generators::spaceship::paper_ga(),
-            generators::spaceship::paper_smc,
-            generators::spaceship::paper_rjmcmc(),
-        ),
-        Published::Tree => (
-            generators::tree::paper_ga(),
-            generators::tree::paper_smc,
-            generators::tree::paper_rjmcmc(),
-        ),
-        Published::City => (
-            generators::city::paper_ga(),
-            generators::city::paper_smc,
-            generators::city::paper_rjmcmc(),
-        ),
-        Published::Building | Published::RoofedBuilding | Published::LotBuilding => (
-            MultiGaSettings::thesis().ga,
-            generators::city::paper_smc,
-            generators::city::paper_rjmcmc(),
-        ),
-    };
-    Presets {
-        ga,
-        smc: smc(Order::Chromosome),
-        sosmc: smc(Order::Stochastic),
-        rjmcmc,
+        presets: generator.presets(),
     }
 }
 

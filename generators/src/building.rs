@@ -67,7 +67,10 @@ use std::ops::RangeInclusive;
 use shapegen_runtime::generator;
 use shapegen_runtime::genome::Limits;
 use shapegen_runtime::geometry::RoofShape;
+use shapegen_runtime::optimize::multi::MultiGaSettings;
 use shapegen_runtime::prelude::*;
+
+use crate::presets::Presets;
 
 /// The lot's footprint: width along x and depth along z, centred on the origin.
 pub const LOT: Vec2 = Vec2::new(10.0, 10.0);
@@ -392,6 +395,18 @@ pub const LIMITS: Limits = Limits {
     max_len: 300,
     max_depth: 20,
 };
+
+/// Each method's settings for the building generators, which have no paper scene: the
+/// thesis's GA ([`MultiGaSettings::thesis`]) and the city's settings of the other methods
+/// ([`city::paper_smc`](crate::city::paper_smc),
+/// [`city::paper_rjmcmc`](crate::city::paper_rjmcmc)).
+pub fn presets() -> Presets {
+    Presets::paper(
+        MultiGaSettings::thesis().ga,
+        crate::city::paper_smc,
+        crate::city::paper_rjmcmc(),
+    )
+}
 
 /// The building generator with roofs: [`Building`]'s programs, each with one more
 /// optional operation, [`Roof`](roofed::Roof), which fills its scope with a box and puts

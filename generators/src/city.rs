@@ -13,6 +13,8 @@ use shapegen_runtime::genome::Limits;
 use shapegen_runtime::optimize::{GaSettings, McmcSettings, Order, SmcSettings};
 use shapegen_runtime::prelude::*;
 
+use crate::presets::Presets;
+
 /// Lots per row of the grid (the original's `GridX`).
 pub const GRID: usize = 10;
 /// Distance between the centres of neighbouring lots.
@@ -128,4 +130,10 @@ pub fn paper_rjmcmc() -> McmcSettings {
         iterations: 200,
         ..crate::spaceship::paper_rjmcmc()
     }
+}
+
+/// Each method's settings for the paper's city scene: [`paper_ga`], [`paper_smc`] and
+/// [`paper_rjmcmc`].
+pub fn presets() -> Presets {
+    Presets::paper(paper_ga(), paper_smc, paper_rjmcmc())
 }

@@ -14,6 +14,8 @@ use shapegen_runtime::optimize::{
 };
 use shapegen_runtime::prelude::*;
 
+use crate::presets::Presets;
+
 generator! {
     /// The spaceship of the paper's volume scene: a hull of boxes along +z, each of
     /// which may carry a mirrored pair of wings and a tower of tops.
@@ -193,4 +195,10 @@ pub fn paper_rjmcmc() -> McmcSettings {
         jump_probability: 0.5,
         ..McmcSettings::default()
     }
+}
+
+/// Each method's settings for the paper's spaceship scene: [`paper_ga`], [`paper_smc`]
+/// and [`paper_rjmcmc`].
+pub fn presets() -> Presets {
+    Presets::paper(paper_ga(), paper_smc, paper_rjmcmc())
 }

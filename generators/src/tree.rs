@@ -8,6 +8,8 @@ use shapegen_runtime::genome::Limits;
 use shapegen_runtime::optimize::{GaSettings, McmcSettings, Order, SmcSettings};
 use shapegen_runtime::prelude::*;
 
+use crate::presets::Presets;
+
 generator! {
     /// The tree of the paper's sketch scene.
     pub Tree {
@@ -182,4 +184,10 @@ pub fn paper_rjmcmc() -> McmcSettings {
         initial_length: 150,
         ..crate::spaceship::paper_rjmcmc()
     }
+}
+
+/// Each method's settings for the paper's tree-sketch scene: [`paper_ga`], [`paper_smc`]
+/// and [`paper_rjmcmc`].
+pub fn presets() -> Presets {
+    Presets::paper(paper_ga(), paper_smc, paper_rjmcmc())
 }
