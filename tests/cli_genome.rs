@@ -12,7 +12,7 @@ use shapegen::genome::GenomeSet;
 use shapegen::prelude::Vec3;
 use shapegen::scene::Scene;
 use shapegen::{BoundMeshes, Genome, Grammar, Instance};
-use support::{fails, ok, s};
+use support::{fails, ok, published_names, s};
 
 /// Writes `count` sampled models of `generator` into `dir` and returns their genomes file.
 fn sample(generator: &str, count: &str, dir: &Path) -> PathBuf {
@@ -146,9 +146,9 @@ fn convert_explains_its_mistakes() {
     assert_eq!(
         err.trim(),
         format!(
-            "error: `{}`: unknown generator `Rocket`; the generators are spaceship, tree, city, \
-             building, roofed_building and lot_building",
-            rocket.display()
+            "error: `{}`: unknown generator `Rocket`; the generators are {}",
+            rocket.display(),
+            published_names()
         )
     );
     let nameless = dir.path().join("nameless.json");
@@ -476,10 +476,10 @@ fn export_explains_its_mistakes() {
         s(&out),
     ]);
     assert!(
-        err.contains(
-            "error: unknown generator `rocket`; the generators are spaceship, tree, city, \
-             building, roofed_building and lot_building"
-        ),
+        err.contains(&format!(
+            "error: unknown generator `rocket`; the generators are {}",
+            published_names()
+        )),
         "{err}"
     );
     let err = fails(&[

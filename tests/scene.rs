@@ -1,6 +1,8 @@
 //! Scene files: the paper scenes load, and every kind of mistake is refused with the
 //! file, the key and the reason.
 
+mod support;
+
 use std::fs;
 use std::path::{Path, PathBuf};
 
@@ -129,11 +131,7 @@ fn unknown_keys_are_refused_with_their_line() {
 fn unknown_generators_are_refused() {
     let fixture = Fixture::new();
     let text = VOLUME.replace("\"spaceship\"", "\"castle\"");
-    fixture.refuses(
-        &text,
-        "generator",
-        "spaceship, tree, city, building, roofed_building and lot_building",
-    );
+    fixture.refuses(&text, "generator", &support::published_names());
 }
 
 #[test]

@@ -76,9 +76,9 @@ impl Cli {
         Cli::default()
     }
 
-    /// Adds the published generators: `spaceship`, `tree`, `city`, `building`,
-    /// `roofed_building` and `lot_building`, with their meshes and the original's settings
-    /// ([`Registry::published`](crate::registry::Registry::published)).
+    /// Adds the published generators ([`generators::Published`]: the paper's `spaceship`,
+    /// `tree` and `city`, the buildings and the others), with their meshes, limits and
+    /// presets ([`Registry::published`](crate::registry::Registry::published)).
     pub fn published(mut self) -> Cli {
         if let Err(err) = add_published(&mut self.generators) {
             self.error.get_or_insert(err);

@@ -5,8 +5,8 @@
 //! silhouettes seen through cameras. Paths in it are relative to the scene file.
 //!
 //! ```toml
-//! generator = "spaceship"            # a registered generator: spaceship, tree, city,
-//!                                    # building, roofed_building, lot_building, or one
+//! generator = "spaceship"            # a registered generator: a published one
+//!                                    # (spaceship, tree, city, building, ...) or one
 //!                                    # of your own (shapegen::registry)
 //!
 //! [lot]                              # optional: the site a building generator builds on

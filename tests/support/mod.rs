@@ -264,3 +264,21 @@ generations = 8
     ]);
     path
 }
+
+/// The published generators' names as messages list them: "spaceship, tree, ... and
+/// lot_building", from `Published::ALL`.
+pub fn published_names() -> String {
+    struct Key;
+    impl generators::GeneratorVisitor for Key {
+        type Output = &'static str;
+        fn visit<G: shapegen::Grammar>(self, _: shapegen::genome::Limits) -> &'static str {
+            G::GRAPH.key
+        }
+    }
+    let names: Vec<&str> = generators::Published::ALL
+        .iter()
+        .map(|g| g.visit(Key))
+        .collect();
+    let (last, rest) = names.split_last().expect("there are published generators");
+    format!("{} and {last}", rest.join(", "))
+}

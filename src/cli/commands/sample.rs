@@ -19,8 +19,8 @@ use crate::registry::Entry;
 /// Arguments of `shapegen sample`.
 #[derive(Debug, Args)]
 pub struct SampleArgs {
-    /// The generator, by name (the `shapegen` tool's: spaceship, tree, city, building,
-    /// roofed_building or lot_building).
+    /// The generator, by name (a published one, such as spaceship, tree, city or
+    /// building; an unknown name lists them all).
     #[arg(long, short)]
     generator: String,
     /// How many models to write.
