@@ -23,15 +23,10 @@ fn rng(seed: u64) -> ChaCha8Rng {
     ChaCha8Rng::seed_from_u64(seed)
 }
 
-/// The GA's initial genome length in the paper's settings for each generator (for the
-/// lot building, which has none, its scene's optimal length).
+/// The initial genome length of the generator's GA presets, at least 50 (the buildings'
+/// thesis settings start from 20 genes).
 fn paper_initial_len(g: Published) -> u32 {
-    match g {
-        Published::Spaceship => 50,
-        Published::Tree => 250,
-        Published::City | Published::Building | Published::RoofedBuilding => 50,
-        Published::LotBuilding => 40,
-    }
+    g.presets().ga.initial_length.max(50)
 }
 
 /// Checks one genome fully: layout, limits (when given), and a derivation into finite
