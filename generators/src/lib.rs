@@ -93,4 +93,6 @@ published! {
     /// [`LotBuilding`].
     LotBuilding (mod lot_building) = lot_building::LotBuilding,
         limits lot_building::LIMITS, presets building::presets;
+    /// [`Cactus`].
+    Cactus (mod cactus) = cactus::Cactus, limits cactus::LIMITS, presets cactus::presets;
 }
