@@ -17,11 +17,12 @@ mod tables;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
 
 use anyhow::Context;
 use clap::Args;
+use shapegen::gpu::GpuContext;
 use shapegen::scene::{Method, Scene};
 
 use crate::cli::backend::BackendArgs;
@@ -378,56 +379,18 @@ where
         );
         plan.backend.open()
     };
-    let stop = interrupt::flag();
-    let next = AtomicUsize::new(0);
-    let done = Mutex::new(done);
-    let worker = || -> anyhow::Result<()> {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .context("could not start the worker threads")?;
-        while !stop.load(Ordering::SeqCst) {
-            let Some(&index) = pending.get(next.fetch_add(1, Ordering::SeqCst)) else {
-                break;
-            };
-            let finished = pool.install(|| cell::run(plan, dir, index, tool, gpu.as_ref(), &stop));
-            let finished = match finished {
-                Ok(Some(finished)) => finished,
-                Ok(None) => break,
-                Err(err) => return Err(err.context(format!("cell {index}"))),
-            };
-            let mut done = done
-                .lock()
-                .expect("no cell panicked while holding the results");
-            let cell = plan.cell(index);
-            eprintln!(
-                "cell {index} ({}, run {}, seed {}): {}  [{}/{total}]",
-                plan.describe(cell.point),
-                cell.run,
-                cell.seed,
-                outcome(&finished),
-                done.len() + 1
-            );
-            done.insert(index, finished);
-            write_outputs(plan, dir, &done)?;
-        }
-        Ok(())
+    let cells = LocalCells {
+        plan,
+        dir,
+        tool,
+        gpu: gpu.as_ref(),
+        pending,
+        threads,
+        stop: interrupt::flag(),
+        next: AtomicUsize::new(0),
+        done: Mutex::new(done),
     };
-    let outcomes: Vec<anyhow::Result<()>> = std::thread::scope(|scope| {
-        // A failing worker stops the others: their running cells are interrupted.
-        let handles: Vec<_> = (0..jobs)
-            .map(|_| scope.spawn(|| worker().inspect_err(|_| stop.store(true, Ordering::SeqCst))))
-            .collect();
-        handles
-            .into_iter()
-            .map(|h| {
-                h.join()
-                    .unwrap_or_else(|_| Err(anyhow::anyhow!("a cell panicked")))
-            })
-            .collect()
-    });
-    outcomes.into_iter().collect::<anyhow::Result<()>>()?;
-    let done = done.into_inner().expect("the workers have ended");
+    let done = cells.run(jobs)?;
     anyhow::ensure!(
         done.len() as u64 == total,
         "interrupted: {} of {total} cells are done and their tables written to {}; run the \
@@ -445,4 +408,87 @@ where
         dir.display()
     );
     Ok(())
+}
+
+/// The cells a local sweep runs, shared by its workers: each takes the next pending
+/// cell until none is left or the run is stopped.
+struct LocalCells<'a, J: Jobs> {
+    plan: &'a Plan,
+    dir: &'a Path,
+    tool: &'a Generators<J>,
+    gpu: Option<&'a GpuContext>,
+    pending: Vec<u64>,
+    threads: usize,
+    stop: Arc<AtomicBool>,
+    /// Index into `pending` of the next cell to take.
+    next: AtomicUsize,
+    done: Mutex<BTreeMap<u64, Finished>>,
+}
+
+impl<J: Jobs> LocalCells<'_, J>
+where
+    for<'a> J::Job<'a>: From<CellRun<'a>>,
+{
+    /// Runs the cells on `jobs` workers; returns every finished cell, those found done
+    /// included. A failing worker stops the others: their running cells are interrupted.
+    fn run(self, jobs: usize) -> anyhow::Result<BTreeMap<u64, Finished>> {
+        let outcomes: Vec<anyhow::Result<()>> = std::thread::scope(|scope| {
+            let handles: Vec<_> = (0..jobs)
+                .map(|_| {
+                    scope.spawn(|| {
+                        self.worker()
+                            .inspect_err(|_| self.stop.store(true, Ordering::SeqCst))
+                    })
+                })
+                .collect();
+            handles
+                .into_iter()
+                .map(|h| {
+                    h.join()
+                        .unwrap_or_else(|_| Err(anyhow::anyhow!("a cell panicked")))
+                })
+                .collect()
+        });
+        outcomes.into_iter().collect::<anyhow::Result<()>>()?;
+        Ok(self.done.into_inner().expect("the workers have ended"))
+    }
+
+    /// One worker: runs cells in its own thread pool until none is left or the run is
+    /// stopped, rewriting the tables after each.
+    fn worker(&self) -> anyhow::Result<()> {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(self.threads)
+            .build()
+            .context("could not start the worker threads")?;
+        while !self.stop.load(Ordering::SeqCst) {
+            let Some(&index) = self.pending.get(self.next.fetch_add(1, Ordering::SeqCst)) else {
+                break;
+            };
+            let (plan, dir) = (self.plan, self.dir);
+            let finished =
+                pool.install(|| cell::run(plan, dir, index, self.tool, self.gpu, &self.stop));
+            let finished = match finished {
+                Ok(Some(finished)) => finished,
+                Ok(None) => break,
+                Err(err) => return Err(err.context(format!("cell {index}"))),
+            };
+            let mut done = self
+                .done
+                .lock()
+                .expect("no cell panicked while holding the results");
+            let cell = plan.cell(index);
+            eprintln!(
+                "cell {index} ({}, run {}, seed {}): {}  [{}/{}]",
+                plan.describe(cell.point),
+                cell.run,
+                cell.seed,
+                outcome(&finished),
+                done.len() + 1,
+                plan.cells()
+            );
+            done.insert(index, finished);
+            write_outputs(plan, dir, &done)?;
+        }
+        Ok(())
+    }
 }
