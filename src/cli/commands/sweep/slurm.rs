@@ -89,48 +89,6 @@ impl SlurmArgs {
     pub fn script(&self, cells: u64, dir: &Path, exe: &Path) -> String {
         let (dir_text, exe_text) = (dir.display().to_string(), exe.display().to_string());
         let logs = format!("{dir_text}/logs");
-        let mut array = format!("0-{}", cells.saturating_sub(1));
-        if let Some(n) = self.max_running {
-            let _ = write!(array, "%{n}");
-        }
-        // Options both kinds of job take.
-        let mut shared = Vec::new();
-        if let Some(p) = &self.partition {
-            shared.push(format!("--partition={p}"));
-        }
-        if let Some(t) = &self.time {
-            shared.push(format!("--time={t}"));
-        }
-        shared.extend(self.options.iter().cloned());
-        let mut task = vec![
-            format!("--job-name={ARRAY_NAME}"),
-            format!("--array={array}"),
-            format!("--output={}", directive_path(&format!("{logs}/%A_%a.out"))),
-        ];
-        if let Some(c) = self.cpus_per_task {
-            task.push(format!("--cpus-per-task={c}"));
-        }
-        if let Some(m) = &self.mem {
-            task.push(format!("--mem={m}"));
-        }
-        task.extend(shared.iter().cloned());
-        let collect_command = format!(
-            "{} sweep --collect {}",
-            shell_quote(&exe_text),
-            shell_quote(&dir_text)
-        );
-        let mut collect = vec![
-            "--parsable".to_owned(),
-            format!("--job-name={COLLECT_NAME}"),
-            "--dependency=afterany:\"$SLURM_ARRAY_JOB_ID\"".to_owned(),
-            format!(
-                "--output={}",
-                shell_quote(&format!("{logs}/collect-%j.out"))
-            ),
-        ];
-        collect.extend(shared.iter().map(|o| shell_quote(o)));
-        collect.push(format!("--wrap={}", shell_quote(&collect_command)));
-
         let mut s = String::from("#!/bin/bash\n");
         let _ = writeln!(
             s,
@@ -150,7 +108,7 @@ impl SlurmArgs {
             "# lowest task submits the job that collects the tables and plots once every task"
         );
         let _ = writeln!(s, "# has ended. Logs: {logs}/.");
-        for option in &task {
+        for option in self.task_options(cells, &logs) {
             let _ = writeln!(s, "#SBATCH {option}");
         }
         s.push_str("set -euo pipefail\n");
@@ -158,7 +116,7 @@ impl SlurmArgs {
         let _ = writeln!(
             s,
             "    sbatch {} > {}",
-            collect.join(" "),
+            self.collect_options(&dir_text, &exe_text, &logs).join(" "),
             shell_quote(&format!("{logs}/collect.jobid"))
         );
         s.push_str("fi\n");
@@ -169,6 +127,58 @@ impl SlurmArgs {
             shell_quote(&dir_text)
         );
         s
+    }
+
+    /// The sbatch options both kinds of job take: partition, time and the user's own.
+    fn shared_options(&self) -> Vec<String> {
+        let mut shared = Vec::new();
+        if let Some(p) = &self.partition {
+            shared.push(format!("--partition={p}"));
+        }
+        if let Some(t) = &self.time {
+            shared.push(format!("--time={t}"));
+        }
+        shared.extend(self.options.iter().cloned());
+        shared
+    }
+
+    /// The `#SBATCH` options of the array of `cells` tasks, logging into `logs`.
+    fn task_options(&self, cells: u64, logs: &str) -> Vec<String> {
+        let mut array = format!("0-{}", cells.saturating_sub(1));
+        if let Some(n) = self.max_running {
+            let _ = write!(array, "%{n}");
+        }
+        let mut task = vec![
+            format!("--job-name={ARRAY_NAME}"),
+            format!("--array={array}"),
+            format!("--output={}", directive_path(&format!("{logs}/%A_%a.out"))),
+        ];
+        if let Some(c) = self.cpus_per_task {
+            task.push(format!("--cpus-per-task={c}"));
+        }
+        if let Some(m) = &self.mem {
+            task.push(format!("--mem={m}"));
+        }
+        task.extend(self.shared_options());
+        task
+    }
+
+    /// The arguments of the `sbatch` that submits the collecting job, which runs `exe`
+    /// on `dir` once the array has ended, logging into `logs`: each a shell word.
+    fn collect_options(&self, dir: &str, exe: &str, logs: &str) -> Vec<String> {
+        let collect_command = format!("{} sweep --collect {}", shell_quote(exe), shell_quote(dir));
+        let mut collect = vec![
+            "--parsable".to_owned(),
+            format!("--job-name={COLLECT_NAME}"),
+            "--dependency=afterany:\"$SLURM_ARRAY_JOB_ID\"".to_owned(),
+            format!(
+                "--output={}",
+                shell_quote(&format!("{logs}/collect-%j.out"))
+            ),
+        ];
+        collect.extend(self.shared_options().iter().map(|o| shell_quote(o)));
+        collect.push(format!("--wrap={}", shell_quote(&collect_command)));
+        collect
     }
 }
 
