@@ -81,6 +81,20 @@ pub fn report_html(root: &Path) -> anyhow::Result<String> {
          folder of a run, a comparison or a study",
         root.display()
     );
+    let files = embedded_files(root, names)?;
+    let import_map = import_map()?;
+    let mut page = asset_text("index.html")?;
+    for (from, to) in inline_swaps(&files, &import_map)? {
+        page = replace(&page, from, &to, "index.html")?;
+    }
+    Ok(page)
+}
+
+/// The files `names` of `root`, each as base64 by name.
+///
+/// # Errors
+/// When a file cannot be read or the files exceed [`MAX_EMBEDDED`].
+fn embedded_files(root: &Path, names: Vec<String>) -> anyhow::Result<BTreeMap<String, String>> {
     let mut total = 0;
     let mut files = BTreeMap::new();
     for name in names {
@@ -95,7 +109,11 @@ pub fn report_html(root: &Path) -> anyhow::Result<String> {
         );
         files.insert(name, STANDARD.encode(bytes));
     }
+    Ok(files)
+}
 
+/// The import map of the three.js modules, each a `data:` URL of its rewritten text.
+fn import_map() -> anyhow::Result<serde_json::Value> {
     let mut imports = BTreeMap::new();
     for module in MODULES {
         let mut text = asset_text(module.asset)?;
@@ -107,10 +125,16 @@ pub fn report_html(root: &Path) -> anyhow::Result<String> {
             format!("data:text/javascript;base64,{}", STANDARD.encode(text)),
         );
     }
-    let import_map = serde_json::json!({ "imports": imports });
+    Ok(serde_json::json!({ "imports": imports }))
+}
 
-    let mut page = asset_text("index.html")?;
-    let swaps = [
+/// What `index.html` links to, each with its text inline: the stylesheets, the import
+/// map, uPlot, and the viewer's script with the folder's `files` before it.
+fn inline_swaps(
+    files: &BTreeMap<String, String>,
+    import_map: &serde_json::Value,
+) -> anyhow::Result<[(&'static str, String); 5]> {
+    Ok([
         (
             r#"<link rel="stylesheet" href="/assets/vendor/uplot/uPlot.min.css">"#,
             format!(
@@ -144,11 +168,7 @@ pub fn report_html(root: &Path) -> anyhow::Result<String> {
                 script_text(&asset_text("viewer.js")?)
             ),
         ),
-    ];
-    for (from, to) in swaps {
-        page = replace(&page, from, &to, "index.html")?;
-    }
-    Ok(page)
+    ])
 }
 
 #[cfg(test)]
