@@ -226,46 +226,7 @@ impl Scene {
     /// The estimated memory of a run of this scene shaped as `shape` (see the
     /// [`MemoryEstimate`]).
     pub fn memory_estimate(&self, shape: &RunShape) -> MemoryEstimate {
-        let max_len = u64::from(shape.max_len);
-        let gene_words = shape
-            .graph
-            .nodes
-            .iter()
-            .map(NodeDesc::gene_words)
-            .max()
-            .map_or(0, u64::from);
-        let genome_words = max_len * gene_words;
-        let genome_bytes = genome_words * 4 + size_of::<Vec<u32>>() as u64 + 8;
-        let mut parts = Vec::new();
-        let mut saved = 0u64;
-        for held in &shape.held {
-            let setting = format!("{} = {}", held.setting, held.value);
-            parts.push(MemoryPart {
-                what: format!(
-                    "for {} genomes of up to {max_len} genes of {gene_words} words",
-                    held.genomes
-                ),
-                setting: setting.clone(),
-                bytes: held.genomes.saturating_mul(genome_bytes),
-            });
-            parts.push(MemoryPart {
-                what: format!("for the checkpoint of {} genomes", held.saved),
-                setting: setting.clone(),
-                bytes: held
-                    .saved
-                    .saturating_mul(genome_words * JSON_BYTES_PER_WORD),
-            });
-            // Derived for scoring, and on a GPU copied once more, sorted for the upload.
-            let copies = if shape.gpu { 2 } else { 1 };
-            parts.push(MemoryPart {
-                what: format!("for the instances of {} models scored at once", held.saved),
-                setting,
-                bytes: held
-                    .saved
-                    .saturating_mul(copies * max_len * size_of::<Instance>() as u64),
-            });
-            saved = saved.saturating_add(held.saved);
-        }
+        let (mut parts, saved) = genome_parts(shape);
         // The cells a scorer or a projection objective counts over: voxels, pixels.
         let mut cells = 0u64;
         for (what, setting, n) in self.counted_cells() {
@@ -283,6 +244,24 @@ impl Scene {
                 bytes: (n / 2).saturating_mul(shape.threads as u64),
             });
         }
+        self.fscore_parts(shape, &mut parts);
+        if shape.incremental && cells > 0 {
+            // 16-bit counts of every cell for each model kept, up to the bound.
+            let models = 2 * saved;
+            parts.push(MemoryPart {
+                what: format!("for the incremental state of {models} models"),
+                setting: "incremental counting (--no-incremental turns it off)".to_owned(),
+                bytes: models
+                    .saturating_mul(cells * 2)
+                    .min(DEFAULT_MAX_BYTES as u64),
+            });
+        }
+        parts.sort_by_key(|p| std::cmp::Reverse(p.bytes));
+        MemoryEstimate { parts }
+    }
+
+    /// Adds to `parts` the bitsets of each volume scorer of the F-score form.
+    fn fscore_parts(&self, shape: &RunShape, parts: &mut Vec<MemoryPart>) {
         for goal in self.scorers() {
             if let ScorerGoal::Volume(v) = goal
                 && let Form::FScore { threshold, .. } = v.form
@@ -303,19 +282,6 @@ impl Scene {
                 });
             }
         }
-        if shape.incremental && cells > 0 {
-            // 16-bit counts of every cell for each model kept, up to the bound.
-            let models = 2 * saved;
-            parts.push(MemoryPart {
-                what: format!("for the incremental state of {models} models"),
-                setting: "incremental counting (--no-incremental turns it off)".to_owned(),
-                bytes: models
-                    .saturating_mul(cells * 2)
-                    .min(DEFAULT_MAX_BYTES as u64),
-            });
-        }
-        parts.sort_by_key(|p| std::cmp::Reverse(p.bytes));
-        MemoryEstimate { parts }
     }
 
     /// The cells each scorer or projection objective counts over: what they are, the
@@ -348,6 +314,52 @@ impl Scene {
         }
         cells
     }
+}
+
+/// The memory of the genomes a run of `shape` holds, saves and derives at once, and how
+/// many it scores at once.
+fn genome_parts(shape: &RunShape) -> (Vec<MemoryPart>, u64) {
+    let max_len = u64::from(shape.max_len);
+    let gene_words = shape
+        .graph
+        .nodes
+        .iter()
+        .map(NodeDesc::gene_words)
+        .max()
+        .map_or(0, u64::from);
+    let genome_words = max_len * gene_words;
+    let genome_bytes = genome_words * 4 + size_of::<Vec<u32>>() as u64 + 8;
+    let mut parts = Vec::new();
+    let mut saved = 0u64;
+    for held in &shape.held {
+        let setting = format!("{} = {}", held.setting, held.value);
+        parts.push(MemoryPart {
+            what: format!(
+                "for {} genomes of up to {max_len} genes of {gene_words} words",
+                held.genomes
+            ),
+            setting: setting.clone(),
+            bytes: held.genomes.saturating_mul(genome_bytes),
+        });
+        parts.push(MemoryPart {
+            what: format!("for the checkpoint of {} genomes", held.saved),
+            setting: setting.clone(),
+            bytes: held
+                .saved
+                .saturating_mul(genome_words * JSON_BYTES_PER_WORD),
+        });
+        // Derived for scoring, and on a GPU copied once more, sorted for the upload.
+        let copies = if shape.gpu { 2 } else { 1 };
+        parts.push(MemoryPart {
+            what: format!("for the instances of {} models scored at once", held.saved),
+            setting,
+            bytes: held
+                .saved
+                .saturating_mul(copies * max_len * size_of::<Instance>() as u64),
+        });
+        saved = saved.saturating_add(held.saved);
+    }
+    (parts, saved)
 }
 
 #[cfg(test)]
