@@ -150,10 +150,10 @@ impl Registry {
         Registry::default()
     }
 
-    /// The published generators, `spaceship`, `tree`, `city`, `building`,
-    /// `roofed_building` and `lot_building`, with their own meshes, their paper scenes'
-    /// limits and the original's settings of every method (the buildings, which have no
-    /// paper scene, take the thesis's GA).
+    /// The published generators ([`Published`]: the paper's `spaceship`, `tree` and
+    /// `city`, the buildings and the others), with their own meshes, their limits and
+    /// their presets (the original's settings of every method for the paper's; the
+    /// buildings, which have no paper scene, take the thesis's GA).
     pub fn published() -> Self {
         let mut registry = Registry::new();
         add_published(&mut registry).expect("the published generators have distinct plain names");

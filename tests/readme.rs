@@ -1,6 +1,9 @@
 //! The README's commands run from a clone as written: every scene, script or example file
 //! they name is in the repository, and every genome file or run folder they read was
 //! written by a command before them (its `--out`).
+//!
+//! And `docs/architecture.md`'s lists of crates, methods, scorers and published
+//! generators are those of the workspace and the tables.
 
 use std::path::Path;
 
@@ -84,4 +87,61 @@ fn the_readme_names_only_files_that_a_clone_has_or_that_it_writes_first() {
         }
     }
     assert!(checked >= 19, "{checked} paths checked");
+}
+
+/// The backticked names of the item `- **{label}**` of `docs/architecture.md`'s "What
+/// the tables hold", in order.
+fn listed(notes: &str, label: &str) -> Vec<String> {
+    let section = notes
+        .split("## What the tables hold")
+        .nth(1)
+        .expect("docs/architecture.md has its section \"What the tables hold\"");
+    let start = section
+        .find(&format!("- **{label}**"))
+        .unwrap_or_else(|| panic!("the section lists the {label}"));
+    let item = section[start..].split("\n- ").next().unwrap_or("");
+    // Names follow the colon; the parenthesis before it names the table.
+    let names = item.split_once("):").map_or(item, |(_, names)| names);
+    names
+        .split('`')
+        .skip(1)
+        .step_by(2)
+        .map(str::to_owned)
+        .collect()
+}
+
+#[test]
+fn the_architecture_notes_list_what_the_tables_hold() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let notes = std::fs::read_to_string(root.join("docs/architecture.md"))
+        .expect("docs/architecture.md reads");
+    let methods: Vec<&str> = shapegen::scene::Method::ALL
+        .iter()
+        .map(|m| m.name())
+        .collect();
+    assert_eq!(listed(&notes, "Methods"), methods);
+    let scorers: Vec<&str> = shapegen::scene::ScorerKind::ALL
+        .iter()
+        .map(|k| k.name())
+        .collect();
+    assert_eq!(listed(&notes, "Scorers"), scorers);
+    let registry = shapegen::registry::Registry::published();
+    let generators: Vec<&str> = registry.entries().iter().map(|e| e.name.as_str()).collect();
+    assert_eq!(listed(&notes, "Published generators"), generators);
+
+    // The crates: the root package and every member of the workspace.
+    let manifest = |dir: &Path| -> toml::Table {
+        let text = std::fs::read_to_string(dir.join("Cargo.toml")).expect("Cargo.toml reads");
+        text.parse().expect("Cargo.toml parses")
+    };
+    let name = |table: &toml::Table| table["package"]["name"].as_str().unwrap().to_owned();
+    let workspace = manifest(root);
+    let mut crates = vec![name(&workspace)];
+    for member in workspace["workspace"]["members"].as_array().unwrap() {
+        crates.push(name(&manifest(&root.join(member.as_str().unwrap()))));
+    }
+    let mut listed_crates = listed(&notes, "Crates");
+    crates.sort();
+    listed_crates.sort();
+    assert_eq!(listed_crates, crates);
 }

@@ -76,7 +76,7 @@ impl Cli {
         Cli::default()
     }
 
-    /// Adds the published generators ([`generators::Published`]: the paper's `spaceship`,
+    /// Adds the published generators ([`Published`](::generators::Published): the paper's `spaceship`,
     /// `tree` and `city`, the buildings and the others), with their meshes, limits and
     /// presets ([`Registry::published`](crate::registry::Registry::published)).
     pub fn published(mut self) -> Cli {
