@@ -1,6 +1,6 @@
-//! `shapegen run` on a scene with `[[objective]]` tables: the multi-objective GA, and
-//! the non-dominated front it finds written as models, a contact sheet, a CSV and
-//! scatter plots, kept consistent on disk at every moment.
+//! `shapegen run` on a scene with `[[objective]]` tables, searched by the multi-objective
+//! GA: the non-dominated front it finds written as models, a contact sheet, a CSV and
+//! scatter plots, kept consistent on disk at every moment ([`Written`] for [`Front`]).
 
 use std::path::Path;
 
@@ -9,24 +9,21 @@ use image::Rgb;
 use serde::Serialize;
 use shapegen::export::{ContactSheet, Palette, glb_bytes};
 use shapegen::genome::GenomeSet;
-use shapegen::optimize::Optimizer;
 use shapegen::optimize::multi::{
-    Member, MultiGa, MultiGaState, MultiResult, MultiSnapshot, Ranking,
+    Front, Member, MultiObserver, MultiResult, MultiSnapshot, Ranking,
 };
-use shapegen::optimize::{Control, Sense, Session};
-use shapegen::scene::{Metrics, ObjectiveEvaluator, Overrides, Scene};
+use shapegen::optimize::{Control, Sense};
+use shapegen::scene::{Metrics, ObjectiveEvaluator, Scene};
 use shapegen::score::objective::{ObjectiveSet, Surface};
 use shapegen::{BoundMeshes, Grammar, Instance, Site};
 
 use super::backend::Incremental;
-use super::checkpoint::Checkpoint;
 use super::files::{Files, csv_bytes, save_figure, save_png};
-use super::interrupt;
-use super::memory::{MemoryArgs, check_resumed, peak_rss};
+use super::memory::peak_rss;
 use super::overlay::{projection_overlay, projections};
 use super::plot::{self, Titles};
 use super::progress::ProgressLine;
-use super::view::Live;
+use super::record::{Counts, Ended, Written};
 
 /// Most models drawn on the contact sheet; a larger front is shown evenly thinned.
 const SHEET_MODELS: usize = 100;
@@ -72,171 +69,158 @@ struct Summary<'a> {
     peak_rss_bytes: Option<u64>,
 }
 
-/// Where a multi-objective run comes from and goes to.
-pub struct FrontRun<'a> {
-    /// The loaded scene, overrides applied.
-    pub scene: &'a Scene,
-    /// The scene file as given.
-    pub scene_path: &'a Path,
-    /// The overrides.
-    pub overrides: &'a Overrides,
-    /// The output folder.
-    pub dir: &'a Path,
-    /// The folder of the run to resume, if any.
-    pub resume: Option<&'a Path>,
-    /// Whether bred children may be counted from their parents' kept state.
-    pub incremental: bool,
-    /// The memory a resumed run's checkpoint may take.
-    pub memory: MemoryArgs,
-}
+impl<'a> Outputs<'a> {
+    /// The writer of a run of `scene` scored by `evaluator`, its models ranked by
+    /// `ranking`.
+    pub fn new(scene: &'a Scene, evaluator: &ObjectiveEvaluator<'a>, ranking: &Ranking) -> Self {
+        Outputs {
+            scene,
+            set: evaluator.set(),
+            site: &scene.site,
+            meshes: evaluator.meshes().clone(),
+            palette: Palette::new(),
+            ranking: ranking_name(ranking),
+        }
+    }
 
-impl FrontRun<'_> {
-    /// Runs the multi-objective GA on grammar `G` to the scene's budget, saving as it
-    /// goes, and writes the front.
-    pub fn run<G: Grammar>(&self) -> anyhow::Result<()> {
-        let settings = self
-            .scene
-            .multi_settings()
-            .context("the scene has no objectives")?;
-        let goal = &self.scene.optimizer;
-        let ga = match self.resume {
-            Some(dir) => {
-                let checkpoint: Checkpoint<MultiGaState<G>> =
-                    Checkpoint::load(dir, "a multi-objective run of this scene")?;
-                let state = &checkpoint.search;
-                check_resumed::<G, MultiGa<G>>(
-                    self.scene,
-                    state,
-                    self.incremental,
-                    false,
-                    self.memory,
-                )?;
-                MultiGa::resume(checkpoint.search)?
-            }
-            None => MultiGa::<G>::new(settings, self.scene.limits, goal.seed)?,
-        };
-        let ranking = ranking_name(&ga.settings().selection.ranking);
-        let mut evaluator =
-            ObjectiveEvaluator::new::<G>(self.scene)?.with_incremental(self.incremental);
-        let set = evaluator.set();
-        let names: Vec<&str> = set.names().collect();
+    /// Says what the run searches.
+    pub fn announce(&self) {
+        let names: Vec<&str> = self.set.names().collect();
         eprintln!(
             "evolving {} against {} objective{} ({}) with the multi-objective GA, {} ranking, \
              on the CPU",
             self.scene.generator,
-            set.len(),
-            if set.len() == 1 { "" } else { "s" },
+            self.set.len(),
+            if self.set.len() == 1 { "" } else { "s" },
             names.join(", "),
-            ranking,
+            self.ranking,
         );
-        let outputs = Outputs {
-            set,
-            site: &self.scene.site,
-            meshes: evaluator.meshes().clone(),
-            palette: Palette::new(),
-        };
+    }
 
-        let live = |result: &MultiResult<G>, running: bool| Live {
-            generator: &self.scene.generator,
-            method: "ga",
-            seed: goal.seed,
-            generation: result.generations,
-            evaluations: result.evaluations,
-            elapsed_s: result.history.last().map_or(0.0, |h| h.elapsed_s),
-            best_fitness: None,
-            front: Some(result.front.len()),
-            running,
-        };
-        let stop = interrupt::flag();
-        let total = goal.generations();
-        let line = ProgressLine::new();
-        let mut show = |s: &MultiSnapshot<'_, G>| {
-            line.show(s.generation, &progress(s, &names, total));
-            Control::Continue
-        };
-        let result = Session::new(ga, goal.budget())
-            .stop_flag(&stop)
-            .on_progress(&mut show)
-            .on_save(|save| {
-                // The front's tables, its models, the viewer's `run.json` and the
-                // checkpoint land together or not at all.
-                let mut files = Files::new();
-                let result = save.result();
-                outputs.table(&mut files, self.dir, &result)?;
-                let front = sorted(&result.front, set.senses());
-                outputs.models(&mut files, self.dir, &front)?;
-                files.write(&self.dir.join("run.json"), &live(&result, true).to_bytes()?)?;
-                Checkpoint {
-                    scene: self.scene_path.to_owned(),
-                    overrides: self.overrides.clone(),
-                    search: save.state,
-                }
-                .write(&mut files, self.dir)?;
-                files.commit()?;
-                remove_stale_models(self.dir, front.len())
-            })
-            .run(&mut evaluator)?;
-        line.finish();
-        // The session's last save wrote the front's table and models.
-        let front = sorted(&result.front, set.senses());
-        outputs.sheet(self.dir, &front)?;
-        outputs.scatters(self.dir, &front)?;
-        outputs.overlays(self.dir, &front)?;
+    /// The progress line of the run.
+    pub fn progress(&self) -> Progress<'a> {
+        Progress {
+            line: ProgressLine::new(),
+            names: self.set.names().collect(),
+            total: self.scene.optimizer.generations(),
+        }
+    }
 
-        let stopped = result.stopped.name();
-        let objectives = set
-            .entries()
+    /// `summary.json`'s objectives: each one's best value in `front`, with the measures
+    /// of the model that has it.
+    fn objectives<G: Grammar>(&self, front: &[&Member<G>]) -> Vec<ObjectiveSummary<'a>> {
+        let set = self.set;
+        set.entries()
             .iter()
             .zip(set.senses())
             .enumerate()
             .map(|(i, ((name, objective), &sense))| {
-                let best = best_by(&front, i, sense);
+                let best = best_by(front, i, sense);
                 ObjectiveSummary {
                     name,
                     kind: objective.name(),
                     sense,
                     best: best.map_or(f64::NAN, |m| m.values[i]),
                     metrics: best
-                        .map(|m| Metrics::of_genome(self.scene, None, &outputs.meshes, &m.genome)),
+                        .map(|m| Metrics::of_genome(self.scene, None, &self.meshes, &m.genome)),
                 }
             })
-            .collect();
+            .collect()
+    }
+}
+
+/// The progress line after a generation: the front's size and each objective's best.
+pub struct Progress<'a> {
+    line: ProgressLine,
+    names: Vec<&'a str>,
+    total: u64,
+}
+
+impl<G: Grammar> MultiObserver<G> for Progress<'_> {
+    fn observe(&mut self, s: &MultiSnapshot<'_, G>) -> Control {
+        self.line
+            .show(s.generation, &progress(s, &self.names, self.total));
+        Control::Continue
+    }
+}
+
+impl<'a, G: Grammar> Written<G, Front<G>> for Outputs<'a> {
+    type Progress = Progress<'a>;
+    const INCREMENTAL_NOTE: &'static str =
+        " (the projection objectives; the others measured in full)";
+
+    fn observer<'s>(progress: &'s mut Progress<'a>) -> &'s mut (dyn MultiObserver<G> + 's)
+    where
+        Progress<'a>: 's,
+    {
+        progress
+    }
+
+    fn finish(progress: &Progress<'a>) {
+        progress.line.finish();
+    }
+
+    fn counts(result: &MultiResult<G>) -> Counts {
+        Counts {
+            generations: result.generations,
+            evaluations: result.evaluations,
+            elapsed_s: result.history.last().map_or(0.0, |h| h.elapsed_s),
+            best_fitness: None,
+            front: Some(result.front.len()),
+        }
+    }
+
+    /// The front's tables and its models.
+    fn save(&self, files: &mut Files, dir: &Path, result: &MultiResult<G>) -> anyhow::Result<()> {
+        self.table(files, dir, result)?;
+        let front = sorted(&result.front, self.set.senses());
+        self.models(files, dir, &front)
+    }
+
+    fn saved(&mut self, dir: &Path, result: &MultiResult<G>) -> anyhow::Result<()> {
+        remove_stale_models(dir, result.front.len())
+    }
+
+    /// The contact sheet, the scatter charts and the overlays (the session's last save
+    /// wrote the front's table and models).
+    fn end(
+        &self,
+        dir: &Path,
+        result: &MultiResult<G>,
+        incremental: Option<Incremental>,
+    ) -> anyhow::Result<Ended> {
+        let front = sorted(&result.front, self.set.senses());
+        self.sheet(dir, &front)?;
+        self.scatters(dir, &front)?;
+        self.overlays(dir, &front)?;
+        let goal = &self.scene.optimizer;
+        let stopped = result.stopped.name();
         let summary = Summary {
             front: front.len(),
             evaluations: result.evaluations,
             generations: result.generations,
             elapsed_s: result.history.last().map_or(0.0, |h| h.elapsed_s),
             seed: goal.seed,
-            method: "ga",
-            ranking,
-            objectives,
+            method: goal.method().name(),
+            ranking: self.ranking,
+            objectives: self.objectives(&front),
             stopped,
-            incremental: evaluator.retention().map(Incremental::from),
+            incremental,
             peak_rss_bytes: peak_rss(),
         };
-        let mut files = Files::new();
-        files.write(
-            &self.dir.join("summary.json"),
-            serde_json::to_string_pretty(&summary)?.as_bytes(),
-        )?;
-        files.write(
-            &self.dir.join("run.json"),
-            &live(&result, false).to_bytes()?,
-        )?;
-        files.commit()?;
-        if let Some(incremental) = &summary.incremental {
-            eprintln!("{incremental} (the projection objectives; the others measured in full)");
-        }
-        println!(
+        let message = format!(
             "{} non-dominated models after {} generations and {} evaluations ({stopped}); wrote \
              front/ (one .glb each), front.csv, front.genomes.json, contact_sheet.png, \
              scatter_*.png with their SVGs, history.csv and summary.json to {}",
             front.len(),
             result.generations,
             result.evaluations,
-            self.dir.display()
+            dir.display()
         );
-        Ok(())
+        Ok(Ended {
+            summary: serde_json::to_string_pretty(&summary)?.into_bytes(),
+            message,
+        })
     }
 }
 
@@ -313,13 +297,16 @@ fn progress<G>(s: &MultiSnapshot<'_, G>, names: &[&str], total: u64) -> String {
     )
 }
 
-/// Writes a multi-objective run's files.
-struct Outputs<'a> {
+/// Writes the files of a multi-objective run.
+pub struct Outputs<'a> {
+    scene: &'a Scene,
     set: &'a ObjectiveSet,
     /// The scene's site, which the models grow on.
     site: &'a Site,
     meshes: BoundMeshes,
     palette: Palette,
+    /// The ranking's name in scene files.
+    ranking: &'static str,
 }
 
 impl Outputs<'_> {

@@ -46,6 +46,8 @@ mod overlay;
 mod plot;
 mod processes;
 mod progress;
+mod record;
+mod single;
 mod stats;
 pub mod view;
 mod voxels;

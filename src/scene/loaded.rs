@@ -3,16 +3,16 @@
 
 use std::path::PathBuf;
 
-use shapegen_runtime::Site;
 use shapegen_runtime::genome::Limits;
 use shapegen_runtime::geometry::MeshLibrary;
 use shapegen_runtime::optimize::islands::IslandSettings;
-use shapegen_runtime::optimize::multi::MultiGaSettings;
+use shapegen_runtime::optimize::multi::{MultiGa, MultiGaSettings};
 use shapegen_runtime::score::LengthPenalty;
+use shapegen_runtime::{Grammar, Site};
 
 use super::error::{SceneError, ValueError};
 use super::goal::ObjectiveGoal;
-use super::method::{Method, MethodSettings};
+use super::method::{Method, MethodSettings, SearchJob};
 use super::optimizer::{self, OptimizerGoal, Overrides};
 use super::scorer::ScorerGoal;
 use crate::registry::Presets;
@@ -96,14 +96,31 @@ impl Scene {
     /// table's GA settings with the `[selection]` and the archive size; `None` for a
     /// scene without objectives.
     pub fn multi_settings(&self) -> Option<MultiGaSettings> {
-        let goal = self.objectives.as_ref()?;
-        let MethodSettings::Ga(ga) = self.optimizer.settings else {
+        self.front_settings(&self.optimizer)
+    }
+
+    /// Runs `job` with the optimizer that searches `goal` on this scene: for a scene with
+    /// objectives, the multi-objective GA of [`multi_settings`](Self::multi_settings),
+    /// whose record is a front ([`SearchJob::run_front`]); otherwise as
+    /// [`OptimizerGoal::run`] (the method's optimizer, or the GA's island model).
+    pub fn search<G: Grammar, J: SearchJob<G>>(&self, goal: &OptimizerGoal, job: J) -> J::Output {
+        match self.front_settings(goal) {
+            Some(multi) => job.run_front::<MultiGa<G>>(multi),
+            None => goal.run(job),
+        }
+    }
+
+    /// The multi-objective GA's settings of `goal`, a goal of this scene, if the scene
+    /// has objectives.
+    fn front_settings(&self, goal: &OptimizerGoal) -> Option<MultiGaSettings> {
+        let objectives = self.objectives.as_ref()?;
+        let MethodSettings::Ga(ga) = goal.settings else {
             return None;
         };
         Some(MultiGaSettings {
             ga,
-            selection: goal.selection.clone(),
-            archive: goal.archive,
+            selection: objectives.selection.clone(),
+            archive: objectives.archive,
         })
     }
 

@@ -5,7 +5,7 @@
 use std::mem::size_of;
 
 use shapegen_runtime::graph::{GeneratorGraph, NodeDesc};
-use shapegen_runtime::optimize::multi::MultiGa;
+use shapegen_runtime::optimize::multi::{Front, MultiGaSettings};
 use shapegen_runtime::optimize::{Best, Held, Optimizer};
 use shapegen_runtime::score::Form;
 use shapegen_runtime::score::objective::Objective;
@@ -14,7 +14,7 @@ use shapegen_runtime::score::volume::fscore_half_width;
 use shapegen_runtime::{Grammar, Instance};
 
 use super::loaded::Scene;
-use super::method::MethodJob;
+use super::method::{MethodJob, SearchJob};
 use super::optimizer::OptimizerGoal;
 use super::scorer::ScorerGoal;
 
@@ -190,7 +190,7 @@ impl Scene {
     /// generator): those of `goal`'s method, or the multi-objective GA's for a scene
     /// with objectives ([`Optimizer::genomes_held`]).
     pub fn genomes_held<G: Grammar>(&self, goal: &OptimizerGoal) -> Vec<Held> {
-        /// Asks the method's optimizer.
+        /// Asks the optimizer.
         struct Genomes;
         impl<G: Grammar> MethodJob<G> for Genomes {
             type Output = Vec<Held>;
@@ -198,10 +198,15 @@ impl Scene {
                 O::genomes_held(&settings)
             }
         }
-        match self.multi_settings() {
-            Some(multi) => MultiGa::<G>::genomes_held(&multi),
-            None => goal.run::<G, _>(Genomes),
+        impl<G: Grammar> SearchJob<G> for Genomes {
+            fn run_front<O>(self, settings: MultiGaSettings) -> Self::Output
+            where
+                O: Optimizer<G, Record = Front<G>, Settings = MultiGaSettings>,
+            {
+                O::genomes_held(&settings)
+            }
         }
+        self.search::<G, _>(goal, Genomes)
     }
 
     /// The shape of a run of `goal` on this scene, of grammar `G` (the scene's generator),

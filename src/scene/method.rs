@@ -8,6 +8,15 @@
 //! memory estimate ([`Optimizer::genomes_held`]) and the run itself
 //! ([`OptimizerGoal::run`](super::OptimizerGoal::run)).
 //!
+//! Two searches are the GA's row run otherwise, each derived in one place: a goal with
+//! islands runs the GA's island model ([`IslandGa`], through
+//! [`MethodJob::run_islands`]; see [`OptimizerGoal::run`](super::OptimizerGoal::run)), and
+//! a scene with objectives the multi-objective GA, whose record is a front rather than a
+//! best ([`MultiGa`](shapegen_runtime::optimize::multi::MultiGa), through [`SearchJob::run_front`]; see
+//! [`Scene::search`](super::Scene::search)). Work that runs every search, `shapegen
+//! run`'s and the memory estimate's, is a [`SearchJob`]; work on one fitness (`compare`,
+//! `sweep`, [`Search`](crate::search::Search)) a [`MethodJob`].
+//!
 //! A method of one's own is an [`Optimizer`] with a [`Settings`] type; adding it to the
 //! table is one row.
 //!
@@ -29,6 +38,8 @@ use serde::{Deserialize, Serialize};
 use shapegen_runtime::Grammar;
 use shapegen_runtime::genome::Limits;
 use shapegen_runtime::ops::OperatorVariant;
+use shapegen_runtime::optimize::islands::{IslandGa, IslandGaSettings};
+use shapegen_runtime::optimize::multi::{Front, MultiGaSettings};
 use shapegen_runtime::optimize::{
     self, Best, GaSettings, HybridSettings, McmcSettings, McmcVariant, Optimizer, Order, Settings,
     SettingsError, SmcSettings, SmcVariant,
@@ -37,12 +48,34 @@ use shapegen_runtime::optimize::{
 use crate::registry::Presets;
 
 /// Work generic over the optimizer of a method that searches one fitness: a command's
-/// run, a memory estimate. [`MethodSettings::run`] runs it with the method's optimizer.
+/// run, a memory estimate. [`MethodSettings::run`] runs it with the method's optimizer,
+/// [`OptimizerGoal::run`](super::OptimizerGoal::run) with the island model too.
 pub trait MethodJob<G: Grammar> {
     /// What the work returns.
     type Output;
     /// Does the work with optimizer `O`, whose settings the scene gives as `settings`.
     fn run<O: Optimizer<G, Record = Best<G>>>(self, settings: O::Settings) -> Self::Output;
+
+    /// Does the work with the GA's island model ([`IslandGa`]), whose settings the
+    /// scene's GA settings and `[islands]` table give: by default as with any optimizer
+    /// (`shapegen run` spreads the islands over its processes instead, under `mpirun`).
+    fn run_islands(self, settings: IslandGaSettings) -> Self::Output
+    where
+        Self: Sized,
+    {
+        self.run::<IslandGa<G>>(settings)
+    }
+}
+
+/// Work generic over the optimizer of any search, of one fitness or of objective vectors:
+/// `shapegen run`, the memory estimate. [`Scene::search`](super::Scene::search) runs it
+/// with the optimizer that searches a scene.
+pub trait SearchJob<G: Grammar>: MethodJob<G> {
+    /// Does the work with optimizer `O`, which records a front of objective vectors with
+    /// the multi-objective GA's settings ([`MultiGa`](shapegen_runtime::optimize::multi::MultiGa)), given as `settings`.
+    fn run_front<O>(self, settings: MultiGaSettings) -> Self::Output
+    where
+        O: Optimizer<G, Record = Front<G>, Settings = MultiGaSettings>;
 }
 
 /// A method's settings read from a scene's `[optimizer]` table: the keys of `table` over

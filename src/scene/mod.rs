@@ -167,7 +167,7 @@ pub use loaded::Scene;
 pub use lot::geojson_outline;
 pub use memory::{JSON_BYTES_PER_WORD, MemoryError, MemoryEstimate, MemoryPart, RunShape};
 pub use method::{
-    Method, MethodJob, MethodSettings, SettingsCause, SettingsKeyError, UnknownMethod,
+    Method, MethodJob, MethodSettings, SearchJob, SettingsCause, SettingsKeyError, UnknownMethod,
 };
 pub use metrics::{
     CloudDistance, F_SCORE_THRESHOLD, METRIC_COLUMNS, Metrics, SURFACE_SAMPLES, ViewIou,

@@ -5,7 +5,7 @@ use std::time::Duration;
 use crate::registry::Presets;
 use serde::{Deserialize, Serialize};
 use shapegen_runtime::Grammar;
-use shapegen_runtime::optimize::islands::{IslandGa, IslandGaSettings, IslandSettings};
+use shapegen_runtime::optimize::islands::{IslandGaSettings, IslandSettings};
 use shapegen_runtime::optimize::multi::MultiGaSettings;
 use shapegen_runtime::optimize::{Budget, Settings};
 
@@ -88,14 +88,22 @@ impl OptimizerGoal {
         budget
     }
 
-    /// Runs `job` with the optimizer that searches this goal: the method's, or the GA's
-    /// island model ([`IslandGa`]) when the goal has islands.
-    pub fn run<G: Grammar, J: MethodJob<G>>(&self, job: J) -> J::Output {
+    /// The settings of the GA's island model ([`IslandGa`](shapegen_runtime::optimize::islands::IslandGa)) that
+    /// searches this goal: the GA's with the islands, when the goal has islands (which
+    /// only the GA has). The one place where the model is derived.
+    pub fn island_settings(&self) -> Option<IslandGaSettings> {
         match (self.islands, self.settings) {
-            (Some(islands), MethodSettings::Ga(ga)) => {
-                job.run::<IslandGa<G>>(IslandGaSettings { ga, islands })
-            }
-            (_, settings) => settings.run(job),
+            (Some(islands), MethodSettings::Ga(ga)) => Some(IslandGaSettings { ga, islands }),
+            _ => None,
+        }
+    }
+
+    /// Runs `job` with the optimizer that searches this goal: the method's, or the GA's
+    /// island model when the goal has islands ([`MethodJob::run_islands`]).
+    pub fn run<G: Grammar, J: MethodJob<G>>(&self, job: J) -> J::Output {
+        match self.island_settings() {
+            Some(islands) => job.run_islands(islands),
+            None => self.settings.run(job),
         }
     }
 }
@@ -157,6 +165,11 @@ fn out_of_range(value: impl ToString, valid: &'static str) -> SettingsCause {
     }
 }
 
+/// The error of `key` of the `[optimizer]` table.
+fn key_error(key: &str, cause: SettingsCause) -> SettingsKeyError {
+    SettingsKeyError::new(format!("optimizer.{key}"), cause)
+}
+
 /// Resolves the `[optimizer]` table over the generator's `presets` for the method, with
 /// the `[islands]` table and the typed `overrides` in place of the keys they name.
 pub(super) fn resolve(
@@ -165,24 +178,8 @@ pub(super) fn resolve(
     islands: Option<IslandSettings>,
     overrides: &Overrides,
 ) -> Result<OptimizerGoal, SettingsKeyError> {
-    let error =
-        |k: &str, cause: SettingsCause| SettingsKeyError::new(format!("optimizer.{k}"), cause);
-    let written = match table.remove("method") {
-        None => None,
-        Some(toml::Value::String(m)) => Some(
-            m.parse()
-                .map_err(|e| error("method", SettingsCause::UnknownMethod(e)))?,
-        ),
-        Some(other) => return Err(error("method", SettingsCause::NotAMethod(other))),
-    };
-    let islands = match (islands, overrides.islands) {
-        (None, None) => None,
-        (written, count) => {
-            let mut islands = written.unwrap_or_default();
-            islands.count = count.unwrap_or(islands.count);
-            Some(islands)
-        }
-    };
+    let written = take_method(&mut table)?;
+    let islands = island_model(islands, overrides);
     let method = overrides
         .method
         .or(written)
@@ -200,8 +197,65 @@ pub(super) fn resolve(
     let seed = match table.remove("seed") {
         None => 1,
         Some(toml::Value::Integer(s)) if s >= 0 => s as u64,
-        Some(other) => return Err(error("seed", out_of_range(other, "a whole number >= 0"))),
+        Some(other) => {
+            return Err(key_error(
+                "seed",
+                out_of_range(other, "a whole number >= 0"),
+            ));
+        }
     };
+    let (seconds, evaluations) = take_budget(&mut table, overrides)?;
+    let settings = method.preset(presets).read(table)?;
+    let mut goal = OptimizerGoal {
+        seed: overrides.seed.unwrap_or(seed),
+        seconds,
+        evaluations,
+        settings,
+        islands,
+    };
+    if let Some(model) = goal.island_settings() {
+        model.validate().map_err(|err| {
+            let flag = err.field == "islands.count" && overrides.islands.is_some();
+            SettingsKeyError::new(if flag { "--islands" } else { err.field }, err)
+        })?;
+    }
+    if let Some(g) = overrides.generations {
+        goal.set_generations(g);
+    }
+    Ok(goal)
+}
+
+/// Takes `method` out of an `[optimizer]` table: the method it names, if any.
+fn take_method(table: &mut toml::Table) -> Result<Option<Method>, SettingsKeyError> {
+    match table.remove("method") {
+        None => Ok(None),
+        Some(toml::Value::String(m)) => m
+            .parse()
+            .map(Some)
+            .map_err(|e| key_error("method", SettingsCause::UnknownMethod(e))),
+        Some(other) => Err(key_error("method", SettingsCause::NotAMethod(other))),
+    }
+}
+
+/// The island model of the `[islands]` table as `written`, with `--islands` for its
+/// count; `None` when neither gives one.
+fn island_model(written: Option<IslandSettings>, overrides: &Overrides) -> Option<IslandSettings> {
+    match (written, overrides.islands) {
+        (None, None) => None,
+        (written, count) => {
+            let mut islands = written.unwrap_or_default();
+            islands.count = count.unwrap_or(islands.count);
+            Some(islands)
+        }
+    }
+}
+
+/// Takes the budgets, `seconds` and `evaluations`, out of an `[optimizer]` table, with
+/// the flags `--seconds` and `--evaluations` in their place where given.
+fn take_budget(
+    table: &mut toml::Table,
+    overrides: &Overrides,
+) -> Result<(Option<f64>, Option<u64>), SettingsKeyError> {
     let written_seconds = match table.remove("seconds") {
         None => None,
         Some(v) => match v
@@ -210,13 +264,13 @@ pub(super) fn resolve(
             .and_then(budget_seconds)
         {
             Some(s) => Some(s),
-            None => return Err(error("seconds", out_of_range(v, SECONDS))),
+            None => return Err(key_error("seconds", out_of_range(v, SECONDS))),
         },
     };
     let written_evaluations = match table.remove("evaluations") {
         None => None,
         Some(toml::Value::Integer(n)) if n > 0 => Some(n as u64),
-        Some(other) => return Err(error("evaluations", out_of_range(other, EVALUATIONS))),
+        Some(other) => return Err(key_error("evaluations", out_of_range(other, EVALUATIONS))),
     };
     let seconds = match overrides.seconds {
         None => written_seconds,
@@ -235,24 +289,7 @@ pub(super) fn resolve(
         Some(n) => Some(n),
         None => written_evaluations,
     };
-    let settings = method.preset(presets).read(table)?;
-    if let (Some(islands), MethodSettings::Ga(ga)) = (islands, settings) {
-        IslandGaSettings { ga, islands }.validate().map_err(|err| {
-            let flag = err.field == "islands.count" && overrides.islands.is_some();
-            SettingsKeyError::new(if flag { "--islands" } else { err.field }, err)
-        })?;
-    }
-    let mut goal = OptimizerGoal {
-        seed: overrides.seed.unwrap_or(seed),
-        seconds,
-        evaluations,
-        settings,
-        islands,
-    };
-    if let Some(g) = overrides.generations {
-        goal.set_generations(g);
-    }
-    Ok(goal)
+    Ok((seconds, evaluations))
 }
 
 /// Takes `archive` (the multi-objective GA's archive size) out of an `[optimizer]`

@@ -1,36 +1,40 @@
 //! `shapegen run`: evolves models toward a scene's goal and writes what it found, kept
 //! consistent on disk at every moment so that an interrupted run loses nothing.
+//!
+//! Every method takes one path. [`Scene::search`] calls `Run` back with the optimizer
+//! that searches the scene: a method's of the `methods!` table, the GA's island model
+//! (spread over the processes under `mpirun`), or the multi-objective GA for a scene with
+//! objectives. `Run::drive` runs it to the budget, writing at every save the files of
+//! what the method records with `run.json` and the checkpoint, in one batch, and at the
+//! end `summary.json`; the record's own files are `cli/single.rs`'s (one fitness) or
+//! `cli/front.rs`'s (a front).
 
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::Args;
-use image::{GrayImage, ImageFormat, Luma, Rgb};
-use serde::Serialize;
-use shapegen::export::{Palette, Preview, glb_bytes, write_mtl, write_obj};
-use shapegen::optimize::islands::{IslandGa, IslandGaSettings, IslandSettings};
-use shapegen::optimize::{Best, Control, Optimizer, RunResult, Session, Snapshot};
+use shapegen::Grammar;
+use shapegen::optimize::islands::{IslandGa, IslandGaSettings};
+use shapegen::optimize::multi::{Front, MultiGaSettings};
+use shapegen::optimize::{Best, Optimizer, Save, Session};
 use shapegen::scene::{
-    Method, MethodJob, MethodSettings, Metrics, Overrides, Scene, SceneEvaluator, SceneScorer,
+    Method, MethodJob, ObjectiveEvaluator, Overrides, Scene, SceneEvaluator, SceneScorer, SearchJob,
 };
-use shapegen::{Genome, Grammar, Limits, Site};
 
 use crate::registry::Entry;
 
-use crate::cli::backend::{BackendArgs, Incremental, check_batches};
+use crate::cli::backend::{BackendArgs, check_batches};
 use crate::cli::checkpoint::{Checkpoint, Head};
-use crate::cli::files::{Files, csv_bytes};
+use crate::cli::files::Files;
 use crate::cli::folder::{Existing, Folder, Kind};
-use crate::cli::front::FrontRun;
+use crate::cli::front;
 use crate::cli::generators::{Generators, Jobs, Visit};
 use crate::cli::interrupt;
-use crate::cli::memory::{MemoryArgs, MemoryCheck, check_resumed, peak_rss};
-use crate::cli::overlay::overlay;
-use crate::cli::plot::{self, Line, Titles};
+use crate::cli::memory::{MemoryArgs, MemoryCheck, check_resumed};
 use crate::cli::processes::Processes;
-use crate::cli::progress::ProgressLine;
+use crate::cli::record::{Counts, Scoring, Written};
+use crate::cli::single;
 use crate::cli::view::Live;
-use crate::cli::voxels::voxel_surface_obj;
 
 use super::view::ServeArgs;
 
@@ -90,48 +94,6 @@ pub struct RunArgs {
     view: bool,
     #[command(flatten)]
     serve: ServeArgs,
-}
-
-/// `camera.json`: the first silhouette target's camera, for the viewer to look through.
-#[derive(Serialize)]
-struct TargetCamera {
-    width: u32,
-    height: u32,
-    /// World to clip space, column by column.
-    view_projection: [f32; 16],
-}
-
-/// `summary.json`.
-#[derive(Serialize)]
-struct Summary<'a> {
-    best_fitness: f64,
-    evaluations: u64,
-    generations: u64,
-    elapsed_s: f64,
-    seed: u64,
-    method: &'a str,
-    /// The island model's settings, when the GA ran as one.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    islands: Option<IslandSettings>,
-    /// The processes the run was spread over (MPI ranks).
-    processes: usize,
-    backend: &'a str,
-    genes: usize,
-    instances: usize,
-    /// The limits that every model the run scored kept, the best's included: the
-    /// scene's, or fewer where the method follows a rule of the original's
-    /// (`Settings::kept_limits`).
-    kept_limits: Limits,
-    stopped: &'a str,
-    /// How bred children were counted; absent when every model was counted from nothing.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    incremental: Option<Incremental>,
-    /// The best model against the scene's targets in the literature's measures.
-    metrics: Metrics,
-    /// The most memory the process held resident up to the summary (Linux); absent
-    /// where the system does not say.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    peak_rss_bytes: Option<u64>,
 }
 
 /// Runs `shapegen run`.
@@ -217,34 +179,8 @@ pub struct Run<'a> {
 
 impl Visit for Run<'_> {
     fn visit<G: Grammar>(self, _: &Entry) -> anyhow::Result<()> {
-        if self.scene.objectives.is_some() {
-            return FrontRun {
-                scene: self.scene,
-                scene_path: self.scene_path,
-                overrides: self.overrides,
-                dir: self.dir,
-                resume: self.args.resume.as_deref(),
-                incremental: self.args.backend.incremental(),
-                memory: self.args.memory,
-            }
-            .run::<G>();
-        }
-        if let (Some(islands), MethodSettings::Ga(ga)) =
-            (self.scene.optimizer.islands, self.scene.optimizer.settings)
-            && let Some(exchange) = self.processes.exchange()
-        {
-            let settings = IslandGaSettings { ga, islands };
-            let islands = match self.resumed::<G, IslandGa<G>>()? {
-                Some(state) => IslandGa::resume_on(state, exchange)?,
-                None => {
-                    let seed = self.scene.optimizer.seed;
-                    IslandGa::new_on(settings, self.scene.limits, seed, exchange)?
-                }
-            };
-            return self.drive(islands);
-        }
         let scene = self.scene;
-        scene.optimizer.run::<G, _>(self)
+        scene.search::<G, _>(&scene.optimizer, self)
     }
 }
 
@@ -252,38 +188,77 @@ impl<G: Grammar> MethodJob<G> for Run<'_> {
     type Output = anyhow::Result<()>;
 
     fn run<O: Optimizer<G, Record = Best<G>>>(self, settings: O::Settings) -> anyhow::Result<()> {
-        let optimizer = match self.resumed::<G, O>()? {
-            Some(state) => O::resume(state)?,
-            None => O::new(settings, self.scene.limits, self.scene.optimizer.seed)?,
+        let optimizer = self.start::<G, O>(settings)?;
+        self.single(optimizer)
+    }
+
+    /// The island model, its islands spread over the processes where they exchange
+    /// through MPI.
+    fn run_islands(self, settings: IslandGaSettings) -> anyhow::Result<()> {
+        let Some(exchange) = self.processes.exchange() else {
+            return <Self as MethodJob<G>>::run::<IslandGa<G>>(self, settings);
         };
-        self.drive(optimizer)
+        let islands = match self.resumed::<G, IslandGa<G>>()? {
+            Some(state) => IslandGa::resume_on(state, exchange)?,
+            None => {
+                let seed = self.scene.optimizer.seed;
+                IslandGa::new_on(settings, self.scene.limits, seed, exchange)?
+            }
+        };
+        self.single(islands)
+    }
+}
+
+impl<G: Grammar> SearchJob<G> for Run<'_> {
+    fn run_front<O>(self, settings: MultiGaSettings) -> anyhow::Result<()>
+    where
+        O: Optimizer<G, Record = Front<G>, Settings = MultiGaSettings>,
+    {
+        let optimizer = self.start::<G, O>(settings)?;
+        self.front(optimizer)
     }
 }
 
 impl Run<'_> {
+    /// Optimizer `O` with `settings`, or resumed from the checkpoint of the run to resume.
+    fn start<G: Grammar, O: Optimizer<G>>(&self, settings: O::Settings) -> anyhow::Result<O> {
+        Ok(match self.resumed::<G, O>()? {
+            Some(state) => O::resume(state)?,
+            None => O::new(settings, self.scene.limits, self.scene.optimizer.seed)?,
+        })
+    }
+
     /// The checkpoint of the run to resume, if it is one.
     /// The checkpoint's settings are checked against the memory before it is resumed.
     fn resumed<G: Grammar, O: Optimizer<G>>(&self) -> anyhow::Result<Option<O::State>> {
         let Some(dir) = &self.args.resume else {
             return Ok(None);
         };
-        let method = self.scene.optimizer.method().name();
-        let checkpoint: Checkpoint<O::State> =
-            Checkpoint::load(dir, &format!("a {method} run of this scene"))?;
         let backend = &self.args.backend;
+        // A multi-objective run counts on the CPU.
+        let (what, gpu) = match self.scene.objectives {
+            Some(_) => ("a multi-objective run of this scene".to_owned(), false),
+            None => {
+                let method = self.scene.optimizer.method().name();
+                (
+                    format!("a {method} run of this scene"),
+                    backend.may_use_gpu(),
+                )
+            }
+        };
+        let checkpoint: Checkpoint<O::State> = Checkpoint::load(dir, &what)?;
         check_resumed::<G, O>(
             self.scene,
             &checkpoint.search,
             backend.incremental(),
-            backend.may_use_gpu(),
+            gpu,
             self.args.memory,
         )?;
         Ok(Some(checkpoint.search))
     }
 
-    /// Runs `optimizer` to the scene's budget, writing the outputs as it goes (on rank 0
-    /// only, when the run is spread over several processes).
-    fn drive<G: Grammar, O: Optimizer<G, Record = Best<G>>>(
+    /// Runs `optimizer`, of one fitness, scoring on the backend the flags choose.
+    fn single<G: Grammar, O: Optimizer<G, Record = Best<G>>>(
         self,
         optimizer: O,
     ) -> anyhow::Result<()> {
@@ -304,325 +279,117 @@ impl Run<'_> {
         }
         let mut evaluator =
             SceneEvaluator::new(&backend).with_incremental(self.args.backend.incremental());
-        let stop = interrupt::flag();
-        let outputs = Outputs::new::<G>(self.scene, &scorer)?;
+        let count = self.processes.count();
+        let outputs = single::Outputs::new::<G>(self.scene, &scorer, backend.describe(), count)?;
         if writes {
             outputs.targets(self.dir)?;
         }
-        let live = |result: &RunResult<G>, running: bool| Live {
-            generator: &self.scene.generator,
-            method: goal.method().name(),
-            seed: goal.seed,
-            generation: result.generations,
-            evaluations: result.evaluations,
-            elapsed_s: result.history.last().map_or(0.0, |h| h.elapsed_s),
-            best_fitness: Some(result.best_fitness),
-            front: None,
-            running,
-        };
-        let mut progress = Progress::new(goal);
-        let mut show = |s: &Snapshot<'_, G>| {
-            if writes {
-                progress.show(s);
-            }
-            Control::Continue
-        };
-        let mut best_written = f64::NAN;
-        let result = Session::new(optimizer, goal.budget())
+        let progress = single::Progress::new(goal, writes);
+        self.drive(optimizer, &mut evaluator, progress, outputs)
+    }
+
+    /// Runs `optimizer`, the multi-objective GA, measuring the scene's objectives.
+    fn front<G, O>(self, optimizer: O) -> anyhow::Result<()>
+    where
+        G: Grammar,
+        O: Optimizer<G, Record = Front<G>, Settings = MultiGaSettings>,
+    {
+        let mut evaluator = ObjectiveEvaluator::new::<G>(self.scene)?
+            .with_incremental(self.args.backend.incremental());
+        let ranking = &optimizer.settings().selection.ranking;
+        let outputs = front::Outputs::new(self.scene, &evaluator, ranking);
+        outputs.announce();
+        let progress = outputs.progress();
+        self.drive(optimizer, &mut evaluator, progress, outputs)
+    }
+
+    /// Runs `optimizer` to the scene's budget, scoring with `scoring`: at every save, the
+    /// files of what it records (`written`), `run.json` and the checkpoint, in one batch;
+    /// at the end, `summary.json` with `run.json`. Only one process writes (rank 0, when
+    /// the run is spread over several).
+    fn drive<G, O, S, W>(
+        &self,
+        optimizer: O,
+        scoring: &mut S,
+        mut progress: W::Progress,
+        mut written: W,
+    ) -> anyhow::Result<()>
+    where
+        G: Grammar,
+        O: Optimizer<G>,
+        S: Scoring<G, O::Record>,
+        W: Written<G, O::Record>,
+    {
+        let writes = self.processes.writes();
+        let stop = interrupt::flag();
+        let result = Session::new(optimizer, self.scene.optimizer.budget())
             .stop_flag(&stop)
-            .on_progress(&mut show)
+            .on_progress(W::observer(&mut progress))
             .on_save(|save| {
-                if !writes {
-                    return Ok(());
+                if writes {
+                    self.save(&mut written, save)
+                } else {
+                    Ok(())
                 }
-                // One save lands whole or not at all: the best model, the curves and
-                // the checkpoint always describe the same moment of the run.
-                let mut files = Files::new();
-                let result = save.result();
-                let new_best = best_written.to_bits() != result.best_fitness.to_bits();
-                if new_best {
-                    outputs.best(&mut files, self.dir, &result.best)?;
-                }
-                outputs.curves(&mut files, self.dir, &result)?;
-                files.write(&self.dir.join("run.json"), &live(&result, true).to_bytes()?)?;
-                Checkpoint {
-                    scene: self.scene_path.to_owned(),
-                    overrides: self.overrides.clone(),
-                    search: save.state,
-                }
-                .write(&mut files, self.dir)?;
-                files.commit()?;
-                if new_best {
-                    best_written = result.best_fitness;
-                }
-                Ok::<(), anyhow::Error>(())
             })
-            .run(&mut evaluator)?;
+            .run(scoring.evaluator())?;
         if !writes {
             return Ok(());
         }
-        progress.finish();
-
-        let mut instances = Vec::new();
-        result.best.derive_on(&self.scene.site, &mut instances);
-        let summary = Summary {
-            best_fitness: result.best_fitness,
-            evaluations: result.evaluations,
-            generations: result.generations,
-            elapsed_s: result.history.last().map_or(0.0, |h| h.elapsed_s),
-            seed: goal.seed,
-            method: goal.method().name(),
-            islands: goal.islands,
-            processes: self.processes.count(),
-            backend: backend.describe(),
-            genes: result.best.len(),
-            instances: instances.len(),
-            kept_limits: goal.settings.kept_limits(self.scene.limits),
-            stopped: result.stopped.name(),
-            incremental: evaluator.retention().map(Incremental::from),
-            peak_rss_bytes: peak_rss(),
-            metrics: Metrics::of(
-                self.scene,
-                Some(&scorer),
-                &outputs.meshes,
-                result.best.len(),
-                &instances,
-            ),
-        };
-        if let Some(incremental) = &summary.incremental {
-            eprintln!("{incremental}");
-        }
+        W::finish(&progress);
+        let incremental = scoring.incremental();
+        let note = incremental
+            .as_ref()
+            .map(|i| format!("{i}{}", W::INCREMENTAL_NOTE));
+        let ended = written.end(self.dir, &result, incremental)?;
         let mut files = Files::new();
-        files.write(
-            &self.dir.join("summary.json"),
-            serde_json::to_string_pretty(&summary)?.as_bytes(),
-        )?;
-        files.write(
-            &self.dir.join("run.json"),
-            &live(&result, false).to_bytes()?,
-        )?;
+        files.write(&self.dir.join("summary.json"), &ended.summary)?;
+        let live = self.live(W::counts(&result), false);
+        files.write(&self.dir.join("run.json"), &live.to_bytes()?)?;
         files.commit()?;
-        println!(
-            "best fitness {:.4} after {} generations and {} evaluations ({}); wrote best.obj, \
-             best.glb, best.png{}, best.genome.json, fitness.csv, fitness.png, fitness.svg and summary.json to {}",
-            result.best_fitness,
-            result.generations,
-            result.evaluations,
-            summary.stopped,
-            if outputs.has_overlay() {
-                ", overlay.png"
-            } else {
-                ""
-            },
-            self.dir.display()
-        );
+        if let Some(note) = note {
+            eprintln!("{note}");
+        }
+        println!("{}", ended.message);
         Ok(())
     }
-}
 
-/// Writes the run's files.
-struct Outputs<'a> {
-    scorer: &'a SceneScorer,
-    /// The scene's site, which the models grow on.
-    site: &'a Site,
-    /// The fitness chart's title: the generator and the method.
-    title: String,
-    meshes: shapegen::BoundMeshes,
-    palette: Palette,
-}
-
-impl<'a> Outputs<'a> {
-    fn new<G: Grammar>(scene: &'a Scene, scorer: &'a SceneScorer) -> anyhow::Result<Outputs<'a>> {
-        Ok(Outputs {
-            scorer,
-            site: &scene.site,
-            title: format!(
-                "{} with {}: fitness per generation",
-                scene.generator,
-                scene.optimizer.method().name()
-            ),
-            meshes: scene.meshes.bind(G::GRAPH)?,
-            palette: Palette::new(),
-        })
-    }
-
-    fn has_overlay(&self) -> bool {
-        self.scorer.silhouette().is_some()
-    }
-
-    /// What the viewer shows beside the model: `target.obj`, the surface of the volume
-    /// target's voxels (weight above 0), and `target.png` with `camera.json`, the first
-    /// silhouette target and the camera it is seen through.
-    fn targets(&self, dir: &Path) -> anyhow::Result<()> {
+    /// Writes a save: one batch that lands whole or not at all, so that the record's
+    /// files, `run.json` and the checkpoint always describe the same moment of the run.
+    fn save<G, O, W>(&self, written: &mut W, save: Save<'_, G, O>) -> anyhow::Result<()>
+    where
+        G: Grammar,
+        O: Optimizer<G>,
+        W: Written<G, O::Record>,
+    {
         let mut files = Files::new();
-        if let Some(volume) = self.scorer.volume() {
-            let classes = volume.classes();
-            let voxels = classes.voxels();
-            let mut covered = vec![0u64; voxels.len().div_ceil(64)];
-            for (v, &class) in voxels.iter().enumerate() {
-                if classes.is_target(usize::from(class)) {
-                    covered[v / 64] |= 1 << (v % 64);
-                }
-            }
-            let (obj, _) = voxel_surface_obj(volume.grid(), &covered);
-            files.write(&dir.join("target.obj"), obj.as_bytes())?;
+        let result = save.result();
+        written.save(&mut files, self.dir, &result)?;
+        let live = self.live(W::counts(&result), true);
+        files.write(&self.dir.join("run.json"), &live.to_bytes()?)?;
+        Checkpoint {
+            scene: self.scene_path.to_owned(),
+            overrides: self.overrides.clone(),
+            search: save.state,
         }
-        if let Some(silhouette) = self.scorer.silhouette() {
-            let t = &silhouette.targets()[0];
-            let image = GrayImage::from_fn(t.width(), t.height(), |x, y| Luma([t.level(x, y)]));
-            let mut png = std::io::Cursor::new(Vec::new());
-            image.write_to(&mut png, ImageFormat::Png)?;
-            files.write(&dir.join("target.png"), png.get_ref())?;
-            let camera = TargetCamera {
-                width: t.width(),
-                height: t.height(),
-                view_projection: t.view_projection().to_cols_array(),
-            };
-            files.write(
-                &dir.join("camera.json"),
-                serde_json::to_string_pretty(&camera)?.as_bytes(),
-            )?;
-        }
-        files.commit()
+        .write(&mut files, self.dir)?;
+        files.commit()?;
+        written.saved(self.dir, &result)
     }
 
-    /// The best model: OBJ with its MTL, GLB, a shaded picture, the overlay and the genome.
-    fn best<G: Grammar>(
-        &self,
-        files: &mut Files,
-        dir: &Path,
-        best: &Genome<G>,
-    ) -> anyhow::Result<()> {
-        let mut instances = Vec::new();
-        best.derive_on(self.site, &mut instances);
-        let (mut obj, mut mtl) = (Vec::new(), Vec::new());
-        write_obj(
-            &mut obj,
-            "best.mtl",
-            &instances,
-            &self.meshes,
-            &self.palette,
-        )?;
-        write_mtl(&mut mtl, &instances, &self.meshes, &self.palette)?;
-        files.write(&dir.join("best.mtl"), &mtl)?;
-        files.write(&dir.join("best.obj"), &obj)?;
-        files.write(
-            &dir.join("best.glb"),
-            &glb_bytes(&instances, &self.meshes, &self.palette)?,
-        )?;
-        files.write(&dir.join("best.genome.json"), best.to_json().as_bytes())?;
-        let target = self.scorer.silhouette().map(|s| (s, &s.targets()[0]));
-        let preview = match target {
-            Some((_, t)) => Preview {
-                view_projection: t.view_projection(),
-                width: t.width(),
-                height: t.height(),
-            },
-            None => Preview::framing(&instances, &self.meshes, 800, 600),
-        };
-        files.png(
-            &dir.join("best.png"),
-            &preview.render(&instances, &self.meshes, &self.palette)?,
-        )?;
-        if let Some((silhouette, t)) = target {
-            let (w, h) = (t.width(), t.height());
-            let mut mask = vec![false; w as usize * h as usize];
-            silhouette.coverage_mask(0, &instances, &mut mask)?;
-            let overlay = overlay(t, &mask);
-            files.png(&dir.join("overlay.png"), &overlay)?;
+    /// `run.json` at a moment of the run with these `counts`.
+    fn live(&self, counts: Counts, running: bool) -> Live<'_> {
+        let goal = &self.scene.optimizer;
+        Live {
+            generator: &self.scene.generator,
+            method: goal.method().name(),
+            seed: goal.seed,
+            generation: counts.generations,
+            evaluations: counts.evaluations,
+            elapsed_s: counts.elapsed_s,
+            best_fitness: counts.best_fitness,
+            front: counts.front,
+            running,
         }
-        Ok(())
-    }
-
-    /// `fitness.csv`, and `fitness.png` with `fitness.svg`: best (dark blue) and mean
-    /// (orange) fitness against generations.
-    fn curves<G>(
-        &self,
-        files: &mut Files,
-        dir: &Path,
-        result: &RunResult<G>,
-    ) -> anyhow::Result<()> {
-        let header = [
-            "generation",
-            "elapsed_s",
-            "evaluations",
-            "best",
-            "mean",
-            "std",
-        ]
-        .map(str::to_owned);
-        let rows = result.history.iter().map(|h| {
-            vec![
-                h.generation.to_string(),
-                format!("{:.3}", h.elapsed_s),
-                h.evaluations.to_string(),
-                h.best.to_string(),
-                h.mean.to_string(),
-                h.std.to_string(),
-            ]
-        });
-        files.write(&dir.join("fitness.csv"), &csv_bytes(&header, rows)?)?;
-        let generations: Vec<f64> = result.history.iter().map(|h| h.generation as f64).collect();
-        let best: Vec<f64> = result.history.iter().map(|h| h.best).collect();
-        let mean: Vec<f64> = result.history.iter().map(|h| h.mean).collect();
-        let lines = [
-            Line {
-                name: "best",
-                colour: Rgb([30, 60, 140]),
-                values: &best,
-            },
-            Line {
-                name: "mean",
-                colour: Rgb([230, 140, 40]),
-                values: &mean,
-            },
-        ];
-        let titles = Titles {
-            title: &self.title,
-            x: "generations",
-            y: "fitness",
-        };
-        let figure = plot::curves((640, 400), &titles, &generations, &lines)?;
-        files.figure(&dir.join("fitness.png"), &figure)
-    }
-}
-
-/// The progress line after a generation: best and mean fitness, rate, time left.
-struct Progress {
-    line: ProgressLine,
-    total: u64,
-    seconds: Option<f64>,
-}
-
-impl Progress {
-    fn new(goal: &shapegen::scene::OptimizerGoal) -> Progress {
-        Progress {
-            line: ProgressLine::new(),
-            total: goal.generations(),
-            seconds: goal.seconds,
-        }
-    }
-
-    fn show<G>(&mut self, s: &Snapshot<'_, G>) {
-        // Both count from the start of the run, resumed parts included.
-        let elapsed = s.elapsed.as_secs_f64();
-        let rate = s.evaluations as f64 / elapsed.max(1e-9);
-        let by_generations = (s.generation > 0).then(|| {
-            elapsed / s.generation as f64 * self.total.saturating_sub(s.generation) as f64
-        });
-        let left = match (by_generations, self.seconds) {
-            (Some(a), Some(b)) => a.min(b - elapsed),
-            (a, b) => a.or(b.map(|b| b - elapsed)).unwrap_or(0.0),
-        }
-        .max(0.0);
-        let line = format!(
-            "generation {:>4}/{}  best {:>9.5}  mean {:>9.5}  {:>7.0} evaluations/s  {:>4.0} s left",
-            s.generation, self.total, s.best_fitness, s.mean, rate, left
-        );
-        self.line.show(s.generation, &line);
-    }
-
-    fn finish(&self) {
-        self.line.finish();
     }
 }
