@@ -1,27 +1,29 @@
 //! From the scene file as written to a checked [`Scene`]: paths resolved against the
 //! scene's folder, files loaded, values checked, every error naming its key.
 
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use glam::{Mat4, Vec3};
 use shapegen_runtime::Site;
 use shapegen_runtime::genome::Limits;
-use shapegen_runtime::geometry::Mesh;
+use shapegen_runtime::geometry::{Mesh, MeshLibrary};
+use shapegen_runtime::optimize::multi::Selection;
 use shapegen_runtime::score::silhouette::{Camera, ImageTarget, MaskRule, OrbitCamera};
 use shapegen_runtime::score::volume::{Grid, MAX_HALF_WIDTH, VolumeTarget, fscore_half_width};
 use shapegen_runtime::score::{Form, LengthPenalty};
 
 use super::error::{SceneError, ValueError};
 use super::file::{
-    CameraFile, FormName, ImageKind, ImageTargetFile, LengthFrom, LimitsFile, MeshFile, SceneFile,
-    SilhouetteFile, VolumeFile,
+    CameraFile, FitnessFile, FormName, ImageKind, ImageTargetFile, LengthFrom, LimitsFile,
+    MeshFile, SceneFile, SilhouetteFile, VolumeFile,
 };
 use super::goal::{ObjectiveGoal, SilhouetteGoal, VolumeGoal};
 use super::image::read_image;
 use super::loaded::Scene;
 use super::method::{Method, SettingsKeyError};
 use super::metrics::f_score_threshold;
-use super::optimizer::{self, Overrides};
+use super::optimizer::{self, OptimizerGoal, Overrides};
 use super::scorer::ScorerGoal;
 use super::sources::Sources;
 use crate::registry::Registry;
@@ -197,130 +199,27 @@ impl<'a> Resolver<'a> {
             )
         })?;
         let presets = entry.defaults.presets;
-        let mut meshes = entry.defaults.meshes.clone();
-        for (name, entry) in &file.meshes {
-            let key = format!("meshes.{name}");
-            let (written, normalize) = match entry {
-                MeshFile::Path(path) => (path, true),
-                MeshFile::Table { path, normalize } => (path, *normalize),
-            };
-            let path = self.file(&key, written)?;
-            let registered = if normalize {
-                meshes.register_obj(name.clone(), &path)
-            } else {
-                meshes.register_obj_as_written(name.clone(), &path)
-            };
-            registered.map_err(|err| self.refused(key, err))?;
-        }
-
+        let meshes = self.meshes(&entry.defaults.meshes, &file.meshes)?;
         let (limits, optimal_len) = self.limits(&file.limits)?;
         let site = match &file.lot {
             Some(lot) => self.lot(lot)?,
             None => Site::NONE,
         };
-        let from = match (file.fitness.length_from, optimal_len) {
-            (LengthFrom::MinLen, _) => limits.min_len,
-            (LengthFrom::OptimalLen, Some(optimal)) => optimal,
-            (LengthFrom::OptimalLen, None) => {
-                return Err(self.invalid(
-                    "fitness.length_from",
-                    "\"optimal_len\" starts the length penalty at limits.optimal_len, \
-                     which the scene does not give; add it to [limits]",
-                ));
-            }
-        };
-        let length = LengthPenalty {
-            weight: self.non_negative("fitness.length", file.fitness.length)?,
-            from: f64::from(from),
-            to: f64::from(limits.max_len),
-        };
-        let form = file.fitness.form;
-        let optimum = match file.fitness.optimum {
-            Some(v) if !(v.is_finite() && v > 0.0) => {
-                return Err(self.invalid(
-                    "fitness.optimum",
-                    format!(
-                        "{v} must be a finite number > 0: the best fitness the scene can \
-                         reach, whose fractions compare and sweep time"
-                    ),
-                ));
-            }
-            v => v,
-        };
-
-        // One arm per kind of scorer, in the order of `ScorerKind::ALL`.
-        let scorers: Vec<ScorerGoal> = [
-            file.volume
-                .as_ref()
-                .map(|v| self.volume(v, form).map(ScorerGoal::Volume)),
-            file.silhouette
-                .as_ref()
-                .map(|s| self.silhouette(s, form).map(ScorerGoal::Silhouette)),
-        ]
-        .into_iter()
-        .flatten()
-        .collect::<Result<_, _>>()?;
-        debug_assert!(scorers.is_sorted_by_key(ScorerGoal::kind));
+        let length = self.length_penalty(&file.fitness, &limits, optimal_len)?;
+        let optimum = self.optimum(file.fitness.optimum)?;
+        let scorers = self.scorers(&file)?;
         let mut table = file.optimizer;
-        let objectives = if file.objective.is_empty() {
-            if scorers.is_empty() {
-                return Err(self.invalid(
-                    "volume",
-                    "the scene has nothing to score: add a [volume] or [silhouette] table, \
-                     or [[objective]] tables",
-                ));
-            }
-            if file.selection.is_some() {
-                return Err(self.invalid(
-                    "selection",
-                    "ranks the objectives of [[objective]] tables, and the scene has none",
-                ));
-            }
-            None
-        } else {
-            if !scorers.is_empty() {
-                return Err(self.invalid(
-                    "objective",
-                    "a scene scores either by [volume] / [silhouette] or by [[objective]] \
-                     tables, not both",
-                ));
-            }
-            let set = self.objectives(file.objective, entry.mesh_names)?;
-            let selection = file.selection.unwrap_or_default();
-            selection
-                .validate()
-                .and_then(|()| selection.check_objectives(set.len()))
-                .map_err(|err| self.refused(err.field, err))?;
-            let archive = optimizer::take_archive(&mut table).map_err(|err| self.optimizer(err))?;
-            // The multi-objective GA searches it, whatever the default method.
-            table
-                .entry("method")
-                .or_insert_with(|| toml::Value::String(Method::Ga.name().to_owned()));
-            Some(ObjectiveGoal {
-                set,
-                selection,
-                archive,
-            })
-        };
-
+        let objectives = self.objective_goal(
+            file.objective,
+            file.selection,
+            &scorers,
+            entry.mesh_names,
+            &mut table,
+        )?;
         let optimizer = optimizer::resolve(&presets, table.clone(), file.islands, overrides)
             .map_err(|err| self.optimizer(err))?;
-        if objectives.is_some() && optimizer.islands.is_some() {
-            return Err(self.invalid(
-                "islands",
-                "scenes with [[objective]] tables are searched by the multi-objective GA, \
-                 which has no island model; leave out [islands] and --islands",
-            ));
-        }
-        if objectives.is_some() && optimizer.method() != Method::Ga {
-            return Err(self.invalid(
-                "optimizer.method",
-                format!(
-                    "\"{}\": scenes with [[objective]] tables are searched by the \
-                     multi-objective GA; the method must be \"ga\"",
-                    optimizer.method().name()
-                ),
-            ));
+        if objectives.is_some() {
+            self.check_front_search(&optimizer)?;
         }
 
         Ok(Scene {
@@ -340,6 +239,163 @@ impl<'a> Resolver<'a> {
             scorers,
             objectives,
         })
+    }
+
+    /// The generator's meshes `base` with the scene's `[meshes]` registered over them.
+    fn meshes(
+        &self,
+        base: &MeshLibrary,
+        files: &BTreeMap<String, MeshFile>,
+    ) -> Result<MeshLibrary, SceneError> {
+        let mut meshes = base.clone();
+        for (name, entry) in files {
+            let key = format!("meshes.{name}");
+            let (written, normalize) = match entry {
+                MeshFile::Path(path) => (path, true),
+                MeshFile::Table { path, normalize } => (path, *normalize),
+            };
+            let path = self.file(&key, written)?;
+            let registered = if normalize {
+                meshes.register_obj(name.clone(), &path)
+            } else {
+                meshes.register_obj_as_written(name.clone(), &path)
+            };
+            registered.map_err(|err| self.refused(key, err))?;
+        }
+        Ok(meshes)
+    }
+
+    /// The length penalty of `[fitness]`, from `min_len` or `optimal_len` to `max_len`.
+    fn length_penalty(
+        &self,
+        fitness: &FitnessFile,
+        limits: &Limits,
+        optimal_len: Option<u32>,
+    ) -> Result<LengthPenalty, SceneError> {
+        let from = match (fitness.length_from, optimal_len) {
+            (LengthFrom::MinLen, _) => limits.min_len,
+            (LengthFrom::OptimalLen, Some(optimal)) => optimal,
+            (LengthFrom::OptimalLen, None) => {
+                return Err(self.invalid(
+                    "fitness.length_from",
+                    "\"optimal_len\" starts the length penalty at limits.optimal_len, \
+                     which the scene does not give; add it to [limits]",
+                ));
+            }
+        };
+        Ok(LengthPenalty {
+            weight: self.non_negative("fitness.length", fitness.length)?,
+            from: f64::from(from),
+            to: f64::from(limits.max_len),
+        })
+    }
+
+    /// `fitness.optimum`, which must be a finite number above 0 when given.
+    fn optimum(&self, optimum: Option<f64>) -> Result<Option<f64>, SceneError> {
+        match optimum {
+            Some(v) if !(v.is_finite() && v > 0.0) => Err(self.invalid(
+                "fitness.optimum",
+                format!(
+                    "{v} must be a finite number > 0: the best fitness the scene can \
+                     reach, whose fractions compare and sweep time"
+                ),
+            )),
+            v => Ok(v),
+        }
+    }
+
+    /// The scene's scorers: one arm per kind of scorer, in the order of
+    /// `ScorerKind::ALL`.
+    fn scorers(&self, file: &SceneFile) -> Result<Vec<ScorerGoal>, SceneError> {
+        let form = file.fitness.form;
+        let scorers: Vec<ScorerGoal> = [
+            file.volume
+                .as_ref()
+                .map(|v| self.volume(v, form).map(ScorerGoal::Volume)),
+            file.silhouette
+                .as_ref()
+                .map(|s| self.silhouette(s, form).map(ScorerGoal::Silhouette)),
+        ]
+        .into_iter()
+        .flatten()
+        .collect::<Result<_, _>>()?;
+        debug_assert!(scorers.is_sorted_by_key(ScorerGoal::kind));
+        Ok(scorers)
+    }
+
+    /// The `[[objective]]` tables' goal, if the scene has any: then its `[selection]`
+    /// and the archive taken from the `[optimizer]` `table`, whose method defaults to the
+    /// GA. A scene scores by `scorers` or by objectives, not both, and by something.
+    fn objective_goal(
+        &self,
+        objective: Vec<toml::Table>,
+        selection: Option<Selection>,
+        scorers: &[ScorerGoal],
+        mesh_names: &[&str],
+        table: &mut toml::Table,
+    ) -> Result<Option<ObjectiveGoal>, SceneError> {
+        if objective.is_empty() {
+            if scorers.is_empty() {
+                return Err(self.invalid(
+                    "volume",
+                    "the scene has nothing to score: add a [volume] or [silhouette] table, \
+                     or [[objective]] tables",
+                ));
+            }
+            if selection.is_some() {
+                return Err(self.invalid(
+                    "selection",
+                    "ranks the objectives of [[objective]] tables, and the scene has none",
+                ));
+            }
+            return Ok(None);
+        }
+        if !scorers.is_empty() {
+            return Err(self.invalid(
+                "objective",
+                "a scene scores either by [volume] / [silhouette] or by [[objective]] \
+                 tables, not both",
+            ));
+        }
+        let set = self.objectives(objective, mesh_names)?;
+        let selection = selection.unwrap_or_default();
+        selection
+            .validate()
+            .and_then(|()| selection.check_objectives(set.len()))
+            .map_err(|err| self.refused(err.field, err))?;
+        let archive = optimizer::take_archive(table).map_err(|err| self.optimizer(err))?;
+        // The multi-objective GA searches it, whatever the default method.
+        table
+            .entry("method")
+            .or_insert_with(|| toml::Value::String(Method::Ga.name().to_owned()));
+        Ok(Some(ObjectiveGoal {
+            set,
+            selection,
+            archive,
+        }))
+    }
+
+    /// A scene with objectives is searched by the multi-objective GA: the method must be
+    /// the GA, without islands.
+    fn check_front_search(&self, optimizer: &OptimizerGoal) -> Result<(), SceneError> {
+        if optimizer.islands.is_some() {
+            return Err(self.invalid(
+                "islands",
+                "scenes with [[objective]] tables are searched by the multi-objective GA, \
+                 which has no island model; leave out [islands] and --islands",
+            ));
+        }
+        if optimizer.method() != Method::Ga {
+            return Err(self.invalid(
+                "optimizer.method",
+                format!(
+                    "\"{}\": scenes with [[objective]] tables are searched by the \
+                     multi-objective GA; the method must be \"ga\"",
+                    optimizer.method().name()
+                ),
+            ));
+        }
+        Ok(())
     }
 
     fn limits(&self, l: &LimitsFile) -> Result<(Limits, Option<u32>), SceneError> {
