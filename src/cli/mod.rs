@@ -46,7 +46,6 @@ mod overlay;
 mod plot;
 mod processes;
 mod progress;
-mod stats;
 pub mod view;
 mod voxels;
 
