@@ -109,7 +109,8 @@ pub fn median(values: &[f64]) -> f64 {
 }
 
 /// The first quartile, the median and the third quartile of `values` (NaN ranked
-/// lowest; see [`quantile`]); NaN for none.
+/// lowest; each interpolated linearly between the two values around position
+/// `p (n - 1)`, as R's and NumPy's defaults do); NaN for none.
 pub fn quartiles(values: &[f64]) -> [f64; 3] {
     let sorted = sorted(values);
     [0.25, 0.5, 0.75].map(|p| quantile(&sorted, p))
