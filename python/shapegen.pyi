@@ -11,6 +11,9 @@ says what a search aims at (a volume to fill, silhouettes to match) and how it s
     run = scene.run(method="ga", seconds=10, seed=1)
     model = scene.model(run.best)
     model.vertices, model.faces, model.parts, model.part_names
+
+`Scene.compare` runs several methods several times each, as `shapegen compare` does;
+`Scene.run_front` searches a multi-objective scene's front, as `shapegen run` does.
 """
 
 from os import PathLike
@@ -237,6 +240,182 @@ class Run:
         """The fitness curve, one entry per generation: `generation`, `elapsed_s`,
         `evaluations`, `best`, `mean`, `std` (the tool's `fitness.csv`)."""
 
+class ComparedRun:
+    """One finished run of a comparison: a search of the scene with its method and
+    seed (`Scene.run(method=run.method, seed=run.seed)` with the comparison's budget
+    repeats it)."""
+
+    @property
+    def method(self) -> str: ...
+    @property
+    def run(self) -> int:
+        """The run's number among the method's runs, from 0."""
+    @property
+    def seed(self) -> int:
+        """The comparison's base seed plus `run`."""
+    @property
+    def best(self) -> Genome: ...
+    @property
+    def best_fitness(self) -> float: ...
+    @property
+    def evaluations(self) -> int: ...
+    @property
+    def generations(self) -> int: ...
+    @property
+    def elapsed_s(self) -> float: ...
+    @property
+    def stopped(self) -> str:
+        """`"evaluations"` or `"time"`."""
+    @property
+    def history(self) -> Dict[str, np.ndarray]:
+        """The fitness curve, as `Run.history`."""
+    @property
+    def metrics(self) -> Dict[str, Any]:
+        """The best model's measures against the scene's targets, as the tool's
+        `summary.json` gives them: `genes`, `instances`, `triangles`, and where the
+        scene has such targets `voxel_iou`, `surface` (`chamfer`, `f_score`),
+        `silhouette_iou` (per target image), `point_clouds`."""
+
+class MethodSummary:
+    """One method's summary over its runs, as the tool's `summary.json` gives it."""
+
+    @property
+    def method(self) -> str: ...
+    @property
+    def runs(self) -> int:
+        """Its finished runs."""
+    @property
+    def final_mean(self) -> float:
+        """The mean over runs of each run's final best fitness."""
+    @property
+    def final_std(self) -> float:
+        """Their sample standard deviation (0 for one run)."""
+    @property
+    def final_quartiles(self) -> Tuple[float, float, float]:
+        """Their first quartile, median and third quartile."""
+    @property
+    def best(self) -> float:
+        """The best fitness of all runs (the worst is `finals.min()`)."""
+    @property
+    def best_run(self) -> Optional[int]:
+        """The run that found it."""
+    @property
+    def evaluations(self) -> float:
+        """The mean evaluations per run."""
+    @property
+    def finals(self) -> npt.NDArray[np.float64]:
+        """Each run's final best fitness, by run."""
+    @property
+    def metrics(self) -> List[Dict[str, Any]]:
+        """Each run's best model's measures, by run (as `ComparedRun.metrics`)."""
+    @property
+    def targets(self) -> Optional[List[Dict[str, Any]]]:
+        """With the scene's optimum (`fitness.optimum`): per fraction of it (0.9, 0.99,
+        0.999) its `level`, the `runs`, how many `reached` it, and the quartiles of the
+        `seconds` and `evaluations` it took (`None` where too few reached it), as the
+        tool's `targets.csv`; `None` without an optimum."""
+
+class Comparison:
+    """What `Scene.compare` did: every finished run and each method's summary."""
+
+    @property
+    def methods(self) -> List[str]:
+        """The methods, in the order they ran."""
+    @property
+    def seeds(self) -> List[int]:
+        """The seed of each run, by run number: the base seed and those after it."""
+    @property
+    def seconds(self) -> Optional[float]:
+        """The wall-time budget of every run, if one was given."""
+    @property
+    def backend(self) -> str:
+        """`"CPU"` or the GPU that counted."""
+    @property
+    def optimum(self) -> Optional[float]:
+        """The scene's `fitness.optimum`, if it gives one."""
+    @property
+    def runs(self) -> List[ComparedRun]:
+        """The finished runs, run-major (run 0 of every method, then run 1, ...): the
+        rows of the tool's `runs.csv`."""
+    @property
+    def summaries(self) -> Dict[str, MethodSummary]:
+        """Each method's summary by its name, in the order they ran: the `methods` of
+        the tool's `summary.json`."""
+    @property
+    def complete(self) -> bool:
+        """Whether every planned run finished."""
+    @property
+    def interrupted(self) -> Optional[Tuple[str, int]]:
+        """The run `(method, run)` that was interrupted (not among `runs`), if any."""
+
+class FrontMember:
+    """A member of a multi-objective search's front."""
+
+    @property
+    def genome(self) -> Genome: ...
+    @property
+    def values(self) -> Dict[str, float]:
+        """Its value of each objective, by name, in the scene's order."""
+
+class FrontProgress:
+    """A generation of a multi-objective search, as the progress callback sees it."""
+
+    @property
+    def generation(self) -> int:
+        """Generations after the initial population (0: the initial population)."""
+    @property
+    def elapsed_s(self) -> float: ...
+    @property
+    def evaluations(self) -> int: ...
+    @property
+    def front(self) -> int:
+        """Members of the front so far."""
+    @property
+    def best(self) -> Dict[str, float]:
+        """Per objective, the best value evaluated so far."""
+
+class Front:
+    """What `Scene.run_front` found: the front of non-dominated models."""
+
+    @property
+    def objectives(self) -> List[str]:
+        """The objectives' names, in the scene's order."""
+    @property
+    def kinds(self) -> List[str]:
+        """Their kinds, as scene files name them (`top_match`, ...)."""
+    @property
+    def senses(self) -> List[str]:
+        """`"maximize"` or `"minimize"`, per objective."""
+    @property
+    def ranking(self) -> str:
+        """The selection's ranking (`pareto`, `weighted_sum`, ...)."""
+    @property
+    def members(self) -> List[FrontMember]:
+        """Best first by the first objective (then the others): the order of the
+        tool's `front.csv` and `front.genomes.json`."""
+    @property
+    def values(self) -> npt.NDArray[np.float64]:
+        """N x K objective values: a row per member, a column per objective."""
+    @property
+    def genomes(self) -> List[Genome]:
+        """The members' genomes, in order."""
+    def models(self) -> List[Model]:
+        """The members' models with the scene's meshes, on its lot, in order."""
+    @property
+    def evaluations(self) -> int: ...
+    @property
+    def generations(self) -> int: ...
+    @property
+    def elapsed_s(self) -> float: ...
+    @property
+    def stopped(self) -> str:
+        """`"generations"`, `"evaluations"`, `"time"` or `"interrupted"`."""
+    @property
+    def history(self) -> Dict[str, np.ndarray]:
+        """One entry per generation: `generation`, `elapsed_s`, `evaluations`, `front`
+        (its size) and `best_NAME` per objective (the tool's `history.csv`)."""
+    def __len__(self) -> int: ...
+
 class Scene:
     """What a search aims at, and how it searches."""
 
@@ -252,6 +431,10 @@ class Scene:
     def seed(self) -> int: ...
     @property
     def limits(self) -> Dict[str, int]: ...
+    @property
+    def objectives(self) -> List[str]:
+        """The `[[objective]]` names of a multi-objective scene, searched by
+        `run_front`; empty for a scene with one fitness."""
     def with_settings(
         self,
         *,
@@ -286,7 +469,48 @@ class Scene:
         `"auto"` (a hardware GPU when there is one), `"cpu"` or `"gpu"`. With
         `checkpoint` (a folder) the search saves `checkpoint.json` there as the tool
         does (every second and at the end, replacing one there); with `resume=True`
-        it goes on from the one there, ending as a search never interrupted."""
+        it goes on from the one there, ending as a search never interrupted. A
+        multi-objective scene raises `SceneError`: `run_front` searches it."""
+    def compare(
+        self,
+        methods: Optional[Sequence[str]] = None,
+        *,
+        runs: int = 3,
+        seed: Optional[int] = None,
+        seconds: Optional[float] = None,
+        evaluations: Optional[int] = None,
+        set: Optional[Sequence[str]] = None,
+        threads: Optional[int] = None,
+        progress: Optional[Callable[[ComparedRun], Optional[bool]]] = None,
+        backend: str = "auto",
+    ) -> Comparison:
+        """Compares `methods` (every method by default) as `shapegen compare` does:
+        `runs` runs of each, run `r` of every method on seed `seed + r` (the scene's
+        seed by default), run-major, each to `seconds` of wall time and to the
+        evaluation budget (`evaluations`, or the scene's; give one or both), the
+        methods' own generation counts no limit. Each method takes its settings as
+        `run(method=...)` would; `set` overrides keys, read as each method's.
+        `progress(run)` is called after every finished run; returning `False` ends the
+        comparison there, an exception it raises ends it and is raised here. The
+        numbers are those of the tool's `runs.csv` and `summary.json` for the same
+        scene, seed and evaluation budget."""
+    def run_front(
+        self,
+        *,
+        seed: Optional[int] = None,
+        seconds: Optional[float] = None,
+        evaluations: Optional[int] = None,
+        generations: Optional[int] = None,
+        set: Optional[Sequence[str]] = None,
+        threads: Optional[int] = None,
+        progress: Optional[Callable[[FrontProgress], Optional[bool]]] = None,
+    ) -> Front:
+        """Searches a multi-objective scene's front (its `[[objective]]` tables) with
+        the multi-objective GA, as `shapegen run` does, to the budget (the keyword
+        arguments override the scene's settings as `run`'s do), on the CPU with the
+        GIL released. The same scene and seed give the front the tool writes
+        (`front.csv`, `front.genomes.json`), for any `threads`. `progress(p)` is
+        called after every generation; returning `False` stops the search."""
     def score(self, genomes: Sequence[Genome], *, backend: str = "auto") -> List[float]:
         """The fitness of each genome, as `shapegen score` gives it."""
     def sample(self, count: int = 1, *, seed: int = 0) -> List[Genome]:

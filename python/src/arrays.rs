@@ -129,6 +129,18 @@ pub fn rows<'py, T: numpy::Element + Copy>(
     PyArray2::from_owned_array(py, array)
 }
 
+/// Rows of `columns` values each as an N x `columns` numpy array.
+pub fn matrix<'py>(
+    py: Python<'py>,
+    rows: &[&[f64]],
+    columns: usize,
+) -> Result<Bound<'py, PyArray2<f64>>, Error> {
+    let flat: Vec<f64> = rows.iter().flat_map(|r| r.iter()).copied().collect();
+    let array = Array2::from_shape_vec((rows.len(), columns), flat)
+        .map_err(|err| Error::Value(format!("rows of unequal lengths: {err}")))?;
+    Ok(PyArray2::from_owned_array(py, array))
+}
+
 /// A vector as a numpy array.
 pub fn vector<'py, T: numpy::Element>(py: Python<'py>, values: Vec<T>) -> Bound<'py, PyArray1<T>> {
     PyArray1::from_vec(py, values)

@@ -48,6 +48,7 @@ extern crate self as shapegen_python;
 mod arrays;
 mod catalog;
 mod checkpoint;
+mod compared;
 mod error;
 mod module;
 mod objects;

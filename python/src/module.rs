@@ -11,6 +11,7 @@ use shapegen::scene::Sources;
 
 use crate::arrays;
 use crate::catalog::Catalog;
+use crate::compared::{ComparedRun, Comparison, Front, FrontMember, FrontProgress, MethodSummary};
 use crate::error::{self, Error};
 use crate::objects::{Generator, Genome, Model, Progress, Run};
 use crate::scene::{Origin, Scene, overrides};
@@ -32,8 +33,14 @@ pub fn init(
     fill(&mut catalog).map_err(Error::from)?;
     module.add("_catalog", Held(Arc::new(catalog)))?;
     module.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    module.add_class::<ComparedRun>()?;
+    module.add_class::<Comparison>()?;
+    module.add_class::<Front>()?;
+    module.add_class::<FrontMember>()?;
+    module.add_class::<FrontProgress>()?;
     module.add_class::<Generator>()?;
     module.add_class::<Genome>()?;
+    module.add_class::<MethodSummary>()?;
     module.add_class::<Model>()?;
     module.add_class::<Progress>()?;
     module.add_class::<Run>()?;

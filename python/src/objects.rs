@@ -11,6 +11,7 @@ use shapegen::{Limits, MeshLibrary, Site};
 use crate::arrays;
 use crate::error::Error;
 use crate::typed::{Erased, GenomeText, Outcome, Step, Triangles};
+use shapegen::optimize::HistoryEntry;
 
 /// A generator: its name, its grammar and parts, random models and genomes read from JSON.
 #[pyclass(frozen, name = "Generator")]
@@ -254,6 +255,39 @@ impl Model {
     }
 }
 
+/// A run's history as numpy arrays: the columns of the tool's `fitness.csv`.
+pub(crate) fn history<'py>(py: Python<'py>, h: &[HistoryEntry]) -> PyResult<Bound<'py, PyDict>> {
+    let dict = PyDict::new(py);
+    let column = |f: fn(&HistoryEntry) -> f64| h.iter().map(f).collect();
+    dict.set_item(
+        "generation",
+        arrays::vector(py, h.iter().map(|e| e.generation).collect()),
+    )?;
+    dict.set_item(
+        "elapsed_s",
+        arrays::vector::<f64>(py, column(|e| e.elapsed_s)),
+    )?;
+    dict.set_item(
+        "evaluations",
+        arrays::vector(py, h.iter().map(|e| e.evaluations).collect()),
+    )?;
+    dict.set_item("best", arrays::vector::<f64>(py, column(|e| e.best)))?;
+    dict.set_item("mean", arrays::vector::<f64>(py, column(|e| e.mean)))?;
+    dict.set_item("std", arrays::vector::<f64>(py, column(|e| e.std)))?;
+    Ok(dict)
+}
+
+/// `value` as Python objects, as `json.loads` reads its JSON (non-finite numbers as
+/// `None`, as the tool's JSON files hold them).
+pub fn from_json<'py>(
+    py: Python<'py>,
+    value: &impl serde::Serialize,
+) -> PyResult<Bound<'py, PyAny>> {
+    let text = serde_json::to_string(value)
+        .map_err(|err| Error::Value(format!("cannot write the value as JSON: {err}")))?;
+    py.import("json")?.call_method1("loads", (text,))
+}
+
 /// What a search found.
 #[pyclass(frozen, name = "Run")]
 pub struct Run {
@@ -310,25 +344,7 @@ impl Run {
     /// (the columns of the tool's `fitness.csv`).
     #[getter]
     fn history<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let h = &self.outcome.history;
-        let dict = PyDict::new(py);
-        let column = |f: fn(&shapegen::optimize::HistoryEntry) -> f64| h.iter().map(f).collect();
-        dict.set_item(
-            "generation",
-            arrays::vector(py, h.iter().map(|e| e.generation).collect()),
-        )?;
-        dict.set_item(
-            "elapsed_s",
-            arrays::vector::<f64>(py, column(|e| e.elapsed_s)),
-        )?;
-        dict.set_item(
-            "evaluations",
-            arrays::vector(py, h.iter().map(|e| e.evaluations).collect()),
-        )?;
-        dict.set_item("best", arrays::vector::<f64>(py, column(|e| e.best)))?;
-        dict.set_item("mean", arrays::vector::<f64>(py, column(|e| e.mean)))?;
-        dict.set_item("std", arrays::vector::<f64>(py, column(|e| e.std)))?;
-        Ok(dict)
+        history(py, &self.outcome.history)
     }
 
     fn __repr__(&self) -> String {

@@ -14,10 +14,11 @@ use shapegen::scene::{BackendChoice, Method, Overrides, Scene as Goal, Sources};
 
 use crate::catalog::Catalog;
 use crate::checkpoint;
+use crate::compared::{ComparedRun, Comparison, Front, FrontMember, FrontProgress, MethodSummary};
 use crate::error::Error;
 use crate::objects::{self, Genome, Model, Progress, Run, limits_dict};
-use crate::typed::{Counting, Erased, Step};
-use shapegen::search::SaveHook;
+use crate::typed::{ComparedText, Counting, Erased, FrontStep, Step};
+use shapegen::search::{Compare, CompareError, SaveHook};
 
 /// Where a scene was read from, to read it again with other overrides.
 #[derive(Clone)]
@@ -148,6 +149,53 @@ fn counting(backend: &str) -> Result<Counting<'static>, Error> {
     Ok(Counting { choice, gpu })
 }
 
+/// A pool of `threads` worker threads, or `None` for rayon's global pool (all cores).
+fn pool(threads: Option<usize>) -> Result<Option<rayon::ThreadPool>, Error> {
+    match threads {
+        Some(0) => Err(Error::Value("threads must be at least 1".into())),
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .map(Some)
+            .map_err(|err| Error::Search(format!("could not start the threads: {err}"))),
+        None => Ok(None),
+    }
+}
+
+/// Runs `work` on `pool`, or where it is called without one.
+fn on_pool<T: Send>(pool: Option<&rayon::ThreadPool>, work: impl FnOnce() -> T + Send) -> T {
+    match pool {
+        Some(pool) => pool.install(work),
+        None => work(),
+    }
+}
+
+/// Calls `callback` with `argument` (with the GIL): whether it asked to stop (returned
+/// `False`); an exception it raised, or a pending signal (Ctrl-C), is kept in `failure`,
+/// and stops too.
+fn call_back<T: pyo3::PyClass + Into<PyClassInitializer<T>>>(
+    callback: &Py<PyAny>,
+    argument: impl FnOnce(Python<'_>) -> PyResult<T>,
+    failure: &mut Option<PyErr>,
+) -> Control {
+    Python::attach(|py| {
+        let called = (|| {
+            py.check_signals()?;
+            let reply = callback.call1(py, (Py::new(py, argument(py)?)?,))?;
+            let reply = reply.bind(py);
+            Ok::<_, PyErr>(reply.is_instance_of::<PyBool>() && !reply.is_truthy()?)
+        })();
+        match called {
+            Ok(false) => Control::Continue,
+            Ok(true) => Control::Stop,
+            Err(err) => {
+                *failure = Some(err);
+                Control::Stop
+            }
+        }
+    })
+}
+
 impl Scene {
     /// The scene read from `origin` with `overrides`.
     pub fn read(catalog: &Arc<Catalog>, origin: Origin, overrides: Overrides) -> PyResult<Scene> {
@@ -183,16 +231,15 @@ impl Scene {
         progress: Option<Py<PyAny>>,
         folder: Option<Folder>,
     ) -> PyResult<Run> {
-        let pool = match threads {
-            Some(0) => return Err(Error::Value("threads must be at least 1".into()).into()),
-            Some(n) => Some(
-                rayon::ThreadPoolBuilder::new()
-                    .num_threads(n)
-                    .build()
-                    .map_err(|err| Error::Search(format!("could not start the threads: {err}")))?,
-            ),
-            None => None,
-        };
+        if goal.objectives.is_some() {
+            return Err(Error::Scene(format!(
+                "`{}` has [[objective]] tables: its front of non-dominated models is searched \
+                 by Scene.run_front",
+                goal.path.display()
+            ))
+            .into());
+        }
+        let pool = pool(threads)?;
         let stop = AtomicBool::new(false);
         let mut failure: Option<PyErr> = None;
         let mut best: Option<Py<Genome>> = None;
@@ -231,14 +278,11 @@ impl Scene {
         };
         let saves = folder.is_some();
         let outcome = py.detach(|| {
-            let mut run = || {
+            let run = || {
                 let save: Option<&mut SaveHook<'_>> = if saves { Some(&mut save) } else { None };
                 erased.search(goal, counting, &stop, &mut observer, resume, save)
             };
-            match &pool {
-                Some(pool) => pool.install(run),
-                None => run(),
-            }
+            on_pool(pool.as_ref(), run)
         });
         if let Some(err) = failure {
             return Err(err);
@@ -246,6 +290,30 @@ impl Scene {
         let outcome = outcome?;
         let best = Py::new(py, Genome::new(generator, erased, outcome.best.clone()))?;
         Ok(Run { outcome, best })
+    }
+
+    /// The scene as `settings` override it, read again when they change anything.
+    fn overridden(&self, settings: &Overrides) -> PyResult<std::borrow::Cow<'_, Goal>> {
+        if *settings == Overrides::default() {
+            return Ok(std::borrow::Cow::Borrowed(&self.goal));
+        }
+        let all = self.overrides.clone().then(settings);
+        Ok(std::borrow::Cow::Owned(
+            self.origin.read(&self.catalog, &all)?,
+        ))
+    }
+
+    /// A finished run of a comparison as a Python object.
+    fn compared_run(&self, py: Python<'_>, text: ComparedText) -> PyResult<ComparedRun> {
+        let best = Genome::new(
+            &self.goal.generator,
+            &self.erased,
+            text.outcome.best.clone(),
+        );
+        Ok(ComparedRun {
+            text,
+            best: Py::new(py, best)?,
+        })
     }
 }
 
@@ -279,6 +347,17 @@ impl Scene {
     #[getter]
     fn limits<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         limits_dict(py, self.goal.limits)
+    }
+
+    /// The objectives' names of a multi-objective scene (its `[[objective]]` tables, in
+    /// order), searched by `run_front`; empty for a scene with one fitness.
+    #[getter]
+    fn objectives(&self) -> Vec<String> {
+        self.goal
+            .objectives
+            .as_ref()
+            .map(|o| o.set.names().map(str::to_owned).collect())
+            .unwrap_or_default()
     }
 
     /// The same scene with other settings: the `[optimizer]` keys the keyword arguments
@@ -338,6 +417,171 @@ impl Scene {
         }
         let goal = self.origin.read(&self.catalog, &all)?;
         self.search(py, &goal, counting, threads, progress, folder)
+    }
+
+    /// Compares `methods` (their names, in the order they run; every method by default)
+    /// as `shapegen compare` does: `runs` runs of each, run `r` of every method on seed
+    /// `seed + r` (the scene's seed by default), run-major, each to `seconds` of wall
+    /// time and to the evaluation budget (`evaluations`, or the scene's; give one or
+    /// both), the methods' own generation counts no limit. Each method takes its settings
+    /// as `run(method=...)` would (`set` overrides any key, read as each method's).
+    /// `progress(run)` is called after every finished run with its `ComparedRun`;
+    /// returning `False` ends the comparison there, and an exception it raises ends it
+    /// and is raised here. The result holds every run and each method's summary, the
+    /// numbers of the tool's `runs.csv` and `summary.json` (equal to them for the same
+    /// scene, seed and evaluation budget).
+    #[pyo3(signature = (methods = None, *, runs = 3, seed = None, seconds = None, evaluations = None, set = None, threads = None, progress = None, backend = "auto"))]
+    #[allow(clippy::too_many_arguments)]
+    fn compare(
+        &self,
+        py: Python<'_>,
+        methods: Option<Vec<String>>,
+        runs: u64,
+        seed: Option<u64>,
+        seconds: Option<f64>,
+        evaluations: Option<u64>,
+        set: Option<Vec<String>>,
+        threads: Option<usize>,
+        progress: Option<Py<PyAny>>,
+        backend: &str,
+    ) -> PyResult<Comparison> {
+        let counting = counting(backend)?;
+        let methods = match methods {
+            None => Method::ALL.to_vec(),
+            Some(names) => names
+                .iter()
+                .map(|name| {
+                    name.parse::<Method>()
+                        .map_err(|err| Error::Value(err.to_string()))
+                })
+                .collect::<Result<Vec<_>, _>>()?,
+        };
+        // The scene read as a search with the first method reads it (`set` keys may be
+        // a method's own), as the tool's compare reads it.
+        let settings = Overrides {
+            method: methods.first().copied(),
+            evaluations,
+            sets: set.unwrap_or_default(),
+            ..Overrides::default()
+        };
+        let all = self.overrides.clone().then(&settings);
+        let goal = self.origin.read(&self.catalog, &all)?;
+        let pool = pool(threads)?;
+        let stop = AtomicBool::new(false);
+        let plan = Compare::new(&goal, &methods, runs, seed, seconds)
+            .map_err(|err| match err {
+                CompareError::Scene(err) => Error::scene(err),
+                other => Error::Value(other.to_string()),
+            })?
+            .backend(counting.choice, counting.gpu)
+            .stop_flag(&stop);
+        let mut failure: Option<PyErr> = None;
+        let mut finished = |text: &ComparedText| {
+            let Some(callback) = &progress else {
+                return Control::Continue;
+            };
+            let text = text.clone();
+            call_back(callback, |py| self.compared_run(py, text), &mut failure)
+        };
+        let erased = &self.erased;
+        let outcome = py.detach(|| on_pool(pool.as_ref(), || erased.compare(&plan, &mut finished)));
+        if let Some(err) = failure {
+            return Err(err);
+        }
+        let outcome = outcome?;
+        let runs = outcome
+            .runs
+            .into_iter()
+            .map(|text| Py::new(py, self.compared_run(py, text)?))
+            .collect::<PyResult<Vec<_>>>()?;
+        let summaries = outcome
+            .summaries
+            .into_iter()
+            .map(|summary| Py::new(py, MethodSummary { summary }))
+            .collect::<PyResult<Vec<_>>>()?;
+        Ok(Comparison {
+            methods: outcome.methods,
+            seeds: outcome.seeds,
+            seconds: outcome.seconds,
+            backend: outcome.backend,
+            optimum: outcome.optimum,
+            runs,
+            summaries,
+            complete: outcome.complete,
+            interrupted: outcome.interrupted,
+        })
+    }
+
+    /// Searches the front of a multi-objective scene (one with `[[objective]]` tables)
+    /// as `shapegen run` does: the multi-objective GA to the budget (the keyword
+    /// arguments override the scene's `[optimizer]` as `run`'s do), each model measured
+    /// by every objective on the CPU, with the GIL released. The same scene and seed
+    /// give the front the tool writes (`front.csv`, `front.genomes.json`), for any
+    /// `threads`. `progress(p)` is called after every generation with a
+    /// `FrontProgress`; returning `False` stops the search, an exception it raises stops
+    /// it and is raised here.
+    #[pyo3(signature = (*, threads = None, progress = None, **settings))]
+    fn run_front(
+        &self,
+        py: Python<'_>,
+        threads: Option<usize>,
+        progress: Option<Py<PyAny>>,
+        settings: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Front> {
+        let settings = overrides(settings)?;
+        let goal = self.overridden(&settings)?;
+        let Some(objectives) = &goal.objectives else {
+            return Err(Error::Scene(format!(
+                "`{}` has no [[objective]] tables: its one fitness is searched by Scene.run",
+                goal.path.display()
+            ))
+            .into());
+        };
+        let names: Vec<String> = objectives.set.names().map(str::to_owned).collect();
+        let pool = pool(threads)?;
+        let stop = AtomicBool::new(false);
+        let mut failure: Option<PyErr> = None;
+        let mut observer = |step: FrontStep| {
+            let Some(callback) = &progress else {
+                return Control::Continue;
+            };
+            let objectives = names.clone();
+            let argument = |_: Python<'_>| Ok(FrontProgress { step, objectives });
+            call_back(callback, argument, &mut failure)
+        };
+        let erased = &self.erased;
+        let searched: &Goal = &goal;
+        let outcome = py.detach(|| {
+            on_pool(pool.as_ref(), || {
+                erased.front(searched, &stop, &mut observer)
+            })
+        });
+        if let Some(err) = failure {
+            return Err(err);
+        }
+        let outcome = outcome?;
+        let members = outcome
+            .members
+            .iter()
+            .map(|(text, values)| {
+                let genome = Genome::new(&goal.generator, erased, text.clone());
+                Py::new(
+                    py,
+                    FrontMember {
+                        genome: Py::new(py, genome)?,
+                        values: values.clone(),
+                        objectives: outcome.objectives.clone(),
+                    },
+                )
+            })
+            .collect::<PyResult<Vec<_>>>()?;
+        Ok(Front {
+            members,
+            generator: goal.generator.clone(),
+            meshes: goal.meshes.clone(),
+            site: goal.site.clone(),
+            outcome,
+        })
     }
 
     /// The fitness of each genome in this scene, as `shapegen score` gives it.

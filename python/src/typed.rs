@@ -10,10 +10,13 @@ use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use shapegen::export::Palette;
 use shapegen::gpu::GpuContext;
-use shapegen::optimize::{Control, HistoryEntry, Snapshot};
-use shapegen::scene::{BackendChoice, Scene, SceneScorer};
+use shapegen::optimize::multi::{MultiHistoryEntry, MultiSnapshot};
+use shapegen::optimize::{Control, HistoryEntry, RunResult, Snapshot};
+use shapegen::scene::{BackendChoice, Metrics, Scene, SceneScorer};
 use shapegen::score::InstanceBatch;
-use shapegen::search::{SaveHook, Search};
+use shapegen::search::{
+    Compare, CompareObserver, Comparison, FrontSearch, MethodSummary, SaveHook, Search,
+};
 use shapegen::{Genome, Grammar, Limits, MeshLibrary, Operators, Site};
 
 use crate::error::Error;
@@ -81,6 +84,108 @@ pub struct Outcome {
     pub backend: String,
 }
 
+impl Outcome {
+    fn of<G: Grammar>(result: &RunResult<G>, backend: &str) -> Outcome {
+        Outcome {
+            best: GenomeText::of(&result.best),
+            best_fitness: result.best_fitness,
+            evaluations: result.evaluations,
+            generations: result.generations,
+            history: result.history.clone(),
+            stopped: result.stopped.name(),
+            backend: backend.to_owned(),
+        }
+    }
+}
+
+/// One finished run of a comparison.
+#[derive(Clone, Debug)]
+pub struct ComparedText {
+    /// Its method's name.
+    pub method: &'static str,
+    /// Its number among the method's runs, from 0.
+    pub run: u64,
+    /// Its seed.
+    pub seed: u64,
+    /// What it found.
+    pub outcome: Outcome,
+    /// The best model's measures against the scene's targets.
+    pub metrics: Metrics,
+}
+
+impl ComparedText {
+    fn of<G: Grammar>(run: &shapegen::search::ComparedRun<G>, backend: &str) -> ComparedText {
+        ComparedText {
+            method: run.method.name(),
+            run: run.run,
+            seed: run.seed,
+            outcome: Outcome::of(&run.result, backend),
+            metrics: run.metrics.clone(),
+        }
+    }
+}
+
+/// What a comparison did.
+#[derive(Clone, Debug)]
+pub struct Compared {
+    /// The methods' names, in the order they ran.
+    pub methods: Vec<&'static str>,
+    /// Each run's seed, by run number.
+    pub seeds: Vec<u64>,
+    /// The wall-time budget of every run.
+    pub seconds: Option<f64>,
+    /// The backend that counted.
+    pub backend: String,
+    /// The scene's optimum, when it gives one.
+    pub optimum: Option<f64>,
+    /// The finished runs, run-major.
+    pub runs: Vec<ComparedText>,
+    /// Each method's summary, in the order they ran.
+    pub summaries: Vec<MethodSummary>,
+    /// Whether every planned run finished.
+    pub complete: bool,
+    /// The run that was interrupted, by its method's name and number.
+    pub interrupted: Option<(&'static str, u64)>,
+}
+
+/// A generation of a multi-objective search, as the progress callback sees it.
+#[derive(Clone, Debug)]
+pub struct FrontStep {
+    /// Generations done after the initial population.
+    pub generation: u64,
+    /// Wall time in seconds.
+    pub elapsed_s: f64,
+    /// Evaluations done.
+    pub evaluations: u64,
+    /// Members of the front.
+    pub front: usize,
+    /// Per objective, the best value evaluated so far.
+    pub best: Vec<f64>,
+}
+
+/// What a multi-objective search found.
+#[derive(Clone, Debug)]
+pub struct FrontOutcome {
+    /// The objectives' names, in the scene's order.
+    pub objectives: Vec<String>,
+    /// Their kinds, as scene files name them.
+    pub kinds: Vec<&'static str>,
+    /// Whether each is maximized (`true`) or minimized.
+    pub maximized: Vec<bool>,
+    /// The selection's ranking, as scene files name it.
+    pub ranking: &'static str,
+    /// The front's members in the order of the tool's files: genome and values.
+    pub members: Vec<(GenomeText, Vec<f64>)>,
+    /// Evaluations done.
+    pub evaluations: u64,
+    /// Generations done after the initial population.
+    pub generations: u64,
+    /// One entry per generation.
+    pub history: Vec<MultiHistoryEntry>,
+    /// Why it ended.
+    pub stopped: &'static str,
+}
+
 /// A model's triangles in world space, each with the part (mesh) it belongs to.
 #[derive(Clone, Debug, Default)]
 pub struct Triangles {
@@ -111,6 +216,23 @@ pub trait Erased: Send + Sync {
         resume: Option<&str>,
         save: Option<&mut SaveHook<'_>>,
     ) -> Result<Outcome, Error>;
+
+    /// Runs `compare`'s runs (its scene's generator is this one), calling `finished`
+    /// after each.
+    fn compare(
+        &self,
+        compare: &Compare<'_>,
+        finished: &mut dyn FnMut(&ComparedText) -> Control,
+    ) -> Result<Compared, Error>;
+
+    /// Searches the front of multi-objective `scene` (its generator is this one) to its
+    /// budget.
+    fn front(
+        &self,
+        scene: &Scene,
+        stop: &AtomicBool,
+        observer: &mut dyn FnMut(FrontStep) -> Control,
+    ) -> Result<FrontOutcome, Error>;
 
     /// The fitness of each of `genomes` in `scene`.
     fn score(
@@ -180,15 +302,83 @@ impl<G: Grammar> Erased for Typed<G> {
         let found = search
             .run_saving::<G>(&mut watch, save)
             .map_err(Error::search)?;
+        Ok(Outcome::of(&found.result, &found.backend))
+    }
+
+    fn compare(
+        &self,
+        compare: &Compare<'_>,
+        finished: &mut dyn FnMut(&ComparedText) -> Control,
+    ) -> Result<Compared, Error> {
+        /// Shows each finished run.
+        struct Watch<'f>(&'f mut dyn FnMut(&ComparedText) -> Control);
+        impl<G: Grammar> CompareObserver<G> for Watch<'_> {
+            fn finished(&mut self, so_far: &Comparison<G>) -> Control {
+                match so_far.runs.last() {
+                    Some(run) => (self.0)(&ComparedText::of(run, &so_far.backend)),
+                    None => Control::Continue,
+                }
+            }
+        }
+        let done = compare
+            .run::<G>(&mut Watch(finished))
+            .map_err(Error::search)?;
+        Ok(Compared {
+            methods: done.methods.iter().map(|m| m.name()).collect(),
+            seeds: done.seeds.clone(),
+            seconds: done.seconds,
+            backend: done.backend.clone(),
+            optimum: done.optimum,
+            runs: done
+                .runs
+                .iter()
+                .map(|r| ComparedText::of(r, &done.backend))
+                .collect(),
+            summaries: done.summaries(),
+            complete: done.complete(),
+            interrupted: done.interrupted.map(|(m, r)| (m.name(), r)),
+        })
+    }
+
+    fn front(
+        &self,
+        scene: &Scene,
+        stop: &AtomicBool,
+        observer: &mut dyn FnMut(FrontStep) -> Control,
+    ) -> Result<FrontOutcome, Error> {
+        let mut watch = |s: &MultiSnapshot<'_, G>| {
+            observer(FrontStep {
+                generation: s.generation,
+                elapsed_s: s.elapsed.as_secs_f64(),
+                evaluations: s.evaluations,
+                front: s.front.len(),
+                best: s.best.to_vec(),
+            })
+        };
+        let found = FrontSearch::new(scene)
+            .stop_flag(stop)
+            .run::<G>(&mut watch)
+            .map_err(Error::search)?;
+        let members = found
+            .sorted()
+            .into_iter()
+            .map(|m| (GenomeText::of(&m.genome), m.values.clone()))
+            .collect();
         let result = found.result;
-        Ok(Outcome {
-            best: GenomeText::of(&result.best),
-            best_fitness: result.best_fitness,
+        Ok(FrontOutcome {
+            objectives: found.objectives,
+            kinds: found.kinds,
+            maximized: found
+                .senses
+                .iter()
+                .map(|s| *s == shapegen::optimize::Sense::Maximize)
+                .collect(),
+            ranking: found.ranking,
+            members,
             evaluations: result.evaluations,
             generations: result.generations,
             history: result.history,
             stopped: result.stopped.name(),
-            backend: found.backend,
         })
     }
 

@@ -15,6 +15,7 @@ use shapegen::optimize::multi::{
 use shapegen::optimize::{Control, Sense};
 use shapegen::scene::{Metrics, ObjectiveEvaluator, Scene};
 use shapegen::score::objective::{ObjectiveSet, Surface};
+use shapegen::search::{ranking_name, sorted_front as sorted};
 use shapegen::{BoundMeshes, Grammar, Instance, Site};
 
 use super::backend::Incremental;
@@ -222,31 +223,6 @@ impl<'a, G: Grammar> Written<G, Front<G>> for Outputs<'a> {
             message,
         })
     }
-}
-
-/// The ranking's name in scene files.
-fn ranking_name(ranking: &Ranking) -> &'static str {
-    match ranking {
-        Ranking::WeightedSum { .. } => "weighted_sum",
-        Ranking::Pareto => "pareto",
-        Ranking::SummedRank => "summed_rank",
-        Ranking::NormalizedSummedRank => "normalized_summed_rank",
-    }
-}
-
-/// The front ordered by its first objective, best first (then by the others), so that
-/// files and pictures read along the trade-off.
-fn sorted<'a, G>(front: &'a [Member<G>], senses: &[Sense]) -> Vec<&'a Member<G>> {
-    let mut order: Vec<&Member<G>> = front.iter().collect();
-    order.sort_by(|a, b| {
-        senses
-            .iter()
-            .zip(a.values.iter().zip(&b.values))
-            .map(|(s, (&x, &y))| s.oriented(y).total_cmp(&s.oriented(x)))
-            .find(|o| o.is_ne())
-            .unwrap_or(std::cmp::Ordering::Equal)
-    });
-    order
 }
 
 /// Removes the models of an earlier, larger front: those numbered `len` and above.

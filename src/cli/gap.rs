@@ -6,20 +6,17 @@
 //! quartile band.
 //!
 //! A run that never reached a level counts as infinitely slow, so a group's median time
-//! is "not reached" once fewer than half its runs got there; `reached` says how many did.
+//! is "not reached" once fewer than half its runs got there; `reached` says how many did
+//! ([`stats::reached`](crate::search::stats::reached)).
 
 use std::path::Path;
 
 use image::Rgb;
-use serde::Serialize;
 use shapegen::optimize::HistoryEntry;
 
 use super::files::{atomic_write, csv_bytes, save_figure};
 use super::plot::{self, Spread, Titles, YScale};
-use super::stats::{first_reaching, quartile_curve, quartiles};
-
-/// The fractions of the optimum whose times are measured.
-pub const FRACTIONS: [f64; 3] = [0.9, 0.99, 0.999];
+use crate::search::stats::{Reached, quartile_curve, reached};
 
 /// Gaps below this fraction of the optimum are drawn at it, so that runs at the optimum
 /// (a gap of 0) stay on the log scale.
@@ -45,50 +42,6 @@ pub struct Group<'a> {
     pub colour: Rgb<u8>,
     /// Each run's history.
     pub runs: Vec<&'a [HistoryEntry]>,
-}
-
-/// How a group's runs reached one level.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Reached {
-    /// The fraction of the optimum.
-    pub fraction: f64,
-    /// The fitness level: `fraction * optimum`.
-    pub level: f64,
-    /// Runs in the group.
-    pub runs: usize,
-    /// Runs that reached the level.
-    pub reached: usize,
-    /// First quartile, median and third quartile over all runs of the seconds to the
-    /// level (infinite, written `null`, where too few runs reached it).
-    pub seconds: [f64; 3],
-    /// Likewise of the evaluations to the level.
-    pub evaluations: [f64; 3],
-}
-
-/// How `runs` reached each level of [`FRACTIONS`] of `optimum`.
-pub fn reached(optimum: f64, runs: &[&[HistoryEntry]]) -> Vec<Reached> {
-    FRACTIONS
-        .iter()
-        .map(|&fraction| {
-            let level = fraction * optimum;
-            let firsts: Vec<Option<(f64, u64)>> =
-                runs.iter().map(|h| first_reaching(h, level)).collect();
-            let never = f64::INFINITY;
-            let seconds: Vec<f64> = firsts.iter().map(|f| f.map_or(never, |f| f.0)).collect();
-            let evaluations: Vec<f64> = firsts
-                .iter()
-                .map(|f| f.map_or(never, |f| f.1 as f64))
-                .collect();
-            Reached {
-                fraction,
-                level,
-                runs: runs.len(),
-                reached: firsts.iter().flatten().count(),
-                seconds: quartiles(&seconds),
-                evaluations: quartiles(&evaluations),
-            }
-        })
-        .collect()
 }
 
 /// `targets.csv`: per group and level, the runs, how many reached it, and the quartiles
@@ -228,7 +181,7 @@ fn gaps(optimum: f64, runs: &[&[HistoryEntry]], x: XOf, x_max: f64) -> [Vec<f64>
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cli::stats::tests::entry;
+    use crate::search::stats::tests::entry;
 
     #[test]
     fn levels_are_reached_by_some_runs_and_timed_over_all() {

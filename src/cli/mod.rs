@@ -48,7 +48,6 @@ mod processes;
 mod progress;
 mod record;
 mod single;
-mod stats;
 pub mod view;
 mod voxels;
 

@@ -4,6 +4,10 @@
 //! model's measures (`runs.csv`: size, IoU, Chamfer distance and F-score, see
 //! [`Metrics::columns`]), a summary per method and a picture of the median curves.
 //!
+//! The runs and the summaries are those of the library's
+//! [`Compare`](shapegen::search::Compare) (which the Python package offers as
+//! `Scene.compare`); this command writes them.
+//!
 //! Each method takes its settings as `shapegen run --method M` does (the scene's
 //! `[optimizer]` table over the paper's settings for the method and the generator), with
 //! three changes that make the runs comparable:
@@ -29,7 +33,6 @@
 //! [`gap`](crate::cli::gap).
 
 use std::path::{Path, PathBuf};
-use std::time::Duration;
 
 use anyhow::Context;
 use clap::Args;
@@ -37,21 +40,19 @@ use image::Rgb;
 use serde::Serialize;
 use shapegen::Grammar;
 use shapegen::export::{Palette, glb_bytes};
-use shapegen::optimize::{Budget, HistoryEntry, StopReason};
-use shapegen::scene::{
-    METRIC_COLUMNS, Method, Metrics, OptimizerGoal, Overrides, Scene, SceneEvaluator, SceneScorer,
-};
+use shapegen::optimize::Control;
+use shapegen::scene::{METRIC_COLUMNS, Method, Overrides, Scene};
+use shapegen::search::stats::quartile_curve;
+use shapegen::search::{Compare as Plan, CompareError, CompareObserver, Comparison, MethodSummary};
 
-use crate::cli::backend::{BackendArgs, check_batches};
+use crate::cli::backend::BackendArgs;
 use crate::cli::files::{atomic_write, csv_bytes, save_figure};
 use crate::cli::folder::{Existing, Folder, Kind};
-use crate::cli::gap::{self, Group, Reached};
+use crate::cli::gap::{self, Group};
 use crate::cli::generators::{Generators, Jobs, Visit};
 use crate::cli::interrupt;
 use crate::cli::memory::{MemoryArgs, MemoryCheck};
-use crate::cli::method::SessionRun;
 use crate::cli::plot::{self, Spread, Titles, YScale};
-use crate::cli::stats::{mean_std, quartile_curve, quartiles};
 use crate::registry::Entry;
 
 /// Points of the common time grid the curves are sampled on.
@@ -143,26 +144,22 @@ where
     };
     let scene = Scene::open(&args.scene, tool.registry(), &overrides)?;
     multi_objective(&scene)?;
-    let goals = methods
-        .iter()
-        .map(|&method| scene.optimizer_for(method))
-        .collect::<Result<Vec<_>, _>>()?;
-    let base = args.seed.unwrap_or(scene.optimizer.seed);
-    let seeds = (0..args.runs)
-        .map(|r| base.checked_add(r))
-        .collect::<Option<Vec<u64>>>()
-        .with_context(|| {
-            format!(
-                "--seed {base}: with {} runs the seeds would pass {}",
-                args.runs,
-                u64::MAX
-            )
-        })?;
+    let plan = Plan::new(&scene, &methods, args.runs, args.seed, Some(args.seconds))
+        .map_err(|err| match err {
+            CompareError::Seeds { base, runs } => {
+                anyhow::anyhow!(
+                    "--seed {base}: with {runs} runs the seeds would pass {}",
+                    u64::MAX
+                )
+            }
+            other => other.into(),
+        })?
+        .incremental(args.backend.incremental());
     tool.visit(
         &scene.generator,
         MemoryCheck {
             scene: &scene,
-            goals: &goals,
+            goals: plan.goals(),
             jobs: 1,
             backend: &args.backend,
             limit: args.memory,
@@ -177,10 +174,8 @@ where
         &scene.generator,
         Compare {
             args,
-            methods: &methods,
+            plan: &plan,
             scene: &scene,
-            goals: &goals,
-            seeds: &seeds,
         },
     )
 }
@@ -224,123 +219,48 @@ fn parse_methods(names: &[String]) -> anyhow::Result<Vec<Method>> {
 /// The body of `shapegen compare`.
 pub struct Compare<'a> {
     args: &'a CompareArgs,
-    methods: &'a [Method],
+    /// The methods, their goals and the runs' seeds.
+    plan: &'a Plan<'a>,
     scene: &'a Scene,
-    /// Each method's goal.
-    goals: &'a [OptimizerGoal],
-    /// Seed of each run.
-    seeds: &'a [u64],
-}
-
-/// One finished run.
-struct Finished {
-    method: Method,
-    run: u64,
-    seed: u64,
-    best: f64,
-    evaluations: u64,
-    history: Vec<HistoryEntry>,
-    /// Its best model's measures.
-    metrics: Metrics,
 }
 
 impl Visit for Compare<'_> {
     fn visit<G: Grammar>(self, _: &Entry) -> anyhow::Result<()> {
-        let scorer = SceneScorer::new::<G>(self.scene)?;
         let gpu = self.args.backend.open();
-        let backend = scorer.on(self.args.backend.choice(), gpu.as_ref())?;
-        for goal in self.goals {
-            check_batches(&backend, &self.scene.genomes_held::<G>(goal))?;
-        }
-        let total = self.seeds.len() * self.methods.len();
-        eprintln!(
-            "comparing {} on {}: {} runs of {} s",
-            self.methods
-                .iter()
-                .map(|m| m.name())
-                .collect::<Vec<_>>()
-                .join(", "),
-            backend.describe(),
-            total,
-            self.args.seconds
-        );
-        let mut evaluator =
-            SceneEvaluator::new(&backend).with_incremental(self.args.backend.incremental());
+        let plan = self
+            .plan
+            .clone()
+            .backend(self.args.backend.choice(), gpu.as_ref());
         let stop = interrupt::flag();
-        let mut done: Vec<Finished> = Vec::with_capacity(total);
-        let (meshes, palette) = (self.scene.meshes.bind(G::GRAPH)?, Palette::new());
-        let mut instances = Vec::new();
+        let plan = plan.stop_flag(&stop);
+        let mut shown = Shown {
+            args: self.args,
+            scene: self.scene,
+            methods: self.plan.methods(),
+            runs: self.plan.seeds().len(),
+            meshes: None,
+            palette: Palette::new(),
+            instances: Vec::new(),
+            failed: None,
+        };
+        let done = plan.run::<G>(&mut shown);
+        if let Some(err) = shown.failed {
+            return Err(err);
+        }
+        let done = done?;
+        let total = done.planned();
         let outputs = Outputs {
             args: self.args,
-            methods: self.methods,
-            seeds: self.seeds,
-            backend: backend.describe(),
-            optimum: self.scene.optimum,
+            backend: &done.backend,
         };
-        for (run, &seed) in self.seeds.iter().enumerate() {
-            for (&method, goal) in self.methods.iter().zip(self.goals) {
-                let goal = OptimizerGoal {
-                    seed,
-                    ..goal.clone()
-                };
-                let budget = Budget {
-                    generations: None,
-                    evaluations: goal.evaluations,
-                    wall_time: Some(Duration::from_secs_f64(self.args.seconds)),
-                };
-                let result = goal.run::<G, _>(SessionRun {
-                    seed: goal.seed,
-                    limits: self.scene.limits,
-                    budget,
-                    stop: &stop,
-                    evaluator: &mut evaluator,
-                })?;
-                if result.stopped == StopReason::Observer {
-                    outputs.write(&done)?;
-                    anyhow::bail!(
-                        "interrupted during run {run} of {}: wrote the {} complete runs of {total} to {}",
-                        method.name(),
-                        done.len(),
-                        self.args.out.display()
-                    );
-                }
-                let dir = self
-                    .args
-                    .out
-                    .join("runs")
-                    .join(format!("{}-{run}", method.name()));
-                std::fs::create_dir_all(&dir)
-                    .with_context(|| format!("cannot create `{}`", dir.display()))?;
-                atomic_write(
-                    &dir.join("best.genome.json"),
-                    result.best.to_json().as_bytes(),
-                )?;
-                // The model, for the run viewer (`shapegen view`).
-                result.best.derive_on(&self.scene.site, &mut instances);
-                atomic_write(
-                    &dir.join("best.glb"),
-                    &glb_bytes(&instances, &meshes, &palette)?,
-                )?;
-                let elapsed = result.history.last().map_or(0.0, |h| h.elapsed_s);
-                eprintln!(
-                    "{:<6} run {run} (seed {seed}): best {:.5}  {} evaluations  {elapsed:.1} s  [{}/{total}]",
-                    method.name(),
-                    result.best_fitness,
-                    result.evaluations,
-                    done.len() + 1
-                );
-                let metrics = Metrics::of_genome(self.scene, Some(&scorer), &meshes, &result.best);
-                done.push(Finished {
-                    method,
-                    run: run as u64,
-                    seed,
-                    best: result.best_fitness,
-                    evaluations: result.evaluations,
-                    history: result.history,
-                    metrics,
-                });
-                outputs.write(&done)?;
-            }
+        if let Some((method, run)) = done.interrupted {
+            outputs.write(&done)?;
+            anyhow::bail!(
+                "interrupted during run {run} of {}: wrote the {} complete runs of {total} to {}",
+                method.name(),
+                done.runs.len(),
+                self.args.out.display()
+            );
         }
         let gaps = if self.scene.optimum.is_some() {
             ", targets.csv, gap-time.png, gap-evaluations.png (each PNG with its SVG)"
@@ -349,10 +269,97 @@ impl Visit for Compare<'_> {
         };
         println!(
             "compared {} runs; wrote compare.csv, runs.csv, compare.png, summary.json{gaps} and runs/ to {}",
-            done.len(),
+            done.runs.len(),
             self.args.out.display()
         );
         Ok(())
+    }
+}
+
+/// What the tool shows and writes as the comparison goes: the line of its start, and
+/// after each run its files, its line and the tables so far.
+struct Shown<'a> {
+    args: &'a CompareArgs,
+    scene: &'a Scene,
+    /// The methods compared.
+    methods: &'a [Method],
+    /// Runs of each.
+    runs: usize,
+    /// The scene's meshes, bound to the generator once the first run has finished.
+    meshes: Option<shapegen::BoundMeshes>,
+    palette: Palette,
+    instances: Vec<shapegen::Instance>,
+    /// What failed to be written, which stopped the comparison.
+    failed: Option<anyhow::Error>,
+}
+
+impl<G: Grammar> CompareObserver<G> for Shown<'_> {
+    fn started(&mut self, backend: &str) {
+        eprintln!(
+            "comparing {} on {backend}: {} runs of {} s",
+            self.methods
+                .iter()
+                .map(|m| m.name())
+                .collect::<Vec<_>>()
+                .join(", "),
+            self.methods.len() * self.runs,
+            self.args.seconds
+        );
+    }
+
+    fn finished(&mut self, so_far: &Comparison<G>) -> Control {
+        match self.write(so_far) {
+            Ok(()) => Control::Continue,
+            Err(err) => {
+                self.failed = Some(err);
+                Control::Stop
+            }
+        }
+    }
+}
+
+impl Shown<'_> {
+    /// The last run's files and line, and the tables of the runs so far.
+    fn write<G: Grammar>(&mut self, so_far: &Comparison<G>) -> anyhow::Result<()> {
+        let Some(last) = so_far.runs.last() else {
+            return Ok(());
+        };
+        let (method, run, seed, result) = (last.method, last.run, last.seed, &last.result);
+        let dir = self
+            .args
+            .out
+            .join("runs")
+            .join(format!("{}-{run}", method.name()));
+        std::fs::create_dir_all(&dir)
+            .with_context(|| format!("cannot create `{}`", dir.display()))?;
+        atomic_write(
+            &dir.join("best.genome.json"),
+            result.best.to_json().as_bytes(),
+        )?;
+        // The model, for the run viewer (`shapegen view`).
+        let meshes = match &mut self.meshes {
+            Some(meshes) => meshes,
+            none => none.insert(self.scene.meshes.bind(G::GRAPH)?),
+        };
+        result.best.derive_on(&self.scene.site, &mut self.instances);
+        atomic_write(
+            &dir.join("best.glb"),
+            &glb_bytes(&self.instances, meshes, &self.palette)?,
+        )?;
+        let elapsed = result.history.last().map_or(0.0, |h| h.elapsed_s);
+        eprintln!(
+            "{:<6} run {run} (seed {seed}): best {:.5}  {} evaluations  {elapsed:.1} s  [{}/{}]",
+            method.name(),
+            result.best_fitness,
+            result.evaluations,
+            so_far.runs.len(),
+            so_far.planned()
+        );
+        Outputs {
+            args: self.args,
+            backend: &so_far.backend,
+        }
+        .write(so_far)
     }
 }
 
@@ -360,11 +367,7 @@ impl Visit for Compare<'_> {
 /// so far.
 struct Outputs<'a> {
     args: &'a CompareArgs,
-    methods: &'a [Method],
-    seeds: &'a [u64],
     backend: &'a str,
-    /// The scene's optimum, when it gives one.
-    optimum: Option<f64>,
 }
 
 /// `summary.json`.
@@ -384,39 +387,14 @@ struct Summary<'a> {
     methods: Vec<MethodSummary>,
 }
 
-/// One method's part of `summary.json`.
-#[derive(Serialize)]
-struct MethodSummary {
-    method: &'static str,
-    runs: usize,
-    /// Mean over runs of each run's final best fitness.
-    final_mean: f64,
-    /// Their sample standard deviation (0 for one run).
-    final_std: f64,
-    /// Their first quartile, median and third quartile.
-    final_quartiles: [f64; 3],
-    /// The best fitness of all runs.
-    best: f64,
-    /// The run that found it.
-    best_run: Option<u64>,
-    /// Mean evaluations per run.
-    evaluations: f64,
-    /// Each run's final best fitness, by run.
-    finals: Vec<f64>,
-    /// Each run's best model's measures, by run.
-    metrics: Vec<Metrics>,
-    /// With an optimum: when the runs reached each fraction of it.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    targets: Option<Vec<Reached>>,
-}
-
 impl Outputs<'_> {
-    fn write(&self, done: &[Finished]) -> anyhow::Result<()> {
+    fn write<G: Grammar>(&self, comparison: &Comparison<G>) -> anyhow::Result<()> {
         let dir = &self.args.out;
+        let done = &comparison.runs;
         let header =
             ["method", "run", "seed", "elapsed_s", "evaluations", "best"].map(str::to_owned);
         let rows = done.iter().flat_map(|f| {
-            f.history.iter().map(|h| {
+            f.result.history.iter().map(|h| {
                 vec![
                     f.method.name().to_owned(),
                     f.run.to_string(),
@@ -438,8 +416,8 @@ impl Outputs<'_> {
                 f.method.name().to_owned(),
                 f.run.to_string(),
                 f.seed.to_string(),
-                f.evaluations.to_string(),
-                f.best.to_string(),
+                f.result.evaluations.to_string(),
+                f.result.best_fitness.to_string(),
             ]
             .into_iter()
             .chain(f.metrics.columns())
@@ -447,37 +425,33 @@ impl Outputs<'_> {
         });
         atomic_write(&dir.join("runs.csv"), &csv_bytes(&header, rows)?)?;
 
-        let groups: Vec<Group<'_>> = self
+        let groups: Vec<Group<'_>> = comparison
             .methods
             .iter()
             .map(|&m| Group {
                 name: m.name().to_owned(),
                 colour: Rgb(m.colour()),
-                runs: done
-                    .iter()
-                    .filter(|f| f.method == m)
-                    .map(|f| f.history.as_slice())
+                runs: comparison
+                    .runs_of(m)
+                    .map(|f| f.result.history.as_slice())
                     .collect(),
             })
             .collect();
-        let mut methods: Vec<MethodSummary> =
-            self.methods.iter().map(|&m| summarize(m, done)).collect();
-        if let Some(optimum) = self.optimum {
-            let reached = gap::write(dir, "method", optimum, &groups)?;
-            for (summary, reached) in methods.iter_mut().zip(reached) {
-                summary.targets = Some(reached);
-            }
+        // The summaries' targets are those of `targets.csv`.
+        let optimum = comparison.optimum;
+        if let Some(optimum) = optimum {
+            gap::write(dir, "method", optimum, &groups)?;
         }
         let summary = Summary {
             scene: &self.args.scene,
             seconds: self.args.seconds,
-            base_seed: self.seeds[0],
+            base_seed: comparison.seeds[0],
             seed_rule: "run r uses base_seed + r",
-            seeds: self.seeds,
+            seeds: &comparison.seeds,
             backend: self.backend,
-            complete: done.len() == self.seeds.len() * self.methods.len(),
-            optimum: self.optimum,
-            methods,
+            complete: comparison.complete(),
+            optimum,
+            methods: comparison.summaries(),
         };
         atomic_write(
             &dir.join("summary.json"),
@@ -515,35 +489,10 @@ impl Outputs<'_> {
             gap::QUARTILES,
         )?;
         save_figure(&dir.join("compare.png"), &figure)?;
-        match self.optimum {
+        match optimum {
             Some(optimum) => gap::check_optimum(optimum, &groups),
             None => Ok(()),
         }
-    }
-}
-
-/// `method`'s summary over its runs in `done`.
-fn summarize(method: Method, done: &[Finished]) -> MethodSummary {
-    let runs: Vec<&Finished> = done.iter().filter(|f| f.method == method).collect();
-    let finals: Vec<f64> = runs.iter().map(|f| f.best).collect();
-    let (final_mean, final_std) = mean_std(&finals);
-    let best = runs
-        .iter()
-        .filter(|f| !f.best.is_nan())
-        .max_by(|a, b| a.best.total_cmp(&b.best));
-    MethodSummary {
-        method: method.name(),
-        runs: runs.len(),
-        final_mean,
-        final_std,
-        final_quartiles: quartiles(&finals),
-        best: best.map_or(f64::NAN, |f| f.best),
-        best_run: best.map(|f| f.run),
-        evaluations: runs.iter().map(|f| f.evaluations as f64).sum::<f64>()
-            / runs.len().max(1) as f64,
-        finals,
-        metrics: runs.iter().map(|f| f.metrics.clone()).collect(),
-        targets: None,
     }
 }
 

@@ -20,7 +20,7 @@ use super::tables::{best_and_worst, summarize};
 use crate::cli::files::save_figure;
 use crate::cli::gap::{self, Group};
 use crate::cli::plot::{self, Band, Figure, Titles, XValues};
-use crate::cli::stats::{curve, mean_std};
+use crate::search::stats::{curve, mean_std};
 
 /// Size of every plot.
 const SIZE: (u32, u32) = (800, 500);

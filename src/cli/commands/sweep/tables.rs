@@ -9,7 +9,7 @@ use std::path::Path;
 use super::cell::Finished;
 use super::plan::Plan;
 use crate::cli::files::{atomic_write, csv_bytes};
-use crate::cli::stats::{mean_std, median};
+use crate::search::stats::{mean_std, median};
 use shapegen::scene::METRIC_COLUMNS;
 
 /// The fractions of the way from the sweep's lowest initial best to its highest final

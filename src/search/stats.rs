@@ -1,8 +1,62 @@
-//! Statistics over repeated runs, shared by `compare` and `sweep`: mean, spread,
-//! median and quartiles of final values, the mean or the quartile curves of several runs'
-//! histories sampled on a common grid, and when runs first reached a fitness level.
+//! Statistics over repeated runs, those of [`Compare`](super::Compare)'s summaries and of
+//! the tool's `compare` and `sweep` tables: mean, spread, median and quartiles of final
+//! values, the mean or the quartile curves of several runs' histories sampled on a common
+//! grid, when runs first reached a fitness level, and how a group of runs reached
+//! fractions of a known optimum ([`reached`]).
+//!
+//! A run that never reached a level counts as infinitely slow, so a group's median time
+//! is "not reached" once fewer than half its runs got there; [`Reached::reached`] says
+//! how many did.
 
-use shapegen::optimize::HistoryEntry;
+use serde::Serialize;
+use shapegen_runtime::optimize::HistoryEntry;
+
+/// The fractions of the optimum whose times are measured.
+pub const FRACTIONS: [f64; 3] = [0.9, 0.99, 0.999];
+
+/// How a group's runs reached one level.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Reached {
+    /// The fraction of the optimum.
+    pub fraction: f64,
+    /// The fitness level: `fraction * optimum`.
+    pub level: f64,
+    /// Runs in the group.
+    pub runs: usize,
+    /// Runs that reached the level.
+    pub reached: usize,
+    /// First quartile, median and third quartile over all runs of the seconds to the
+    /// level (infinite, written `null`, where too few runs reached it).
+    pub seconds: [f64; 3],
+    /// Likewise of the evaluations to the level.
+    pub evaluations: [f64; 3],
+}
+
+/// How `runs` reached each level of [`FRACTIONS`] of `optimum`.
+pub fn reached(optimum: f64, runs: &[&[HistoryEntry]]) -> Vec<Reached> {
+    FRACTIONS
+        .iter()
+        .map(|&fraction| {
+            let level = fraction * optimum;
+            let firsts: Vec<Option<(f64, u64)>> =
+                runs.iter().map(|h| first_reaching(h, level)).collect();
+            let never = f64::INFINITY;
+            let seconds: Vec<f64> = firsts.iter().map(|f| f.map_or(never, |f| f.0)).collect();
+            let evaluations: Vec<f64> = firsts
+                .iter()
+                .map(|f| f.map_or(never, |f| f.1 as f64))
+                .collect();
+            Reached {
+                fraction,
+                level,
+                runs: runs.len(),
+                reached: firsts.iter().flatten().count(),
+                seconds: quartiles(&seconds),
+                evaluations: quartiles(&evaluations),
+            }
+        })
+        .collect()
+}
 
 /// Mean and sample standard deviation (0 for one value) of `values`; NaN for none.
 pub fn mean_std(values: &[f64]) -> (f64, f64) {
@@ -55,7 +109,8 @@ pub fn median(values: &[f64]) -> f64 {
 }
 
 /// The first quartile, the median and the third quartile of `values` (NaN ranked
-/// lowest; see [`quantile`]); NaN for none.
+/// lowest; each interpolated linearly between the two values around position
+/// `p (n - 1)`, as R's and NumPy's defaults do); NaN for none.
 pub fn quartiles(values: &[f64]) -> [f64; 3] {
     let sorted = sorted(values);
     [0.25, 0.5, 0.75].map(|p| quantile(&sorted, p))
@@ -157,11 +212,11 @@ pub fn curve(
 }
 
 #[cfg(test)]
-pub(super) mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// A history entry at this time and evaluation count, with its mean equal to its best.
-    pub(in crate::cli) fn entry(elapsed_s: f64, evaluations: u64, best: f64) -> HistoryEntry {
+    pub(crate) fn entry(elapsed_s: f64, evaluations: u64, best: f64) -> HistoryEntry {
         HistoryEntry {
             generation: 0,
             elapsed_s,

@@ -1,68 +1,17 @@
-//! A scene's search run from a program: the scene's scorers on the backend chosen, its
-//! method with its settings, seed and budget, and a progress hook that sees every
-//! generation and may stop the run. This is `shapegen run` without the files: a program
-//! that wants the best model as values (the Python package, an editor's add-on) runs
-//! this, and gets the same result as the tool for the same scene and seed.
-//!
-//! ```
-//! use std::path::Path;
-//! use shapegen::optimize::{Control, Snapshot};
-//! use shapegen::scene::{Overrides, Scene};
-//! use shapegen::search::Search;
-//! use generators::spaceship::Spaceship;
-//!
-//! let overrides = Overrides { method: "ga".parse().ok(), evaluations: Some(600), ..Overrides::default() };
-//! let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper/spaceship_volume.toml");
-//! let scene = Scene::open(&path, &shapegen::registry::Registry::published(), &overrides)?;
-//! let mut generations = 0;
-//! let mut watch = |s: &Snapshot<'_, Spaceship>| {
-//!     generations += 1;
-//!     if s.generation == 2 { Control::Stop } else { Control::Continue }
-//! };
-//! let found = Search::new(&scene).run::<Spaceship>(&mut watch)?;
-//! assert_eq!((generations, found.result.generations), (3, 2));
-//! assert_eq!(found.result.stopped.name(), "interrupted");
-//! assert!(found.result.best_fitness.is_finite());
-//! # Ok::<(), Box<dyn std::error::Error>>(())
-//! ```
+//! One search of a scene's goal to its budget, without the tool's files; see the
+//! [module documentation](super).
 
 use std::sync::atomic::AtomicBool;
 
 use shapegen_runtime::Grammar;
 use shapegen_runtime::gpu::GpuContext;
-use shapegen_runtime::optimize::{
-    Best, Observer, OptimizeError, Optimizer, RunResult, Session, SessionError,
-};
+use shapegen_runtime::optimize::{Best, Budget, Observer, Optimizer, RunResult, Session};
 
 use crate::scene::{
-    Backend, BackendChoice, MethodJob, Scene, SceneError, SceneEvaluator, SceneScorer,
+    Backend, BackendChoice, MethodJob, OptimizerGoal, Scene, SceneEvaluator, SceneScorer,
 };
 
-/// Why a [`Search`] failed.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum SearchError {
-    /// The scene's scorers or backend could not be made.
-    #[error(transparent)]
-    Scene(#[from] SceneError),
-    /// The method could not start or go on.
-    #[error(transparent)]
-    Session(#[from] SessionError),
-    /// The state to resume from is not a checkpoint of the scene's method.
-    #[error("the checkpoint is not one of a {method} run: {source}")]
-    Checkpoint {
-        /// The scene's method.
-        method: &'static str,
-        /// What the reader said.
-        source: serde_json::Error,
-    },
-}
-
-impl From<OptimizeError> for SearchError {
-    fn from(error: OptimizeError) -> Self {
-        SearchError::Session(error.into())
-    }
-}
+use super::error::SearchError;
 
 /// What a [`Search`] found.
 #[derive(Debug)]
@@ -73,7 +22,7 @@ pub struct Found<G: Grammar> {
     pub backend: String,
 }
 
-/// A search of a scene's goal; see the [module documentation](self).
+/// A search of a scene's goal; see the [module documentation](crate::search).
 #[derive(Clone, Copy, Debug)]
 pub struct Search<'s> {
     scene: &'s Scene,
@@ -168,14 +117,19 @@ impl<'s> Search<'s> {
         let scorer = SceneScorer::new::<G>(self.scene)?;
         let backend = scorer.on(self.choice, self.gpu)?;
         let mut evaluator = SceneEvaluator::new(&backend).with_incremental(self.incremental);
+        let goal = &self.scene.optimizer;
         let job = Job {
-            search: self,
+            scene: self.scene,
+            goal,
+            budget: goal.budget(),
+            stop: self.stop,
+            resume: self.resume,
             backend: &backend,
             evaluator: &mut evaluator,
             observer,
             save,
         };
-        let result = self.scene.optimizer.run::<G, _>(job)?;
+        let result = goal.run::<G, _>(job)?;
         Ok(Found {
             result,
             backend: backend.describe().to_owned(),
@@ -183,13 +137,27 @@ impl<'s> Search<'s> {
     }
 }
 
-/// The run, with the method's optimizer.
-struct Job<'s, 'b, 'e, 'o, 'h, 'k, G> {
-    search: Search<'s>,
-    backend: &'b Backend<'b>,
-    evaluator: &'e mut SceneEvaluator<'b>,
-    observer: &'o mut dyn Observer<G>,
-    save: Option<&'h mut SaveHook<'k>>,
+/// One run of `goal`'s method on `scene` to `budget`, from the start or from the saved
+/// state `resume`: a [`Search`]'s run, or one of a [`Compare`](super::Compare)'s.
+pub(super) struct Job<'s, 'b, 'e, 'o, 'h, 'k, G> {
+    /// The scene searched.
+    pub scene: &'s Scene,
+    /// The method, its settings and seed.
+    pub goal: &'s OptimizerGoal,
+    /// Where the run stops.
+    pub budget: Budget,
+    /// Stops the run after the generation during which it is set.
+    pub stop: Option<&'s AtomicBool>,
+    /// The state to go on from, as JSON.
+    pub resume: Option<&'s str>,
+    /// What counts the models.
+    pub backend: &'b Backend<'b>,
+    /// What scores the populations.
+    pub evaluator: &'e mut SceneEvaluator<'b>,
+    /// Sees every generation.
+    pub observer: &'o mut dyn Observer<G>,
+    /// Saves the state.
+    pub save: Option<&'h mut SaveHook<'k>>,
 }
 
 impl<G: Grammar> MethodJob<G> for Job<'_, '_, '_, '_, '_, '_, G> {
@@ -197,21 +165,19 @@ impl<G: Grammar> MethodJob<G> for Job<'_, '_, '_, '_, '_, '_, G> {
 
     fn run<O: Optimizer<G, Record = Best<G>>>(self, settings: O::Settings) -> Self::Output {
         self.backend.check_held(&O::genomes_held(&settings))?;
-        let scene = self.search.scene;
-        let optimizer = match self.search.resume {
+        let optimizer = match self.resume {
             Some(json) => {
                 let state =
                     serde_json::from_str(json).map_err(|source| SearchError::Checkpoint {
-                        method: scene.optimizer.method().name(),
+                        method: self.goal.method().name(),
                         source,
                     })?;
                 O::resume(state)?
             }
-            None => O::new(settings, scene.limits, scene.optimizer.seed)?,
+            None => O::new(settings, self.scene.limits, self.goal.seed)?,
         };
-        let mut session =
-            Session::new(optimizer, scene.optimizer.budget()).on_progress(self.observer);
-        if let Some(stop) = self.search.stop {
+        let mut session = Session::new(optimizer, self.budget).on_progress(self.observer);
+        if let Some(stop) = self.stop {
             session = session.stop_flag(stop);
         }
         if let Some(save) = self.save {
