@@ -12,8 +12,8 @@ use std::path::Path;
 use std::process::Command;
 
 use support::{
-    fails, ok, s, send, shapegen, signal_when, skyline_scene as scene, start, timeless_summary,
-    wait_for,
+    drain_stderr, fails, ok, s, send, shapegen, signal_when, skyline_scene as scene, start,
+    timeless_summary, wait_for,
 };
 
 /// Every file under `dir` (recursively) and its bytes.
@@ -86,7 +86,8 @@ fn a_folder_in_use_is_refused_with_its_holder_named() {
     let dir = tempfile::tempdir().unwrap();
     let scene = scene(dir.path());
     let out = dir.path().join("out");
-    let first = start(&endless(&scene, &out));
+    let mut first = start(&endless(&scene, &out));
+    let stderr = drain_stderr(&mut first);
     wait_for(&out.join("checkpoint.json"));
     let holder = format!("is in use by pid {}", first.id());
     let seconds = ["--seconds", "1"];
@@ -121,8 +122,9 @@ fn a_folder_in_use_is_refused_with_its_holder_named() {
         );
     }
     send("INT", &first);
-    let ended = first.wait_with_output().unwrap();
-    assert!(ended.status.success());
+    let ended = first.wait().unwrap();
+    stderr.join().unwrap();
+    assert!(ended.success());
     assert!(!out.join("shapegen.lock").exists(), "the lock goes with it");
     let generations = checkpoint_generation(&out) + 1;
     resume_to(&out, generations);

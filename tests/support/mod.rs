@@ -49,12 +49,32 @@ pub fn interrupt_when(args: &[&str], file: &Path, meanwhile: impl FnOnce()) -> O
 }
 
 /// As [`interrupt_when`], with signal `signal` (`INT`, `TERM`, `HUP`, `KILL`, ..).
+///
+/// The error output is read as it comes: a run's progress lines would otherwise fill
+/// the pipe and stop the run before it writes `file`.
 pub fn signal_when(signal: &str, args: &[&str], file: &Path, meanwhile: impl FnOnce()) -> Output {
-    let child = start(args);
+    let mut child = start(args);
+    let reader = drain_stderr(&mut child);
     wait_for(file);
     meanwhile();
     send(signal, &child);
-    child.wait_with_output().expect("the process ends")
+    let status = child.wait().expect("the process ends");
+    Output {
+        status,
+        stdout: Vec::new(),
+        stderr: reader.join().expect("the reader ends"),
+    }
+}
+
+/// Reads `child`'s piped error output as it comes, in a thread that returns it once the
+/// process has closed it: unread, a run's progress lines fill the pipe and stop the run.
+pub fn drain_stderr(child: &mut std::process::Child) -> std::thread::JoinHandle<Vec<u8>> {
+    let mut stderr = child.stderr.take().expect("the error output is piped");
+    std::thread::spawn(move || {
+        let mut bytes = Vec::new();
+        std::io::Read::read_to_end(&mut stderr, &mut bytes).expect("the error output reads");
+        bytes
+    })
 }
 
 /// Starts `shapegen` with `args` in the background, its error output piped.
