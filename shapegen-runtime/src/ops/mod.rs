@@ -3,7 +3,7 @@
 //! genome grown to a target length (the GA's initial population) and an uncontrolled
 //! sample of the generator's own distribution.
 //!
-//! All of them live on [`Operators`], which holds the [`Limits`] they keep genomes within,
+//! All of them live on [`Operators`], which holds the [`Limits`](crate::genome::Limits) they keep genomes within,
 //! the grammar's link probabilities as exact fixed-point weights, and scratch buffers, so
 //! that they allocate nothing once warmed up (crossover's children may be written into
 //! existing genomes with [`Operators::crossover_into`]). Every choice is drawn from the

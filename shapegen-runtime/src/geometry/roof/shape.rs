@@ -4,12 +4,12 @@
 /// Which roof, with its shape's measure. Angles are in radians.
 ///
 /// A roof stands on its polygon's plane (`z = 0`) and rises along `+z`. Its eave is the
-/// polygon moved outward by the overhang ([`Polygon::offset`], mitred corners) and lies
+/// polygon moved outward by the overhang ([`Polygon::offset`](crate::geometry::Polygon::offset), mitred corners) and lies
 /// `overhang * tan(pitch)` below the plane, so that a roof face of the given pitch passes
 /// through the polygon's edge at `z = 0`: the wall's top. The solid is the roof surface
 /// with the eave polygon as its floor; every roof, on every simple polygon, is closed
 /// and wound with its normals outward: each is checked, and where one does not close,
-/// a simpler shape is built instead and [`Roof::shape`] says so.
+/// a simpler shape is built instead and [`Roof::shape`](crate::geometry::Roof::shape) says so.
 ///
 /// ```text
 ///   flat          shed            gable            hip             pyramid

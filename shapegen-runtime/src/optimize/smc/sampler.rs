@@ -32,7 +32,7 @@ crate::checkpoint! {
     }
 }
 
-/// Sequential Monte Carlo (the paper's section 7), SMC or SOSMC by [`Order`], in the
+/// Sequential Monte Carlo (the paper's section 7), SMC or SOSMC by [`Order`](super::Order), in the
 /// [`SmcVariant`] its settings name (see there for the rules).
 ///
 /// Each particle's growth draws from the stream (seed, step, particle) and resampling

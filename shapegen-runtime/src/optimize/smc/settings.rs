@@ -24,7 +24,7 @@ pub enum Order {
     Stochastic,
 }
 
-/// Which SMC an [`Smc`] runs.
+/// Which SMC an [`Smc`](super::Smc) runs.
 ///
 /// In scene files and JSON: `"original"` or `"generative"`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -128,7 +128,7 @@ impl SmcVariant {
     }
 }
 
-/// Settings of [`Smc`]. Loads from scene files with serde; missing fields take the
+/// Settings of [`Smc`](super::Smc). Loads from scene files with serde; missing fields take the
 /// [`Default`] values, unknown fields are errors.
 ///
 /// The default is the [generative](SmcVariant::Generative) variant with the spaceship
@@ -161,7 +161,7 @@ pub struct SmcSettings {
     /// at least 1.
     pub max_grows_per_step: u32,
     /// Candidates a separable CMA-ES draws each step to tune the continuous parameters
-    /// of the best particle (see [`Smc`]); 0, the default, polishes nothing, otherwise at
+    /// of the best particle (see [`Smc`](super::Smc)); 0, the default, polishes nothing, otherwise at
     /// least 2.
     pub polish: u32,
     /// The step size a new polishing strategy starts with, as a share of each

@@ -11,7 +11,7 @@ pub enum ObjectiveError {
     Samples {
         /// Samples asked for.
         samples: usize,
-        /// [`MAX_CHAMFER_SAMPLES`].
+        /// [`MAX_CHAMFER_SAMPLES`](super::MAX_CHAMFER_SAMPLES).
         max: usize,
     },
     /// A Chamfer objective's point cloud has no point.

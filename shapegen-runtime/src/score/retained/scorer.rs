@@ -6,10 +6,10 @@ use crate::geometry::Instance;
 use crate::score::scorer::Scorer;
 
 /// A [`Scorer`] that can keep what it counted of a model and count a related model
-/// from it (see the [module documentation](self)).
+/// from it (see the [module documentation](super)).
 ///
 /// The promise: for any instances `a`, `b`, updating `count_retained(a)` with the
-/// [`InstanceDiff`] from `a` to `b` gives a state whose
+/// [`InstanceDiff`](super::InstanceDiff) from `a` to `b` gives a state whose
 /// [`state_counts`](Self::state_counts) equal `count(b)`, and so does
 /// `count_retained(b)`.
 pub trait RetainedScorer: Scorer {
