@@ -11,7 +11,10 @@
 //! `use` items (re-exports) of the modules it passes to the module that defines the
 //! item, so that `crate::scene::Scene` is an import of the module that defines `Scene`,
 //! not of `scene`; an item no module defines by name (one a macro makes) belongs to the
-//! module the path names. An inline module (`mod tests { ... }`) counts as part of its
+//! module the path names. A path that starts with the name the crate gives itself
+//! (`extern crate self as shapegen`, read from its root) starts at its root, as `crate::`
+//! does; a macro exported at the root (`#[macro_export]`) is the module's that defines it,
+//! so that `crate::checkpoint!` imports that module, not the root. An inline module (`mod tests { ... }`) counts as part of its
 //! file's module, and so does a module of tests in a file of its own (`check/tests.rs`,
 //! declared `#[cfg(test)] mod tests;`).
 
@@ -24,9 +27,17 @@ use syn::visit::Visit;
 /// A module, as the names from the crate root down (`["scene", "error"]`).
 type ModPath = Vec<String>;
 
-/// The crate's own name, which it gives itself (`extern crate self as shapegen`) so that
-/// its tool names it as its users do.
-const CRATE_NAME: &str = "shapegen";
+/// The name a crate gives itself (`extern crate self as shapegen`, as the facade does so
+/// that its tool names it as its users do), read from its root's items: paths that start
+/// with it start at the crate's root, as `crate::` paths do.
+fn self_alias(items: &[syn::Item]) -> Option<String> {
+    items.iter().find_map(|item| match item {
+        syn::Item::ExternCrate(e) if e.ident == "self" => {
+            e.rename.as_ref().map(|(_, alias)| alias.to_string())
+        }
+        _ => None,
+    })
+}
 
 /// What the items of one module (a file's, or an inline one's) say about names.
 #[derive(Default)]
@@ -51,8 +62,13 @@ struct Resolved {
 
 /// The crate's modules and what they import.
 struct Crate {
+    /// The name the crate gives itself (`extern crate self as ...`), if any.
+    alias: Option<String>,
     /// Every module, file and inline, by its path.
     scopes: BTreeMap<ModPath, Scope>,
+    /// The macros exported at the crate's root (`#[macro_export]`), each with the module
+    /// that defines it.
+    exported: BTreeMap<String, ModPath>,
     /// For each file's module, the file's modules it imports, each with the first path
     /// that does and where it is written.
     edges: BTreeMap<ModPath, BTreeMap<ModPath, String>>,
@@ -167,15 +183,16 @@ fn defined_name(item: &syn::Item) -> Option<String> {
 
 /// The paths written in a macro's or an attribute's tokens that start at a module:
 /// `crate::a::B`, `super::B`, `self::a::B` (and the crate's own name).
-fn token_paths(tokens: TokenStream, out: &mut Vec<Vec<String>>) {
+fn token_paths(tokens: TokenStream, alias: Option<&str>, out: &mut Vec<Vec<String>>) {
     let tokens: Vec<TokenTree> = tokens.into_iter().collect();
     let mut i = 0;
     while i < tokens.len() {
         match &tokens[i] {
-            TokenTree::Group(group) => token_paths(group.stream(), out),
+            TokenTree::Group(group) => token_paths(group.stream(), alias, out),
             TokenTree::Ident(ident) => {
                 let first = ident.to_string();
-                let starts = ["crate", "super", "self", CRATE_NAME].contains(&first.as_str());
+                let starts = ["crate", "super", "self"].contains(&first.as_str())
+                    || alias == Some(first.as_str());
                 let after_colons =
                     i >= 1 && matches!(&tokens[i - 1], TokenTree::Punct(p) if p.as_char() == ':');
                 if starts && !after_colons {
@@ -205,13 +222,14 @@ fn token_paths(tokens: TokenStream, out: &mut Vec<Vec<String>>) {
 
 /// Gathers the paths written in a module's items but its `use` items and inline modules,
 /// which are read apart.
-#[derive(Default)]
-struct Paths {
+struct Paths<'a> {
+    /// The name the crate gives itself, if any.
+    alias: Option<&'a str>,
     /// The paths, as the names they are made of.
     found: Vec<Vec<String>>,
 }
 
-impl<'ast> Visit<'ast> for Paths {
+impl<'ast> Visit<'ast> for Paths<'_> {
     fn visit_path(&mut self, path: &'ast syn::Path) {
         // A path of one name is a local name, or an imported one whose `use` counts.
         if path.leading_colon.is_none() && path.segments.len() > 1 {
@@ -236,12 +254,12 @@ impl<'ast> Visit<'ast> for Paths {
 
     fn visit_macro(&mut self, mac: &'ast syn::Macro) {
         syn::visit::visit_macro(self, mac);
-        token_paths(mac.tokens.clone(), &mut self.found);
+        token_paths(mac.tokens.clone(), self.alias, &mut self.found);
     }
 
     fn visit_meta_list(&mut self, list: &'ast syn::MetaList) {
         syn::visit::visit_meta_list(self, list);
-        token_paths(list.tokens.clone(), &mut self.found);
+        token_paths(list.tokens.clone(), self.alias, &mut self.found);
     }
 }
 
@@ -261,8 +279,14 @@ impl Crate {
             }
             parsed.push((file.clone(), owner, module, ast));
         }
+        let alias = parsed
+            .iter()
+            .find(|(_, _, module, _)| module.is_empty())
+            .and_then(|(_, _, _, ast)| self_alias(&ast.items));
         let mut krate = Crate {
+            alias,
             scopes: BTreeMap::new(),
+            exported: BTreeMap::new(),
             edges: BTreeMap::new(),
             upward: BTreeSet::new(),
         };
@@ -297,6 +321,11 @@ impl Crate {
                 }
                 _ => {
                     if let Some(name) = defined_name(item) {
+                        if let syn::Item::Macro(m) = item
+                            && m.attrs.iter().any(|a| a.path().is_ident("macro_export"))
+                        {
+                            self.exported.insert(name.clone(), path.clone());
+                        }
                         scope.defined.insert(name);
                     }
                 }
@@ -308,7 +337,11 @@ impl Crate {
     /// Records what the module at `path` (part of the file's module `module`, written
     /// in `file`) imports, and its inline modules'.
     fn add_imports(&mut self, file: &str, module: &ModPath, path: &ModPath, items: &[syn::Item]) {
-        let mut paths = Paths::default();
+        let alias = self.alias.clone();
+        let mut paths = Paths {
+            alias: alias.as_deref(),
+            found: Vec::new(),
+        };
         for item in items {
             match item {
                 syn::Item::Use(u) if u.leading_colon.is_none() => {
@@ -340,7 +373,8 @@ impl Crate {
             // told once, at the `use`.
             let mut child = path.clone();
             child.push(written[0].clone());
-            let direct = ["crate", "super", "self", CRATE_NAME].contains(&written[0].as_str())
+            let direct = ["super", "self"].contains(&written[0].as_str())
+                || self.is_root(&written[0])
                 || self.is_module(&child);
             let above = resolved.via.len() < module.len() && module.starts_with(&resolved.via);
             if direct && above {
@@ -365,6 +399,12 @@ impl Crate {
             .map_or_else(|| path.clone(), |scope| scope.file.clone())
     }
 
+    /// Whether a path that starts with `first` starts at the crate's root: `crate`, or
+    /// the name the crate gives itself.
+    fn is_root(&self, first: &str) -> bool {
+        first == "crate" || self.alias.as_deref() == Some(first)
+    }
+
     /// Whether `path` is a module of the crate.
     fn is_module(&self, path: &[String]) -> bool {
         self.scopes.contains_key(path)
@@ -380,7 +420,7 @@ impl Crate {
         let mut module;
         let mut rest = path;
         match first {
-            "crate" | CRATE_NAME => {
+            _ if self.is_root(first) => {
                 module = Vec::new();
                 rest = &path[1..];
             }
@@ -406,6 +446,12 @@ impl Crate {
                     return self.resolve(scope, &full, depth + 1);
                 }
             }
+        }
+        // An exported macro is named at the root but is its defining module's.
+        if module.is_empty()
+            && let Some(defining) = rest.first().and_then(|m| self.exported.get(m))
+        {
+            module = defining.clone();
         }
         while let Some(segment) = rest.first() {
             let mut child = module.clone();
@@ -707,4 +753,28 @@ fn tests_modules_visibility_and_other_crates_import_nothing() {
     ]);
     assert_eq!(looped.len(), 1, "{looped:?}");
     assert!(looped[0].contains("import loop among a, b"), "{looped:?}");
+}
+
+#[test]
+fn the_crates_own_name_and_its_exported_macros_lead_to_their_modules() {
+    // A crate that calls itself `mine` names its root `mine::` too.
+    let looped = problems_of(&[
+        ("lib.rs", "extern crate self as mine; mod a; mod b;"),
+        ("a.rs", "pub struct A; fn f() -> mine::b::B { todo!() }"),
+        ("b.rs", "pub struct B; fn f() -> crate::a::A { todo!() }"),
+    ]);
+    assert_eq!(looped.len(), 1, "{looped:?}");
+    assert!(
+        looped[0].starts_with("import loop among a, b:"),
+        "{looped:?}"
+    );
+    // A macro exported at the root is the module's that defines it: naming it through
+    // the root imports nothing from above.
+    let problems = problems_of(&[
+        ("lib.rs", "pub mod hub;"),
+        ("hub/mod.rs", "mod m; mod user;"),
+        ("hub/m.rs", "#[macro_export] macro_rules! made { () => {} }"),
+        ("hub/user.rs", "crate::made!();"),
+    ]);
+    assert_eq!(problems, Vec::<String>::new());
 }

@@ -612,4 +612,4 @@ impl<'a, G: Grammar> Shape<'a, G> {
 }
 
 #[cfg(test)]
-mod shape_tests;
+mod tests;

@@ -12,6 +12,7 @@
 //! as [`error_chain`] does. Errors that only wrap another are `#[error(transparent)]`.
 
 pub mod derive;
+mod error;
 pub mod evaluate;
 pub mod export;
 pub mod genome;
@@ -25,34 +26,12 @@ pub mod param;
 pub mod score;
 
 pub use derive::{Child, GeneView, Grammar, NodeParams, Shape, Site, Slots};
+pub use error::error_chain;
 pub use genome::{Genome, GenomeError, Limits};
 pub use geometry::{Axis, CUBE, Face, Instance, MeshId, Part, Scope};
 pub use geometry::{BoundMeshes, Mesh, MeshError, MeshLibrary};
 pub use graph::GeneratorGraph;
 pub use ops::Operators;
-
-/// `err`'s message followed by those of its [`source()`](std::error::Error::source)
-/// chain, joined by `": "` (what `{:#}` of an `anyhow::Error` prints): for putting an
-/// error into a message of its own.
-///
-/// ```
-/// use shapegen_runtime::error_chain;
-/// use shapegen_runtime::genome::JsonError;
-///
-/// let err: JsonError = serde_json::from_str::<u32>("x").unwrap_err().into();
-/// assert_eq!(err.to_string(), "not a genome in JSON");
-/// assert_eq!(error_chain(&err), "not a genome in JSON: expected value at line 1 column 1");
-/// ```
-pub fn error_chain(err: &dyn std::error::Error) -> String {
-    let mut text = err.to_string();
-    let mut source = err.source();
-    while let Some(cause) = source {
-        text.push_str(": ");
-        text.push_str(&cause.to_string());
-        source = cause.source();
-    }
-    text
-}
 
 /// The names most generator code needs: `use shapegen_runtime::prelude::*;`.
 pub mod prelude {
@@ -250,8 +229,8 @@ macro_rules! generator {
     };
 }
 
-/// What the `generator!` macro's expansion refers to. Not a public API: it may change in
-/// any release.
+/// What the expansions of the `generator!` and `checkpoint!` macros refer to. Not a
+/// public API: it may change in any release.
 #[doc(hidden)]
 pub mod __private {
     pub use crate::derive::Child;
@@ -260,6 +239,7 @@ pub mod __private {
     pub use crate::graph::{
         AngleUnit, Distribution, GeneratorGraph, NodeDesc, ParamDesc, SlotDesc,
     };
+    pub use crate::optimize::Progress;
     pub use glam::{Vec2, Vec3};
     pub use shapegen_macros::generator_impl;
 }

@@ -2,7 +2,7 @@
 
 use glam::{Affine3A, Mat3A, Vec3};
 
-use super::ExportError;
+use super::error::ExportError;
 use crate::geometry::{BoundMeshes, Instance, MeshId};
 
 /// One instance's transform, ready to place positions, normals and triangles.

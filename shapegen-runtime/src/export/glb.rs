@@ -9,8 +9,9 @@ use gltf_json as json;
 use json::validation::{Checked::Valid, USize64};
 
 use super::bake::{placements, used_meshes};
+use super::error::ExportError;
 use super::obj::write_file;
-use super::{ExportError, Palette};
+use super::palette::Palette;
 use crate::geometry::{BoundMeshes, Instance, Mesh};
 
 const GLB_MAGIC: &[u8; 4] = b"glTF";
@@ -258,7 +259,7 @@ struct Baked {
 
 fn bake(
     instances: &[Instance],
-    id: crate::MeshId,
+    id: crate::geometry::MeshId,
     mesh: &Mesh,
     name: &str,
 ) -> Result<Baked, ExportError> {

@@ -5,7 +5,8 @@ use std::io::{BufWriter, Write};
 use std::path::Path;
 
 use super::bake::{placements, used_meshes};
-use super::{ExportError, Palette};
+use super::error::ExportError;
+use super::palette::Palette;
 use crate::geometry::{BoundMeshes, Instance};
 
 /// Writes the instances as OBJ text referring to the material library `mtl_name` (a

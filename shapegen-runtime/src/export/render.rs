@@ -5,7 +5,8 @@
 use glam::{Mat4, Vec3, Vec4, Vec4Swizzles};
 use image::{Rgb, RgbImage};
 
-use super::{ExportError, Palette};
+use super::error::ExportError;
+use super::palette::Palette;
 use crate::geometry::{BoundMeshes, Instance};
 
 /// How a preview is drawn: the camera's view-projection matrix and the image size.

@@ -2,7 +2,9 @@
 
 use image::{Rgb, RgbImage};
 
-use super::{ExportError, Palette, Preview};
+use super::error::ExportError;
+use super::palette::Palette;
+use super::render::Preview;
 use crate::geometry::{BoundMeshes, Instance};
 
 /// A grid of shaded previews, `columns` across, each `cell` pixels square, all through

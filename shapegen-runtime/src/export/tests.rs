@@ -333,7 +333,7 @@ fn empty_and_invalid_input() {
     );
     let err = save_obj("/no/such/dir/out", &stray[..0], &meshes, &Palette::new()).unwrap_err();
     assert!(
-        crate::error_chain(&err).starts_with("cannot write `/no/such/dir/out.obj`: "),
+        crate::error::error_chain(&err).starts_with("cannot write `/no/such/dir/out.obj`: "),
         "{err}"
     );
 }

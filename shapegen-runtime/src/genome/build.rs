@@ -1,8 +1,8 @@
 //! Building known genomes by hand: a root, then children attached to named slots.
 
 use super::error::{GeneAt, GenomeError};
+use super::packed::{DEPTH_CAP, Genome, node_of, parent_pos};
 use super::validate::slot_at_in;
-use super::{DEPTH_CAP, Genome, node_of, parent_pos};
 use crate::derive::{Grammar, NodeParams};
 use crate::graph::{HEADER_WORDS, NodeDesc, SlotDesc};
 use crate::param;

@@ -14,8 +14,8 @@
 use std::fmt;
 
 use super::error::SlotAt;
+use super::packed::{Genome, node_of};
 use super::validate::slot_at;
-use super::{Genome, node_of};
 use crate::derive::Grammar;
 use crate::graph::{AngleUnit, Distribution, HEADER_WORDS};
 use crate::param::ParamValue;

@@ -15,7 +15,7 @@ use std::marker::PhantomData;
 
 use rand::Rng;
 
-use super::{Genome, node_of};
+use super::packed::Genome;
 use crate::derive::Grammar;
 use crate::graph::{Distribution, HEADER_WORDS};
 use crate::param;
@@ -170,32 +170,6 @@ impl<G: Grammar> FreshGenes<G> {
             }
         }
         genome.len += 1;
-        pos
-    }
-}
-
-impl<G: Grammar> Genome<G> {
-    /// Appends a gene of kind `kind` with parameters drawn from `rng`, linked from
-    /// `parent` on link `link` when given; returns its word position. O(gene words).
-    pub(crate) fn push_gene(
-        &mut self,
-        kind: u32,
-        parent: Option<(u32, u32)>,
-        rng: &mut impl Rng,
-    ) -> u32 {
-        let node = node_of::<G>(kind);
-        let pos = self.words.len() as u32;
-        let up = parent.map_or(0, |(parent, _)| (parent as i32 - pos as i32) as u32);
-        self.words.extend([kind, up]);
-        self.words.resize((pos + node.gene_words()) as usize, 0);
-        if let Some((parent, link)) = parent {
-            self.words[(parent + HEADER_WORDS + link) as usize] = pos - parent;
-        }
-        let params = &mut self.words[(pos + HEADER_WORDS + node.links) as usize..];
-        for p in node.params {
-            param::sample(&p.dist, rng, &mut params[p.offset as usize..]);
-        }
-        self.len += 1;
         pos
     }
 }

@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::DEPTH_CAP;
+use super::packed::DEPTH_CAP;
 
 /// Bounds every genetic operator keeps its genomes within.
 ///

@@ -1,7 +1,8 @@
 //! Checking a genome: every invariant of the packed layout, then the limits.
 
 use super::error::{GeneAt, GenomeError, SlotAt};
-use super::{DEPTH_CAP, Genome, Limits, depths, node_of};
+use super::limits::Limits;
+use super::packed::{DEPTH_CAP, Genome, depths, node_of};
 use crate::derive::Grammar;
 use crate::graph::{HEADER_WORDS, NodeDesc, SlotDesc};
 use crate::param;

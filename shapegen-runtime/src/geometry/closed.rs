@@ -5,7 +5,9 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
-use super::{BoundMeshes, FACET_CORNERS, Instance, is_facet};
+use super::facet::{FACET_CORNERS, is_facet};
+use super::instance::Instance;
+use super::library::BoundMeshes;
 
 /// Corners closer than this are one vertex.
 const WELD: f64 = 1e-4;
@@ -197,8 +199,10 @@ impl Grid {
 pub(crate) mod tests {
     use glam::Affine3A;
 
-    use super::super::{Face, MeshId, Scope};
     use super::*;
+    use crate::geometry::face::Face;
+    use crate::geometry::instance::MeshId;
+    use crate::geometry::scope::Scope;
 
     /// The triangles of `out`, every instance a facet.
     pub(crate) fn triangles(out: &[Instance]) -> Vec<[DVec3; 3]> {

@@ -11,7 +11,11 @@ use std::iter::FusedIterator;
 
 use glam::{Vec3, vec3};
 
-use super::{Face, Instance, MeshId, Polygon, Scope, facet_transform};
+use super::face::Face;
+use super::facet::facet_transform;
+use super::instance::{Instance, MeshId};
+use super::polygon::Polygon;
+use super::scope::Scope;
 
 /// The walls of an extruded footprint with the faces of the box they face: see
 /// [`Scope::walls`].
@@ -198,9 +202,9 @@ impl Scope {
 mod tests {
     use glam::{Affine3A, DVec2, Quat};
 
-    use super::super::Axis;
     use super::super::closed::tests::{assert_watertight, volume as signed_volume};
     use super::*;
+    use crate::geometry::axis::Axis;
 
     const FACET: MeshId = MeshId(1);
 

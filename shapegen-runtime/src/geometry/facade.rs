@@ -9,7 +9,9 @@
 
 use glam::{Vec3, vec3};
 
-use super::{Instance, MeshId, Scope, facet_transform};
+use super::facet::facet_transform;
+use super::instance::{Instance, MeshId};
+use super::scope::Scope;
 
 /// The margins of an [`inset`](Scope::inset): absolute lengths from the tile's sides to
 /// the opening's, in the tile's local axes (left is `-x`, bottom is `-y`).
@@ -271,8 +273,10 @@ mod tests {
     use glam::{Affine3A, Quat, vec2};
 
     use super::super::closed::tests::{assert_watertight, volume as signed_volume};
-    use super::super::{Axis, Face, Polygon};
     use super::*;
+    use crate::geometry::axis::Axis;
+    use crate::geometry::face::Face;
+    use crate::geometry::polygon::Polygon;
 
     const WALL: MeshId = MeshId(1);
 

@@ -5,7 +5,7 @@ use std::iter::FusedIterator;
 
 use glam::{Vec3, vec3};
 
-use super::Scope;
+use super::scope::Scope;
 
 /// One of the six faces of a box, named as seen from the front: the box's local `+z`
 /// is its front, `+y` its top and `+x` its right.
@@ -166,8 +166,8 @@ mod tests {
 
     use glam::{Affine3A, Quat};
 
-    use super::super::Axis;
     use super::*;
+    use crate::geometry::axis::Axis;
 
     /// A 2 x 4 x 6 box at (10, 20, 30), turned a quarter about world y: its local x
     /// is world -z and its local z is world +x.

@@ -27,7 +27,11 @@
 
 use glam::{Affine3A, Mat3A, Vec3};
 
-use super::{Instance, Mesh, MeshId, Polygon, Roof, RoofError, RoofShape, Scope};
+use super::instance::{Instance, MeshId};
+use super::mesh::Mesh;
+use super::polygon::Polygon;
+use super::roof::{Roof, RoofError, RoofShape};
+use super::scope::Scope;
 
 /// The facet's corners: the unit right triangle in the `z = 0` plane, facing `+z`.
 pub const FACET_CORNERS: [Vec3; 3] = [Vec3::ZERO, Vec3::X, Vec3::Y];

@@ -5,7 +5,8 @@ use std::ops::Index;
 use std::path::Path;
 use std::sync::Arc;
 
-use super::{Mesh, MeshError, MeshId};
+use super::instance::MeshId;
+use super::mesh::{Mesh, MeshError};
 use crate::graph::GeneratorGraph;
 
 /// Meshes registered by name, to be [bound](Self::bind) to the mesh names a grammar

@@ -236,7 +236,7 @@ impl Mesh {
     /// assert!(!cube.is_closed());
     /// ```
     pub fn is_closed(&self) -> bool {
-        let (welded, _) = super::normals::weld(&self.positions);
+        let (welded, _) = super::weld::weld(&self.positions);
         let mut edges: HashMap<(u32, u32), i32> = HashMap::new();
         for t in self.triangles() {
             let t = t.map(|i| welded[i as usize]);

@@ -2,6 +2,7 @@
 //! polygons, prisms and roofs that rules build as geometry of their own, placed as
 //! facets.
 
+mod axis;
 pub(crate) mod closed;
 mod comp;
 mod facade;
@@ -19,7 +20,9 @@ mod scope;
 mod solid;
 
 mod split;
+mod weld;
 
+pub use axis::Axis;
 pub use closed::{OpenEdge, facet_triangles, open_edges, signed_volume};
 pub use comp::Walls;
 pub use facade::{Inset, Margins};
@@ -32,4 +35,4 @@ pub use mesh::{Mesh, MeshError};
 pub use polygon::{Polygon, PolygonError, Setback};
 pub use roof::{Roof, RoofError, RoofMeshes, RoofPiece, RoofShape};
 pub use scope::Scope;
-pub use split::{Axis, Part, Repeat, Split};
+pub use split::{Part, Repeat, Split};

@@ -4,7 +4,8 @@ use std::collections::HashMap;
 
 use glam::Vec3;
 
-use super::Mesh;
+use super::mesh::Mesh;
+use super::weld::weld;
 
 impl Mesh {
     /// The crease angle [`from_obj`](Self::from_obj) computes missing normals with:
@@ -102,22 +103,6 @@ impl Mesh {
             indices,
         };
     }
-}
-
-/// Numbers positions by exact value, in order of first appearance: one id per
-/// distinct position, and the number of distinct positions.
-pub(crate) fn weld(positions: &[Vec3]) -> (Vec<u32>, usize) {
-    let mut ids: HashMap<[u32; 3], u32> = HashMap::with_capacity(positions.len());
-    let welded = positions
-        .iter()
-        .map(|p| {
-            let next = ids.len() as u32;
-            // +0.0 folds -0.0 into 0.0.
-            *ids.entry((*p + 0.0).to_array().map(f32::to_bits))
-                .or_insert(next)
-        })
-        .collect();
-    (welded, ids.len())
 }
 
 #[cfg(test)]

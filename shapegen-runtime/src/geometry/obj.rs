@@ -5,7 +5,7 @@ use std::path::Path;
 
 use glam::Vec3;
 
-use super::{Mesh, MeshError};
+use super::mesh::{Mesh, MeshError};
 
 impl Mesh {
     /// Loads a mesh from an OBJ file; see [`from_obj_str`](Self::from_obj_str). Errors
@@ -457,7 +457,7 @@ f 4//1 5//1 6//1
             let m = Mesh::from_obj(dir.join(file)).unwrap();
             assert_eq!(m.triangle_count(), triangles, "{file}");
             assert_eq!(
-                super::super::normals::weld(&m.positions).1,
+                super::super::weld::weld(&m.positions).1,
                 positions,
                 "{file}"
             );
@@ -476,7 +476,8 @@ f 4//1 5//1 6//1
         let e = Mesh::from_obj("/no/such/dir/trunk.obj").unwrap_err();
         assert!(matches!(e, MeshError::Io { .. }));
         assert!(
-            crate::error_chain(&e).starts_with("cannot read mesh file `/no/such/dir/trunk.obj`: "),
+            crate::error::error_chain(&e)
+                .starts_with("cannot read mesh file `/no/such/dir/trunk.obj`: "),
             "{e}"
         );
     }

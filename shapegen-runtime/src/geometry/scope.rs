@@ -2,7 +2,7 @@
 
 use glam::{Affine3A, Mat3A, Vec3, Vec3A};
 
-use super::Axis;
+use super::axis::Axis;
 
 /// An oriented box: a rigid frame (rotation and translation, no scale) placing the box's
 /// centre and axes in the world, and the box's size along its own axes.

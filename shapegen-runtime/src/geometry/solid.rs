@@ -5,7 +5,7 @@ use std::collections::HashMap;
 
 use glam::{DVec3, Vec3};
 
-use super::Mesh;
+use super::mesh::Mesh;
 use super::polygon::Polygon;
 
 /// Triangles collected by their corners. Corners closer than the weld tolerance are one

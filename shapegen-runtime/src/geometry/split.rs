@@ -2,38 +2,8 @@
 
 use std::iter::FusedIterator;
 
-use glam::Vec3;
-
-use super::Scope;
-
-/// One of a scope's local axes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Axis {
-    /// The local x axis.
-    X,
-    /// The local y axis.
-    Y,
-    /// The local z axis.
-    Z,
-}
-
-impl Axis {
-    /// The component index of the axis: 0, 1 or 2.
-    #[inline]
-    pub const fn index(self) -> usize {
-        self as usize
-    }
-
-    /// The unit vector along the axis.
-    #[inline]
-    pub const fn unit(self) -> Vec3 {
-        match self {
-            Axis::X => Vec3::X,
-            Axis::Y => Vec3::Y,
-            Axis::Z => Vec3::Z,
-        }
-    }
-}
+use super::axis::Axis;
+use super::scope::Scope;
 
 /// The length of one part of a [`Scope::split`].
 ///

@@ -2,9 +2,9 @@
 
 use rand::Rng;
 
+use super::operators::{OperatorVariant, Operators};
 use super::original::redraw;
 use super::weight::below;
-use super::{OperatorVariant, Operators};
 use crate::derive::Grammar;
 use crate::genome::Genome;
 

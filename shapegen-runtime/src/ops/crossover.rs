@@ -4,8 +4,8 @@
 use rand::Rng;
 
 use super::edit::{Donor, Split, splice, split, survey_pair};
+use super::operators::{CROSSOVER_RETRIES, OperatorVariant, Operators};
 use super::weight::below;
-use super::{CROSSOVER_RETRIES, OperatorVariant, Operators};
 use crate::derive::Grammar;
 use crate::genome::{GeneAt, Genome, GenomeError, node_of, parent_pos, slot_at};
 use crate::graph::HEADER_WORDS;

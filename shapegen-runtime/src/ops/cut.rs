@@ -4,8 +4,9 @@
 use rand::Rng;
 
 use super::edit::{cover, record_links, remove_subtree};
+use super::kinds::{KindInfo, gene_starts};
+use super::operators::{OperatorVariant, Operators};
 use super::weight::{ONE, below};
-use super::{KindInfo, OperatorVariant, Operators, gene_starts};
 use crate::derive::Grammar;
 use crate::genome::{Genome, GenomeError};
 

@@ -7,8 +7,7 @@
 //! subtree members by their parent's mark. Word positions are remapped through a
 //! word-indexed table and every offset is rewritten once: O(W).
 
-use super::{KindInfo, LinkInfo, Operators};
-use crate::derive::Grammar;
+use super::kinds::{KindInfo, LinkInfo};
 use crate::genome::parent_pos;
 use crate::graph::HEADER_WORDS;
 
@@ -79,23 +78,6 @@ pub(super) fn remove_subtree(
     }
     words.truncate(cursor as usize);
     removed
-}
-
-impl<G: Grammar> Operators<G> {
-    /// [`record_links`] of the genome in `words` into the scratch: each gene's parent
-    /// and link (`map`, `link_of`) and where each gene starts (`starts`).
-    pub(super) fn map_links(&mut self, words: &[u32]) {
-        let s = &mut self.s;
-        record_links(
-            &self.kinds,
-            &self.links,
-            words,
-            &mut s.map,
-            &mut s.link_of,
-            Some(&mut s.starts),
-            |_, _| {},
-        );
-    }
 }
 
 /// One forward pass over the valid genome in `words`: records in `parent` and `link`

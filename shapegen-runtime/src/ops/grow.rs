@@ -4,8 +4,8 @@
 use rand::Rng;
 
 use super::edit::cover;
+use super::operators::{OperatorVariant, Operators};
 use super::weight::below;
-use super::{OperatorVariant, Operators};
 use crate::derive::Grammar;
 use crate::genome::{Genome, parent_pos};
 use crate::graph::HEADER_WORDS;

@@ -6,7 +6,8 @@ use rand::Rng;
 
 use super::draw::{int_value, pick};
 use super::edit::{Donor, cover, graft, remove_subtree, splice, split};
-use super::{KindInfo, ORIGINAL_CROSSOVER_ATTEMPTS, Operators, gene_starts};
+use super::kinds::{KindInfo, gene_starts};
+use super::operators::{ORIGINAL_CROSSOVER_ATTEMPTS, Operators};
 use crate::derive::Grammar;
 use crate::genome::{DEPTH_CAP, Genome, depths, node_of, parent_pos};
 use crate::graph::HEADER_WORDS;

@@ -3,8 +3,8 @@
 
 use rand::Rng;
 
+use super::operators::{OperatorVariant, Operators};
 use super::weight::{below, chance};
-use super::{OperatorVariant, Operators};
 use crate::derive::Grammar;
 use crate::genome::{Genome, depths};
 use crate::graph::HEADER_WORDS;

@@ -5,7 +5,6 @@ use std::time::Duration;
 
 use serde::{Deserialize, Serialize};
 
-use super::Evaluator;
 use super::driver::Record;
 use super::fitness::{self, bits, compare};
 use super::run::{
@@ -13,6 +12,7 @@ use super::run::{
     grammar_struct_traits,
 };
 use crate::derive::Grammar;
+use crate::evaluate::Evaluator;
 use crate::genome::Genome;
 
 /// The record of a run on one fitness: the best genome so far and the history.

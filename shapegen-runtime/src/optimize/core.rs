@@ -7,8 +7,8 @@ use std::fmt::{Debug, DebugStruct, Formatter};
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 
-use super::Settings;
 use super::run::Progress;
+use super::settings::Settings;
 use crate::genome::Limits;
 
 /// What every optimizer holds, whatever its method: the settings `S`, the genome limits
@@ -147,19 +147,19 @@ macro_rules! checkpoint {
         }
     ) => {
         $(#[$attr])*
-        $vis struct $name<G: $crate::Grammar> {
+        $vis struct $name<G: $crate::derive::Grammar> {
             /// The settings.
             pub settings: $settings,
             /// The genome limits.
-            pub limits: $crate::Limits,
+            pub limits: $crate::genome::Limits,
             /// Generation, evaluations, wall time, and what the run found so far.
-            pub progress: $crate::optimize::Progress<$record>,
+            pub progress: $crate::__private::Progress<$record>,
             $($(#[$field_attr])* $field_vis $field: $ty),*
         }
 
         $crate::grammar_struct_traits!($name { settings, limits, progress, $($field),* });
 
-        impl<G: $crate::Grammar> $crate::optimize::Checkpoint for $name<G> {
+        impl<G: $crate::derive::Grammar> $crate::optimize::Checkpoint for $name<G> {
             type Settings = $settings;
             type Record = $record;
             type Body = ($($ty,)*);
@@ -168,11 +168,11 @@ macro_rules! checkpoint {
                 &self.settings
             }
 
-            fn limits(&self) -> &$crate::Limits {
+            fn limits(&self) -> &$crate::genome::Limits {
                 &self.limits
             }
 
-            fn progress(&self) -> &$crate::optimize::Progress<$record> {
+            fn progress(&self) -> &$crate::__private::Progress<$record> {
                 &self.progress
             }
 

@@ -38,8 +38,9 @@
 use std::time::Instant;
 
 use super::core::{Checkpoint, Core};
+use super::error::OptimizeError;
 use super::run::{Budget, Control, Progress, StopReason};
-use super::{OptimizeError, Settings};
+use super::settings::Settings;
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits};
 

@@ -2,7 +2,7 @@
 
 use crate::genome::LimitsError;
 
-use super::{EvaluateError, Sense};
+use crate::evaluate::{EvaluateError, Sense};
 
 /// A settings field outside its valid range.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]

@@ -8,9 +8,12 @@ use serde::{Deserialize, Serialize};
 
 use super::best::Best;
 use super::core::Core;
+use super::driver::{Held, Optimizer};
+use super::error::{OptimizeError, SettingsError};
 use super::run::stream;
-use super::{Evaluator, Held, OptimizeError, Optimizer, Settings, SettingsError};
+use super::settings::Settings;
 use crate::derive::Grammar;
+use crate::evaluate::Evaluator;
 use crate::genome::{Genome, Limits};
 use crate::ops::Operators;
 

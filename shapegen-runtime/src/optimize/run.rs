@@ -233,17 +233,17 @@ pub struct RunResult<G> {
 #[macro_export]
 macro_rules! grammar_struct_traits {
     ($name:ident { $($field:ident),* $(,)? }) => {
-        impl<G: $crate::Grammar> Clone for $name<G> {
+        impl<G: $crate::derive::Grammar> Clone for $name<G> {
             fn clone(&self) -> Self {
                 $name { $($field: self.$field.clone()),* }
             }
         }
-        impl<G: $crate::Grammar> PartialEq for $name<G> {
+        impl<G: $crate::derive::Grammar> PartialEq for $name<G> {
             fn eq(&self, other: &Self) -> bool {
                 true $(&& self.$field == other.$field)*
             }
         }
-        impl<G: $crate::Grammar> std::fmt::Debug for $name<G> {
+        impl<G: $crate::derive::Grammar> std::fmt::Debug for $name<G> {
             fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
                 f.debug_struct(stringify!($name))
                     $(.field(stringify!($field), &self.$field))*

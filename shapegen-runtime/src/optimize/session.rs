@@ -6,8 +6,8 @@ use std::marker::PhantomData;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-use super::OptimizeError;
 use super::driver::{Agreement, Optimizer, Record, drive};
+use super::error::OptimizeError;
 use super::run::{Budget, Control, Progress, StopReason};
 use crate::derive::Grammar;
 use crate::genome::Limits;

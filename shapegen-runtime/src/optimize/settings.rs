@@ -6,7 +6,7 @@ use std::fmt::Debug;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 
-use super::SettingsError;
+use super::error::SettingsError;
 use super::run::Budget;
 use crate::genome::Limits;
 

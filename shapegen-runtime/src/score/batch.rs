@@ -2,9 +2,10 @@
 
 use rayon::prelude::*;
 
-use super::Scorer;
+use super::scorer::Scorer;
+use crate::derive::{Grammar, Site};
+use crate::genome::Genome;
 use crate::geometry::Instance;
-use crate::{Genome, Grammar, Site};
 
 /// The instances of many models in one buffer: model `i` is
 /// `instances[starts[i]..starts[i + 1]]`. Reused from generation to generation, it

@@ -4,12 +4,13 @@
 use std::io;
 use std::path::PathBuf;
 
-use crate::genome::GenomeError;
+use crate::genome::error::GenomeError;
 #[cfg(doc)]
-use crate::{
-    GeneratorGraph,
-    genome::{Genome, GenomeSet},
-};
+use crate::genome::json::set::GenomeSet;
+#[cfg(doc)]
+use crate::genome::packed::Genome;
+#[cfg(doc)]
+use crate::graph::GeneratorGraph;
 
 /// Why genome JSON could not be read or written.
 #[derive(Debug, thiserror::Error)]

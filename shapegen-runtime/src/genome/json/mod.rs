@@ -9,19 +9,20 @@ mod error;
 mod nested;
 mod params;
 mod read;
+mod set;
 mod shape;
 mod write;
 
-use std::fmt;
 use std::path::Path;
 
 pub use error::JsonError;
 use nested::{genome_from_nested, genome_to_nested, set_from_nested, set_to_nested};
-use read::{GenomeFields, SetFields, genome_from_genes};
+use read::{GenomeFields, SetFields, check_generator, genome_from_genes};
+pub use set::GenomeSet;
 pub use shape::JsonLayout;
 use write::to_json_string;
 
-use super::Genome;
+use super::packed::Genome;
 use crate::derive::Grammar;
 
 impl<G: Grammar> Genome<G> {
@@ -249,44 +250,7 @@ impl<G: Grammar> Genome<G> {
     }
 }
 
-/// Many genomes of one grammar, as saved in one file (`genomes.json`):
-/// `{"generator": "spaceship", "genomes": [{"genes": [...]}, ...]}` in the packed form
-/// ([`Genome::to_json`]), `{"generator": "spaceship", "genomes": [{"tree": {...}}, ...]}`
-/// in the nested form ([`Genome::to_nested_json`]).
-pub struct GenomeSet<G> {
-    /// The genomes, in file order.
-    pub genomes: Vec<Genome<G>>,
-}
-
-impl<G> Clone for GenomeSet<G> {
-    fn clone(&self) -> Self {
-        GenomeSet {
-            genomes: self.genomes.clone(),
-        }
-    }
-}
-
-impl<G> PartialEq for GenomeSet<G> {
-    fn eq(&self, other: &Self) -> bool {
-        self.genomes == other.genomes
-    }
-}
-
-impl<G: Grammar> fmt::Debug for GenomeSet<G> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_struct("GenomeSet")
-            .field("generator", &G::GRAPH.name)
-            .field("genomes", &self.genomes)
-            .finish()
-    }
-}
-
 impl<G: Grammar> GenomeSet<G> {
-    /// A set of the given genomes.
-    pub fn new(genomes: Vec<Genome<G>>) -> Self {
-        GenomeSet { genomes }
-    }
-
     /// The set in the packed form, one gene a line.
     pub fn to_json(&self) -> String {
         to_json_string(self, 4)
@@ -350,17 +314,5 @@ fn in_file(path: &Path, e: JsonError) -> JsonError {
     JsonError::File {
         path: path.to_owned(),
         source: Box::new(e),
-    }
-}
-
-fn check_generator<G: Grammar>(found: &str) -> Result<(), JsonError> {
-    if G::GRAPH.answers_to(found) {
-        Ok(())
-    } else {
-        Err(JsonError::WrongGenerator {
-            found: found.to_owned(),
-            expected: G::GRAPH.key,
-            also: G::GRAPH.name,
-        })
     }
 }

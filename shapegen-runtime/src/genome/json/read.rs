@@ -4,10 +4,11 @@ use serde::de::Error as _;
 use serde::{Deserialize, Deserializer};
 use serde_json::{Map, Value};
 
+use super::error::JsonError;
 use super::params::{ParamError, names, read_params, slot_names};
-use super::{GenomeSet, JsonError, check_generator};
+use super::set::GenomeSet;
 use crate::derive::Grammar;
-use crate::genome::{Genome, node_of};
+use crate::genome::packed::{Genome, node_of};
 use crate::graph::HEADER_WORDS;
 
 #[derive(Deserialize)]
@@ -44,7 +45,7 @@ impl<'de, G: Grammar> Deserialize<'de> for Genome<G> {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         let fields = GenomeFields::deserialize(d)?;
         check_generator::<G>(&fields.generator).map_err(D::Error::custom)?;
-        genome_from_genes(fields.genes).map_err(|e| D::Error::custom(crate::error_chain(&e)))
+        genome_from_genes(fields.genes).map_err(|e| D::Error::custom(crate::error::error_chain(&e)))
     }
 }
 
@@ -58,7 +59,7 @@ impl<'de, G: Grammar> Deserialize<'de> for GenomeSet<G> {
             .enumerate()
             .map(|(index, g)| {
                 genome_from_genes(g.genes).map_err(|e| {
-                    D::Error::custom(crate::error_chain(&JsonError::InSet {
+                    D::Error::custom(crate::error::error_chain(&JsonError::InSet {
                         index,
                         source: Box::new(e),
                     }))
@@ -134,4 +135,17 @@ pub(super) fn genome_from_genes<G: Grammar>(
     let genome = Genome::from_parts(words, genes.len() as u32);
     genome.validate()?;
     Ok(genome)
+}
+
+/// Checks that a file written for the generator `found` is one of `G`.
+pub(super) fn check_generator<G: Grammar>(found: &str) -> Result<(), JsonError> {
+    if G::GRAPH.answers_to(found) {
+        Ok(())
+    } else {
+        Err(JsonError::WrongGenerator {
+            found: found.to_owned(),
+            expected: G::GRAPH.key,
+            also: G::GRAPH.name,
+        })
+    }
 }

@@ -7,9 +7,9 @@ use std::marker::PhantomData;
 use serde::ser::{SerializeMap, SerializeSeq, SerializeStruct, SerializeTuple};
 use serde::{Serialize, Serializer};
 
-use super::GenomeSet;
+use super::set::GenomeSet;
 use crate::derive::Grammar;
-use crate::genome::{Genome, node_of};
+use crate::genome::packed::{Genome, node_of};
 use crate::graph::{Distribution, HEADER_WORDS, NodeDesc};
 
 impl<G: Grammar> Serialize for Genome<G> {

@@ -10,7 +10,8 @@ use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::{Mode, Semantic};
 use gltf::{Accessor, Gltf};
 
-use super::{Mesh, MeshError, decode};
+use super::decode::decode;
+use crate::geometry::mesh::{Mesh, MeshError};
 
 impl Mesh {
     /// Reads a glTF file's bytes (JSON or binary), naming it `name` in errors. Buffers

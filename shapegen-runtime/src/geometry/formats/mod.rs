@@ -1,6 +1,7 @@
 //! Mesh files of every format the toolkit reads, chosen by the file's extension: one
 //! table ([`MeshFormat::ALL`]) names each format, its extensions and its reader.
 
+mod decode;
 mod gltf_file;
 mod ply;
 mod points;
@@ -12,7 +13,7 @@ use glam::Vec3;
 
 pub use points::PointCloud;
 
-use super::{Mesh, MeshError};
+use super::mesh::{Mesh, MeshError};
 
 /// A mesh file format.
 ///
@@ -136,23 +137,5 @@ impl Mesh {
         mesh.compute_normals(Mesh::DEFAULT_CREASE_ANGLE);
         mesh.validate(name)?;
         Ok(mesh)
-    }
-}
-
-/// A polygon of `corners` vertex indices as a fan of triangles.
-fn fan(corners: &[u32], indices: &mut Vec<u32>) {
-    if let [first, rest @ ..] = corners {
-        for pair in rest.windows(2) {
-            indices.extend([*first, pair[0], pair[1]]);
-        }
-    }
-}
-
-/// The error for a malformed file of `format`.
-fn decode(format: &str, name: &str, what: impl std::fmt::Display) -> MeshError {
-    MeshError::Decode {
-        format: format.to_owned(),
-        name: name.to_owned(),
-        what: what.to_string(),
     }
 }

@@ -5,7 +5,8 @@ use glam::Vec3;
 use ply_rs_bw::parser::{Parser, Reader};
 use ply_rs_bw::ply::{DefaultElement, Encoding, Header, Ply, PropertyType, ScalarType};
 
-use super::{Mesh, MeshError, decode, fan};
+use super::decode::{decode, fan};
+use crate::geometry::mesh::{Mesh, MeshError};
 
 impl Mesh {
     /// Reads a PLY file's bytes, ASCII or binary, naming it `name` in errors: the

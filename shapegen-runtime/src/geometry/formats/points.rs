@@ -4,7 +4,9 @@ use std::path::Path;
 
 use glam::Vec3;
 
-use super::{MeshError, decode, ply::ply_points};
+use super::decode::decode;
+use super::ply::ply_points;
+use crate::geometry::mesh::MeshError;
 
 /// A set of points in world space, as a scanner writes them: a target for the Chamfer
 /// distance and the F-score ([`crate::score::metrics`]).

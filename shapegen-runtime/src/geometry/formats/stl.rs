@@ -4,7 +4,8 @@ use std::io::Cursor;
 
 use glam::Vec3;
 
-use super::{Mesh, MeshError, decode};
+use super::decode::decode;
+use crate::geometry::mesh::{Mesh, MeshError};
 
 impl Mesh {
     /// Reads an STL file's bytes, ASCII or binary, naming it `name` in errors. Triangles

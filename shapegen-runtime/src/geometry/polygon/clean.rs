@@ -2,7 +2,7 @@
 
 use glam::DVec2;
 
-use super::{segment_distance, signed_area};
+use super::measure::{segment_distance, signed_area};
 
 /// Why an outline is not a simple polygon. Points and edges are named by their index in
 /// the outline as given: edge `i` runs from point `i` to point `i + 1`.

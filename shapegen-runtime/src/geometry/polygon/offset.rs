@@ -2,7 +2,7 @@
 
 use glam::DVec2;
 
-use super::Polygon;
+use super::simple::Polygon;
 
 impl Polygon {
     /// The polygon with every edge moved outward by `distance` and the corners mitred

@@ -3,7 +3,7 @@
 
 use glam::DVec2;
 
-use super::Polygon;
+use super::simple::Polygon;
 
 /// A footprint cut by [`Polygon::setback`]: the footprint moved inward, and one strip
 /// per edge between the edge and its moved copy. The remainder and the strips tile the
@@ -57,7 +57,7 @@ impl Polygon {
             .collect();
         // The offset by -distance: the same moved points.
         let remainder = self.moved_to(&moved)?;
-        let tolerance = super::EPS * self.scale();
+        let tolerance = super::clean::EPS * self.scale();
         let same = remainder.len() == n
             && remainder
                 .points()

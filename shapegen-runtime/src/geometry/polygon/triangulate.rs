@@ -2,7 +2,7 @@
 
 use glam::DVec2;
 
-use super::Polygon;
+use super::simple::Polygon;
 
 impl Polygon {
     /// Cuts the polygon into `len() - 2` triangles of point indices, each

@@ -10,8 +10,10 @@ use glam::{DVec3, Vec3, vec3};
 
 use super::super::polygon::Polygon;
 use super::super::solid::Solid;
-use super::super::{CUBE, Instance, Mesh, MeshId, Scope};
-use super::{RoofError, RoofShape, check};
+use super::shape::{RoofError, RoofShape, check};
+use crate::geometry::instance::{CUBE, Instance, MeshId};
+use crate::geometry::mesh::Mesh;
+use crate::geometry::scope::Scope;
 
 /// A unit mesh roofs over boxes are made of, spanning `[-0.5, 0.5]` on each axis with
 /// `+y` up and its floor at `y = -0.5`.

@@ -15,7 +15,7 @@ use glam::DVec2;
 
 use super::super::polygon::{EPS, Polygon};
 use super::super::solid::Solid;
-use super::RoofError;
+use super::shape::RoofError;
 
 /// An edge of the polygon as it moves: unit direction, unit inward normal, speed.
 struct Line {

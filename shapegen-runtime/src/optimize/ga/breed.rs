@@ -5,13 +5,13 @@
 use rand::{Rng, RngExt};
 use rayon::prelude::*;
 
-use super::{GaSettings, ParentSelection};
+use super::settings::{GaSettings, ParentSelection};
 use crate::derive::Grammar;
 use crate::genome::Genome;
 use crate::ops::{OperatorVariant, Operators};
+use crate::optimize::error::{OptimizeError, SettingsError};
 use crate::optimize::fitness::{Roulette, compare, rank};
 use crate::optimize::run::stream;
-use crate::optimize::{OptimizeError, SettingsError};
 
 /// With the original's breeding, how many breeding events a pair of slots may take to
 /// fill with children within the length window before the GA gives up with an error
@@ -293,13 +293,13 @@ mod tests {
     use super::*;
     use crate::genome::Limits;
 
-    crate::generator! {
+    crate::prelude::generator! {
         /// A chain of blocks.
         pub Chain {
             axiom Seg;
             node Seg {
                 children { next: Seg = 0.5 }
-                derive(s) { s.emit(crate::CUBE); if let Some(n) = next { s.derive(n); } }
+                derive(s) { s.emit(crate::geometry::CUBE); if let Some(n) = next { s.derive(n); } }
             }
         }
     }

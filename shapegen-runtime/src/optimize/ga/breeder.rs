@@ -5,15 +5,16 @@
 
 use rayon::prelude::*;
 
-use super::GaSettings;
 use super::breed::{Generation, Parents};
+use super::settings::GaSettings;
 use crate::derive::Grammar;
+use crate::evaluate::{EvaluateError, Evaluator};
 use crate::genome::{Genome, Limits};
 use crate::ops::Operators;
+use crate::optimize::error::OptimizeError;
 use crate::optimize::error::check_sizes;
 use crate::optimize::fitness::Roulette;
 use crate::optimize::run::{Progress, derived_seed, stream};
-use crate::optimize::{EvaluateError, Evaluator, OptimizeError};
 
 /// A GA's operators and populations: one population, or the islands of an island model
 /// one after the other, each of the settings' size, with their scores (the same number

@@ -12,10 +12,13 @@ pub use settings::{GaSettings, ParentSelection};
 
 use super::best::Best;
 use super::core::Core;
+use super::driver::{Held, Optimizer};
+use super::error::OptimizeError;
 use super::fitness::bits_vec;
 use super::polish::{self, PolishState, Polisher};
-use super::{Evaluator, Held, OptimizeError, Optimizer, Settings};
+use super::settings::Settings;
 use crate::derive::Grammar;
+use crate::evaluate::Evaluator;
 use crate::genome::{Genome, Limits};
 
 crate::checkpoint! {

@@ -7,9 +7,11 @@ use serde::{Deserialize, Serialize};
 use crate::derive::Grammar;
 use crate::genome::Limits;
 use crate::ops::{OperatorVariant, Operators};
+use crate::optimize::driver::Held;
 use crate::optimize::error::check_range;
+use crate::optimize::error::{OptimizeError, SettingsError};
 use crate::optimize::polish;
-use crate::optimize::{Held, OptimizeError, Settings, SettingsError};
+use crate::optimize::settings::Settings;
 
 /// Settings of the [`Ga`](super::Ga). Loads from scene files with serde; missing fields take the
 /// [`Default`] values, unknown fields are errors.

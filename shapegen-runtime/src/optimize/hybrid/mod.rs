@@ -7,18 +7,21 @@ mod refine;
 use crate::optimize::settings::generations_field;
 use serde::{Deserialize, Serialize};
 
+use super::SmcState;
 use super::best::Best;
 use super::core::Core;
+use super::driver::{Held, Optimizer, Record};
 use super::error::check_range;
+use super::error::{OptimizeError, SettingsError};
 use super::fitness::bits_vec;
+use super::ga::GaSettings;
 use super::ga::{Breeder, check_population};
 use super::polish::{self, PolishState, Polisher};
 use super::run::derived_seed;
-use super::{
-    Evaluator, GaSettings, Held, OptimizeError, Optimizer, Order, Record, Settings, SettingsError,
-    Smc, SmcSettings, SmcState, SmcVariant,
-};
+use super::settings::Settings;
+use super::smc::{Order, Smc, SmcSettings, SmcVariant};
 use crate::derive::Grammar;
+use crate::evaluate::Evaluator;
 use crate::genome::{Genome, Limits};
 use crate::ops::Operators;
 

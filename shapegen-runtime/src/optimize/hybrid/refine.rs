@@ -7,10 +7,11 @@ use rayon::prelude::*;
 use super::super::fitness::{compare, rank};
 use super::super::mcmc::{MoveScratch, propose};
 use super::super::run::stream;
-use super::super::{Evaluator, OptimizeError};
 use crate::derive::Grammar;
+use crate::evaluate::Evaluator;
 use crate::genome::Genome;
 use crate::ops::Operators;
+use crate::optimize::error::OptimizeError;
 
 /// One generation's refinement: how many of the best individuals, and how many moves
 /// each.

@@ -41,15 +41,16 @@ pub use exchange::{Alone, Exchange, ExchangeError};
 use super::best::Best;
 use super::core::Core;
 use super::driver::resume_with;
+use super::driver::{Agreement, Held, Optimizer, Record};
 use super::error::check_sizes;
+use super::error::{OptimizeError, SettingsError};
 use super::fitness::{bits_vec, compare, rank};
+use super::ga::GaSettings;
 use super::ga::{Breeder, Generation, Parents, check_population};
 use super::run::{StopReason, derived_seed, grammar_struct_traits};
-use super::{
-    Agreement, Evaluator, GaSettings, Held, OptimizeError, Optimizer, Record, Settings,
-    SettingsError,
-};
+use super::settings::Settings;
 use crate::derive::Grammar;
+use crate::evaluate::Evaluator;
 use crate::genome::{Genome, Limits};
 use wire::{Reader, Writer};
 

@@ -1,7 +1,7 @@
 //! The bytes of the messages islands send each other: little-endian numbers, fitness
 //! values as their bits, genomes as their words (checked when read).
 
-use super::ExchangeError;
+use super::exchange::ExchangeError;
 use crate::derive::Grammar;
 use crate::genome::Genome;
 use crate::genome::validate::validate_words;
@@ -138,16 +138,16 @@ impl<'a> Reader<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::optimize::stream;
+    use crate::optimize::run::stream;
 
-    crate::generator! {
+    crate::prelude::generator! {
         /// A chain of blocks.
         pub Chain {
             axiom Seg;
             node Seg {
                 params { w: f32 ~ uniform(0.5, 2.0) }
                 children { next: Seg = 0.5 }
-                derive(s) { s.emit(crate::CUBE); if let Some(n) = next { s.derive(n); } }
+                derive(s) { s.emit(crate::geometry::CUBE); if let Some(n) = next { s.derive(n); } }
             }
         }
     }

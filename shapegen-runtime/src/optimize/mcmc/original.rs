@@ -17,14 +17,16 @@
 use rand::Rng;
 use rayon::prelude::*;
 
-use super::Mcmc;
+use super::moves::OriginalMove as Move;
+use super::sampler::Mcmc;
 use crate::derive::Grammar;
+use crate::evaluate::Evaluator;
 use crate::genome::{DEPTH_CAP, Genome, depths, node_of};
 use crate::graph::HEADER_WORDS;
 use crate::ops::draw::{int_value, pick, value, value01};
 use crate::ops::{Operators, redraw};
+use crate::optimize::error::OptimizeError;
 use crate::optimize::run::stream;
-use crate::optimize::{Evaluator, OptimizeError};
 
 /// Chain `i` starts at the exponent `1 / (i + 1)^TEMPERATURE_EXPONENT`.
 const TEMPERATURE_EXPONENT: f32 = 1.03;
@@ -37,16 +39,6 @@ const LEVEL_CAP: u32 = 25;
 /// Non-positive fitness values are shifted to lie this far above 0 (the lower of the
 /// two values being compared lands on it).
 const SHIFT: f32 = 0.01;
-
-/// What a chain proposed this iteration.
-#[derive(Clone, Copy, Debug, Default)]
-pub(super) struct Move {
-    /// The log prior change in the acceptance: a jump's selection log probability after
-    /// minus before; 0 for a diffusion.
-    accept_prior: f32,
-    /// The log prior the proposal keeps if accepted (the original's `setLogPrior`).
-    log_prior: f32,
-}
 
 /// Per-thread scratch.
 #[derive(Default)]
@@ -386,7 +378,7 @@ mod tests {
     use super::*;
     use crate::genome::Limits;
 
-    crate::generator! {
+    crate::prelude::generator! {
         /// Branches of three kinds; `C` is a leaf.
         pub Branchy {
             axiom Root;
@@ -403,7 +395,7 @@ mod tests {
         }
     }
 
-    crate::generator! {
+    crate::prelude::generator! {
         /// A chain: every gene has one link.
         pub Line {
             axiom Seg;

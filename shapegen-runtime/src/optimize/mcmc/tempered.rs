@@ -5,24 +5,17 @@
 use rand::{Rng, RngExt};
 use rayon::prelude::*;
 
-use super::Mcmc;
+use super::moves::TemperedMove as Move;
+use super::sampler::Mcmc;
 use crate::derive::Grammar;
+use crate::evaluate::Evaluator;
 use crate::genome::{Genome, node_of};
 use crate::graph::HEADER_WORDS;
 use crate::ops::Operators;
+use crate::optimize::error::OptimizeError;
 use crate::optimize::fitness::mean_std;
 use crate::optimize::grow::{jump_links, sample_subtree};
 use crate::optimize::run::stream;
-use crate::optimize::{Evaluator, OptimizeError};
-
-/// What a chain proposed this iteration.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Move {
-    /// Whether it is a jump (delayed rejection applies).
-    jump: bool,
-    /// Log of the proposal ratio.
-    log_q: f64,
-}
 
 /// Per-thread scratch of a move.
 #[derive(Default)]

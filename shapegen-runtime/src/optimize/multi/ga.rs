@@ -6,12 +6,14 @@ use super::record::{Front, Member};
 use super::settings::MultiGaSettings;
 use super::state::MultiGaState;
 use crate::derive::Grammar;
+use crate::evaluate::{EvaluateError, MultiEvaluator};
 use crate::genome::{Genome, Limits};
+use crate::optimize::core::Core;
+use crate::optimize::driver::{Held, Optimizer, Record};
+use crate::optimize::error::OptimizeError;
 use crate::optimize::error::{CheckpointError, check_sizes};
 use crate::optimize::ga::Breeder;
-use crate::optimize::{
-    Core, EvaluateError, Held, MultiEvaluator, OptimizeError, Optimizer, Record, Settings,
-};
+use crate::optimize::settings::Settings;
 
 /// Buffers of the archive update.
 #[derive(Clone, Debug, Default)]

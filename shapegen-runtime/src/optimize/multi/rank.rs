@@ -11,7 +11,7 @@
 use std::cmp::Ordering;
 
 use super::settings::{Ranking, Selection};
-use crate::optimize::Sense;
+use crate::evaluate::Sense;
 use crate::optimize::fitness::compare;
 
 /// Orders two raw values of an objective, better first (`Less` means `a` is better).

@@ -7,10 +7,12 @@ use std::time::Duration;
 use serde::{Deserialize, Serialize};
 
 use crate::derive::Grammar;
+use crate::evaluate::{MultiEvaluator, Sense};
 use crate::genome::Genome;
+use crate::optimize::driver::Record;
 use crate::optimize::fitness::bits_vec;
 use crate::optimize::run::grammar_struct_traits;
-use crate::optimize::{Control, MultiEvaluator, Progress, Record, Sense, Silent, StopReason};
+use crate::optimize::run::{Control, Progress, Silent, StopReason};
 
 /// A model of the archive: its genome and its raw objective values.
 #[derive(Serialize, Deserialize)]

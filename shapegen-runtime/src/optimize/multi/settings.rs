@@ -4,8 +4,10 @@ use crate::genome::Limits;
 use crate::optimize::settings::generations_field;
 use serde::{Deserialize, Serialize};
 
+use crate::optimize::error::SettingsError;
 use crate::optimize::error::check_range;
-use crate::optimize::{GaSettings, Settings, SettingsError};
+use crate::optimize::ga::GaSettings;
+use crate::optimize::settings::Settings;
 
 /// How a population's objective vectors become one selection fitness (see
 /// [`selection_fitness`](super::selection_fitness)).

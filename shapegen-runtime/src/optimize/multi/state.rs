@@ -9,9 +9,10 @@ use serde::{Deserialize, Serialize};
 use super::record::{Front, Member, MultiHistoryEntry};
 use super::settings::MultiGaSettings;
 use crate::derive::Grammar;
+use crate::evaluate::Sense;
 use crate::genome::{Genome, Limits};
 use crate::optimize::fitness::bits_vec;
-use crate::optimize::{Progress, Sense};
+use crate::optimize::run::Progress;
 
 crate::checkpoint! {
     @struct

@@ -21,10 +21,13 @@ pub use cmaes::SepCmaEs;
 
 use serde::{Deserialize, Serialize};
 
+use super::driver::Held;
+use super::error::{CheckpointError, OptimizeError, SettingsError};
 use super::fitness::{best_index, compare};
+use super::run::Progress;
 use super::run::stream;
-use super::{CheckpointError, Evaluator, Held, OptimizeError, Progress, SettingsError};
 use crate::derive::Grammar;
+use crate::evaluate::Evaluator;
 use crate::genome::{Genome, node_of};
 use crate::graph::{Distribution, HEADER_WORDS};
 

@@ -4,7 +4,7 @@
 use rand::{Rng, RngExt};
 
 use super::super::grow::{depth_of, expand, link_facts, open_links};
-use super::{Cursor, Order, SmcSettings};
+use super::settings::{Cursor, Order, SmcSettings};
 use crate::derive::Grammar;
 use crate::genome::{Genome, Limits, node_of};
 use crate::geometry::Instance;

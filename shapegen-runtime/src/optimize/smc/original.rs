@@ -6,7 +6,7 @@ use rand::Rng;
 
 use super::super::fitness::rank;
 use super::super::grow::link_facts;
-use super::Order;
+use super::settings::Order;
 use crate::derive::Grammar;
 use crate::genome::{DEPTH_CAP, Genome, node_of};
 use crate::graph::HEADER_WORDS;
@@ -174,7 +174,7 @@ mod tests {
     use super::*;
     use crate::genome::parent_pos;
 
-    crate::generator! {
+    crate::prelude::generator! {
         /// Every gene may take two children.
         pub Two {
             axiom N;
@@ -182,7 +182,7 @@ mod tests {
         }
     }
 
-    crate::generator! {
+    crate::prelude::generator! {
         /// A root with four leaf links of very different probabilities.
         pub Fan {
             axiom R;
@@ -191,7 +191,7 @@ mod tests {
         }
     }
 
-    crate::generator! {
+    crate::prelude::generator! {
         /// A chain.
         pub Line {
             axiom S;

@@ -1,13 +1,15 @@
 //! Measuring bred children: projections counted from their parents' kept per-pixel
 //! counts, the other objectives in full.
 
-use super::ObjectiveSet;
 use super::kind::Objective;
 use super::retained::{ProjectionCounts, ProjectionScorer};
+use super::set::ObjectiveSet;
+use crate::derive::Grammar;
+use crate::genome::Genome;
 use crate::geometry::BoundMeshes;
+use crate::score::batch::InstanceBatch;
 use crate::score::retained::{Retention, RetentionStats};
-use crate::score::{InstanceBatch, Scorer};
-use crate::{Genome, Grammar};
+use crate::score::scorer::Scorer;
 
 /// Measures an [`ObjectiveSet`] on children bred from a population it measured: each
 /// projection objective ([`ProjectionScorer`]) is counted from the kept state of the

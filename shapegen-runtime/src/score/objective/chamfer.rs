@@ -6,7 +6,7 @@ use glam::DVec3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
-use super::ObjectiveError;
+use super::error::ObjectiveError;
 use super::surface::Surface;
 use crate::geometry::PointCloud;
 use crate::score::metrics::{nearest, sample, subsample};

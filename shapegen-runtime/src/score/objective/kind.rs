@@ -2,8 +2,8 @@
 
 use glam::{Vec2, Vec3};
 
-use super::ObjectiveError;
 use super::chamfer::ChamferMatch;
+use super::error::ObjectiveError;
 use super::normals::{NormalGrid, cluster, spread};
 use super::parts::{Parts, area_share, roof_pitch};
 use super::projection::{ProjectionMatch, View};

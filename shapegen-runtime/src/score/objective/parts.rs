@@ -7,7 +7,7 @@
 
 use glam::{DVec3, Vec3};
 
-use super::ObjectiveError;
+use super::error::ObjectiveError;
 use super::surface::Surface;
 use crate::geometry::{BoundMeshes, MeshId};
 

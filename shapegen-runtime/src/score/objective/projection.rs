@@ -3,7 +3,7 @@
 use glam::{Vec2, Vec3};
 use image::{GrayImage, Luma};
 
-use super::ObjectiveError;
+use super::error::ObjectiveError;
 use super::surface::Surface;
 use crate::score::silhouette::MAX_TARGET_PIXELS;
 use crate::score::silhouette::raster::{Coverage, row_words};

@@ -3,11 +3,11 @@
 use super::projection::ProjectionMatch;
 use super::surface::Surface;
 use crate::geometry::{BoundMeshes, Instance};
-use crate::score::Scorer;
 use crate::score::retained::{
     CellCounts, Footprinted, Footprints, Grids, Hit, Overflow, PixelCounts, Recorder,
     RetainedScorer,
 };
+use crate::score::scorer::Scorer;
 use crate::score::silhouette::raster::Coverage;
 
 /// A [`ProjectionMatch`] measured on models made of a grammar's meshes: a [`Scorer`]

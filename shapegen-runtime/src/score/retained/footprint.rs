@@ -13,8 +13,10 @@
 
 use std::sync::Arc;
 
+use super::cells::Overflow;
 use super::diff::{InstanceKey, instance_key};
-use super::{Hit, Overflow, RetainedScorer};
+use super::pixels::Hit;
+use super::scorer::RetainedScorer;
 use crate::geometry::Instance;
 
 /// The fewest triangles (or hull points) whose rasterization a kept footprint saves.

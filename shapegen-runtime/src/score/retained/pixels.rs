@@ -1,6 +1,6 @@
 //! Per-pixel hit counts of one image, tiled as its coverage rows are laid out.
 
-use super::{CellCounts, Overflow, TILE_WORDS};
+use super::cells::{CellCounts, Overflow, TILE_WORDS};
 use crate::score::silhouette::raster::row_words;
 
 /// Which way an instance's cells go: added to a model's counts or removed from them.

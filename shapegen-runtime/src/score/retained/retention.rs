@@ -6,10 +6,13 @@ use std::sync::Arc;
 
 use rayon::prelude::*;
 
-use super::{InstanceDiff, RetainedScorer, TILE_BYTES};
+use super::cells::TILE_BYTES;
+use super::diff::InstanceDiff;
+use super::scorer::RetainedScorer;
+use crate::derive::{Grammar, Site};
+use crate::genome::Genome;
 use crate::geometry::Instance;
-use crate::score::InstanceBatch;
-use crate::{Genome, Grammar, Site};
+use crate::score::batch::InstanceBatch;
 
 /// What is kept of one model: its instances and each scorer's state.
 struct Kept<S: RetainedScorer> {

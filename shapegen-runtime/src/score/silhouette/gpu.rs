@@ -11,7 +11,7 @@ use super::gpu_draw::{
 };
 use super::scorer::SilhouetteScorer;
 use crate::gpu::{GpuContext, GpuError};
-use crate::score::InstanceBatch;
+use crate::score::batch::InstanceBatch;
 
 /// Mirrors the WGSL struct `Params` of [`shapegen_shaders::SILHOUETTE`].
 #[repr(C)]

@@ -19,11 +19,12 @@ use bytemuck::{Pod, Zeroable};
 use super::counts::{SilhouetteCounts, TargetCounts};
 use super::gpu::GpuSilhouetteScorer;
 use super::gpu_draw::{Counters, Passes, Program, TargetIndex, View, counter_bytes, rows};
+use crate::derive::{Grammar, Site};
+use crate::genome::Genome;
 use crate::geometry::Instance;
 use crate::gpu::GpuError;
-use crate::score::InstanceBatch;
+use crate::score::batch::InstanceBatch;
 use crate::score::retained::{InstanceDiff, RetentionStats, genome_key};
-use crate::{Genome, Grammar, Site};
 
 /// Mirrors the WGSL struct `Params` of [`shapegen_shaders::SILHOUETTE_RETAINED`].
 #[repr(C)]

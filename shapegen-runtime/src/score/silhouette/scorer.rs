@@ -10,9 +10,10 @@ use super::raster::{
 };
 use super::target::ImageTarget;
 use crate::geometry::{BoundMeshes, Instance};
+use crate::score::form::{Form, smoothstep};
 use crate::score::metrics::silhouette_iou;
 use crate::score::retained::Recorder;
-use crate::score::{Form, Scorer, smoothstep};
+use crate::score::scorer::Scorer;
 
 /// Why a silhouette scorer cannot be built or asked.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -5,7 +5,7 @@ use glam::Mat4;
 use super::camera::{Camera, CameraError};
 use super::counts::TargetCounts;
 use super::raster::row_words;
-use crate::score::squared_distances;
+use crate::score::distance::squared_distances;
 
 /// Most pixels one target image may have (4096 x 4096): counts of grey levels over a
 /// whole image then fit in 32 bits on every backend.

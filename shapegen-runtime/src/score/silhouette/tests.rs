@@ -10,7 +10,8 @@ use rand_chacha::ChaCha8Rng;
 use super::raster::{Coverage, MAX_POLYGON, clip_triangle, convex_hull};
 use super::*;
 use crate::geometry::{CUBE, Instance, MeshLibrary};
-use crate::score::{Form, Scorer, smoothstep};
+use crate::score::form::{Form, smoothstep};
+use crate::score::scorer::Scorer;
 
 const SMOOTH: Form = Form::Smooth {
     good: 1.0,
@@ -643,7 +644,7 @@ fn camera_errors_name_the_field_and_the_valid_range() {
     )
     .unwrap_err();
     assert_eq!(
-        crate::error_chain(&err),
+        crate::error::error_chain(&err),
         "target `sky`: camera `radius` is -1; it must be greater than 0"
     );
 }
@@ -703,13 +704,13 @@ fn scorer_errors_name_the_limit() {
 #[test]
 fn the_tree_meshes_take_the_hull_path_and_a_concave_mesh_does_not() {
     // Copies of the tree generator's meshes, so that the crate's tests stay inside it.
-    let trunk = crate::Mesh::from_obj_str("trunk", include_str!("testdata/trunk.obj"));
-    let leaf = crate::Mesh::from_obj_str("leaf", include_str!("testdata/leaf.obj"));
+    let trunk = crate::geometry::Mesh::from_obj_str("trunk", include_str!("testdata/trunk.obj"));
+    let leaf = crate::geometry::Mesh::from_obj_str("leaf", include_str!("testdata/leaf.obj"));
     let mut library = MeshLibrary::new();
     library.register("trunk", trunk.unwrap()).unwrap();
     library.register("leaf", leaf.unwrap()).unwrap();
     // A cube with one corner pushed in is concave.
-    let mut dented = crate::Mesh::unit_cube();
+    let mut dented = crate::geometry::Mesh::unit_cube();
     for p in &mut dented.positions {
         if *p == Vec3::splat(0.5) {
             *p = Vec3::splat(0.1);

@@ -1,8 +1,9 @@
 //! The targets combined into one grid of voxel classes.
 
+use super::grid::Grid;
 use super::parity::{Bounds, Voxelizer};
-use super::{Fill, Grid, VolumeError, VolumeTarget, winding};
-use crate::score::squared_distances;
+use super::{Fill, VolumeError, VolumeTarget, winding};
+use crate::score::distance::squared_distances;
 
 /// The most distinct voxel weights (classes) a scene may have.
 pub const MAX_CLASSES: usize = 16;

@@ -29,7 +29,8 @@ use super::quant::{Placement, QuantBox, quantize};
 use super::span::span_out_of_grid;
 use super::{VolumeCounts, VolumeScorer};
 use crate::gpu::{GpuContext, GpuError};
-use crate::score::{Form, InstanceBatch};
+use crate::score::batch::InstanceBatch;
+use crate::score::form::Form;
 
 /// Invocations per workgroup (`@workgroup_size` in the shader).
 const WORKGROUP: u64 = 64;

@@ -145,7 +145,9 @@ pub use surface::{MAX_HALF_WIDTH, fscore_half_width};
 
 use std::sync::Arc;
 
-use super::{Form, Scorer, metrics, smoothstep};
+use super::form::{Form, smoothstep};
+use super::metrics;
+use super::scorer::Scorer;
 use crate::geometry::{BoundMeshes, Instance, Mesh, MeshError, MeshId};
 use parts::PartKind;
 use surface::{SurfaceBand, SurfaceCounts};

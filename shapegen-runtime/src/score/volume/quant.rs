@@ -34,7 +34,7 @@
 
 use glam::{DMat3, DVec3, Vec3};
 
-use super::Grid;
+use super::grid::Grid;
 
 /// Most lattice points along one axis of an instance's bounding box.
 pub(crate) const MAX_SPAN: i64 = 1 << 24;

@@ -15,7 +15,7 @@
 
 use glam::{Affine3A, Vec3};
 
-use super::Grid;
+use super::grid::Grid;
 use super::parts::PartKind;
 use crate::geometry::FACET_CORNERS;
 

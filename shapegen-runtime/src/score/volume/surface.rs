@@ -24,8 +24,8 @@
 //! the model's surface near the target is dilated along x once per voxel of the ball's
 //! half-width, then each row of the ball is a shift of whole grid rows.
 
-use super::Grid;
 use super::classes::VoxelClasses;
+use super::grid::Grid;
 
 /// Whether voxels `(dx, dy, dz)` apart on a grid of voxel size `cell` lie within
 /// `threshold` of each other. The one test of the distance, so that every count agrees.
@@ -425,8 +425,9 @@ mod tests {
     use super::super::{Fill, VolumeCounts, VolumeScorer, VolumeTarget};
     use super::*;
     use crate::geometry::{CUBE, Instance, Mesh, MeshLibrary};
+    use crate::score::form::Form;
     use crate::score::retained::RetainedScorer;
-    use crate::score::{Form, Scorer};
+    use crate::score::scorer::Scorer;
 
     /// A box target of the given half-size and centre.
     fn box_target(half: Vec3, centre: Vec3) -> VolumeTarget {

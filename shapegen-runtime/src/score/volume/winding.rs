@@ -12,7 +12,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::Grid;
+use super::grid::Grid;
 use crate::geometry::Mesh;
 
 /// The grid's lattice points inside `mesh` by winding number, as indices

@@ -9,9 +9,11 @@ use serde_json::{Map, Value};
 
 use super::path::{PlaceId, Places};
 use crate::derive::Grammar;
+use crate::genome::json::error::JsonError;
 use crate::genome::json::params::{ParamError, names, names_or_none, read_params, slot_names};
-use crate::genome::json::{GenomeSet, JsonError, check_generator};
-use crate::genome::{Genome, node_of};
+use crate::genome::json::read::check_generator;
+use crate::genome::json::set::GenomeSet;
+use crate::genome::packed::{Genome, node_of};
 use crate::graph::{HEADER_WORDS, NodeDesc, SlotDesc};
 use crate::param;
 

@@ -3,9 +3,9 @@
 //! parameters always sit on one line, written as the packed form writes them.
 
 use crate::derive::Grammar;
-use crate::genome::json::GenomeSet;
+use crate::genome::json::set::GenomeSet;
 use crate::genome::json::write::{ParamsOut, write_inline};
-use crate::genome::{Genome, node_of};
+use crate::genome::packed::{Genome, node_of};
 use crate::graph::HEADER_WORDS;
 
 /// Most empty entries of an array slot written on one line.

@@ -34,17 +34,21 @@ impl Grammar for House {
         let house = shape.with_size(vec3(8.0, 6.0, 4.0));
         for (face, wall) in house.faces() {
             match face {
-                Face::Top => wall.extrude(0.5).emit(crate::CUBE),
+                Face::Top => wall.extrude(0.5).emit(crate::geometry::CUBE),
                 Face::Bottom => {}
                 _ => {
                     let floors = [Part::Abs(2.0), Part::Float(1.0)];
                     let mut floors = wall.split(Axis::Y, &floors);
-                    floors.next().unwrap().extrude(0.1).emit(crate::CUBE);
+                    floors
+                        .next()
+                        .unwrap()
+                        .extrude(0.1)
+                        .emit(crate::geometry::CUBE);
                     for window in floors.next().unwrap().repeat(Axis::X, 1.5) {
                         window
                             .resize(vec3(0.5, 0.5, 1.0))
                             .extrude(-0.2)
-                            .emit(crate::CUBE);
+                            .emit(crate::geometry::CUBE);
                     }
                 }
             }
@@ -110,7 +114,7 @@ impl Grammar for Hipped {
 
     fn derive_gene<'a>(shape: Shape<'a, Self>, _gene: GeneView<'a>) {
         let mass = shape.with_size(vec3(10.0, 4.0, 6.0));
-        mass.emit(crate::CUBE);
+        mass.emit(crate::geometry::CUBE);
         let pieces = RoofMeshes {
             gable: MeshId(1),
             shed: MeshId(1),
