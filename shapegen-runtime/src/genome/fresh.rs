@@ -61,28 +61,16 @@ impl<G> Clone for FreshGenes<G> {
     }
 }
 
-/// The uniform `f32` components of a parameter drawn from `dist`, as `(lo, hi)` per
-/// word; `None` for any other distribution.
-fn uniform_components(dist: &Distribution) -> Option<&[f32]> {
+/// The bounds of the uniform `f32` components of a parameter drawn from `dist`, lower
+/// and upper, one of each per word; `None` for any other distribution.
+fn uniform_bounds(dist: &Distribution) -> Option<(&[f32], &[f32])> {
     match dist {
-        Distribution::Uniform { lo, .. } | Distribution::Angle { lo, .. } => {
-            Some(std::slice::from_ref(lo))
+        Distribution::Uniform { lo, hi } | Distribution::Angle { lo, hi, .. } => {
+            Some((std::slice::from_ref(lo), std::slice::from_ref(hi)))
         }
-        Distribution::UniformVec2 { lo, .. } => Some(&lo[..]),
-        Distribution::UniformVec3 { lo, .. } => Some(&lo[..]),
+        Distribution::UniformVec2 { lo, hi } => Some((&lo[..], &hi[..])),
+        Distribution::UniformVec3 { lo, hi } => Some((&lo[..], &hi[..])),
         _ => None,
-    }
-}
-
-/// The upper bounds matching [`uniform_components`].
-fn upper_components(dist: &Distribution) -> &[f32] {
-    match dist {
-        Distribution::Uniform { hi, .. } | Distribution::Angle { hi, .. } => {
-            std::slice::from_ref(hi)
-        }
-        Distribution::UniformVec2 { hi, .. } => &hi[..],
-        Distribution::UniformVec3 { hi, .. } => &hi[..],
-        _ => &[],
     }
 }
 
@@ -118,15 +106,13 @@ impl<G: Grammar> FreshGenes<G> {
 
     /// Plans parameter `dist` at word `word` of the template gene at `first_word`.
     fn add_param(&mut self, first_word: usize, word: u32, dist: &'static Distribution) {
-        let planned = uniform_components(dist).filter(|lo| {
-            let hi = upper_components(dist);
-            lo.iter().zip(hi).all(|(&lo, &hi)| (hi - lo).is_finite())
-        });
-        let Some(lo) = planned else {
+        let planned = uniform_bounds(dist)
+            .filter(|(lo, hi)| lo.iter().zip(*hi).all(|(&lo, &hi)| (hi - lo).is_finite()));
+        let Some((lo, hi)) = planned else {
             self.draws.push(Draw::Param { word, dist });
             return;
         };
-        for (i, (&lo, &hi)) in lo.iter().zip(upper_components(dist)).enumerate() {
+        for (i, (&lo, &hi)) in lo.iter().zip(hi).enumerate() {
             let word = word + i as u32;
             if lo < hi {
                 self.draws.push(Draw::Uniform {
