@@ -21,6 +21,25 @@ pub fn smoothstep(a: f64, b: f64, x: f64) -> f64 {
     t * t * t * (t * (6.0 * t - 15.0) + 10.0)
 }
 
+/// `part / whole`, 0 when the whole is empty: an IoU is the intersection's share of
+/// the union, a precision the share of the model's surface near the target's.
+pub(crate) fn share(part: u64, whole: u64) -> f64 {
+    if whole == 0 {
+        0.0
+    } else {
+        part as f64 / whole as f64
+    }
+}
+
+/// The harmonic mean of `precision` and `recall`, 0 when both are 0.
+pub(crate) fn f_score(precision: f64, recall: f64) -> f64 {
+    if precision + recall > 0.0 {
+        2.0 * precision * recall / (precision + recall)
+    } else {
+        0.0
+    }
+}
+
 /// How a scorer turns its counts into fitness.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Form {
@@ -118,5 +137,13 @@ mod tests {
             assert!((y + smoothstep(0.0, 1.0, 1.0 - x) - 1.0).abs() < 1e-12);
             last = y;
         }
+    }
+
+    #[test]
+    fn shares_and_f_scores_are_zero_when_empty() {
+        assert_eq!(share(3, 12), 0.25);
+        assert_eq!(share(0, 0), 0.0);
+        assert_eq!(f_score(0.5, 1.0), 2.0 / 3.0);
+        assert_eq!(f_score(0.0, 0.0), 0.0);
     }
 }

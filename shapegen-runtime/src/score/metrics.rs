@@ -24,6 +24,7 @@ use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+use super::form::{f_score, share};
 use super::silhouette::{ImageTarget, TargetCounts};
 use super::volume::{VolumeCounts, VolumeScorer};
 use crate::geometry::{BoundMeshes, Instance, Mesh};
@@ -48,25 +49,6 @@ pub fn silhouette_iou(target: &ImageTarget, counts: &TargetCounts) -> f64 {
 /// voxels; what a model covers beyond the grid is not counted. 0 when both are empty.
 pub fn voxel_iou(scorer: &VolumeScorer, counts: &VolumeCounts) -> f64 {
     share(counts.inside, scorer.target_voxels() + counts.outside)
-}
-
-/// `part / whole`, 0 when the whole is empty: an IoU is the intersection's share of
-/// the union, a precision the share of the model's surface near the target's.
-pub(crate) fn share(part: u64, whole: u64) -> f64 {
-    if whole == 0 {
-        0.0
-    } else {
-        part as f64 / whole as f64
-    }
-}
-
-/// The harmonic mean of `precision` and `recall`, 0 when both are 0.
-pub(crate) fn f_score(precision: f64, recall: f64) -> f64 {
-    if precision + recall > 0.0 {
-        2.0 * precision * recall / (precision + recall)
-    } else {
-        0.0
-    }
 }
 
 /// The triangles of a model's instances, in world space.
@@ -296,13 +278,5 @@ mod tests {
         assert!(sample(&[], 10, &mut rng).is_none());
         assert!(sample(&[[Vec3::ZERO; 3]], 10, &mut rng).is_none());
         assert!(SurfaceDistance::between(&[big], &[big], 0.1, 0, 0).is_none());
-    }
-
-    #[test]
-    fn shares_and_f_scores_are_zero_when_empty() {
-        assert_eq!(share(3, 12), 0.25);
-        assert_eq!(share(0, 0), 0.0);
-        assert_eq!(f_score(0.5, 1.0), 2.0 / 3.0);
-        assert_eq!(f_score(0.0, 0.0), 0.0);
     }
 }

@@ -2,11 +2,9 @@
 
 use super::grid::Grid;
 use super::parity::{Bounds, Voxelizer};
-use super::{Fill, VolumeError, VolumeTarget, winding};
+use super::target::{Fill, MAX_CLASSES, VolumeError, VolumeTarget};
+use super::winding;
 use crate::score::distance::squared_distances;
-
-/// The most distinct voxel weights (classes) a scene may have.
-pub const MAX_CLASSES: usize = 16;
 
 /// Every voxel's class: the distinct combined weights `sum_i (inside target i ?
 /// inside_i : outside_i)` in ascending order, and one class index per voxel.

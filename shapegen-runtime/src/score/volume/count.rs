@@ -3,41 +3,17 @@
 
 use glam::{DVec3, Vec3};
 
+use super::counts::VolumeCounts;
 use super::parity::{Bounds, Voxelizer};
 use super::parts::PartKind;
 use super::quant::{Placement, QuantBox, quantize, usable_linear, voxels_of_volume};
+use super::scorer::VolumeScorer;
+use super::scratch::VolumeScratch;
 use super::span::span_out_of_grid;
-use super::{VolumeCounts, VolumeScorer};
 use crate::geometry::Instance;
 
 /// Facet corners are snapped to `1 / FACET_SNAP` of a voxel.
 const FACET_SNAP: f64 = 4096.0;
-
-/// Working memory of one worker counting models with a [`VolumeScorer`]: a bitset over
-/// the grid of the voxels covered, one of those covered more than once, and the list
-/// of the words of the first that are not zero (the second's are a subset); with the
-/// F-score form, the model's surface dilated along x.
-#[derive(Clone, Debug)]
-pub struct VolumeScratch {
-    pub(super) covered: Vec<u64>,
-    twice: Vec<u64>,
-    pub(super) touched: Vec<u32>,
-    pub(super) voxelizer: Voxelizer,
-    pub(super) dilated: Vec<Vec<u64>>,
-}
-
-impl VolumeScratch {
-    pub(crate) fn new(voxels: u64) -> VolumeScratch {
-        let words = voxels.div_ceil(64) as usize;
-        VolumeScratch {
-            covered: vec![0; words],
-            twice: vec![0; words],
-            touched: Vec::new(),
-            voxelizer: Voxelizer::default(),
-            dilated: Vec::new(),
-        }
-    }
-}
 
 /// Where the lattice points one instance covers go: a model's running counts, in one
 /// form or another.

@@ -21,13 +21,14 @@ use std::sync::Mutex;
 use rayon::prelude::*;
 use wgpu::util::DeviceExt;
 
-use super::classes::MAX_CLASSES;
 use super::count::Lattice;
+use super::counts::VolumeCounts;
 use super::parity::Voxelizer;
 use super::parts::PartKind;
 use super::quant::{Placement, QuantBox, quantize};
+use super::scorer::VolumeScorer;
 use super::span::span_out_of_grid;
-use super::{VolumeCounts, VolumeScorer};
+use super::target::MAX_CLASSES;
 use crate::gpu::{GpuContext, GpuError};
 use crate::score::batch::InstanceBatch;
 use crate::score::form::Form;

@@ -1,7 +1,9 @@
 //! Incremental volume counting: per-voxel hit counts of one model.
 
-use super::count::{Lattice, VolumeScratch, word_masks};
-use super::{VolumeCounts, VolumeScorer};
+use super::count::{Lattice, word_masks};
+use super::counts::VolumeCounts;
+use super::scorer::VolumeScorer;
+use super::scratch::VolumeScratch;
 use crate::geometry::Instance;
 use crate::score::retained::{CellCounts, Changed, Overflow, RetainedScorer, TILE_WORDS};
 

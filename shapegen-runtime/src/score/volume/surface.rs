@@ -30,7 +30,7 @@ use super::grid::Grid;
 /// Whether voxels `(dx, dy, dz)` apart on a grid of voxel size `cell` lie within
 /// `threshold` of each other. The one test of the distance, so that every count agrees.
 #[inline]
-fn within(cell: [f64; 3], [dx, dy, dz]: [i64; 3], threshold: f64) -> bool {
+pub(super) fn within(cell: [f64; 3], [dx, dy, dz]: [i64; 3], threshold: f64) -> bool {
     let (x, y, z) = (
         dx as f64 * cell[0],
         dy as f64 * cell[1],
@@ -127,12 +127,12 @@ pub(crate) struct SurfaceBand {
 }
 
 /// Sets bit `v` of `bits`.
-fn set(bits: &mut [u64], v: usize) {
+pub(super) fn set(bits: &mut [u64], v: usize) {
     bits[v / 64] |= 1 << (v % 64);
 }
 
 /// Whether bit `v` of `bits` is set.
-fn get(bits: &[u64], v: usize) -> bool {
+pub(super) fn get(bits: &[u64], v: usize) -> bool {
     bits[v / 64] >> (v % 64) & 1 == 1
 }
 
@@ -149,7 +149,7 @@ fn y_mask(grid: &Grid, w: usize, dy: i64) -> u64 {
 }
 
 /// The surface voxels of `inside` (a bitset over `grid`), by their face neighbours.
-fn surface_voxels(grid: &Grid, inside: &[u64]) -> Vec<u64> {
+pub(super) fn surface_voxels(grid: &Grid, inside: &[u64]) -> Vec<u64> {
     let mut out = vec![0u64; inside.len()];
     for v in (0..grid.voxel_count() as usize).filter(|&v| get(inside, v)) {
         let [i, j, k] = grid.voxel(v);
@@ -413,212 +413,5 @@ impl SurfaceBand {
     /// How many surface voxels the target has.
     pub(crate) fn target_count(&self) -> u64 {
         self.target_count
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use glam::{Affine3A, Quat, Vec3};
-    use rand::{RngExt, SeedableRng};
-    use rand_chacha::ChaCha8Rng;
-
-    use super::super::{Fill, VolumeCounts, VolumeScorer, VolumeTarget};
-    use super::*;
-    use crate::geometry::{CUBE, Instance, Mesh, MeshLibrary};
-    use crate::score::form::Form;
-    use crate::score::retained::RetainedScorer;
-    use crate::score::scorer::Scorer;
-
-    /// A box target of the given half-size and centre.
-    fn box_target(half: Vec3, centre: Vec3) -> VolumeTarget {
-        let mut mesh = Mesh::unit_cube();
-        for p in &mut mesh.positions {
-            *p = *p * 2.0 * half + centre;
-        }
-        VolumeTarget {
-            name: "box".into(),
-            mesh,
-            inside: 1.0,
-            outside: -1.0,
-            fill: Fill::Parity,
-        }
-    }
-
-    fn random_box(rng: &mut ChaCha8Rng) -> Instance {
-        let size = Vec3::new(
-            rng.random_range(0.1..1.5),
-            rng.random_range(0.1..1.5),
-            rng.random_range(0.1..1.5),
-        );
-        let turn = Quat::from_rotation_z(rng.random_range(-0.6f32..0.6));
-        let centre = Vec3::new(
-            rng.random_range(-1.6..1.6),
-            rng.random_range(-1.6..1.6),
-            rng.random_range(-1.6..1.6),
-        );
-        Instance {
-            transform: Affine3A::from_scale_rotation_translation(size, turn, centre),
-            mesh: CUBE,
-        }
-    }
-
-    /// The F-score counts of `covered` on `scorer`'s grid, by the definition: face
-    /// neighbours and every pair of surface voxels.
-    fn by_definition(scorer: &VolumeScorer, covered: &[u64], threshold: f64) -> [u64; 3] {
-        let grid = scorer.grid();
-        let cell = grid.cell().to_array();
-        let target: Vec<u64> = {
-            let mut inside = vec![0u64; covered.len()];
-            for (v, &c) in scorer.classes().voxels().iter().enumerate() {
-                if scorer.classes().is_target(usize::from(c)) {
-                    set(&mut inside, v);
-                }
-            }
-            surface_voxels(grid, &inside)
-        };
-        let model = surface_voxels(grid, covered);
-        let voxels = |bits: &[u64]| -> Vec<[i64; 3]> {
-            (0..grid.voxel_count() as usize)
-                .filter(|&v| get(bits, v))
-                .map(|v| grid.voxel(v))
-                .collect()
-        };
-        let (s, t) = (voxels(&model), voxels(&target));
-        let near = |a: &[i64; 3], b: &[[i64; 3]]| {
-            b.iter()
-                .any(|b| within(cell, [a[0] - b[0], a[1] - b[1], a[2] - b[2]], threshold))
-        };
-        [
-            s.len() as u64,
-            s.iter().filter(|a| near(a, &t)).count() as u64,
-            t.iter().filter(|a| near(a, &s)).count() as u64,
-        ]
-    }
-
-    fn surface_of(c: &VolumeCounts) -> [u64; 3] {
-        [c.surface, c.surface_near, c.target_surface_near]
-    }
-
-    #[test]
-    fn surface_counts_are_those_of_the_definition_counted_from_nothing_or_kept() {
-        let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"]).unwrap();
-        // Rows of 70 voxels cross words; rows of 5 share them; voxels of three sizes.
-        for (resolution, threshold) in [([70, 9, 8], 0.45), ([5, 31, 13], 0.3), ([12, 10, 9], 0.05)]
-        {
-            let grid = Grid::new(Vec3::splat(-2.0), Vec3::new(2.0, 2.0, 2.5), resolution).unwrap();
-            let target = box_target(Vec3::new(1.1, 0.7, 0.9), Vec3::new(0.2, -0.1, 0.3));
-            let form = Form::FScore {
-                good: 1.0,
-                threshold,
-            };
-            let scorer = VolumeScorer::new(grid, &[target], &meshes, form).unwrap();
-            let mut rng = ChaCha8Rng::seed_from_u64(resolution[0] as u64);
-            let mut scratch = scorer.scratch();
-            let mut covered = Vec::new();
-            let mut seen = [0; 3];
-            for _ in 0..12 {
-                let n = rng.random_range(1..5);
-                let model: Vec<Instance> = (0..n).map(|_| random_box(&mut rng)).collect();
-                let counts = scorer.coverage(&model, &mut scratch, &mut covered);
-                let expected = by_definition(&scorer, &covered, threshold);
-                assert_eq!(surface_of(&counts), expected, "{resolution:?}, {n} boxes");
-                seen = [0, 1, 2].map(|i| seen[i] + expected[i]);
-                // Kept: the parent's state with one box replaced counts the child.
-                let mut state = scorer.count_retained(&model, &mut scratch).unwrap();
-                assert_eq!(surface_of(&scorer.state_counts(&state)), expected);
-                let mut child = model.clone();
-                child[0] = random_box(&mut rng);
-                scorer
-                    .update(&mut state, &model[..1], &child[..1], &mut scratch)
-                    .unwrap();
-                let full = scorer.count(&child, &mut scratch);
-                assert_eq!(scorer.state_counts(&state), full);
-                assert_eq!(
-                    surface_of(&full),
-                    by_definition(
-                        &scorer,
-                        &{
-                            scorer.coverage(&child, &mut scratch, &mut covered);
-                            covered.clone()
-                        },
-                        threshold
-                    )
-                );
-            }
-            assert!(seen.iter().all(|&n| n > 0), "{resolution:?}: {seen:?}");
-        }
-    }
-
-    #[test]
-    fn the_target_itself_scores_good_and_nothing_scores_zero() {
-        let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"]).unwrap();
-        let grid = Grid::new(Vec3::splat(-1.0), Vec3::splat(1.0), [8, 8, 8]).unwrap();
-        let target = box_target(Vec3::splat(0.5), Vec3::ZERO);
-        let form = Form::FScore {
-            good: 2.0,
-            threshold: 0.2,
-        };
-        let scorer = VolumeScorer::new(grid, &[target], &meshes, form).unwrap();
-        let mut scratch = scorer.scratch();
-        // The 4^3 target voxels: their 56 outer voxels are its surface.
-        assert_eq!(scorer.target_surface_voxels(), Some(56));
-        let exact = [Instance {
-            transform: Affine3A::IDENTITY,
-            mesh: CUBE,
-        }];
-        assert_eq!(scorer.fitness(&scorer.count(&exact, &mut scratch)), 2.0);
-        assert_eq!(scorer.fitness(&scorer.count(&[], &mut scratch)), 0.0);
-        // A box one voxel (0.25) larger each way, 6^3 voxels: its 152 surface voxels lie
-        // a voxel beyond the target's, outside the threshold of 0.2.
-        let larger = [Instance {
-            transform: Affine3A::from_scale(Vec3::splat(1.5)),
-            mesh: CUBE,
-        }];
-        let counts = scorer.count(&larger, &mut scratch);
-        assert_eq!(surface_of(&counts), [152, 0, 0]);
-        assert_eq!(scorer.fitness(&counts), 0.0);
-        // With a threshold of a voxel, the 96 voxels of its faces are within reach of
-        // the target's surface, those of its 12 edges and 8 corners are not; every
-        // target surface voxel has one of its face voxels a voxel away.
-        let reach = |threshold| {
-            let form = Form::FScore {
-                good: 2.0,
-                threshold,
-            };
-            let target = box_target(Vec3::splat(0.5), Vec3::ZERO);
-            VolumeScorer::new(grid, &[target], &meshes, form).unwrap()
-        };
-        let one = reach(0.25);
-        let counts = one.count(&larger, &mut scratch);
-        assert_eq!(surface_of(&counts), [152, 96, 56]);
-        let precision = 96.0 / 152.0;
-        let f = 2.0 * precision / (precision + 1.0);
-        assert_eq!(one.fitness(&counts), 2.0 * f);
-        // With the diagonal of a voxel, all are.
-        let diagonal = reach(0.25 * 3f64.sqrt() + 1e-9);
-        let counts = diagonal.count(&larger, &mut scratch);
-        assert_eq!(surface_of(&counts), [152, 152, 56]);
-        assert_eq!(diagonal.fitness(&counts), 2.0);
-    }
-
-    #[test]
-    fn thresholds_that_are_no_distance_or_too_wide_are_refused() {
-        let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"]).unwrap();
-        let grid = Grid::new(Vec3::splat(-1.0), Vec3::splat(1.0), [200, 4, 4]).unwrap();
-        for (threshold, says) in [
-            (0.0, "not a distance"),
-            (f64::NAN, "not a distance"),
-            (0.65, "spans 65 voxels of 0.01 along x; at most 63"),
-        ] {
-            let form = Form::FScore {
-                good: 1.0,
-                threshold,
-            };
-            let target = box_target(Vec3::splat(0.5), Vec3::ZERO);
-            let err = VolumeScorer::new(grid, &[target], &meshes, form)
-                .unwrap_err()
-                .to_string();
-            assert!(err.contains(says), "{err}");
-        }
     }
 }
