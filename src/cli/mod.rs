@@ -37,6 +37,7 @@ mod front;
 mod gap;
 mod generators;
 mod genomes;
+mod history;
 mod interrupt;
 mod memory;
 mod method;

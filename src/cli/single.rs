@@ -13,7 +13,8 @@ use shapegen::scene::{Metrics, OptimizerGoal, Scene, SceneScorer};
 use shapegen::{Genome, Grammar, Limits, Site};
 
 use super::backend::Incremental;
-use super::files::{Files, csv_bytes};
+use super::files::Files;
+use super::history::{self, Elapsed};
 use super::memory::peak_rss;
 use super::overlay::overlay;
 use super::plot::{self, Line, Titles};
@@ -203,26 +204,8 @@ impl<'a> Outputs<'a> {
         dir: &Path,
         result: &RunResult<G>,
     ) -> anyhow::Result<()> {
-        let header = [
-            "generation",
-            "elapsed_s",
-            "evaluations",
-            "best",
-            "mean",
-            "std",
-        ]
-        .map(str::to_owned);
-        let rows = result.history.iter().map(|h| {
-            vec![
-                h.generation.to_string(),
-                format!("{:.3}", h.elapsed_s),
-                h.evaluations.to_string(),
-                h.best.to_string(),
-                h.mean.to_string(),
-                h.std.to_string(),
-            ]
-        });
-        files.write(&dir.join("fitness.csv"), &csv_bytes(&header, rows)?)?;
+        let table = history::csv(&result.history, Elapsed::Milliseconds)?;
+        files.write(&dir.join("fitness.csv"), &table)?;
         let generations: Vec<f64> = result.history.iter().map(|h| h.generation as f64).collect();
         let best: Vec<f64> = result.history.iter().map(|h| h.best).collect();
         let mean: Vec<f64> = result.history.iter().map(|h| h.mean).collect();

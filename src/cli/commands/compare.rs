@@ -388,7 +388,38 @@ struct Summary<'a> {
 }
 
 impl Outputs<'_> {
+    /// Writes `compare.csv`, `runs.csv`, `summary.json`, the gap tables when the scene
+    /// gives an optimum, and `compare.png`; then fails if a run went past the optimum.
     fn write<G: Grammar>(&self, comparison: &Comparison<G>) -> anyhow::Result<()> {
+        let dir = &self.args.out;
+        self.write_tables(comparison)?;
+        let groups: Vec<Group<'_>> = comparison
+            .methods
+            .iter()
+            .map(|&m| Group {
+                name: m.name().to_owned(),
+                colour: Rgb(m.colour()),
+                runs: comparison
+                    .runs_of(m)
+                    .map(|f| f.result.history.as_slice())
+                    .collect(),
+            })
+            .collect();
+        // The summaries' targets are those of `targets.csv`.
+        let optimum = comparison.optimum;
+        if let Some(optimum) = optimum {
+            gap::write(dir, "method", optimum, &groups)?;
+        }
+        self.write_summary(comparison)?;
+        self.write_chart(&groups)?;
+        match optimum {
+            Some(optimum) => gap::check_optimum(optimum, &groups),
+            None => Ok(()),
+        }
+    }
+
+    /// `compare.csv` (every run's curve) and `runs.csv` (every run's end and measures).
+    fn write_tables<G: Grammar>(&self, comparison: &Comparison<G>) -> anyhow::Result<()> {
         let dir = &self.args.out;
         let done = &comparison.runs;
         let header =
@@ -424,24 +455,11 @@ impl Outputs<'_> {
             .collect::<Vec<_>>()
         });
         atomic_write(&dir.join("runs.csv"), &csv_bytes(&header, rows)?)?;
+        Ok(())
+    }
 
-        let groups: Vec<Group<'_>> = comparison
-            .methods
-            .iter()
-            .map(|&m| Group {
-                name: m.name().to_owned(),
-                colour: Rgb(m.colour()),
-                runs: comparison
-                    .runs_of(m)
-                    .map(|f| f.result.history.as_slice())
-                    .collect(),
-            })
-            .collect();
-        // The summaries' targets are those of `targets.csv`.
-        let optimum = comparison.optimum;
-        if let Some(optimum) = optimum {
-            gap::write(dir, "method", optimum, &groups)?;
-        }
+    /// `summary.json`: the settings and each method's statistics.
+    fn write_summary<G: Grammar>(&self, comparison: &Comparison<G>) -> anyhow::Result<()> {
         let summary = Summary {
             scene: &self.args.scene,
             seconds: self.args.seconds,
@@ -450,14 +468,19 @@ impl Outputs<'_> {
             seeds: &comparison.seeds,
             backend: self.backend,
             complete: comparison.complete(),
-            optimum,
+            optimum: comparison.optimum,
             methods: comparison.summaries(),
         };
         atomic_write(
-            &dir.join("summary.json"),
+            &self.args.out.join("summary.json"),
             serde_json::to_string_pretty(&summary)?.as_bytes(),
         )?;
+        Ok(())
+    }
 
+    /// `compare.png`: each method's median best fitness against wall time, with its
+    /// quartiles.
+    fn write_chart(&self, groups: &[Group<'_>]) -> anyhow::Result<()> {
         let curves: Vec<_> = groups
             .iter()
             .map(|g| quartile_curve(&g.runs, |h| h.elapsed_s, self.args.seconds, GRID_POINTS))
@@ -488,11 +511,7 @@ impl Outputs<'_> {
             YScale::Linear,
             gap::QUARTILES,
         )?;
-        save_figure(&dir.join("compare.png"), &figure)?;
-        match optimum {
-            Some(optimum) => gap::check_optimum(optimum, &groups),
-            None => Ok(()),
-        }
+        save_figure(&self.args.out.join("compare.png"), &figure)
     }
 }
 

@@ -26,8 +26,9 @@ use shapegen::scene::{Metrics, Scene, SceneEvaluator, SceneScorer};
 
 use super::plan::Plan;
 use crate::cli::backend::check_batches;
-use crate::cli::files::{csv_bytes, read};
+use crate::cli::files::read;
 use crate::cli::generators::{Generators, Jobs, Visit};
+use crate::cli::history::{self, Elapsed};
 use crate::cli::method::SessionRun;
 use crate::registry::Entry;
 
@@ -36,15 +37,6 @@ const RESULT: &str = "result.json";
 const HISTORY: &str = "fitness.csv";
 const GENOME: &str = "best.genome.json";
 const MODEL: &str = "best.glb";
-/// The columns of `fitness.csv`.
-const HISTORY_COLUMNS: [&str; 6] = [
-    "generation",
-    "elapsed_s",
-    "evaluations",
-    "best",
-    "mean",
-    "std",
-];
 
 /// A cell's `result.json`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -187,7 +179,7 @@ fn write(
             RESULT,
             serde_json::to_string_pretty(&finished.record)?.as_bytes(),
         )?;
-        write(HISTORY, &history_csv(&finished.history)?)?;
+        write(HISTORY, &history::csv(&finished.history, Elapsed::Exact)?)?;
         write(GENOME, genome.as_bytes())?;
         write(MODEL, model)
     })();
@@ -206,22 +198,6 @@ fn write(
         );
     }
     Ok(())
-}
-
-/// `fitness.csv`'s bytes.
-fn history_csv(history: &[HistoryEntry]) -> anyhow::Result<Vec<u8>> {
-    let rows = history.iter().map(|h| {
-        [
-            h.generation.to_string(),
-            h.elapsed_s.to_string(),
-            h.evaluations.to_string(),
-            h.best.to_string(),
-            h.mean.to_string(),
-            h.std.to_string(),
-        ]
-        .to_vec()
-    });
-    csv_bytes(&HISTORY_COLUMNS.map(str::to_owned), rows)
 }
 
 /// Cell `index` of `plan` as its folder in `dir` holds it; `None` when it is not done.
@@ -244,7 +220,7 @@ pub fn load(plan: &Plan, dir: &Path, index: u64) -> anyhow::Result<Option<Finish
         cell.run,
         cell.seed
     );
-    let history = read_history(&folder.join(HISTORY))?;
+    let history = history::read(&folder.join(HISTORY))?;
     Ok(Some(Finished { record, history }))
 }
 
@@ -257,48 +233,6 @@ pub fn load_all(plan: &Plan, dir: &Path) -> anyhow::Result<BTreeMap<u64, Finishe
         }
     }
     Ok(done)
-}
-
-/// Reads a cell's `fitness.csv`.
-fn read_history(path: &Path) -> anyhow::Result<Vec<HistoryEntry>> {
-    let bad = |what: String| anyhow::anyhow!("`{}`: {what}", path.display());
-    let text = read(path)?;
-    let mut reader = csv::Reader::from_reader(text.as_bytes());
-    let header: Vec<String> = reader.headers()?.iter().map(str::to_owned).collect();
-    if header != HISTORY_COLUMNS {
-        return Err(bad(format!(
-            "the columns are {header:?}, not {HISTORY_COLUMNS:?}"
-        )));
-    }
-    reader
-        .records()
-        .enumerate()
-        .map(|(row, record)| {
-            let record = record?;
-            let field = |i: usize| -> anyhow::Result<f64> {
-                record[i]
-                    .parse()
-                    .map_err(|_| bad(format!("row {}: `{}` is not a number", row + 1, &record[i])))
-            };
-            let count = |i: usize| -> anyhow::Result<u64> {
-                record[i].parse().map_err(|_| {
-                    bad(format!(
-                        "row {}: `{}` is not a whole number",
-                        row + 1,
-                        &record[i]
-                    ))
-                })
-            };
-            Ok(HistoryEntry {
-                generation: count(0)?,
-                elapsed_s: field(1)?,
-                evaluations: count(2)?,
-                best: field(3)?,
-                mean: field(4)?,
-                std: field(5)?,
-            })
-        })
-        .collect()
 }
 
 /// What a cell's run ended with, whatever its grammar.
@@ -388,8 +322,8 @@ mod tests {
         ];
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join(HISTORY);
-        std::fs::write(&path, history_csv(&history).unwrap()).unwrap();
-        let back = read_history(&path).unwrap();
+        std::fs::write(&path, history::csv(&history, Elapsed::Exact).unwrap()).unwrap();
+        let back = history::read(&path).unwrap();
         let bits = |h: &[HistoryEntry]| -> Vec<[u64; 6]> {
             h.iter()
                 .map(|h| {
