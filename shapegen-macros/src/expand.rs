@@ -7,11 +7,14 @@
 //!   the parameters;
 //! - `impl Spaceship { fn __rule_body(..) .. }`: one rule function per node, where the
 //!   user's `derive` body sees the scope under the name it chose, the parameters and the
-//!   children under their own names. It lives outside the `const _` block below so that
+//!   children under their own names (the parameters are handed to it read). It lives outside the `const _` block below so that
 //!   nothing the expansion declares can shadow a name the body uses;
-//! - `const _: () = { .. }` holding the `NodeParams` impls, the `GeneratorGraph`
-//!   constant, compile-time layout asserts and the `Grammar` impl, whose `derive_gene`
-//!   matches on the node kind.
+//! - `const _: () = { .. }` holding the `NodeParams` and `NodeRule` impls, the
+//!   `GeneratorGraph` constant, compile-time layout asserts and the `Grammar` impl, whose
+//!   `derive_gene` matches on the node kind and reads the parameters. A rule function
+//!   takes its node's parameters read: `derive_gene` reads them for the root, and a
+//!   parent read them with the child (`Child`), so that `s.derive(child)` runs the
+//!   child's rule through `NodeRule` without looking its kind up or reading them again.
 //!
 //! Everything reaches the runtime through the path the runtime's wrapper passed
 //! (`$crate::__private`) and the standard library through `::core`, so the expansion does
@@ -222,6 +225,31 @@ impl<'a> Expander<'a> {
         }
     }
 
+    /// `impl NodeRule` for `node`'s parameters: its rule, run on a child whose
+    /// parameters were read when the child was (the slot fixes its node type); with
+    /// `has_rule` false (a generator with mistakes, whose rule for the node is not
+    /// emitted), a rule that does nothing.
+    pub fn node_rule_impl(&self, node: &Node, has_rule: bool) -> TokenStream {
+        let (p, grammar, name, f) = (&self.p, self.g.name, node.name, &node.rule_fn);
+        let shape = Ident::new("shape", Span::mixed_site());
+        let gene = Ident::new("gene", Span::mixed_site());
+        let params = Ident::new("params", Span::mixed_site());
+        let call = match node.rule {
+            _ if !has_rule => quote!(),
+            Rule::Default => quote!(#grammar::#f(#shape, #gene)),
+            Rule::Body { .. } => quote!(#grammar::#f(#shape, #gene, #params)),
+        };
+        quote! {
+            impl #p::NodeRule<#grammar> for #name {
+                #[inline]
+                #[allow(unused_variables)]
+                fn derive<'a>(#shape: #p::Shape<'a, #grammar>, #gene: #p::GeneView<'a>, #params: Self) {
+                    #call
+                }
+            }
+        }
+    }
+
     /// The rule function of `node`.
     pub fn rule_fn(&self, node: &Node, layout: &NodeLayout) -> TokenStream {
         let p = &self.p;
@@ -248,11 +276,11 @@ impl<'a> Expander<'a> {
                 body,
             } => {
                 let name = node.name;
+                let params = Ident::new("params", Span::mixed_site());
                 let read = (!node.params.is_empty()).then(|| {
                     let fields = node.params.iter().map(|param| param.name);
                     quote! {
-                        let #name { #(#fields),* } =
-                            <#name as #p::NodeParams>::read(#gene.params(#links));
+                        let #name { #(#fields),* } = #params;
                     }
                 });
                 let slots = node.slots.iter().zip(&layout.first_links).map(|(s, &first)| {
@@ -275,7 +303,11 @@ impl<'a> Expander<'a> {
                 quote! {
                     #[allow(unused_variables, unused_braces)]
                     #[inline]
-                    fn #f<#lt>(#mutability #scope: #p::Shape<#lt, Self>, #gene: #p::GeneView<#lt>) {
+                    fn #f<#lt>(
+                        #mutability #scope: #p::Shape<#lt, Self>,
+                        #gene: #p::GeneView<#lt>,
+                        #params: #name,
+                    ) {
                         #read
                         #(#slots)*
                         #body
@@ -344,7 +376,8 @@ impl<'a> Expander<'a> {
             descs.push(self.node_desc(node, layout)?);
 
             asserts.extend(size_assert(node, layout));
-            arms.extend(dispatch_arm(node));
+            arms.extend(dispatch_arm(p, node, layout));
+            impls.extend(self.node_rule_impl(node, true));
         }
         let gene = Ident::new("gene", Span::mixed_site());
         let arms = quote! {
@@ -567,9 +600,17 @@ fn size_assert(node: &Node, layout: &NodeLayout) -> TokenStream {
 }
 
 /// The arm of the rule dispatch that runs `node`'s rule on a gene of its kind.
-fn dispatch_arm(node: &Node) -> TokenStream {
-    let (kind, f) = (Literal::u32_unsuffixed(node.kind), &node.rule_fn);
+fn dispatch_arm(p: &TokenStream, node: &Node, layout: &NodeLayout) -> TokenStream {
+    let (kind, f, name) = (Literal::u32_unsuffixed(node.kind), &node.rule_fn, node.name);
     let shape = Ident::new("shape", Span::mixed_site());
     let gene = Ident::new("gene", Span::mixed_site());
-    quote!(#kind => Self::#f(#shape, #gene),)
+    match node.rule {
+        Rule::Default => quote!(#kind => Self::#f(#shape, #gene),),
+        Rule::Body { .. } => {
+            let links = Literal::u32_unsuffixed(layout.links);
+            quote! {
+                #kind => Self::#f(#shape, #gene, <#name as #p::NodeParams>::read(#gene.params(#links))),
+            }
+        }
+    }
 }

@@ -4,7 +4,8 @@
 //!
 //! Emitted: the grammar struct with a stub `Grammar` impl (an empty graph, no rules), the
 //! mesh constants that are right, every node's parameter struct with the parameters whose
-//! type is known and its `NodeParams` impl, and the rule functions of the nodes whose
+//! type is known and its `NodeParams` and `NodeRule` impls (a rule that does nothing
+//! where the node's is not emitted), and the rule functions of the nodes whose
 //! bindings are all known (so the compiler still checks those bodies, and the user's
 //! imports they use stay used).
 
@@ -30,9 +31,11 @@ pub fn expand(ex: &Expander, errors: Vec<Error>) -> TokenStream {
         out.extend(ex.param_struct(node, &params));
         let links = layout::links(node).unwrap_or(0);
         impls.extend(ex.node_params_impl(node, &params, links));
-        if let Some(layout) = rule_layout(g.nodes.as_slice(), node) {
-            rules.extend(ex.rule_fn(node, &layout));
+        let layout = rule_layout(g.nodes.as_slice(), node);
+        if let Some(layout) = &layout {
+            rules.extend(ex.rule_fn(node, layout));
         }
+        impls.extend(ex.node_rule_impl(node, layout.is_some()));
     }
     let grammar_impl = ex.stub_grammar_impl();
     out.extend(quote! {

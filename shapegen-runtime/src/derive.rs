@@ -51,6 +51,17 @@ pub trait NodeParams: Copy + 'static {
     fn write(&self, params: &mut [u32]);
 }
 
+/// A node type's rule, run on a child whose parameters were read with it
+/// ([`GeneView::child`]): the slot a child hangs on fixes its node type, so
+/// [`Shape::derive`] runs the rule without looking the gene's kind up or reading its
+/// parameters again. The `generator!` macro implements it for every node type; a rule
+/// helper generic over the child's node type names it as a bound (`P: NodeRule<G>`).
+pub trait NodeRule<G>: NodeParams {
+    /// Runs the rule of this node type on `gene`, whose parameters are `params`, in
+    /// `shape`.
+    fn derive<'a>(shape: Shape<'a, G>, gene: GeneView<'a>, params: Self);
+}
+
 /// Reads a parameter of type `T` at word `offset` of a gene's parameter words.
 #[doc(hidden)]
 #[inline]
@@ -594,8 +605,13 @@ impl<'a, G: Grammar> Shape<'a, G> {
     /// Runs `child`'s rule in this scope. A child may be derived more than once, in
     /// different scopes (a mirrored pair of wings from one gene, say).
     #[inline]
-    pub fn derive<P>(self, child: Child<'a, P>) {
-        G::derive_gene(self, child.gene);
+    pub fn derive<P: NodeRule<G>>(self, child: Child<'a, P>) {
+        debug_assert_eq!(
+            child.gene.kind(),
+            P::KIND,
+            "a child of its slot's node type"
+        );
+        P::derive(self, child.gene, child.params);
     }
 
     /// Runs, in this scope and in link order, the rule of every child present on the

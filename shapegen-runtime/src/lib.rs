@@ -25,7 +25,7 @@ pub mod optimize;
 pub mod param;
 pub mod score;
 
-pub use derive::{Child, GeneView, Grammar, NodeParams, Shape, Site, Slots};
+pub use derive::{Child, GeneView, Grammar, NodeParams, NodeRule, Shape, Site, Slots};
 pub use error::error_chain;
 pub use genome::{Genome, GenomeError, Limits};
 pub use geometry::{Axis, CUBE, Face, Instance, MeshId, Part, Scope};
@@ -234,7 +234,9 @@ macro_rules! generator {
 #[doc(hidden)]
 pub mod __private {
     pub use crate::derive::Child;
-    pub use crate::derive::{GeneView, Grammar, NodeParams, Shape, Slots, read_param, write_param};
+    pub use crate::derive::{
+        GeneView, Grammar, NodeParams, NodeRule, Shape, Slots, read_param, write_param,
+    };
     pub use crate::geometry::MeshId;
     pub use crate::graph::{
         AngleUnit, Distribution, GeneratorGraph, NodeDesc, ParamDesc, SlotDesc,

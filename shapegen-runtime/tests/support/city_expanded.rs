@@ -269,16 +269,64 @@ const _: () = {
         ],
     };
 
+    impl __p::NodeRule<City> for Start {
+        #[inline]
+        fn derive<'a>(shape: __p::Shape<'a, City>, gene: __p::GeneView<'a>, params: Self) {
+            City::__rule_start(shape, gene, params)
+        }
+    }
+
+    impl __p::NodeRule<City> for Lot {
+        #[inline]
+        fn derive<'a>(shape: __p::Shape<'a, City>, gene: __p::GeneView<'a>, params: Self) {
+            City::__rule_lot(shape, gene, params)
+        }
+    }
+
+    impl __p::NodeRule<City> for Building {
+        #[inline]
+        fn derive<'a>(shape: __p::Shape<'a, City>, gene: __p::GeneView<'a>, params: Self) {
+            City::__rule_building(shape, gene, params)
+        }
+    }
+
+    impl __p::NodeRule<City> for Roof {
+        #[inline]
+        fn derive<'a>(shape: __p::Shape<'a, City>, gene: __p::GeneView<'a>, params: Self) {
+            City::__rule_roof(shape, gene, params)
+        }
+    }
+
     impl __p::Grammar for City {
         const GRAPH: &'static __p::GeneratorGraph = &GRAPH;
 
         #[inline]
         fn derive_gene<'a>(shape: __p::Shape<'a, Self>, gene: __p::GeneView<'a>) {
             match gene.kind() {
-                0 => City::__rule_start(shape, gene),
-                1 => City::__rule_lot(shape, gene),
-                2 => City::__rule_building(shape, gene),
-                3 => City::__rule_roof(shape, gene),
+                0 => City::__rule_start(
+                    shape,
+                    gene,
+                    <Start as __p::NodeParams>::read(
+                        gene.params(<Start as __p::NodeParams>::LINKS),
+                    ),
+                ),
+                1 => City::__rule_lot(
+                    shape,
+                    gene,
+                    <Lot as __p::NodeParams>::read(gene.params(<Lot as __p::NodeParams>::LINKS)),
+                ),
+                2 => City::__rule_building(
+                    shape,
+                    gene,
+                    <Building as __p::NodeParams>::read(
+                        gene.params(<Building as __p::NodeParams>::LINKS),
+                    ),
+                ),
+                3 => City::__rule_roof(
+                    shape,
+                    gene,
+                    <Roof as __p::NodeParams>::read(gene.params(<Roof as __p::NodeParams>::LINKS)),
+                ),
                 _ => {}
             }
         }
@@ -288,7 +336,11 @@ const _: () = {
 impl City {
     #[allow(unused_variables)]
     #[inline]
-    fn __rule_start<'a>(s: __rt::__private::Shape<'a, Self>, gene: __rt::__private::GeneView<'a>) {
+    fn __rule_start<'a>(
+        s: __rt::__private::Shape<'a, Self>,
+        gene: __rt::__private::GeneView<'a>,
+        params: Start,
+    ) {
         let lots: __rt::__private::Slots<'a, Lot, 100> = __rt::__private::Slots::new(gene, 0);
         {
             use glam::vec3;
@@ -302,7 +354,11 @@ impl City {
 
     #[allow(unused_variables)]
     #[inline]
-    fn __rule_lot<'a>(s: __rt::__private::Shape<'a, Self>, gene: __rt::__private::GeneView<'a>) {
+    fn __rule_lot<'a>(
+        s: __rt::__private::Shape<'a, Self>,
+        gene: __rt::__private::GeneView<'a>,
+        params: Lot,
+    ) {
         let building: Option<__rt::__private::Child<'a, Building>> = gene.child(0);
         {
             if let Some(building) = building {
@@ -316,6 +372,7 @@ impl City {
     fn __rule_building<'a>(
         s: __rt::__private::Shape<'a, Self>,
         gene: __rt::__private::GeneView<'a>,
+        params: Building,
     ) {
         let Building {
             footprint,
@@ -325,7 +382,7 @@ impl City {
             floors,
             lit,
             block,
-        } = <Building as __rt::__private::NodeParams>::read(gene.params(1));
+        } = params;
         let roof: Option<__rt::__private::Child<'a, Roof>> = gene.child(0);
         {
             use glam::vec3;
@@ -344,8 +401,12 @@ impl City {
 
     #[allow(unused_variables)]
     #[inline]
-    fn __rule_roof<'a>(s: __rt::__private::Shape<'a, Self>, gene: __rt::__private::GeneView<'a>) {
-        let Roof { pitch } = <Roof as __rt::__private::NodeParams>::read(gene.params(1));
+    fn __rule_roof<'a>(
+        s: __rt::__private::Shape<'a, Self>,
+        gene: __rt::__private::GeneView<'a>,
+        params: Roof,
+    ) {
+        let Roof { pitch } = params;
         let spire: Option<__rt::__private::Child<'a, Roof>> = gene.child(0);
         {
             use glam::vec3;

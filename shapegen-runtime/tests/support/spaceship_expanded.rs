@@ -388,18 +388,90 @@ const _: () = {
         );
     };
 
+    impl __p::NodeRule<Spaceship> for Start {
+        #[inline]
+        fn derive<'a>(shape: __p::Shape<'a, Spaceship>, gene: __p::GeneView<'a>, params: Self) {
+            Spaceship::__rule_start(shape, gene, params)
+        }
+    }
+
+    impl __p::NodeRule<Spaceship> for Body {
+        #[inline]
+        fn derive<'a>(shape: __p::Shape<'a, Spaceship>, gene: __p::GeneView<'a>, params: Self) {
+            Spaceship::__rule_body(shape, gene, params)
+        }
+    }
+
+    impl __p::NodeRule<Spaceship> for Top {
+        #[inline]
+        fn derive<'a>(shape: __p::Shape<'a, Spaceship>, gene: __p::GeneView<'a>, params: Self) {
+            Spaceship::__rule_top(shape, gene, params)
+        }
+    }
+
+    impl __p::NodeRule<Spaceship> for TopNext {
+        #[inline]
+        fn derive<'a>(shape: __p::Shape<'a, Spaceship>, gene: __p::GeneView<'a>, params: Self) {
+            Spaceship::__rule_top_next(shape, gene, params)
+        }
+    }
+
+    impl __p::NodeRule<Spaceship> for Wing {
+        #[inline]
+        fn derive<'a>(shape: __p::Shape<'a, Spaceship>, gene: __p::GeneView<'a>, params: Self) {
+            Spaceship::__rule_wing(shape, gene, params)
+        }
+    }
+
+    impl __p::NodeRule<Spaceship> for WingNext {
+        #[inline]
+        fn derive<'a>(shape: __p::Shape<'a, Spaceship>, gene: __p::GeneView<'a>, params: Self) {
+            Spaceship::__rule_wing_next(shape, gene, params)
+        }
+    }
+
     impl __p::Grammar for Spaceship {
         const GRAPH: &'static __p::GeneratorGraph = &GRAPH;
 
         #[inline]
         fn derive_gene<'a>(shape: __p::Shape<'a, Self>, gene: __p::GeneView<'a>) {
             match gene.kind() {
-                0 => Self::__rule_start(shape, gene),
-                1 => Self::__rule_body(shape, gene),
-                2 => Self::__rule_top(shape, gene),
-                3 => Self::__rule_top_next(shape, gene),
-                4 => Self::__rule_wing(shape, gene),
-                5 => Self::__rule_wing_next(shape, gene),
+                0 => Self::__rule_start(
+                    shape,
+                    gene,
+                    <Start as __p::NodeParams>::read(
+                        gene.params(<Start as __p::NodeParams>::LINKS),
+                    ),
+                ),
+                1 => Self::__rule_body(
+                    shape,
+                    gene,
+                    <Body as __p::NodeParams>::read(gene.params(<Body as __p::NodeParams>::LINKS)),
+                ),
+                2 => Self::__rule_top(
+                    shape,
+                    gene,
+                    <Top as __p::NodeParams>::read(gene.params(<Top as __p::NodeParams>::LINKS)),
+                ),
+                3 => Self::__rule_top_next(
+                    shape,
+                    gene,
+                    <TopNext as __p::NodeParams>::read(
+                        gene.params(<TopNext as __p::NodeParams>::LINKS),
+                    ),
+                ),
+                4 => Self::__rule_wing(
+                    shape,
+                    gene,
+                    <Wing as __p::NodeParams>::read(gene.params(<Wing as __p::NodeParams>::LINKS)),
+                ),
+                5 => Self::__rule_wing_next(
+                    shape,
+                    gene,
+                    <WingNext as __p::NodeParams>::read(
+                        gene.params(<WingNext as __p::NodeParams>::LINKS),
+                    ),
+                ),
                 _ => {}
             }
         }
@@ -416,6 +488,7 @@ impl Spaceship {
     fn __rule_start<'__a>(
         s: __rt::__private::Shape<'__a, Self>,
         gene: __rt::__private::GeneView<'__a>,
+        params: Start,
     ) {
         let body: ::core::option::Option<__rt::__private::Child<'__a, Body>> = gene.child(0);
         {
@@ -430,8 +503,9 @@ impl Spaceship {
     fn __rule_body<'__a>(
         s: __rt::__private::Shape<'__a, Self>,
         gene: __rt::__private::GeneView<'__a>,
+        params: Body,
     ) {
-        let Body { size } = <Body as __rt::__private::NodeParams>::read(gene.params(3));
+        let Body { size } = params;
         let next: ::core::option::Option<__rt::__private::Child<'__a, Body>> = gene.child(0);
         let wing: ::core::option::Option<__rt::__private::Child<'__a, Wing>> = gene.child(1);
         let top: ::core::option::Option<__rt::__private::Child<'__a, Top>> = gene.child(2);
@@ -461,8 +535,9 @@ impl Spaceship {
     fn __rule_top<'__a>(
         s: __rt::__private::Shape<'__a, Self>,
         gene: __rt::__private::GeneView<'__a>,
+        params: Top,
     ) {
-        let Top { size } = <Top as __rt::__private::NodeParams>::read(gene.params(1));
+        let Top { size } = params;
         let next: ::core::option::Option<__rt::__private::Child<'__a, TopNext>> = gene.child(0);
         { tower_box(s.resize(size), next) }
     }
@@ -472,8 +547,9 @@ impl Spaceship {
     fn __rule_top_next<'__a>(
         s: __rt::__private::Shape<'__a, Self>,
         gene: __rt::__private::GeneView<'__a>,
+        params: TopNext,
     ) {
-        let TopNext { size } = <TopNext as __rt::__private::NodeParams>::read(gene.params(1));
+        let TopNext { size } = params;
         let next: ::core::option::Option<__rt::__private::Child<'__a, TopNext>> = gene.child(0);
         { tower_box(s, next) }
     }
@@ -483,8 +559,9 @@ impl Spaceship {
     fn __rule_wing<'__a>(
         s: __rt::__private::Shape<'__a, Self>,
         gene: __rt::__private::GeneView<'__a>,
+        params: Wing,
     ) {
-        let Wing { size, shift } = <Wing as __rt::__private::NodeParams>::read(gene.params(1));
+        let Wing { size, shift } = params;
         let next: ::core::option::Option<__rt::__private::Child<'__a, WingNext>> = gene.child(0);
         { wing_box(s.resize(size), shift, next) }
     }
@@ -494,9 +571,9 @@ impl Spaceship {
     fn __rule_wing_next<'__a>(
         s: __rt::__private::Shape<'__a, Self>,
         gene: __rt::__private::GeneView<'__a>,
+        params: WingNext,
     ) {
-        let WingNext { size, shift } =
-            <WingNext as __rt::__private::NodeParams>::read(gene.params(1));
+        let WingNext { size, shift } = params;
         let next: ::core::option::Option<__rt::__private::Child<'__a, WingNext>> = gene.child(0);
         { wing_box(s, shift, next) }
     }
