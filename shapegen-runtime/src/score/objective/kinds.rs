@@ -202,4 +202,6 @@ objective_kinds! {
     AreaShare("area_share"): area_share::AreaShare;
     /// How far the mean pitch of a roof is from a target.
     RoofPitch("roof_pitch"): roof_pitch::RoofPitch;
+    /// How far the size of the bounding box is from a target size.
+    BoundingBox("bounding_box"): bounding_box::BoundingBox;
 }
