@@ -456,6 +456,45 @@ fn every_kind_of_objective_reads_its_keys() {
 }
 
 #[test]
+fn bounding_box_objectives_read_their_target_size() {
+    use shapegen::score::objective::{BoundingBox, Objective};
+
+    let fixture = Fixture::new();
+    let sized = |fields: &str| {
+        format!("{OBJECTIVES}[[objective]]\nname = \"size\"\nkind = \"bounding_box\"\n{fields}\n")
+    };
+    let scene = fixture.load(&sized("target = [12, 30, 8.5]")).unwrap();
+    let goal = scene.objectives.as_ref().unwrap();
+    assert_eq!(
+        goal.set.entries()[3],
+        (
+            "size".to_owned(),
+            Objective::BoundingBox(BoundingBox {
+                target: glam::Vec3::new(12.0, 30.0, 8.5),
+            })
+        )
+    );
+    assert_eq!(goal.set.senses()[3], shapegen::optimize::Sense::Minimize);
+
+    fixture.refuses(
+        &sized("target = [12, -30, 8.5]"),
+        "objective[3].target",
+        "`target` is -30; it must be a size: finite and at least 0 along x, y and z",
+    );
+    fixture.refuses(
+        &sized("target = [12, 30]"),
+        "objective[3]",
+        "kind \"bounding_box\": invalid length 2",
+    );
+    fixture.refuses(
+        &sized("size = [12, 30, 8.5]"),
+        "objective[3]",
+        "kind \"bounding_box\": unknown field `size`, expected `target`",
+    );
+    fixture.refuses(&sized(""), "objective[3]", "missing field `target`");
+}
+
+#[test]
 fn objective_mistakes_are_refused() {
     let fixture = Fixture::new();
     fixture.refuses(
