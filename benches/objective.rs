@@ -31,7 +31,8 @@ use shapegen_runtime::geometry::{BoundMeshes, Mesh, MeshId, MeshLibrary};
 use shapegen_runtime::prelude::{Affine3A, Quat, Vec2, Vec3};
 use shapegen_runtime::score::InstanceBatch;
 use shapegen_runtime::score::objective::{
-    BredObjectives, Objective, ObjectiveSet, ProjectionMatch, View,
+    BredObjectives, FootprintExcess, Height, NormalSpread, Objective, ObjectiveSet,
+    ProjectionMatch, UniqueNormals, View,
 };
 use shapegen_runtime::{CUBE, Instance};
 
@@ -179,24 +180,24 @@ fn objectives() -> Vec<(String, Objective)> {
     )
     .expect("the front target is valid");
     vec![
-        ("height".into(), Objective::Height { target: 6.0 }),
+        ("height".into(), Objective::Height(Height { target: 6.0 })),
         (
             "facets".into(),
-            Objective::UniqueNormals { tolerance_deg: 5.0 },
+            Objective::UniqueNormals(UniqueNormals { tolerance_deg: 5.0 }),
         ),
         (
             "spread".into(),
-            Objective::NormalSpread { tolerance_deg: 5.0 },
+            Objective::NormalSpread(NormalSpread { tolerance_deg: 5.0 }),
         ),
         (
             "footprint".into(),
-            Objective::FootprintExcess {
+            Objective::FootprintExcess(FootprintExcess {
                 min: Vec2::splat(-6.0),
                 max: Vec2::splat(6.0),
-            },
+            }),
         ),
-        ("top".into(), Objective::Projection(top)),
-        ("front".into(), Objective::Projection(front)),
+        ("top".into(), Objective::from(top)),
+        ("front".into(), Objective::from(front)),
     ]
 }
 
@@ -293,8 +294,8 @@ fn building_normals(c: &mut Criterion) {
     group.throughput(Throughput::Elements(MODELS as u64));
     for tolerance_deg in [1.0, 5.0] {
         for objective in [
-            Objective::UniqueNormals { tolerance_deg },
-            Objective::NormalSpread { tolerance_deg },
+            Objective::UniqueNormals(UniqueNormals { tolerance_deg }),
+            Objective::NormalSpread(NormalSpread { tolerance_deg }),
         ] {
             let name = format!("{}-{tolerance_deg}-degrees", objective.name());
             let alone =

@@ -2,8 +2,8 @@
 //! they name is in the repository, and every genome file or run folder they read was
 //! written by a command before them (its `--out`).
 //!
-//! And `docs/architecture.md`'s lists of crates, methods, scorers and published
-//! generators are those of the workspace and the tables.
+//! And `docs/architecture.md`'s lists of crates, methods, scorers, objectives and
+//! published generators are those of the workspace and the tables.
 
 use std::path::Path;
 
@@ -125,6 +125,8 @@ fn the_architecture_notes_list_what_the_tables_hold() {
         .map(|k| k.name())
         .collect();
     assert_eq!(listed(&notes, "Scorers"), scorers);
+    let objectives = shapegen::score::objective::Objective::NAMES;
+    assert_eq!(listed(&notes, "Objectives"), objectives);
     let registry = shapegen::registry::Registry::published();
     let generators: Vec<&str> = registry.entries().iter().map(|e| e.name.as_str()).collect();
     assert_eq!(listed(&notes, "Published generators"), generators);

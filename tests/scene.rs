@@ -387,7 +387,7 @@ target = 30
 fn objective_scenes_load() {
     use shapegen::optimize::Sense;
     use shapegen::optimize::multi::Ranking;
-    use shapegen::score::objective::Objective;
+    use shapegen::score::objective::{Objective, UniqueNormals};
 
     let fixture = Fixture::new();
     let scene = fixture
@@ -405,7 +405,7 @@ fn objective_scenes_load() {
     );
     assert_eq!(
         goal.set.entries()[1].1,
-        Objective::UniqueNormals { tolerance_deg: 1.0 }
+        Objective::UniqueNormals(UniqueNormals { tolerance_deg: 1.0 })
     );
     let settings = scene.multi_settings().unwrap();
     assert_eq!(settings.selection.ranking, Ranking::SummedRank);
@@ -423,6 +423,75 @@ fn objective_scenes_load() {
     assert_eq!(settings.selection.diversity_penalty, 20.0);
     assert_eq!(settings.ga.population, 300);
     assert!(Scene::load(fixture.path()).unwrap().scorers().is_empty());
+}
+
+#[test]
+fn every_kind_of_objective_reads_its_keys() {
+    use shapegen::score::objective::{FootprintExcess, NormalSpread, Objective};
+
+    let fixture = Fixture::new();
+    let scene = fixture
+        .load(&format!(
+            "{OBJECTIVES}[[objective]]\nkind = \"normal_spread\"\ntolerance_deg = 5\n\
+             [[objective]]\nkind = \"footprint_excess\"\nmin = [-4, -3]\nmax = [4, 3.5]\n"
+        ))
+        .unwrap();
+    let set = &scene.objectives.as_ref().unwrap().set;
+    assert_eq!(
+        set.entries()[3..],
+        [
+            (
+                "normal_spread".to_owned(),
+                Objective::from(NormalSpread { tolerance_deg: 5.0 })
+            ),
+            (
+                "footprint_excess".to_owned(),
+                Objective::from(FootprintExcess {
+                    min: glam::Vec2::new(-4.0, -3.0),
+                    max: glam::Vec2::new(4.0, 3.5),
+                })
+            ),
+        ]
+    );
+}
+
+#[test]
+fn bounding_box_objectives_read_their_target_size() {
+    use shapegen::score::objective::{BoundingBox, Objective};
+
+    let fixture = Fixture::new();
+    let sized = |fields: &str| {
+        format!("{OBJECTIVES}[[objective]]\nname = \"size\"\nkind = \"bounding_box\"\n{fields}\n")
+    };
+    let scene = fixture.load(&sized("target = [12, 30, 8.5]")).unwrap();
+    let goal = scene.objectives.as_ref().unwrap();
+    assert_eq!(
+        goal.set.entries()[3],
+        (
+            "size".to_owned(),
+            Objective::BoundingBox(BoundingBox {
+                target: glam::Vec3::new(12.0, 30.0, 8.5),
+            })
+        )
+    );
+    assert_eq!(goal.set.senses()[3], shapegen::optimize::Sense::Minimize);
+
+    fixture.refuses(
+        &sized("target = [12, -30, 8.5]"),
+        "objective[3].target",
+        "`target` is -30; it must be a size: finite and at least 0 along x, y and z",
+    );
+    fixture.refuses(
+        &sized("target = [12, 30]"),
+        "objective[3]",
+        "kind \"bounding_box\": invalid length 2",
+    );
+    fixture.refuses(
+        &sized("size = [12, 30, 8.5]"),
+        "objective[3]",
+        "kind \"bounding_box\": unknown field `size`, expected `target`",
+    );
+    fixture.refuses(&sized(""), "objective[3]", "missing field `target`");
 }
 
 #[test]
@@ -1084,7 +1153,7 @@ fn part_objectives_load_and_measure_the_generators_parts() {
     use shapegen::optimize::Sense;
     use shapegen::optimize::multi::MultiEvaluator;
     use shapegen::scene::ObjectiveEvaluator;
-    use shapegen::score::objective::{Objective, Parts};
+    use shapegen::score::objective::{AreaShare, Objective, Parts, RoofPitch};
 
     let scene = house_scene(HOUSE).unwrap();
     let set = &scene.objectives.as_ref().unwrap().set;
@@ -1095,26 +1164,26 @@ fn part_objectives_load_and_measure_the_generators_parts() {
     let parts = |wanted: &[&str]| Parts::named(wanted, &meshes).unwrap();
     assert_eq!(
         set.entries()[0].1,
-        Objective::AreaShare {
+        Objective::AreaShare(AreaShare {
             parts: parts(&["window", "door"]),
             of: Some(parts(&["wall", "window", "door"])),
             target: 0.4,
-        }
+        })
     );
     assert_eq!(
         set.entries()[1].1,
-        Objective::AreaShare {
+        Objective::AreaShare(AreaShare {
             parts: parts(&["roof"]),
             of: None,
             target: 0.25,
-        }
+        })
     );
     assert_eq!(
         set.entries()[2].1,
-        Objective::RoofPitch {
+        Objective::RoofPitch(RoofPitch {
             parts: parts(&["roof"]),
             target_deg: 30.0,
-        }
+        })
     );
 
     let mut evaluator = ObjectiveEvaluator::new::<house::House>(&scene).unwrap();

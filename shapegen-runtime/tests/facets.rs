@@ -10,7 +10,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use shapegen_runtime::export::{Palette, glb_bytes, write_obj};
 use shapegen_runtime::geometry::{Mesh, MeshId, MeshLibrary, Polygon, RoofShape};
-use shapegen_runtime::score::objective::{Objective, ObjectiveScratch, Surface};
+use shapegen_runtime::score::objective::{Objective, ObjectiveScratch, Surface, UniqueNormals};
 use shapegen_runtime::score::volume::{Fill, Grid, VolumeCounts, VolumeScorer, VolumeTarget};
 use shapegen_runtime::score::{Form, Scorer};
 use shapegen_runtime::{BoundMeshes, CUBE, Instance, Operators, Scope};
@@ -219,7 +219,7 @@ fn objectives_count_generated_roof_faces() {
     house.extrude_polygon(&lot, 6.0, FACET, &mut model);
     let walls = Surface::from_instances(&model, &meshes);
     let mut scratch = ObjectiveScratch::default();
-    let unique = Objective::UniqueNormals { tolerance_deg: 1.0 };
+    let unique = Objective::UniqueNormals(UniqueNormals { tolerance_deg: 1.0 });
     // An L's six walls face four ways; with the top and the bottom, six normals.
     assert_eq!(unique.measure(&walls, &mut scratch), 6.0);
     let roof = house

@@ -12,7 +12,8 @@ use shapegen_runtime::geometry::{BoundMeshes, Mesh, MeshId, MeshLibrary};
 use shapegen_runtime::optimize::Sense;
 use shapegen_runtime::score::InstanceBatch;
 use shapegen_runtime::score::objective::{
-    Objective, ObjectiveError, ObjectiveScratch, ObjectiveSet, ProjectionMatch, Surface, View,
+    FootprintExcess, Height, NormalSpread, Objective, ObjectiveError, ObjectiveScratch,
+    ObjectiveSet, ProjectionMatch, Surface, UniqueNormals, View,
 };
 use shapegen_runtime::{CUBE, Instance};
 
@@ -126,8 +127,8 @@ fn measure(objective: &Objective, model: &[Instance]) -> f64 {
     objective.measure(&surface(model), &mut ObjectiveScratch::default())
 }
 
-const UNIQUE: Objective = Objective::UniqueNormals { tolerance_deg: 1.0 };
-const SPREAD: Objective = Objective::NormalSpread { tolerance_deg: 1.0 };
+const UNIQUE: Objective = Objective::UniqueNormals(UniqueNormals { tolerance_deg: 1.0 });
+const SPREAD: Objective = Objective::NormalSpread(NormalSpread { tolerance_deg: 1.0 });
 
 fn close(a: f64, b: f64) -> bool {
     (a - b).abs() < 1e-5
@@ -146,8 +147,14 @@ fn a_cube_has_twelve_triangles_six_normals_and_a_right_angle_to_each_neighbour()
     }
     assert_eq!(measure(&UNIQUE, &cube), 6.0);
     assert!(close(measure(&SPREAD, &cube), 6.0 * FRAC_PI_2));
-    assert_eq!(measure(&Objective::Height { target: 2.0 }, &cube), 1.5);
-    assert_eq!(measure(&Objective::Height { target: 0.25 }, &cube), 0.25);
+    assert_eq!(
+        measure(&Objective::Height(Height { target: 2.0 }), &cube),
+        1.5
+    );
+    assert_eq!(
+        measure(&Objective::Height(Height { target: 0.25 }), &cube),
+        0.25
+    );
 }
 
 #[test]
@@ -159,7 +166,10 @@ fn two_cubes_share_their_normals_and_the_higher_sets_the_height() {
     assert_eq!(surface(&two).triangles().len(), 24);
     assert_eq!(measure(&UNIQUE, &two), 6.0);
     assert!(close(measure(&SPREAD, &two), 6.0 * FRAC_PI_2));
-    assert_eq!(measure(&Objective::Height { target: 1.0 }, &two), 1.5);
+    assert_eq!(
+        measure(&Objective::Height(Height { target: 1.0 }), &two),
+        1.5
+    );
 }
 
 #[test]
@@ -177,9 +187,9 @@ fn a_cube_turned_45_degrees_with_an_upright_one_has_ten_normals() {
     let reversed = [instance(turned), instance(Affine3A::IDENTITY)];
     assert_eq!(measure(&UNIQUE, &reversed), 10.0);
     // A tolerance of 50 degrees merges the sides 45 degrees apart.
-    let wide = Objective::UniqueNormals {
+    let wide = Objective::UniqueNormals(UniqueNormals {
         tolerance_deg: 50.0,
-    };
+    });
     assert!(measure(&wide, &model) < 10.0);
 }
 
@@ -251,9 +261,9 @@ fn an_icosahedron_has_one_normal_per_face() {
     let adjacent = (5f64.sqrt() / 3.0).acos();
     assert!(close(measure(&SPREAD, &ball), 20.0 * adjacent));
     // Every normal joins one of fewer representatives when the tolerance exceeds that.
-    let coarse = Objective::UniqueNormals {
+    let coarse = Objective::UniqueNormals(UniqueNormals {
         tolerance_deg: 45.0,
-    };
+    });
     let n = measure(&coarse, &ball);
     assert!((2.0..20.0).contains(&n), "{n}");
 }
@@ -261,18 +271,21 @@ fn an_icosahedron_has_one_normal_per_face() {
 #[test]
 fn an_empty_model_stands_on_the_ground() {
     let empty: [Instance; 0] = [];
-    assert_eq!(measure(&Objective::Height { target: 4.0 }, &empty), 4.0);
+    assert_eq!(
+        measure(&Objective::Height(Height { target: 4.0 }), &empty),
+        4.0
+    );
     assert_eq!(measure(&UNIQUE, &empty), 0.0);
     assert_eq!(measure(&SPREAD, &empty), 0.0);
-    let footprint = Objective::FootprintExcess {
+    let footprint = Objective::FootprintExcess(FootprintExcess {
         min: Vec2::ZERO,
         max: Vec2::ONE,
-    };
+    });
     assert_eq!(measure(&footprint, &empty), 0.0);
     let mut mask = vec![false; 16];
     mask[5] = true;
     let top = ProjectionMatch::new(View::Top, Vec2::ZERO, Vec2::ONE, 4, 4, &mask).unwrap();
-    assert_eq!(measure(&Objective::Projection(top), &empty), 15.0 / 16.0);
+    assert_eq!(measure(&Objective::from(top), &empty), 15.0 / 16.0);
     // A single normal has no other to be apart from.
     let one = [Instance {
         transform: Affine3A::IDENTITY,
@@ -284,10 +297,10 @@ fn an_empty_model_stands_on_the_ground() {
 
 #[test]
 fn footprint_excess_adds_up_the_overhang_on_each_side() {
-    let footprint = Objective::FootprintExcess {
+    let footprint = Objective::FootprintExcess(FootprintExcess {
         min: Vec2::new(0.0, 0.0),
         max: Vec2::new(2.0, 1.0),
-    };
+    });
     // x from -1 to 3 (1 over on each side), z from 0.5 to 1.5 (0.5 over the far side).
     let model = [cuboid(Vec3::new(-1.0, 0.0, 0.5), Vec3::new(3.0, 1.0, 1.5))];
     assert_eq!(measure(&footprint, &model), 2.5);
@@ -321,7 +334,7 @@ fn a_top_projection_covers_pixel_centres_inside_the_box() {
     assert_eq!(top.mask_pixels(), 4);
     assert!(top.mask(5, 2) && !top.mask(1, 2) && !top.mask(9, 0));
     // Covered and black: (2, 2), (3, 2); neither: 64 - 5 pixels.
-    let objective = Objective::Projection(top.clone());
+    let objective = Objective::from(top.clone());
     assert_eq!(measure(&objective, &model), 61.0 / 64.0);
     assert_eq!(
         (objective.name(), objective.sense()),
@@ -371,7 +384,7 @@ fn a_front_projection_has_world_up_at_the_top_of_the_image() {
     )
     .unwrap();
     assert_eq!(front.score(&surface(&model)), 1.0);
-    assert_eq!(Objective::Projection(front.clone()).name(), "front_match");
+    assert_eq!(Objective::from(front.clone()).name(), "front_match");
     // Seen from above, the same box is a band along z at columns 0 and 1.
     let top = ProjectionMatch::new(
         View::Top,
@@ -455,7 +468,7 @@ fn bad_projections_are_refused_with_what_is_wrong() {
 #[test]
 fn bad_sets_and_weights_are_refused_naming_the_objective() {
     assert_eq!(ObjectiveSet::new(vec![]), Err(ObjectiveError::NoObjectives));
-    let height = Objective::Height { target: 1.0 };
+    let height = Objective::Height(Height { target: 1.0 });
     assert_eq!(
         ObjectiveSet::new(vec![(String::new(), height.clone())]),
         Err(ObjectiveError::EmptyName { index: 0 })
@@ -465,24 +478,24 @@ fn bad_sets_and_weights_are_refused_naming_the_objective() {
         Err(ObjectiveError::DuplicateName("h".into()))
     );
     let cases = [
-        (Objective::Height { target: f32::NAN }, "`target`"),
+        (Objective::Height(Height { target: f32::NAN }), "`target`"),
         (
-            Objective::UniqueNormals {
+            Objective::UniqueNormals(UniqueNormals {
                 tolerance_deg: -1.0,
-            },
+            }),
             "`tolerance_deg`",
         ),
         (
-            Objective::NormalSpread {
+            Objective::NormalSpread(NormalSpread {
                 tolerance_deg: 200.0,
-            },
+            }),
             "`tolerance_deg`",
         ),
         (
-            Objective::FootprintExcess {
+            Objective::FootprintExcess(FootprintExcess {
                 min: Vec2::ONE,
                 max: Vec2::ZERO,
-            },
+            }),
             "footprint",
         ),
     ];
@@ -524,25 +537,25 @@ fn all_six() -> ObjectiveSet {
     let lower: Vec<bool> = (0..256).map(|i| i / 16 >= 8).collect();
     let area = (Vec2::splat(-8.0), Vec2::splat(8.0));
     ObjectiveSet::new(vec![
-        ("height".into(), Objective::Height { target: 6.0 }),
+        ("height".into(), Objective::Height(Height { target: 6.0 })),
         ("unique".into(), UNIQUE),
         ("spread".into(), SPREAD),
         (
             "footprint".into(),
-            Objective::FootprintExcess {
+            Objective::FootprintExcess(FootprintExcess {
                 min: Vec2::splat(-3.0),
                 max: Vec2::splat(3.0),
-            },
+            }),
         ),
         (
             "top".into(),
-            Objective::Projection(
+            Objective::from(
                 ProjectionMatch::new(View::Top, area.0, area.1, 16, 16, &disc).unwrap(),
             ),
         ),
         (
             "front".into(),
-            Objective::Projection(
+            Objective::from(
                 ProjectionMatch::new(
                     View::Front,
                     Vec2::new(-8.0, 0.0),

@@ -26,7 +26,8 @@ use shapegen_runtime::geometry::{BoundMeshes, Mesh, MeshId, MeshLibrary};
 use shapegen_runtime::ops::{OperatorVariant, Operators};
 use shapegen_runtime::score::InstanceBatch;
 use shapegen_runtime::score::objective::{
-    BredObjectives, Objective, ObjectiveScratch, ObjectiveSet, Parts, Surface, WeightedObjectives,
+    AreaShare, BredObjectives, FootprintExcess, Height, NormalSpread, Objective, ObjectiveScratch,
+    ObjectiveSet, Parts, RoofPitch, Surface, UniqueNormals, WeightedObjectives,
 };
 use shapegen_runtime::{Genome, Grammar, Instance};
 use support::breeding::{bred, sequences};
@@ -41,17 +42,23 @@ const STEPS: usize = 12;
 fn every_kind(tolerance_deg: f32) -> ObjectiveSet {
     let [top, front] = building_projections();
     ObjectiveSet::new(vec![
-        ("top".into(), Objective::Projection(top)),
-        ("height".into(), Objective::Height { target: 20.0 }),
-        ("facets".into(), Objective::UniqueNormals { tolerance_deg }),
-        ("front".into(), Objective::Projection(front)),
-        ("spread".into(), Objective::NormalSpread { tolerance_deg }),
+        ("top".into(), Objective::from(top)),
+        ("height".into(), Objective::Height(Height { target: 20.0 })),
+        (
+            "facets".into(),
+            Objective::UniqueNormals(UniqueNormals { tolerance_deg }),
+        ),
+        ("front".into(), Objective::from(front)),
+        (
+            "spread".into(),
+            Objective::NormalSpread(NormalSpread { tolerance_deg }),
+        ),
         (
             "footprint".into(),
-            Objective::FootprintExcess {
+            Objective::FootprintExcess(FootprintExcess {
                 min: Vec2::splat(-5.0),
                 max: Vec2::splat(5.0),
-            },
+            }),
         ),
     ])
     .unwrap()
@@ -68,27 +75,27 @@ fn every_kind_with_parts(tolerance_deg: f32) -> ObjectiveSet {
         1,
         (
             "share".into(),
-            Objective::AreaShare {
+            Objective::AreaShare(AreaShare {
                 parts: parts(&["roof_gable", "roof_hip_end"]),
                 of: Some(parts(&["cube", "roof_gable", "roof_hip_end"])),
                 target: 0.3,
-            },
+            }),
         ),
     );
     entries.push((
         "pitch".into(),
-        Objective::RoofPitch {
+        Objective::RoofPitch(RoofPitch {
             parts: parts(&["roof_gable", "roof_shed", "roof_pyramid", "roof_hip_end"]),
             target_deg: 30.0,
-        },
+        }),
     ));
     entries.push((
         "roofs".into(),
-        Objective::AreaShare {
+        Objective::AreaShare(AreaShare {
             parts: parts(&["roof_gable", "roof_shed", "roof_pyramid", "roof_hip_end"]),
             of: None,
             target: 0.0,
-        },
+        }),
     ));
     ObjectiveSet::new(entries).unwrap()
 }
@@ -145,14 +152,15 @@ fn dot(a: Vec3, b: Vec3) -> f64 {
 /// returns the number of distinct normals.
 fn check_normals(surface: &Surface, tolerance_deg: f32, scratch: &mut ObjectiveScratch) -> usize {
     let reps = distinct_by_definition(surface.normals(), tolerance_deg);
-    let unique = Objective::UniqueNormals { tolerance_deg }.measure(surface, scratch);
+    let unique =
+        Objective::UniqueNormals(UniqueNormals { tolerance_deg }).measure(surface, scratch);
     assert_eq!(
         unique,
         reps.len() as f64,
         "{} normals at {tolerance_deg} degrees",
         surface.normals().len()
     );
-    let spread = Objective::NormalSpread { tolerance_deg }.measure(surface, scratch);
+    let spread = Objective::NormalSpread(NormalSpread { tolerance_deg }).measure(surface, scratch);
     let expected = spread_by_definition(&reps);
     assert_eq!(
         spread.to_bits(),
@@ -184,7 +192,7 @@ fn bred_values<G: Grammar>(
         .entries()
         .iter()
         .find_map(|(_, o)| match o {
-            Objective::UniqueNormals { tolerance_deg } => Some(*tolerance_deg),
+            Objective::UniqueNormals(UniqueNormals { tolerance_deg }) => Some(*tolerance_deg),
             _ => None,
         })
         .expect("the set counts distinct normals");
@@ -366,7 +374,7 @@ fn weighted_objectives_score_bred_children_as_in_full() {
 fn only_projections_are_counted_from_parents() {
     let set = ObjectiveSet::new(vec![(
         "facets".into(),
-        Objective::UniqueNormals { tolerance_deg: 1.0 },
+        Objective::UniqueNormals(UniqueNormals { tolerance_deg: 1.0 }),
     )])
     .unwrap();
     assert!(BredObjectives::new(&set, &building_meshes()).is_none());

@@ -10,7 +10,8 @@ use shapegen_runtime::geometry::{
 };
 use shapegen_runtime::score::InstanceBatch;
 use shapegen_runtime::score::objective::{
-    Objective, ObjectiveError, ObjectiveScratch, ObjectiveSet, Parts, Surface,
+    AreaShare, Height, Objective, ObjectiveError, ObjectiveScratch, ObjectiveSet, Parts, RoofPitch,
+    Surface,
 };
 use shapegen_runtime::{CUBE, Instance, Scope};
 
@@ -89,18 +90,18 @@ fn cube_and_front(mesh: MeshId, w: f32, h: f32) -> Vec<Instance> {
 const WALL_CUBE: MeshId = CUBE;
 
 fn share(parts_: &[&str], of: Option<&[&str]>, target: f32) -> Objective {
-    Objective::AreaShare {
+    Objective::AreaShare(AreaShare {
         parts: parts(parts_),
         of: of.map(parts),
         target,
-    }
+    })
 }
 
 fn pitch(parts_: &[&str], target_deg: f32) -> Objective {
-    Objective::RoofPitch {
+    Objective::RoofPitch(RoofPitch {
         parts: parts(parts_),
         target_deg,
-    }
+    })
 }
 
 #[test]
@@ -126,18 +127,18 @@ fn a_window_on_a_unit_cube_of_wall_takes_a_seventh_of_the_area() {
     model.extend(quad(window, corners));
     let surface = Surface::from_instances(&model, &meshes);
     let part = |wanted: &[&str]| Parts::named(wanted, &names).unwrap();
-    let windows = Objective::AreaShare {
+    let windows = Objective::AreaShare(AreaShare {
         parts: part(&["window"]),
         of: None,
         target: 0.0,
-    };
+    });
     let mut scratch = ObjectiveScratch::default();
     assert_eq!(windows.measure(&surface, &mut scratch), 1.0 / 7.0);
-    let of_walls = Objective::AreaShare {
+    let of_walls = Objective::AreaShare(AreaShare {
         parts: part(&["window"]),
         of: Some(part(&["wall", "window"])),
         target: 0.4,
-    };
+    });
     assert_eq!(
         of_walls.measure(&surface, &mut scratch),
         0.4f32 as f64 - 1.0 / 7.0
@@ -376,7 +377,7 @@ fn batches_measure_as_one_model_at_a_time() {
             share(&["window"], Some(&["cube", "window", "door"]), 0.2),
         ),
         ("pitch".into(), pitch(&["roof"], 40.0)),
-        ("height".into(), Objective::Height { target: 1.0 }),
+        ("height".into(), Objective::Height(Height { target: 1.0 })),
     ])
     .unwrap();
     let mut batch = InstanceBatch::new();
@@ -448,26 +449,26 @@ fn bad_targets_and_parts_are_refused() {
         (pitch(&["roof"], f32::INFINITY), "`target_deg` is inf"),
         (pitch(&["roof"], -1.0), "from 0 to 90"),
         (
-            Objective::RoofPitch {
+            Objective::RoofPitch(RoofPitch {
                 parts: Parts::default(),
                 target_deg: 30.0,
-            },
+            }),
             "`parts` names no mesh; name at least one",
         ),
         (
-            Objective::AreaShare {
+            Objective::AreaShare(AreaShare {
                 parts: Parts::default(),
                 of: None,
                 target: 0.5,
-            },
+            }),
             "`parts` names no mesh",
         ),
         (
-            Objective::AreaShare {
+            Objective::AreaShare(AreaShare {
                 parts: parts(&["window"]),
                 of: Some(Parts::default()),
                 target: 0.5,
-            },
+            }),
             "`of` names no mesh",
         ),
         (

@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use image::{Rgb, RgbImage};
-use shapegen::score::objective::{Objective, ObjectiveSet, ProjectionMatch, Surface};
+use shapegen::score::objective::{ObjectiveSet, ProjectionMatch, Surface};
 use shapegen::score::silhouette::ImageTarget;
 
 /// Overlay colours: target alone, model alone, both.
@@ -26,10 +26,7 @@ pub fn numbered(path: &Path, k: usize, of: usize, ext: &str) -> PathBuf {
 pub fn projections(set: &ObjectiveSet) -> Vec<(&str, &ProjectionMatch)> {
     set.entries()
         .iter()
-        .filter_map(|(name, objective)| match objective {
-            Objective::Projection(p) => Some((name.as_str(), p)),
-            _ => None,
-        })
+        .filter_map(|(name, objective)| Some((name.as_str(), objective.projection()?)))
         .collect()
 }
 

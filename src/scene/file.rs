@@ -18,8 +18,9 @@ pub(super) struct SceneFile {
     pub fitness: FitnessFile,
     pub volume: Option<VolumeFile>,
     pub silhouette: Option<SilhouetteFile>,
-    /// `[[objective]]`: the objectives of a multi-objective scene, each read as an
-    /// [`ObjectiveFile`] by the resolver, which names the table at fault.
+    /// `[[objective]]`: the objectives of a multi-objective scene, each read as the
+    /// runtime's [`ObjectiveFile`](shapegen_runtime::score::objective::ObjectiveFile) by
+    /// the resolver, which names the table at fault.
     #[serde(default)]
     pub objective: Vec<toml::Table>,
     /// `[selection]`: how a multi-objective scene's objective vectors are ranked.
@@ -215,81 +216,6 @@ pub(super) struct CameraFile {
     pub view: Option<[[f32; 4]; 4]>,
     /// Row-major 4 x 4 projection matrix.
     pub projection: Option<[[f32; 4]; 4]>,
-}
-
-/// One `[[objective]]` table as written, less its optional `name`: `kind` picks the
-/// variant, whose fields are exactly the keys that kind takes (any other is refused, and
-/// the message lists the valid ones). The kinds' names are the runtime's
-/// [`Objective::name`](shapegen_runtime::score::objective::Objective::name)s.
-#[derive(Debug, Deserialize)]
-#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
-pub(super) enum ObjectiveFile {
-    /// `|top - target|`.
-    Height { target: f32 },
-    /// Distinct face normals.
-    UniqueNormals {
-        #[serde(default = "one_degree")]
-        tolerance_deg: f32,
-    },
-    /// How far apart the distinct face normals are.
-    NormalSpread {
-        #[serde(default = "one_degree")]
-        tolerance_deg: f32,
-    },
-    /// How far the x/z extent leaves `[min, max]`.
-    FootprintExcess { min: [f32; 2], max: [f32; 2] },
-    /// An image matched by the view from above.
-    TopMatch(ProjectionFile),
-    /// An image matched by the view from the front.
-    FrontMatch(ProjectionFile),
-    /// A point cloud approached by the model's surface.
-    Chamfer {
-        /// The cloud's file (`.xyz`, `.txt` or `.ply`).
-        points: String,
-        #[serde(default = "chamfer_samples")]
-        samples: usize,
-    },
-    /// The share of the area of the meshes `of` (all when absent) that the meshes
-    /// `parts` take, toward `target`.
-    AreaShare {
-        parts: Vec<String>,
-        #[serde(default)]
-        of: Option<Vec<String>>,
-        target: f32,
-    },
-    /// The mean pitch of the upward-facing triangles of the meshes `parts`, toward
-    /// `target_deg`.
-    RoofPitch {
-        #[serde(default = "roof_parts")]
-        parts: Vec<String>,
-        target_deg: f32,
-    },
-}
-
-/// Default parts of a `roof_pitch` objective: the mesh a building names its roofs.
-fn roof_parts() -> Vec<String> {
-    vec!["roof".to_owned()]
-}
-
-/// Default samples a side of a `chamfer` objective.
-fn chamfer_samples() -> usize {
-    512
-}
-
-/// Default tolerance between normals counted as one, in degrees.
-fn one_degree() -> f32 {
-    1.0
-}
-
-/// The keys of a `top_match` or `front_match` objective.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct ProjectionFile {
-    /// The target image; black = covered.
-    pub image: String,
-    /// The view plane's area the image covers: (x, z) from above, (x, y) from the front.
-    pub min: [f32; 2],
-    pub max: [f32; 2],
 }
 
 /// `[lot]`: exactly one of `points` and `geojson`, how their numbers are read, and

@@ -8,7 +8,6 @@ use shapegen_runtime::graph::{GeneratorGraph, NodeDesc};
 use shapegen_runtime::optimize::multi::{Front, MultiGaSettings};
 use shapegen_runtime::optimize::{Best, Held, Optimizer};
 use shapegen_runtime::score::Form;
-use shapegen_runtime::score::objective::Objective;
 use shapegen_runtime::score::retained::DEFAULT_MAX_BYTES;
 use shapegen_runtime::score::volume::fscore_half_width;
 use shapegen_runtime::{Grammar, Instance};
@@ -312,7 +311,7 @@ impl Scene {
         }
         let objectives = self.objectives.iter().flat_map(|o| o.set.entries());
         for (i, (_, objective)) in objectives.enumerate() {
-            if let Objective::Projection(p) = objective {
+            if let Some(p) = objective.projection() {
                 let n = u64::from(p.width()) * u64::from(p.height());
                 cells.push(("pixels", format!("objective[{i}].image size"), n));
             }

@@ -1,21 +1,19 @@
 //! The `[[objective]]` tables of a multi-objective scene: what each objective measures,
 //! resolved into an [`ObjectiveSet`], and the evaluator that measures whole populations.
 
-use glam::Vec2;
+use image::GrayImage;
 use shapegen_runtime::geometry::BoundMeshes;
 use shapegen_runtime::geometry::PointCloud;
 use shapegen_runtime::optimize::multi::MultiEvaluator;
 use shapegen_runtime::optimize::{EvaluateError, Sense};
 use shapegen_runtime::score::InstanceBatch;
 use shapegen_runtime::score::objective::{
-    BredObjectives, ChamferMatch, Objective, ObjectiveError, ObjectiveSet, Parts, ProjectionMatch,
-    View,
+    BredObjectives, ObjectiveError, ObjectiveFile, ObjectiveSet, ObjectiveSource,
 };
 use shapegen_runtime::score::retained::RetentionStats;
 use shapegen_runtime::{Genome, Grammar};
 
 use super::error::{SceneError, ValueError};
-use super::file::{ObjectiveFile, ProjectionFile};
 use super::image::read_image;
 use super::loaded::Scene;
 use super::resolve::Resolver;
@@ -23,68 +21,24 @@ use super::resolve::Resolver;
 impl Resolver<'_> {
     /// The objectives of `[[objective]]` tables, in order, for a generator whose meshes
     /// are named `meshes` (in id order): the parts objectives name are resolved
-    /// against those.
+    /// against those. Each table is read as its kind's, by the runtime's table of kinds
+    /// ([`ObjectiveFile`]); errors name the table and its key (`objective[i].key`).
     pub(super) fn objectives(
         &self,
         tables: Vec<toml::Table>,
         meshes: &[&str],
     ) -> Result<ObjectiveSet, SceneError> {
         let mut entries = Vec::with_capacity(tables.len());
-        for (i, table) in tables.into_iter().enumerate() {
-            let (name, file) = self.objective_file(i, table)?;
-            let image = format!("objective[{i}].image");
-            // The meshes of `field`, an error naming the table, its objective and the
-            // field.
-            let parts = |field: &str, wanted: &[String], kind: &str| {
-                Parts::named(wanted, meshes).map_err(|err| {
-                    self.refused(
-                        format!("objective[{i}].{field}"),
-                        ObjectiveError::Entry {
-                            name: name.clone().unwrap_or_else(|| kind.to_owned()),
-                            source: Box::new(err),
-                        },
-                    )
-                })
+        for (index, table) in tables.into_iter().enumerate() {
+            let (name, file) = self.objective_file(index, table)?;
+            let table = ObjectiveTable {
+                resolver: self,
+                index,
+                name: name.unwrap_or_else(|| file.name().to_owned()),
+                meshes,
             };
-            // One arm per kind.
-            let objective = match file {
-                ObjectiveFile::Height { target } => Objective::Height { target },
-                ObjectiveFile::UniqueNormals { tolerance_deg } => {
-                    Objective::UniqueNormals { tolerance_deg }
-                }
-                ObjectiveFile::NormalSpread { tolerance_deg } => {
-                    Objective::NormalSpread { tolerance_deg }
-                }
-                ObjectiveFile::FootprintExcess { min, max } => Objective::FootprintExcess {
-                    min: Vec2::from(min),
-                    max: Vec2::from(max),
-                },
-                ObjectiveFile::TopMatch(p) => self.projection(&image, View::Top, &p)?,
-                ObjectiveFile::FrontMatch(p) => self.projection(&image, View::Front, &p)?,
-                ObjectiveFile::Chamfer { points, samples } => {
-                    self.chamfer(&format!("objective[{i}]"), &points, samples)?
-                }
-                ObjectiveFile::AreaShare {
-                    parts: p,
-                    of,
-                    target,
-                } => Objective::AreaShare {
-                    parts: parts("parts", &p, "area_share")?,
-                    of: of.map(|of| parts("of", &of, "area_share")).transpose()?,
-                    target,
-                },
-                ObjectiveFile::RoofPitch {
-                    parts: p,
-                    target_deg,
-                } => Objective::RoofPitch {
-                    parts: parts("parts", &p, "roof_pitch")?,
-                    target_deg,
-                },
-            };
-            entries.push((
-                name.unwrap_or_else(|| objective.name().to_owned()),
-                objective,
-            ));
+            let objective = file.resolve(&table)?;
+            entries.push((table.name, objective));
         }
         ObjectiveSet::new(entries).map_err(|err| self.refused("objective", err))
     }
@@ -122,32 +76,52 @@ impl Resolver<'_> {
             })?;
         Ok((name, file))
     }
+}
 
-    /// A Chamfer objective toward the point cloud `points` of the table `key`.
-    fn chamfer(&self, key: &str, points: &str, samples: usize) -> Result<Objective, SceneError> {
-        let points_key = format!("{key}.points");
-        let path = self.file(&points_key, points)?;
-        let cloud = PointCloud::load(&path).map_err(|err| self.refused(&points_key, err))?;
-        let chamfer = ChamferMatch::new(&cloud, samples)
-            .map_err(|err| self.refused(format!("{key}.samples"), err))?;
-        Ok(Objective::Chamfer(chamfer))
+/// The `index`th `[[objective]]` table of a scene, as the runtime's kinds read it: its
+/// files resolved against the scene's folder, its errors naming `objective[index].key`.
+struct ObjectiveTable<'r, 'a> {
+    resolver: &'r Resolver<'a>,
+    index: usize,
+    /// The table's `name`, else its kind's.
+    name: String,
+    /// The names of the generator's meshes, in id order.
+    meshes: &'r [&'r str],
+}
+
+impl ObjectiveTable<'_, '_> {
+    /// The key `field` of the table, as errors name it.
+    fn key(&self, field: &str) -> String {
+        format!("objective[{}].{field}", self.index)
+    }
+}
+
+impl ObjectiveSource for ObjectiveTable<'_, '_> {
+    type Error = SceneError;
+
+    fn name(&self) -> &str {
+        &self.name
     }
 
-    /// A projection objective through `view`, its image read as `key`.
-    fn projection(
-        &self,
-        key: &str,
-        view: View,
-        p: &ProjectionFile,
-    ) -> Result<Objective, SceneError> {
-        let path = self.file(key, &p.image)?;
-        let image = read_image(&path)
-            .map_err(|err| self.refused(key, err))?
-            .into_luma8();
-        let (min, max) = (Vec2::from(p.min), Vec2::from(p.max));
-        let projection = ProjectionMatch::from_image(view, min, max, &image)
-            .map_err(|err| self.refused(key, err))?;
-        Ok(Objective::Projection(projection))
+    fn meshes(&self) -> &[&str] {
+        self.meshes
+    }
+
+    fn image(&self, field: &str, path: &str) -> Result<GrayImage, SceneError> {
+        let key = self.key(field);
+        let path = self.resolver.file(&key, path)?;
+        let image = read_image(&path).map_err(|err| self.resolver.refused(&key, err))?;
+        Ok(image.into_luma8())
+    }
+
+    fn point_cloud(&self, field: &str, path: &str) -> Result<PointCloud, SceneError> {
+        let key = self.key(field);
+        let path = self.resolver.file(&key, path)?;
+        PointCloud::load(&path).map_err(|err| self.resolver.refused(&key, err))
+    }
+
+    fn refused(&self, field: &str, error: ObjectiveError) -> SceneError {
+        self.resolver.refused(self.key(field), error)
     }
 }
 
@@ -256,6 +230,8 @@ impl<G: Grammar> MultiEvaluator<G> for ObjectiveEvaluator<'_> {
 
 #[cfg(test)]
 mod tests {
+    use shapegen_runtime::score::objective::Objective;
+
     use super::*;
 
     /// The kinds a table may name, as serde lists them when refusing an unknown one.
@@ -272,41 +248,23 @@ mod tests {
             .collect()
     }
 
-    /// A table of `kind` with the keys it needs; `image.png` is a 4 x 4 image and
-    /// `scan.xyz` a cloud of two points.
-    fn table(kind: &str) -> toml::Table {
-        let keys = match kind {
-            "height" => "target = 2",
-            "unique_normals" | "normal_spread" => "",
-            "footprint_excess" => "min = [-1, -1]\nmax = [1, 1]",
-            "top_match" | "front_match" => "image = \"image.png\"\nmin = [-1, -1]\nmax = [1, 1]",
-            "chamfer" => "points = \"scan.xyz\"",
-            "area_share" => "parts = [\"window\"]\nof = [\"wall\", \"window\"]\ntarget = 0.4",
-            "roof_pitch" => "target_deg = 35",
-            _ => panic!("give a table of the new kind `{kind}` here"),
-        };
-        toml::from_str(&format!("kind = \"{kind}\"\n{keys}")).unwrap()
+    #[test]
+    fn the_kinds_a_table_may_name_are_the_runtimes_in_its_order() {
+        assert_eq!(kinds(), Objective::NAMES);
     }
 
     #[test]
-    fn the_kinds_are_named_as_the_runtime_names_them() {
-        let dir = tempfile::tempdir().unwrap();
-        image::GrayImage::from_fn(4, 4, |x, _| image::Luma([if x < 2 { 0 } else { 255 }]))
-            .save(dir.path().join("image.png"))
+    fn unnamed_objectives_take_their_kinds_name() {
+        let tables = [
+            "kind = \"height\"\ntarget = 2",
+            "kind = \"roof_pitch\"\ntarget_deg = 35",
+        ]
+        .map(|t| toml::from_str(t).unwrap());
+        let path = std::path::Path::new("scene.toml");
+        let set = Resolver::new(path, &crate::scene::sources::Sources::new())
+            .objectives(tables.into(), &["cube", "roof"])
             .unwrap();
-        std::fs::write(dir.path().join("scan.xyz"), "0 0 0\n1 1 1\n").unwrap();
-        let path = dir.path().join("scene.toml");
-        let kinds = kinds();
-        assert!(kinds.len() > 1, "{kinds:?}");
-        let set = Resolver::new(&path, &crate::scene::sources::Sources::new())
-            .objectives(
-                kinds.iter().map(|k| table(k)).collect(),
-                &["cube", "wall", "roof", "window"],
-            )
-            .unwrap();
-        for (kind, (name, objective)) in kinds.iter().zip(set.entries()) {
-            assert_eq!(objective.name(), kind);
-            assert_eq!(name, kind, "unnamed objectives take their kind's name");
-        }
+        let names: Vec<&str> = set.names().collect();
+        assert_eq!(names, ["height", "roof_pitch"]);
     }
 }

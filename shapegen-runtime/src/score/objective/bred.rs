@@ -1,7 +1,7 @@
 //! Measuring bred children: projections counted from their parents' kept per-pixel
 //! counts, the other objectives in full.
 
-use super::kind::Objective;
+use super::kinds::Objective;
 use super::retained::{ProjectionCounts, ProjectionScorer};
 use super::set::ObjectiveSet;
 use crate::derive::Grammar;
@@ -22,9 +22,7 @@ use crate::score::scorer::Scorer;
 /// use rand::SeedableRng;
 /// use shapegen_runtime::prelude::*;
 /// use shapegen_runtime::score::InstanceBatch;
-/// use shapegen_runtime::score::objective::{
-///     BredObjectives, Objective, ObjectiveSet, ProjectionMatch, View,
-/// };
+/// use shapegen_runtime::score::objective::{BredObjectives, Objective, ObjectiveSet, ProjectionMatch, UniqueNormals, View};
 /// use shapegen_runtime::MeshLibrary;
 ///
 /// generator! {
@@ -45,8 +43,8 @@ use crate::score::scorer::Scorer;
 /// let mask: Vec<bool> = (0..256).map(|i| i % 16 < 8).collect();
 /// let top = ProjectionMatch::new(View::Top, Vec2::splat(-4.0), Vec2::splat(4.0), 16, 16, &mask)?;
 /// let set = ObjectiveSet::new(vec![
-///     ("top".into(), Objective::Projection(top)),
-///     ("facets".into(), Objective::UniqueNormals { tolerance_deg: 1.0 }),
+///     ("top".into(), Objective::from(top)),
+///     ("facets".into(), Objective::UniqueNormals(UniqueNormals { tolerance_deg: 1.0 })),
 /// ])?;
 /// let meshes = MeshLibrary::new().bind(&Row::GRAPH)?;
 /// let mut bred = BredObjectives::new(&set, &meshes).expect("the set has a projection");
@@ -85,9 +83,9 @@ impl BredObjectives {
         let projections: Vec<ProjectionScorer> = set
             .entries()
             .iter()
-            .filter_map(|(_, objective)| match objective {
-                Objective::Projection(p) => Some(ProjectionScorer::new(p.clone(), meshes.clone())),
-                _ => None,
+            .filter_map(|(_, objective)| {
+                let p = objective.projection()?;
+                Some(ProjectionScorer::new(p.clone(), meshes.clone()))
             })
             .collect();
         (!projections.is_empty()).then(|| BredObjectives {
@@ -136,7 +134,7 @@ impl BredObjectives {
             from,
             &mut self.counts,
         );
-        let is_projection = |o: &Objective| matches!(o, Objective::Projection(_));
+        let is_projection = |o: &Objective| o.projection().is_some();
         self.set
             .measure_rows(batch, &self.meshes, out, |o| !is_projection(o));
         for (row, counts) in out.chunks_exact_mut(k).zip(self.counts.chunks_exact(p)) {

@@ -14,6 +14,8 @@
 
 use glam::Vec3;
 
+use super::error::ObjectiveError;
+
 /// Slack added to distances and dot-product bounds, far above the rounding of the
 /// `f64` arithmetic on `f32` components (about `1e-15` here) and far below any
 /// distance that matters.
@@ -334,4 +336,16 @@ fn dot(a: Vec3, b: Vec3) -> f64 {
     f64::from(a.x) * f64::from(b.x)
         + f64::from(a.y) * f64::from(b.y)
         + f64::from(a.z) * f64::from(b.z)
+}
+
+/// Checks a tolerance between normals counted as one: from 0 to 180 degrees.
+pub(super) fn check_tolerance(tolerance_deg: f32) -> Result<(), ObjectiveError> {
+    if (0.0..=180.0).contains(&tolerance_deg) {
+        return Ok(());
+    }
+    Err(ObjectiveError::Parameter {
+        field: "tolerance_deg",
+        value: tolerance_deg,
+        valid: "an angle from 0 to 180 degrees",
+    })
 }

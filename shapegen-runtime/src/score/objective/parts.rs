@@ -1,18 +1,18 @@
-//! Objectives that read which part of a model a triangle belongs to: the share of the
-//! surface area some parts take, and the pitch of a roof.
+//! What objectives that read which part of a model a triangle belongs to share (the share
+//! of the surface area some parts take, the pitch of a roof): the parts, as a set of
+//! meshes, and a triangle's area.
 //!
 //! A triangle's part is the name of its instance's mesh (a building's generator names its
 //! facet meshes `wall`, `roof`, `window`, `door`). The names are resolved to mesh ids once,
 //! into a [`Parts`] set; measuring then asks a bit mask per triangle.
 
-use glam::{DVec3, Vec3};
+use glam::Vec3;
 
 use super::error::ObjectiveError;
-use super::surface::Surface;
 use crate::geometry::{BoundMeshes, MeshId};
 
 /// Triangles whose unit normal's `y` is at most this are not counted by
-/// [`RoofPitch`](super::Objective::RoofPitch): they face down or sideways (a pitch above
+/// [`RoofPitch`](super::RoofPitch): they face down or sideways (a pitch above
 /// about 89.994 degrees).
 pub const MIN_UPWARD_Y: f32 = 1e-4;
 
@@ -134,50 +134,7 @@ fn listing(names: &[&str]) -> String {
 
 /// The area of triangle `t`, in `f64`.
 #[inline]
-fn area(t: &[Vec3; 3]) -> f64 {
+pub(super) fn area(t: &[Vec3; 3]) -> f64 {
     let [a, b, c] = t.map(|p| p.as_dvec3());
     0.5 * (b - a).cross(c - a).length()
-}
-
-/// `|share - target|`, `share` the area of the triangles of `parts` (and of `of`) over
-/// that of the triangles of `of` (all triangles when `None`), 0 when that is 0.
-pub(super) fn area_share(surface: &Surface, parts: &Parts, of: Option<&Parts>, target: f32) -> f64 {
-    let (mut part, mut whole) = (0.0, 0.0);
-    for (t, &mesh) in surface.triangles().iter().zip(surface.mesh_ids()) {
-        if of.is_some_and(|of| !of.contains(mesh)) {
-            continue;
-        }
-        let a = area(t);
-        whole += a;
-        if parts.contains(mesh) {
-            part += a;
-        }
-    }
-    let share = if whole > 0.0 { part / whole } else { 0.0 };
-    (share - f64::from(target)).abs()
-}
-
-/// `|mean - target_deg|`, `mean` the area-weighted mean pitch, in degrees, of the
-/// triangles of `parts` whose unit normal's `y` is above [`MIN_UPWARD_Y`], 0 when there
-/// is none.
-pub(super) fn roof_pitch(surface: &Surface, parts: &Parts, target_deg: f32) -> f64 {
-    let (mut weighted, mut total) = (0.0, 0.0);
-    let triangles = surface.triangles().iter().zip(surface.normals());
-    for ((t, n), &mesh) in triangles.zip(surface.mesh_ids()) {
-        if n.y <= MIN_UPWARD_Y || !parts.contains(mesh) {
-            continue;
-        }
-        let a = area(t);
-        weighted += a * pitch_deg(n.as_dvec3());
-        total += a;
-    }
-    let mean = if total > 0.0 { weighted / total } else { 0.0 };
-    (mean - f64::from(target_deg)).abs()
-}
-
-/// The angle in degrees between the plane of unit normal `n` and the horizontal:
-/// `atan2(|(n.x, n.z)|, n.y)`.
-#[inline]
-fn pitch_deg(n: DVec3) -> f64 {
-    n.x.hypot(n.z).atan2(n.y).to_degrees()
 }

@@ -3,7 +3,8 @@
 use rayon::prelude::*;
 
 use super::error::ObjectiveError;
-use super::kind::{Objective, ObjectiveScratch};
+use super::kinds::Objective;
+use super::scratch::ObjectiveScratch;
 use super::surface::Surface;
 use crate::evaluate::Sense;
 use crate::geometry::{BoundMeshes, Instance};
@@ -15,12 +16,12 @@ use crate::score::batch::InstanceBatch;
 /// ```
 /// use glam::Affine3A;
 /// use shapegen_runtime::evaluate::Sense;
-/// use shapegen_runtime::score::objective::{Objective, ObjectiveSet};
+/// use shapegen_runtime::score::objective::{Height, Objective, ObjectiveSet, UniqueNormals};
 /// use shapegen_runtime::{CUBE, Instance, MeshLibrary};
 ///
 /// let set = ObjectiveSet::new(vec![
-///     ("tall".into(), Objective::Height { target: 3.0 }),
-///     ("facets".into(), Objective::UniqueNormals { tolerance_deg: 1.0 }),
+///     ("tall".into(), Objective::Height(Height { target: 3.0 })),
+///     ("facets".into(), Objective::UniqueNormals(UniqueNormals { tolerance_deg: 1.0 })),
 /// ])?;
 /// assert_eq!(set.senses(), [Sense::Minimize, Sense::Maximize]);
 /// assert_eq!(set.names().collect::<Vec<_>>(), ["tall", "facets"]);

@@ -19,7 +19,7 @@ use crate::score::batch::InstanceBatch;
 /// ```
 /// use shapegen_runtime::evaluate::Evaluator;
 /// use shapegen_runtime::prelude::*;
-/// use shapegen_runtime::score::objective::{Objective, ObjectiveSet, WeightedObjectives};
+/// use shapegen_runtime::score::objective::{Height, Objective, ObjectiveSet, WeightedObjectives};
 /// use shapegen_runtime::MeshLibrary;
 ///
 /// generator! {
@@ -27,7 +27,7 @@ use crate::score::batch::InstanceBatch;
 ///     pub Block { axiom B; node B { derive(s) { s.emit(CUBE); } } }
 /// }
 ///
-/// let set = ObjectiveSet::new(vec![("tall".into(), Objective::Height { target: 1.5 })])?;
+/// let set = ObjectiveSet::new(vec![("tall".into(), Objective::Height(Height { target: 1.5 }))])?;
 /// let meshes = MeshLibrary::new().bind(&Block::GRAPH)?;
 /// let mut evaluator = WeightedObjectives::new(set, vec![1.0], meshes)?;
 /// let genomes = [Genome::<Block>::axiom(&mut rand::rng())];

@@ -6,9 +6,14 @@ use glam::DVec3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
-use super::error::ObjectiveError;
-use super::surface::Surface;
+use serde::Deserialize;
+
+use crate::evaluate::Sense;
 use crate::geometry::PointCloud;
+use crate::score::objective::error::ObjectiveError;
+use crate::score::objective::kind::{ObjectiveKind, ObjectiveSource};
+use crate::score::objective::scratch::ObjectiveScratch;
+use crate::score::objective::surface::Surface;
 use crate::score::metrics::{nearest, sample, subsample};
 
 /// The most samples a [`ChamferMatch`] may take: the work per model grows with their
@@ -17,10 +22,12 @@ pub const MAX_CHAMFER_SAMPLES: usize = 8192;
 
 /// A point cloud (a scan) to approach: the symmetric Chamfer distance between `samples`
 /// points sampled by area on a model's surface and as many points of the cloud, in world
-/// units ([`Sense::Minimize`](crate::evaluate::Sense::Minimize)). The cloud is
+/// units ([`Sense::Minimize`]). The cloud is
 /// subsampled once, when the objective is made; the model's samples come from a fixed
 /// seed, so a model always measures the same. A model without surface measures the
-/// diagonal of the cloud's bounding box, as if it were that far from every point.
+/// diagonal of the cloud's bounding box, as if it were that far from every point. Its
+/// table: `kind = "chamfer"`, `points` (the cloud's file: `.xyz`, `.txt` or `.ply`) and
+/// `samples` (512 when left out).
 ///
 /// ```
 /// use glam::{Affine3A, Vec3};
@@ -94,5 +101,36 @@ impl ChamferMatch {
         let (to_cloud, _) = nearest(&model, &self.points, 0.0);
         let (to_model, _) = nearest(&self.points, &model, 0.0);
         (to_cloud + to_model) / 2.0
+    }
+}
+
+/// The keys of a `chamfer` table.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ChamferFile {
+    /// The cloud's file (`.xyz`, `.txt` or `.ply`).
+    pub points: String,
+    /// Points sampled a side.
+    #[serde(default = "chamfer_samples")]
+    pub samples: usize,
+}
+
+/// The samples of a table that leaves them out.
+fn chamfer_samples() -> usize {
+    512
+}
+
+impl ObjectiveKind for ChamferMatch {
+    type File = ChamferFile;
+    const SENSE: Sense = Sense::Minimize;
+
+    /// The cloud of `points`; a sample count out of range is an error of `samples`.
+    fn resolve<S: ObjectiveSource>(file: ChamferFile, source: &S) -> Result<Self, S::Error> {
+        let cloud = source.point_cloud("points", &file.points)?;
+        ChamferMatch::new(&cloud, file.samples).map_err(|err| source.refused("samples", err))
+    }
+
+    fn measure(&self, surface: &Surface, _: &mut ObjectiveScratch) -> f64 {
+        ChamferMatch::measure(self, surface)
     }
 }

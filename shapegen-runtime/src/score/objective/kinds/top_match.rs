@@ -1,0 +1,50 @@
+//! [`TopMatch`]: how well the model seen from above matches a target image.
+
+use crate::evaluate::Sense;
+use crate::score::objective::kind::{ObjectiveKind, ObjectiveSource};
+use crate::score::objective::projected::ProjectionFile;
+use crate::score::objective::projection::{ProjectionMatch, View};
+use crate::score::objective::scratch::ObjectiveScratch;
+use crate::score::objective::surface::Surface;
+
+/// Fraction of the pixels of the orthographic projection from above (onto x/z) that
+/// match a target image, in `[0, 1]` ([`Sense::Maximize`]); see [`ProjectionMatch`].
+/// Made from its table (`kind = "top_match"`, `image`, `min`, `max`), or from a match
+/// whose view is [`View::Top`] by [`Objective::from`](super::Objective::from).
+///
+/// ```
+/// use glam::{Affine3A, Vec2};
+/// use shapegen_runtime::score::objective::{Objective, ObjectiveScratch, ProjectionMatch, Surface, View};
+/// use shapegen_runtime::{CUBE, Instance, MeshLibrary};
+///
+/// let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"])?;
+/// let cube = Surface::from_instances(&[Instance { transform: Affine3A::IDENTITY, mesh: CUBE }], &meshes);
+/// // A 4 x 4 image of [-1, 1]^2 whose middle 2 x 2 pixels are black: the unit cube.
+/// let mask: Vec<bool> = (0..16).map(|i| (1..3).contains(&(i % 4)) && (1..3).contains(&(i / 4))).collect();
+/// let top = ProjectionMatch::new(View::Top, Vec2::splat(-1.0), Vec2::splat(1.0), 4, 4, &mask)?;
+/// let objective = Objective::from(top);
+/// assert_eq!(objective.name(), "top_match");
+/// let mut scratch = ObjectiveScratch::default();
+/// assert_eq!(objective.measure(&cube, &mut scratch), 1.0);
+/// assert_eq!(objective.measure(&Surface::new(), &mut scratch), 0.75);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct TopMatch(pub(super) ProjectionMatch);
+
+impl ObjectiveKind for TopMatch {
+    type File = ProjectionFile;
+    const SENSE: Sense = Sense::Maximize;
+
+    fn resolve<S: ObjectiveSource>(file: ProjectionFile, source: &S) -> Result<Self, S::Error> {
+        file.resolve(View::Top, source).map(TopMatch)
+    }
+
+    fn measure(&self, surface: &Surface, scratch: &mut ObjectiveScratch) -> f64 {
+        self.0.score_with(surface, scratch.coverage())
+    }
+
+    fn projection(&self) -> Option<&ProjectionMatch> {
+        Some(&self.0)
+    }
+}

@@ -1,0 +1,36 @@
+//! What the projection kinds (`top_match`, `front_match`) share: their table's keys and
+//! how a [`ProjectionMatch`] is made from it.
+
+use glam::Vec2;
+use serde::Deserialize;
+
+use super::kind::ObjectiveSource;
+use super::projection::{ProjectionMatch, View};
+
+/// The keys of a `top_match` or `front_match` table.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProjectionFile {
+    /// The target image; black = covered.
+    pub image: String,
+    /// The view plane's area the image covers: (x, z) from above, (x, y) from the front;
+    /// its smallest corner.
+    pub min: [f32; 2],
+    /// Its largest corner.
+    pub max: [f32; 2],
+}
+
+impl ProjectionFile {
+    /// The match through `view` against the table's image, read through `source`; an
+    /// image that cannot be used is an error of the key `image`.
+    pub(super) fn resolve<S: ObjectiveSource>(
+        self,
+        view: View,
+        source: &S,
+    ) -> Result<ProjectionMatch, S::Error> {
+        let image = source.image("image", &self.image)?;
+        let (min, max) = (Vec2::from(self.min), Vec2::from(self.max));
+        ProjectionMatch::from_image(view, min, max, &image)
+            .map_err(|err| source.refused("image", err))
+    }
+}
