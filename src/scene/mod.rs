@@ -154,14 +154,16 @@ mod metrics;
 mod objective;
 mod optimizer;
 mod resolve;
+mod resolver;
 mod scorer;
+mod scorer_kind;
 mod sources;
 
 pub use error::{
     BackendError, DecodeError, ImageError, LotError, SceneError, SetError, ValueError,
 };
 pub use evaluate::{Backend, BackendChoice, SceneEvaluator};
-pub use goal::{ObjectiveGoal, SilhouetteGoal, VolumeGoal};
+pub use goal::ObjectiveGoal;
 pub use image::{decode_image, read_image};
 pub use loaded::Scene;
 pub use lot::geojson_outline;
@@ -169,10 +171,10 @@ pub use memory::{JSON_BYTES_PER_WORD, MemoryError, MemoryEstimate, MemoryPart, R
 pub use method::{
     Method, MethodJob, MethodSettings, SearchJob, SettingsCause, SettingsKeyError, UnknownMethod,
 };
-pub use metrics::{
-    CloudDistance, F_SCORE_THRESHOLD, METRIC_COLUMNS, Metrics, SURFACE_SAMPLES, ViewIou,
-};
+pub use metrics::{CloudDistance, METRIC_COLUMNS, Metrics, SURFACE_SAMPLES, ViewIou};
 pub use objective::ObjectiveEvaluator;
 pub use optimizer::{OptimizerGoal, Overrides};
+pub use scorer::silhouette::SilhouetteGoal;
+pub use scorer::volume::{F_SCORE_THRESHOLD, VolumeGoal};
 pub use scorer::{AnyCounts, AnyScorer, SceneCounts, SceneScorer, ScorerGoal, ScorerKind};
 pub use sources::Sources;
