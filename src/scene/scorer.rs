@@ -31,7 +31,8 @@ use super::error::ValueError;
 use super::scorer_kind::{GpuCount, SceneScorerKind, ScorerMemory};
 
 /// Declares the kinds of scorer, each once, after a `$` (which the macro passes on to the
-/// macro it defines):
+/// macro it defines). Its enums are `#[non_exhaustive]`: a kind is added by its row,
+/// and matches outside the crate have an arm for the kinds they do not name.
 ///
 /// ```text
 /// /// docs
@@ -53,6 +54,7 @@ macro_rules! scorer_kinds {
 
         /// The kinds of scorer a scene may have, at most one of each.
         #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+        #[non_exhaustive]
         pub enum ScorerKind {
             $($(#[doc = $doc])* $kind,)*
         }
@@ -72,12 +74,14 @@ macro_rules! scorer_kinds {
 
         /// One scorer's settings, resolved from its table.
         #[derive(Clone, Debug)]
+        #[non_exhaustive]
         pub enum ScorerGoal {
             $($(#[doc = $doc])* $kind(<crate::scene::scorer::$name::$kind as SceneScorerKind>::Goal),)*
         }
 
         /// One scorer of a scene, counting on the CPU.
         #[derive(Clone, Debug)]
+        #[non_exhaustive]
         #[allow(clippy::large_enum_variant, reason = "a scene holds one of each kind")]
         pub enum AnyScorer {
             $($(#[doc = $doc])* $kind(<crate::scene::scorer::$name::$kind as SceneScorerKind>::Scorer),)*
@@ -85,6 +89,7 @@ macro_rules! scorer_kinds {
 
         /// What one model covers for one scorer. It serializes as the kind's counts.
         #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+        #[non_exhaustive]
         #[serde(untagged)]
         pub enum AnyCounts {
             $($(#[doc = $doc])* $kind(<crate::scene::scorer::$name::$kind as SceneScorerKind>::Counts),)*
@@ -277,7 +282,9 @@ macro_rules! scorer_kinds {
             /// The most models one batch may hold on it.
             pub(super) fn max_batch(&self) -> usize {
                 match self {
-                    $(AnyGpuScorer::$kind(g) => g.max_batch(),)*
+                    $(AnyGpuScorer::$kind(g) => {
+                        GpuCount::<<crate::scene::scorer::$name::$kind as SceneScorerKind>::Counts>::max_batch(g)
+                    })*
                 }
             }
 
