@@ -403,6 +403,8 @@ scorer_kinds! { $
     Volume(volume);
     /// `[silhouette]`: target images seen through cameras.
     Silhouette(silhouette);
+    /// `[bounds]`: a penalty for the volume of the model outside a box.
+    Bounds(bounds);
 }
 
 /// Counts every model of `batch` with `scorer`, on `gpu` when given, and appends each
