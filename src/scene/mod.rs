@@ -72,6 +72,12 @@
 //!            fov = 60, near = 0.1, far = 100, width = 800, height = 600 }
 //! # or: camera = { view = [[..], [..], [..], [..]], projection = [..], width = .., height = .. }
 //!
+//! [bounds]                           # optional: a penalty for the model outside a box
+//! min = [-8, 0, -6]                  # the box's corners, in world units
+//! max = [8, 30, 6]
+//! weight = 1.0                       # fitness lost per cubic unit of the instances'
+//!                                    # bounding boxes outside the box (default 1)
+//!
 //! [optimizer]                        # optional: the generator's presets for the method
 //! method = "ga"                      # a method's name (`Method`); hybrid by default,
 //!                                    # but the GA with [islands] or [[objective]] tables
