@@ -40,6 +40,10 @@ const TESTS: &[GpuTest] = &[
         "lot_buildings_fill_a_volume_on_the_gpu_as_on_the_cpu",
         lot_buildings_fill_a_volume_on_the_gpu_as_on_the_cpu,
     ),
+    (
+        "a_kind_without_a_gpu_path_counts_on_the_cpu_beside_the_gpu",
+        a_kind_without_a_gpu_path_counts_on_the_cpu_beside_the_gpu,
+    ),
 ];
 
 fn main() -> ExitCode {
@@ -92,6 +96,31 @@ fn the_gpu_counts_as_the_cpu_does() {
         .map(|l| serde_json::from_str(l).unwrap())
         .collect();
     assert_eq!(cpu, gpu, "exact voxel counts and equal fitness");
+}
+
+/// `[bounds]` has no GPU path: with `--gpu` the volume counts on the GPU and the bounds
+/// on the CPU, and every count and fitness is the CPU's, in the same run and after
+/// incremental counting.
+fn a_kind_without_a_gpu_path_counts_on_the_cpu_beside_the_gpu() {
+    let dir = tempfile::tempdir().unwrap();
+    let genomes = sample("spaceship", "12", &dir.path().join("ships"));
+    let cube = dir.path().join("cube.obj");
+    fs::write(&cube, UNIT_CUBE_OBJ).unwrap();
+    let scene = dir.path().join("ship.toml");
+    let text = SHIP_SCENE.replace("TARGET", "cube.obj")
+        + "[bounds]\nmin = [-1, -1, -1]\nmax = [1, 2, 1]\n";
+    fs::write(&scene, text).unwrap();
+    let gpu = score(&scene, &genomes, "--gpu");
+    let cpu = score(&scene, &genomes, "--cpu");
+    assert!(gpu.iter().all(|line| line["bounds"].is_object()));
+    assert_eq!(cpu, gpu, "exact counts and equal fitness");
+    let run = |backend: &str| {
+        let out = dir.path().join(backend.trim_start_matches('-'));
+        let args = ["run", s(&scene), "--out", s(&out), "--seed", "4", backend];
+        ok(&[&args[..], &["--set", "optimizer.evaluations=400"]].concat());
+        timeless_curve(&out)
+    };
+    assert_eq!(run("--gpu"), run("--cpu"));
 }
 
 /// The three views of `scenes/spaceship_views.toml` on random spaceships and on the

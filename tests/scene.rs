@@ -320,6 +320,7 @@ fn project_scenes_are_reachable() {
                         assert!(view.on_target > 0, "{name}: {s:?}");
                     }
                 }
+                other => panic!("{name}: no other kind of scorer: {other:?}"),
             }
         }
         assert!(

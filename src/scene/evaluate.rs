@@ -6,7 +6,7 @@ use shapegen_runtime::gpu::{GpuContext, GpuError, wgpu};
 use shapegen_runtime::optimize::{EvaluateError, Evaluator, Held};
 use shapegen_runtime::score::InstanceBatch;
 use shapegen_runtime::score::retained::{Retention, RetentionStats};
-use shapegen_runtime::score::silhouette::{GpuRetention, GpuSilhouetteScorer, SilhouetteCounts};
+use shapegen_runtime::score::silhouette::GpuRetention;
 use shapegen_runtime::{Genome, Grammar};
 
 use super::error::{BackendError, SceneError};
@@ -91,6 +91,7 @@ impl SceneScorer {
             (_, Some(context)) => context,
         };
         let paths: Result<Vec<_>, _> = self.scorers.iter().map(|s| s.gpu(context)).collect();
+        // A kind without a GPU path counts on the CPU beside the others.
         match paths {
             Ok(gpu) => Ok(Backend {
                 scorer: self,
@@ -106,8 +107,9 @@ impl SceneScorer {
 /// A scene's scorers on the backend that counts them.
 pub struct Backend<'a> {
     scorer: &'a SceneScorer,
-    /// Each scorer's GPU path, in the scorers' order; empty on the CPU.
-    gpu: Vec<AnyGpuScorer<'a>>,
+    /// Each scorer's GPU path, in the scorers' order (`None` for a kind that has none);
+    /// empty on the CPU.
+    gpu: Vec<Option<AnyGpuScorer<'a>>>,
     description: String,
 }
 
@@ -131,7 +133,7 @@ impl Backend<'_> {
     /// [`SceneError::Backend`] with [`BackendError::Batch`]: the setting, the number and
     /// the device's bound.
     pub fn check_batch(&self, models: u64, setting: &str) -> Result<(), SceneError> {
-        let max = self.gpu.iter().map(AnyScorer::max_batch).min();
+        let max = self.gpu.iter().flatten().map(AnyGpuScorer::max_batch).min();
         match max {
             Some(max) if models > max as u64 => Err(BackendError::Batch {
                 setting: setting.to_owned(),
@@ -164,30 +166,29 @@ impl Backend<'_> {
             slot.parts.clear();
         }
         for (i, scorer) in self.scorer.scorers.iter().enumerate() {
-            scorer.count(self.gpu.get(i), batch, out)?;
+            scorer.count(self.gpu.get(i).and_then(Option::as_ref), batch, out)?;
         }
         Ok(())
     }
 
-    /// The GPU path of the silhouette scorer, when the scene has one and counts on the
-    /// GPU.
-    fn gpu_silhouette(&self) -> Option<&GpuSilhouetteScorer<'_>> {
-        self.gpu.iter().find_map(|gpu| match gpu {
-            AnyGpuScorer::Silhouette(g) => Some(g),
-            _ => None,
+    /// The GPU path that keeps the models it counts on the device, for their bred
+    /// children ([`AnyGpuScorer::retention`]): its index among the scorers, and what it
+    /// keeps. The first such path, when counting on the GPU.
+    fn gpu_retention(&self) -> Option<(usize, GpuRetention)> {
+        self.gpu.iter().enumerate().find_map(|(i, gpu)| {
+            let retention = gpu.as_ref()?.retention()?;
+            Some((i, retention))
         })
     }
 
     /// Counts the bred `children` (the models of `batch`) into `out` as
-    /// [`count`](Self::count) does, but the silhouette scorer's counts from what
+    /// [`count`](Self::count) does, but the counts of scorer `kept` from what
     /// `retention` kept of their `parents` (child `i` bred from `parents[from[i]]`).
     fn count_bred<G: Grammar>(
         &self,
-        retention: &mut GpuRetention,
-        children: &[Genome<G>],
+        (kept, retention): (usize, &mut GpuRetention),
+        genomes: (&[Genome<G>], &[Genome<G>], &[u32]),
         batch: &InstanceBatch,
-        parents: &[Genome<G>],
-        from: &[u32],
         out: &mut Vec<SceneCounts>,
     ) -> Result<(), GpuError> {
         out.resize_with(batch.len(), SceneCounts::default);
@@ -195,14 +196,8 @@ impl Backend<'_> {
             slot.parts.clear();
         }
         for (i, scorer) in self.scorer.scorers.iter().enumerate() {
-            match self.gpu.get(i) {
-                Some(AnyGpuScorer::Silhouette(gpu)) => {
-                    let mut counts = vec![SilhouetteCounts::default(); batch.len()];
-                    retention.count_bred(gpu, children, batch, parents, from, &mut counts)?;
-                    for (slot, counts) in out.iter_mut().zip(counts) {
-                        slot.parts.push(AnyCounts::Silhouette(counts));
-                    }
-                }
+            match self.gpu.get(i).and_then(Option::as_ref) {
+                Some(gpu) if i == kept => gpu.count_bred(retention, genomes, batch, out)?,
                 gpu => scorer.count(gpu, batch, out)?,
             }
         }
@@ -216,15 +211,16 @@ impl Backend<'_> {
 /// Children bred from a scored population ([`evaluate_bred`](Evaluator::evaluate_bred))
 /// are counted incrementally, from what was kept of their parents, with exactly the
 /// counts of counting them from nothing: on the CPU every scorer's ([`Retention`]), on
-/// the GPU the silhouette scorer's, whose slots of per-pixel counts stay on the device
-/// ([`GpuRetention`]; the GPU's volume scorer counts every model from nothing).
+/// the GPU that of the first kind whose GPU path keeps them on the device (the
+/// silhouette scorer's slots of per-pixel counts, [`GpuRetention`]; the others count
+/// every model from nothing).
 /// [`with_incremental(false)`](Self::with_incremental) counts every child from nothing.
 pub struct SceneEvaluator<'a> {
     backend: &'a Backend<'a>,
     batch: InstanceBatch,
     counts: Vec<SceneCounts>,
     retention: Option<Retention<AnyScorer>>,
-    gpu_retention: Option<GpuRetention>,
+    gpu_retention: Option<(usize, GpuRetention)>,
     parts: Vec<AnyCounts>,
 }
 
@@ -243,16 +239,17 @@ impl<'a> SceneEvaluator<'a> {
     }
 
     /// Whether bred children are counted from their parents' kept state (the default).
-    /// On the GPU, a scene without a silhouette scorer, or whose one model's per-pixel
-    /// counts exceed the device's largest binding, counts every child from nothing.
+    /// On the GPU, a scene without a kind whose GPU path keeps models (the silhouette
+    /// scorer), or whose one model's per-pixel counts exceed the device's largest
+    /// binding, counts every child from nothing.
     pub fn with_incremental(mut self, incremental: bool) -> Self {
         let gpu = !self.backend.gpu.is_empty();
         self.retention = (incremental && !gpu).then(Retention::new);
-        self.gpu_retention = self
-            .backend
-            .gpu_silhouette()
-            .filter(|_| incremental)
-            .and_then(|scorer| GpuRetention::new(scorer).ok());
+        self.gpu_retention = if incremental {
+            self.backend.gpu_retention()
+        } else {
+            None
+        };
         self
     }
 
@@ -265,7 +262,7 @@ impl<'a> SceneEvaluator<'a> {
     /// the GPU, the device memory of the slots); `None` when not counting
     /// incrementally.
     pub fn retention(&self) -> Option<(RetentionStats, usize)> {
-        if let Some(gpu) = &self.gpu_retention {
+        if let Some((_, gpu)) = &self.gpu_retention {
             let bytes = usize::try_from(gpu.memory()).unwrap_or(usize::MAX);
             return Some((gpu.stats(), bytes));
         }
@@ -302,11 +299,12 @@ impl<G: Grammar> Evaluator<G> for SceneEvaluator<'_> {
         from: &[u32],
         out: &mut [f64],
     ) -> Result<(), EvaluateError> {
-        if let Some(retention) = &mut self.gpu_retention {
+        if let Some((kept, retention)) = &mut self.gpu_retention {
             self.batch.set_genomes(genomes);
             let (batch, counts) = (&self.batch, &mut self.counts);
+            let bred = (genomes, parents, from);
             self.backend
-                .count_bred(retention, genomes, batch, parents, from, counts)
+                .count_bred((*kept, retention), bred, batch, counts)
                 .map_err(|err| EvaluateError(err.to_string()))?;
             self.write_fitness(genomes, out);
             return Ok(());

@@ -7,15 +7,12 @@ use std::mem::size_of;
 use shapegen_runtime::graph::{GeneratorGraph, NodeDesc};
 use shapegen_runtime::optimize::multi::{Front, MultiGaSettings};
 use shapegen_runtime::optimize::{Best, Held, Optimizer};
-use shapegen_runtime::score::Form;
 use shapegen_runtime::score::retained::DEFAULT_MAX_BYTES;
-use shapegen_runtime::score::volume::fscore_half_width;
 use shapegen_runtime::{Grammar, Instance};
 
 use super::loaded::Scene;
 use super::method::{MethodJob, SearchJob};
 use super::optimizer::OptimizerGoal;
-use super::scorer::ScorerGoal;
 
 /// Bytes of checkpoint text per genome word, about: a tree-sketch genome of 380 genes
 /// of 11 words takes 64 KiB of JSON, some 15 bytes a word.
@@ -248,7 +245,14 @@ impl Scene {
                 bytes: (n / 2).saturating_mul(shape.threads as u64),
             });
         }
-        self.fscore_parts(shape, &mut parts);
+        for goal in self.scorers() {
+            let other = goal.memory(shape.threads).other;
+            parts.extend(other.into_iter().map(|(what, setting, bytes)| MemoryPart {
+                what,
+                setting,
+                bytes,
+            }));
+        }
         if shape.incremental && cells > 0 {
             // 16-bit counts of every cell for each model kept, up to the bound.
             let models = 2 * saved;
@@ -264,51 +268,14 @@ impl Scene {
         MemoryEstimate { parts }
     }
 
-    /// Adds to `parts` the bitsets of each volume scorer of the F-score form.
-    fn fscore_parts(&self, shape: &RunShape, parts: &mut Vec<MemoryPart>) {
-        for goal in self.scorers() {
-            if let ScorerGoal::Volume(v) = goal
-                && let Form::FScore { threshold, .. } = v.form
-            {
-                // The target's surface, the voxels near it and four edge bitsets; per
-                // thread, the model's surface dilated once per voxel of half-width.
-                let n = v.grid.voxel_count();
-                let dilated = fscore_half_width(&v.grid, threshold) as u64 + 1;
-                let bitsets = 6 + dilated.saturating_mul(shape.threads as u64);
-                parts.push(MemoryPart {
-                    what: format!("for the fscore form's {bitsets} bitsets of {n} voxels"),
-                    setting: format!(
-                        "fitness.form = \"fscore\", volume.fscore_threshold = {threshold}, \
-                         --threads {}",
-                        shape.threads
-                    ),
-                    bytes: (n / 8).saturating_mul(bitsets),
-                });
-            }
-        }
-    }
-
     /// The cells each scorer or projection objective counts over: what they are, the
     /// setting that sizes them, how many.
     fn counted_cells(&self) -> Vec<(&'static str, String, u64)> {
-        let mut cells = Vec::new();
-        for goal in self.scorers() {
-            cells.push(match goal {
-                ScorerGoal::Volume(v) => {
-                    let r = v.grid.resolution();
-                    let n = r.iter().map(|&x| u64::from(x)).product::<u64>();
-                    ("voxels", format!("volume.grid.resolution = {r:?}"), n)
-                }
-                ScorerGoal::Silhouette(s) => {
-                    let n = s
-                        .targets
-                        .iter()
-                        .map(|t| u64::from(t.width()) * u64::from(t.height()))
-                        .sum();
-                    ("target pixels", "silhouette.target sizes".to_owned(), n)
-                }
-            });
-        }
+        let mut cells: Vec<_> = self
+            .scorers()
+            .iter()
+            .filter_map(|goal| goal.memory(1).cells)
+            .collect();
         let objectives = self.objectives.iter().flat_map(|o| o.set.entries());
         for (i, (_, objective)) in objectives.enumerate() {
             if let Some(p) = objective.projection() {
@@ -435,10 +402,11 @@ mod tests {
         let scratch = |e: &MemoryEstimate, t: usize| part(e, &format!("for {t} threads' scratch"));
         assert_eq!(scratch(&four, 4), 4 * scratch(&one, 1));
         let scene = scene("scenes/paper/spaceship_volume.toml", &[]);
-        let r = match &scene.scorers()[0] {
-            crate::scene::scorer::ScorerGoal::Volume(v) => v.grid.resolution(),
-            _ => unreachable!("the spaceship's scene has a volume"),
-        };
+        let volume = scene.scorers()[0].volume();
+        let r = volume
+            .expect("the spaceship's scene has a volume")
+            .grid
+            .resolution();
         let voxels: u64 = r.iter().map(|&x| u64::from(x)).product();
         assert_eq!(part(&one, "for the scorer of"), 2 * voxels);
     }

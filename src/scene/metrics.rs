@@ -12,14 +12,11 @@ use shapegen_runtime::score::objective::Objective;
 use shapegen_runtime::{BoundMeshes, Genome, Grammar, Instance, Mesh};
 
 use super::loaded::Scene;
-use super::scorer::{SceneScorer, ScorerGoal};
+use super::scorer::SceneScorer;
+use super::scorer::volume::{F_SCORE_THRESHOLD, f_score_threshold};
 
 /// Points sampled on each surface for the Chamfer distance and the F-score.
 pub const SURFACE_SAMPLES: usize = 4096;
-
-/// The F-score's threshold, as a share of the diagonal of the volume targets' bounding
-/// box.
-pub const F_SCORE_THRESHOLD: f64 = 0.01;
 
 /// One model's measures against a scene's targets, as `summary.json` reports them.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -176,25 +173,13 @@ fn surface(scene: &Scene, model: &[Triangle]) -> Option<SurfaceDistance> {
     let meshes: Vec<&Mesh> = scene
         .scorers()
         .iter()
-        .filter_map(|goal| match goal {
-            ScorerGoal::Volume(volume) => Some(volume),
-            _ => None,
-        })
+        .filter_map(|goal| goal.volume())
         .flat_map(|volume| volume.targets.iter().filter(|t| t.inside > 0.0))
         .map(|t| &t.mesh)
         .collect();
     let threshold = f_score_threshold(meshes.iter().copied())?;
     let target: Vec<Triangle> = meshes.iter().flat_map(|m| mesh_triangles(m)).collect();
     SurfaceDistance::between(model, &target, threshold, SURFACE_SAMPLES, 0)
-}
-
-/// [`F_SCORE_THRESHOLD`] of the diagonal of the bounding box of `meshes`; `None` when
-/// none has a bounding box.
-pub(super) fn f_score_threshold<'a>(meshes: impl Iterator<Item = &'a Mesh>) -> Option<f64> {
-    let (lo, hi) = meshes
-        .filter_map(|m| m.bounds())
-        .reduce(|(lo, hi), (l, h)| (lo.min(l), hi.max(h)))?;
-    Some(F_SCORE_THRESHOLD * f64::from((hi - lo).length()))
 }
 
 /// The model's surface against each `chamfer` objective's whole cloud.

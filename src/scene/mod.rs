@@ -72,6 +72,12 @@
 //!            fov = 60, near = 0.1, far = 100, width = 800, height = 600 }
 //! # or: camera = { view = [[..], [..], [..], [..]], projection = [..], width = .., height = .. }
 //!
+//! [bounds]                           # optional: a penalty for the model outside a box
+//! min = [-8, 0, -6]                  # the box's corners, in world units
+//! max = [8, 30, 6]
+//! weight = 1.0                       # fitness lost per cubic unit of the instances'
+//!                                    # bounding boxes outside the box (default 1)
+//!
 //! [optimizer]                        # optional: the generator's presets for the method
 //! method = "ga"                      # a method's name (`Method`); hybrid by default,
 //!                                    # but the GA with [islands] or [[objective]] tables
@@ -154,14 +160,16 @@ mod metrics;
 mod objective;
 mod optimizer;
 mod resolve;
+mod resolver;
 mod scorer;
+mod scorer_kind;
 mod sources;
 
 pub use error::{
     BackendError, DecodeError, ImageError, LotError, SceneError, SetError, ValueError,
 };
 pub use evaluate::{Backend, BackendChoice, SceneEvaluator};
-pub use goal::{ObjectiveGoal, SilhouetteGoal, VolumeGoal};
+pub use goal::ObjectiveGoal;
 pub use image::{decode_image, read_image};
 pub use loaded::Scene;
 pub use lot::geojson_outline;
@@ -169,10 +177,10 @@ pub use memory::{JSON_BYTES_PER_WORD, MemoryError, MemoryEstimate, MemoryPart, R
 pub use method::{
     Method, MethodJob, MethodSettings, SearchJob, SettingsCause, SettingsKeyError, UnknownMethod,
 };
-pub use metrics::{
-    CloudDistance, F_SCORE_THRESHOLD, METRIC_COLUMNS, Metrics, SURFACE_SAMPLES, ViewIou,
-};
+pub use metrics::{CloudDistance, METRIC_COLUMNS, Metrics, SURFACE_SAMPLES, ViewIou};
 pub use objective::ObjectiveEvaluator;
 pub use optimizer::{OptimizerGoal, Overrides};
+pub use scorer::silhouette::SilhouetteGoal;
+pub use scorer::volume::{F_SCORE_THRESHOLD, VolumeGoal};
 pub use scorer::{AnyCounts, AnyScorer, SceneCounts, SceneScorer, ScorerGoal, ScorerKind};
 pub use sources::Sources;

@@ -1,47 +1,60 @@
 //! The kinds of scorer a scene may have, listed once in the `scorer_kinds!` invocation
-//! below: each kind's table, resolved goal, CPU scorer (a runtime [`Scorer`], which
-//! counts and turns counts into fitness), GPU path and counts, and the one arm that makes
-//! its scorer from its goal. A scene holds a list of [`ScorerGoal`]s, its [`SceneScorer`]
-//! a list of [`AnyScorer`]s and each model's [`SceneCounts`] a list of [`AnyCounts`], all
-//! in the order of [`ScorerKind::ALL`] with at most one of each kind. Making a scene's
-//! scorers and counting them on a backend is `evaluate.rs`'s.
+//! below, one row each naming the kind and its file of `scorer/`, which implements
+//! [`SceneScorerKind`]:
+//! its table, resolved goal, memory estimate, CPU scorer (a runtime [`Scorer`], which
+//! counts and turns counts into fitness), optional GPU path and counts. A scene holds a
+//! list of [`ScorerGoal`]s, its [`SceneScorer`] a list of [`AnyScorer`]s and each model's
+//! [`SceneCounts`] a list of [`AnyCounts`], all in the order of [`ScorerKind::ALL`] with
+//! at most one of each kind. Making a scene's scorers and counting them on a backend is
+//! `evaluate.rs`'s.
+//!
+//! ```
+//! use shapegen::scene::{Scene, ScorerKind};
+//!
+//! let names: Vec<&str> = ScorerKind::ALL.iter().map(|k| k.name()).collect();
+//! assert_eq!(&names[..2], ["volume", "silhouette"]);
+//! let scene = Scene::load("scenes/spaceship_fill.toml")?;
+//! assert_eq!(scene.scorers()[0].kind(), ScorerKind::Volume);
+//! assert!(scene.scorers()[0].volume().is_some());
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 use serde::{Serialize, Serializer};
 use shapegen_runtime::geometry::BoundMeshes;
 use shapegen_runtime::gpu::{GpuContext, GpuError};
 use shapegen_runtime::score::retained::{CellCounts, Overflow, RetainedScorer};
-use shapegen_runtime::score::silhouette::{
-    GpuSilhouetteScorer, SilhouetteCounts, SilhouetteScorer,
-};
-use shapegen_runtime::score::volume::{GpuVolumeScorer, VolumeCounts, VolumeScorer};
+use shapegen_runtime::score::silhouette::GpuRetention;
 use shapegen_runtime::score::{InstanceBatch, LengthPenalty, Scorer, count_batch};
-use shapegen_runtime::{Instance, Site};
+use shapegen_runtime::{Genome, Grammar, Instance, Site};
 
 use super::error::ValueError;
-use super::goal::{SilhouetteGoal, VolumeGoal};
+use super::scorer_kind::{GpuCount, SceneScorerKind, ScorerMemory};
 
-/// Declares the kinds of scorer, each once:
+/// Declares the kinds of scorer, each once, after a `$` (which the macro passes on to the
+/// macro it defines). Its enums are `#[non_exhaustive]`: a kind is added by its row,
+/// and matches outside the crate have an arm for the kinds they do not name.
 ///
 /// ```text
 /// /// docs
-/// Kind(table): Goal => CpuScorer, GpuScorer, Counts, |goal, meshes| make the CpuScorer;
+/// Kind(table);
 /// ```
 ///
-/// `table` names the kind's table in scene files and its key in `shapegen score`'s
-/// output; `CpuScorer` implements [`Scorer`] with `Counts`, and `GpuScorer` has
-/// `new(&GpuContext, &CpuScorer)` and `count_batch(&InstanceBatch, &mut [Counts])`;
-/// making the `CpuScorer` fails with an error that a [`ValueError`] holds. It
-/// expands into [`ScorerKind`], [`ScorerGoal`], [`AnyScorer`], [`AnyCounts`], the GPU
-/// paths, their dispatch, and a typed accessor per kind on [`SceneScorer`]
-/// (`scorer.volume()`, `scorer.silhouette()`, ...).
+/// `table` names the kind's table in scene files, its key in `shapegen score`'s output
+/// and its module, the file `scorer/table.rs`, which defines `Kind` and implements
+/// [`SceneScorerKind`] for it. It expands into the module, [`ScorerKind`],
+/// [`ScorerGoal`], [`AnyScorer`], [`AnyCounts`], the GPU paths, their dispatch, a typed
+/// accessor per kind on [`ScorerGoal`] and [`SceneScorer`] (`scorer.volume()`, ...), and
+/// `scene_file!`, which gives the scene file's struct a field per kind and its resolution.
 macro_rules! scorer_kinds {
-    ($(
+    ($d:tt $(
         $(#[doc = $doc:literal])*
-        $kind:ident($name:ident): $goal:ty => $scorer:ident, $gpu:ident, $counts:ident,
-            |$g:ident, $meshes:ident| $new:expr;
+        $kind:ident($name:ident);
     )*) => {
+        $($(#[doc = $doc])* pub(super) mod $name;)*
+
         /// The kinds of scorer a scene may have, at most one of each.
         #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+        #[non_exhaustive]
         pub enum ScorerKind {
             $($(#[doc = $doc])* $kind,)*
         }
@@ -61,38 +74,41 @@ macro_rules! scorer_kinds {
 
         /// One scorer's settings, resolved from its table.
         #[derive(Clone, Debug)]
+        #[non_exhaustive]
         pub enum ScorerGoal {
-            $($(#[doc = $doc])* $kind($goal),)*
+            $($(#[doc = $doc])* $kind(<crate::scene::scorer::$name::$kind as SceneScorerKind>::Goal),)*
         }
 
         /// One scorer of a scene, counting on the CPU.
         #[derive(Clone, Debug)]
+        #[non_exhaustive]
         #[allow(clippy::large_enum_variant, reason = "a scene holds one of each kind")]
         pub enum AnyScorer {
-            $($(#[doc = $doc])* $kind($scorer),)*
+            $($(#[doc = $doc])* $kind(<crate::scene::scorer::$name::$kind as SceneScorerKind>::Scorer),)*
         }
 
         /// What one model covers for one scorer. It serializes as the kind's counts.
         #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+        #[non_exhaustive]
         #[serde(untagged)]
         pub enum AnyCounts {
-            $($(#[doc = $doc])* $kind($counts),)*
+            $($(#[doc = $doc])* $kind(<crate::scene::scorer::$name::$kind as SceneScorerKind>::Counts),)*
         }
 
         /// One scorer's GPU path.
         pub(super) enum AnyGpuScorer<'a> {
-            $($kind($gpu<'a>),)*
+            $($kind(<crate::scene::scorer::$name::$kind as SceneScorerKind>::Gpu<'a>),)*
         }
 
         /// One scorer's working memory.
         pub enum AnyScratch {
-            $($(#[doc = $doc])* $kind(<$scorer as Scorer>::Scratch),)*
+            $($(#[doc = $doc])* $kind(<<crate::scene::scorer::$name::$kind as SceneScorerKind>::Scorer as Scorer>::Scratch),)*
         }
 
         /// What one scorer keeps of one model, for incremental scoring.
         #[derive(Clone)]
         pub enum AnyState {
-            $($(#[doc = $doc])* $kind(<$scorer as RetainedScorer>::State),)*
+            $($(#[doc = $doc])* $kind(<<crate::scene::scorer::$name::$kind as SceneScorerKind>::Scorer as RetainedScorer>::State),)*
         }
 
         impl Scorer for AnyScorer {
@@ -191,10 +207,14 @@ macro_rules! scorer_kinds {
             /// Its scorer of models made of `meshes`, or why there is none.
             pub(super) fn scorer(&self, meshes: &BoundMeshes) -> Result<AnyScorer, ValueError> {
                 match self {
-                    $(ScorerGoal::$kind($g) => {
-                        let $meshes = meshes;
-                        $new.map(AnyScorer::$kind).map_err(ValueError::from)
-                    })*
+                    $(ScorerGoal::$kind(goal) => <crate::scene::scorer::$name::$kind>::make(goal, meshes).map(AnyScorer::$kind),)*
+                }
+            }
+
+            /// What its scorer takes of memory, with `threads` worker threads.
+            pub(super) fn memory(&self, threads: usize) -> ScorerMemory {
+                match self {
+                    $(ScorerGoal::$kind(goal) => <crate::scene::scorer::$name::$kind>::memory(goal, threads),)*
                 }
             }
         }
@@ -210,7 +230,7 @@ macro_rules! scorer_kinds {
             /// The counts of a model that covers nothing.
             pub(super) fn nothing(&self) -> AnyCounts {
                 match self {
-                    $(AnyScorer::$kind(_) => AnyCounts::$kind($counts::default()),)*
+                    $(AnyScorer::$kind(_) => AnyCounts::$kind(Default::default()),)*
                 }
             }
 
@@ -224,17 +244,16 @@ macro_rules! scorer_kinds {
                 }
             }
 
-            /// Its GPU path on `context`.
-            pub(super) fn gpu<'a>(&'a self, context: &'a GpuContext) -> Result<AnyGpuScorer<'a>, GpuError> {
-                Ok(match self {
-                    $(AnyScorer::$kind(s) => AnyGpuScorer::$kind($gpu::new(context, s)?),)*
-                })
-            }
-
-            /// The most models one batch may hold on `gpu`.
-            pub(super) fn max_batch(gpu: &AnyGpuScorer<'_>) -> usize {
-                match gpu {
-                    $(AnyGpuScorer::$kind(g) => GpuCount::max_batch(g),)*
+            /// Its GPU path on `context`; `None` for a kind counted on the CPU on every
+            /// backend.
+            pub(super) fn gpu<'a>(
+                &'a self,
+                context: &'a GpuContext,
+            ) -> Result<Option<AnyGpuScorer<'a>>, GpuError> {
+                match self {
+                    $(AnyScorer::$kind(s) => {
+                        <crate::scene::scorer::$name::$kind>::gpu(s, context).transpose().map(|g| g.map(AnyGpuScorer::$kind))
+                    })*
                 }
             }
 
@@ -246,9 +265,9 @@ macro_rules! scorer_kinds {
                 batch: &InstanceBatch,
                 out: &mut [SceneCounts],
             ) -> Result<(), GpuError> {
-                #[allow(unreachable_patterns)]
-                match (self, gpu) {
-                    $((AnyScorer::$kind(s), gpu) => {
+                match self {
+                    $(AnyScorer::$kind(s) => {
+                        #[allow(unreachable_patterns)]
                         let gpu = match gpu {
                             Some(AnyGpuScorer::$kind(g)) => Some(g),
                             _ => None,
@@ -256,6 +275,47 @@ macro_rules! scorer_kinds {
                         count_parts(s, gpu, batch, out, AnyCounts::$kind)
                     })*
                 }
+            }
+        }
+
+        impl AnyGpuScorer<'_> {
+            /// The most models one batch may hold on it.
+            pub(super) fn max_batch(&self) -> usize {
+                match self {
+                    $(AnyGpuScorer::$kind(g) => {
+                        GpuCount::<<crate::scene::scorer::$name::$kind as SceneScorerKind>::Counts>::max_batch(g)
+                    })*
+                }
+            }
+
+            /// What it keeps on the device of the models it counts, for their bred
+            /// children; `None` when it counts every child from nothing.
+            pub(super) fn retention(&self) -> Option<GpuRetention> {
+                match self {
+                    $(AnyGpuScorer::$kind(g) => <crate::scene::scorer::$name::$kind>::gpu_retention(g),)*
+                }
+            }
+
+            /// Counts the bred `children` (the models of `batch`) from what `retention`
+            /// kept of their `parents` (child `i` bred from `parents[from[i]]`), and
+            /// appends each model's counts to its slot of `out`.
+            pub(super) fn count_bred<G: Grammar>(
+                &self,
+                retention: &mut GpuRetention,
+                genomes: (&[Genome<G>], &[Genome<G>], &[u32]),
+                batch: &InstanceBatch,
+                out: &mut [SceneCounts],
+            ) -> Result<(), GpuError> {
+                match self {
+                    $(AnyGpuScorer::$kind(g) => {
+                        let mut counts = vec![Default::default(); batch.len()];
+                        <crate::scene::scorer::$name::$kind>::count_bred(g, retention, genomes, batch, &mut counts)?;
+                        for (slot, c) in out.iter_mut().zip(counts) {
+                            slot.parts.push(AnyCounts::$kind(c));
+                        }
+                    })*
+                }
+                Ok(())
             }
         }
 
@@ -269,25 +329,20 @@ macro_rules! scorer_kinds {
         }
 
         $(
-            impl GpuCount for $gpu<'_> {
-                type Counts = $counts;
-
-                fn count_batch(
-                    &self,
-                    batch: &InstanceBatch,
-                    out: &mut [$counts],
-                ) -> Result<(), GpuError> {
-                    $gpu::count_batch(self, batch, out)
-                }
-
-                fn max_batch(&self) -> usize {
-                    $gpu::max_batch(self)
+            impl ScorerGoal {
+                #[doc = concat!("The `", stringify!($name), "` goal, when it is one.")]
+                pub fn $name(&self) -> Option<&<crate::scene::scorer::$name::$kind as SceneScorerKind>::Goal> {
+                    #[allow(unreachable_patterns)]
+                    match self {
+                        ScorerGoal::$kind(goal) => Some(goal),
+                        _ => None,
+                    }
                 }
             }
 
             impl SceneScorer {
                 #[doc = concat!("The `", stringify!($name), "` scorer, when the scene has one.")]
-                pub fn $name(&self) -> Option<&$scorer> {
+                pub fn $name(&self) -> Option<&<crate::scene::scorer::$name::$kind as SceneScorerKind>::Scorer> {
                     #[allow(unreachable_patterns)]
                     self.scorers.iter().find_map(|scorer| match scorer {
                         AnyScorer::$kind(scorer) => Some(scorer),
@@ -296,34 +351,60 @@ macro_rules! scorer_kinds {
                 }
             }
         )*
+
+        /// Declares the scene file's struct, `{ fields } scorers { fields }`, with a field
+        /// per kind of scorer between the two lists (each an optional table), and its
+        /// `scorer_goals`, which resolves them.
+        macro_rules! scene_file {
+            (
+                $d(#[$d meta:meta])*
+                $d vis:vis struct $d file:ident {
+                    { $d($d before:tt)* }
+                    scorers
+                    { $d($d after:tt)* }
+                }
+            ) => {
+                $d(#[$d meta])*
+                $d vis struct $d file {
+                    $d($d before)*
+                    $($(#[doc = $doc])* pub $name: Option<<crate::scene::scorer::$name::$kind as crate::scene::scorer_kind::SceneScorerKind>::File>,)*
+                    $d($d after)*
+                }
+
+                impl $d file {
+                    /// The scene's scorers, resolved from their tables: one per table
+                    /// given, in the order of
+                    /// [`ScorerKind::ALL`](crate::scene::ScorerKind::ALL).
+                    pub(super) fn scorer_goals(
+                        &self,
+                        resolver: &crate::scene::resolver::Resolver<'_>,
+                    ) -> Result<Vec<crate::scene::scorer::ScorerGoal>, crate::scene::error::SceneError> {
+                        use crate::scene::scorer_kind::SceneScorerKind;
+                        let form = self.fitness.form;
+                        [$(
+                            self.$name.as_ref().map(|file| {
+                                <crate::scene::scorer::$name::$kind>::resolve(resolver, file, form)
+                                    .map(crate::scene::scorer::ScorerGoal::$kind)
+                            }),
+                        )*]
+                        .into_iter()
+                        .flatten()
+                        .collect()
+                    }
+                }
+            };
+        }
+        pub(super) use scene_file;
     };
 }
 
-scorer_kinds! {
+scorer_kinds! { $
     /// `[volume]`: weighted target volumes to fill or avoid on a voxel grid.
-    Volume(volume): VolumeGoal => VolumeScorer, GpuVolumeScorer, VolumeCounts,
-        |goal, meshes| {
-            let scorer = VolumeScorer::new(goal.grid, &goal.targets, meshes, goal.form)?;
-            match goal.shaping_radius {
-                None => Ok(scorer),
-                Some(radius) => scorer.shaped(radius),
-            }
-        };
+    Volume(volume);
     /// `[silhouette]`: target images seen through cameras.
-    Silhouette(silhouette): SilhouetteGoal => SilhouetteScorer, GpuSilhouetteScorer, SilhouetteCounts,
-        |goal, meshes| SilhouetteScorer::new(goal.targets.clone(), meshes, goal.form);
-}
-
-/// A GPU path's counting of whole batches, as [`count_batch`] counts on the CPU.
-trait GpuCount {
-    /// What it counts per model.
-    type Counts;
-
-    /// Counts every model of `batch` into `out`, one slot per model.
-    fn count_batch(&self, batch: &InstanceBatch, out: &mut [Self::Counts]) -> Result<(), GpuError>;
-
-    /// The most models one batch may hold.
-    fn max_batch(&self) -> usize;
+    Silhouette(silhouette);
+    /// `[bounds]`: a penalty for the volume of the model outside a box.
+    Bounds(bounds);
 }
 
 /// Counts every model of `batch` with `scorer`, on `gpu` when given, and appends each
@@ -337,7 +418,7 @@ fn count_parts<S, G>(
 ) -> Result<(), GpuError>
 where
     S: Scorer<Counts: Default>,
-    G: GpuCount<Counts = S::Counts>,
+    G: GpuCount<S::Counts>,
 {
     let mut counts = vec![S::Counts::default(); batch.len()];
     match gpu {

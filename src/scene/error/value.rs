@@ -4,8 +4,8 @@ use shapegen_runtime::MeshError;
 use shapegen_runtime::geometry::PolygonError;
 use shapegen_runtime::optimize::SettingsError;
 use shapegen_runtime::score::objective::ObjectiveError;
-use shapegen_runtime::score::silhouette::{CameraError, SilhouetteError, TargetError};
-use shapegen_runtime::score::volume::{GridError, VolumeError};
+use shapegen_runtime::score::silhouette::{CameraError, TargetError};
+use shapegen_runtime::score::volume::GridError;
 
 use super::image::ImageError;
 use super::lot::LotError;
@@ -31,12 +31,9 @@ pub enum ValueError {
     /// A silhouette target made of its image (`silhouette.target[0].image`).
     #[error(transparent)]
     Target(#[from] TargetError),
-    /// The volume scorer made of the `[volume]` table (`volume`).
+    /// A scorer made of its table, for the generator's meshes (`volume`, `silhouette`).
     #[error(transparent)]
-    Volume(#[from] VolumeError),
-    /// The silhouette scorer made of the `[silhouette]` table (`silhouette`).
-    #[error(transparent)]
-    Silhouette(#[from] SilhouetteError),
+    Scorer(Box<dyn std::error::Error + Send + Sync>),
     /// An objective, or the set of them (`objective`, `objective[0].image`).
     #[error(transparent)]
     Objective(#[from] ObjectiveError),
