@@ -270,18 +270,7 @@ impl<G: Grammar> GenomeSet<G> {
         }
         let fields: SetFields = serde_json::from_str(json)?;
         check_generator::<G>(&fields.generator)?;
-        let genomes = fields
-            .genomes
-            .into_iter()
-            .enumerate()
-            .map(|(index, g)| {
-                genome_from_genes(g.genes).map_err(|e| JsonError::InSet {
-                    index,
-                    source: Box::new(e),
-                })
-            })
-            .collect::<Result<_, _>>()?;
-        Ok(GenomeSet { genomes })
+        GenomeSet::read_entries(fields.genomes, |g| genome_from_genes(g.genes))
     }
 
     /// Writes the set to the file `path`.

@@ -58,18 +58,7 @@ pub(in crate::genome::json) fn set_from_nested<G: Grammar>(
 ) -> Result<GenomeSet<G>, JsonError> {
     let fields: NestedSetFields = parse(json)?;
     check_generator::<G>(&fields.generator)?;
-    let genomes = fields
-        .genomes
-        .iter()
-        .enumerate()
-        .map(|(index, g)| {
-            genome_from_tree(&g.tree).map_err(|e| JsonError::InSet {
-                index,
-                source: Box::new(e),
-            })
-        })
-        .collect::<Result<_, _>>()?;
-    Ok(GenomeSet::new(genomes))
+    GenomeSet::read_entries(&fields.genomes, |g| genome_from_tree(&g.tree))
 }
 
 /// Parses `json`, telling a text nested too deep for `serde_json` from other faults.
