@@ -2,7 +2,6 @@
 
 use std::fmt;
 
-use super::error::JsonError;
 use crate::derive::Grammar;
 use crate::genome::packed::Genome;
 
@@ -42,24 +41,5 @@ impl<G: Grammar> GenomeSet<G> {
     /// A set of the given genomes.
     pub fn new(genomes: Vec<Genome<G>>) -> Self {
         GenomeSet { genomes }
-    }
-
-    /// The set of the genomes `read` makes of `entries`, in order; an entry that fails
-    /// fails the set, with its index.
-    pub(in crate::genome::json) fn read_entries<T>(
-        entries: impl IntoIterator<Item = T>,
-        mut read: impl FnMut(T) -> Result<Genome<G>, JsonError>,
-    ) -> Result<Self, JsonError> {
-        let genomes = entries
-            .into_iter()
-            .enumerate()
-            .map(|(index, entry)| {
-                read(entry).map_err(|e| JsonError::InSet {
-                    index,
-                    source: Box::new(e),
-                })
-            })
-            .collect::<Result<_, _>>()?;
-        Ok(GenomeSet { genomes })
     }
 }
