@@ -9,23 +9,31 @@ use crate::geometry::{
 };
 use crate::graph::{GeneratorGraph, NodeDesc};
 
+/// The graph of a grammar of one node type, `$name`, without parameters or children,
+/// drawing the meshes `$meshes`.
+macro_rules! one_node_graph {
+    ($name:literal, $key:literal, $meshes:expr) => {
+        GeneratorGraph {
+            name: $name,
+            key: $key,
+            axiom: 0,
+            nodes: &[NodeDesc {
+                name: $name,
+                params: &[],
+                slots: &[],
+                links: 0,
+                param_words: 0,
+            }],
+            meshes: $meshes,
+        }
+    };
+}
+
 /// A one-node grammar whose rule builds a small house: walls cut into a ground floor
 /// and an upper floor with repeated windows, and a roof slab extruded from the top.
 struct House;
 
-static HOUSE: GeneratorGraph = GeneratorGraph {
-    name: "House",
-    key: "house",
-    axiom: 0,
-    nodes: &[NodeDesc {
-        name: "House",
-        params: &[],
-        slots: &[],
-        links: 0,
-        param_words: 0,
-    }],
-    meshes: &["cube"],
-};
+static HOUSE: GeneratorGraph = one_node_graph!("House", "house", &["cube"]);
 
 impl Grammar for House {
     const GRAPH: &'static GeneratorGraph = &HOUSE;
@@ -95,19 +103,8 @@ fn shapes_split_repeat_and_take_faces() {
 /// A one-node grammar whose rule stands a 10 x 4 x 6 mass and puts a hip roof on it.
 struct Hipped;
 
-static HIPPED: GeneratorGraph = GeneratorGraph {
-    name: "Hipped",
-    key: "hipped",
-    axiom: 0,
-    nodes: &[NodeDesc {
-        name: "Hipped",
-        params: &[],
-        slots: &[],
-        links: 0,
-        param_words: 0,
-    }],
-    meshes: &["cube", "roof_gable", "roof_hip_end"],
-};
+static HIPPED: GeneratorGraph =
+    one_node_graph!("Hipped", "hipped", &["cube", "roof_gable", "roof_hip_end"]);
 
 impl Grammar for Hipped {
     const GRAPH: &'static GeneratorGraph = &HIPPED;
@@ -157,19 +154,7 @@ fn shapes_put_roofs_on_their_tops() {
 /// door.
 struct Block;
 
-static BLOCK: GeneratorGraph = GeneratorGraph {
-    name: "Block",
-    key: "block",
-    axiom: 0,
-    nodes: &[NodeDesc {
-        name: "Block",
-        params: &[],
-        slots: &[],
-        links: 0,
-        param_words: 0,
-    }],
-    meshes: &["cube", "wall", "window"],
-};
+static BLOCK: GeneratorGraph = one_node_graph!("Block", "block", &["cube", "wall", "window"]);
 
 impl Grammar for Block {
     const GRAPH: &'static GeneratorGraph = &BLOCK;

@@ -208,41 +208,13 @@ mod tests {
 
     const FACET: MeshId = MeshId(1);
 
-    fn polygon(points: &[[f64; 2]]) -> Polygon {
-        let points: Vec<DVec2> = points.iter().map(|&[x, y]| DVec2::new(x, y)).collect();
-        Polygon::from_f64(&points).unwrap()
-    }
-
     /// A rectangle, an L, a U and a concave outline with slanted edges.
     fn footprints() -> Vec<Polygon> {
         vec![
             Polygon::rectangle(glam::vec2(10.0, 6.0)).unwrap(),
-            polygon(&[
-                [-4.0, -4.0],
-                [4.0, -4.0],
-                [4.0, 0.0],
-                [0.0, 0.0],
-                [0.0, 4.0],
-                [-4.0, 4.0],
-            ]),
-            polygon(&[
-                [-5.0, -4.0],
-                [5.0, -4.0],
-                [5.0, 4.0],
-                [2.0, 4.0],
-                [2.0, -1.0],
-                [-2.0, -1.0],
-                [-2.0, 4.0],
-                [-5.0, 4.0],
-            ]),
-            polygon(&[
-                [-4.0, -3.0],
-                [4.0, -3.5],
-                [1.5, 0.2],
-                [4.5, 3.0],
-                [-4.0, 3.0],
-                [-1.0, -0.3],
-            ]),
+            Polygon::l_shape(),
+            Polygon::u_shape(),
+            Polygon::slanted(),
         ]
     }
 

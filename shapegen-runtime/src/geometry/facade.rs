@@ -229,6 +229,11 @@ impl Scope {
         let part = |centre: Vec3, axes: [Vec3; 3], sx: f32, sy: f32| {
             self.part(centre, axes, vec3(sx, sy, 0.0))
         };
+        // A reveal: a side of the opening centred at `(x, y)` halfway in, `length` long
+        // and `depth` deep.
+        let reveal = |x: f32, y: f32, axes: [Vec3; 3], length: f32| {
+            part(vec3(x, y, middle), axes, length, depth)
+        };
         let facing = [Vec3::X, Vec3::Y, Vec3::Z];
         Some(Inset {
             frame: [
@@ -238,30 +243,10 @@ impl Scope {
                 part(vec3((x2 + x3) / 2.0, oy, front), facing, right, height),
             ],
             reveals: [
-                part(
-                    vec3(ox, y1, middle),
-                    [Vec3::NEG_X, Vec3::Z, Vec3::Y],
-                    width,
-                    depth,
-                ),
-                part(
-                    vec3(ox, y2, middle),
-                    [Vec3::X, Vec3::Z, Vec3::NEG_Y],
-                    width,
-                    depth,
-                ),
-                part(
-                    vec3(x1, oy, middle),
-                    [Vec3::Y, Vec3::Z, Vec3::X],
-                    height,
-                    depth,
-                ),
-                part(
-                    vec3(x2, oy, middle),
-                    [Vec3::NEG_Y, Vec3::Z, Vec3::NEG_X],
-                    height,
-                    depth,
-                ),
+                reveal(ox, y1, [Vec3::NEG_X, Vec3::Z, Vec3::Y], width),
+                reveal(ox, y2, [Vec3::X, Vec3::Z, Vec3::NEG_Y], width),
+                reveal(x1, oy, [Vec3::Y, Vec3::Z, Vec3::X], height),
+                reveal(x2, oy, [Vec3::NEG_Y, Vec3::Z, Vec3::NEG_X], height),
             ],
             opening: part(vec3(ox, oy, back), facing, width, height),
         })

@@ -11,12 +11,7 @@ impl Mesh {
     /// Loads a mesh from an OBJ file; see [`from_obj_str`](Self::from_obj_str). Errors
     /// name the file.
     pub fn from_obj(path: impl AsRef<Path>) -> Result<Mesh, MeshError> {
-        let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| MeshError::Io {
-            path: path.to_owned(),
-            source,
-        })?;
-        Mesh::from_obj_str(&path.display().to_string(), &text)
+        read_obj(path.as_ref(), Mesh::from_obj_str)
     }
 
     /// Loads a mesh from OBJ text, naming it `name` in errors.
@@ -97,12 +92,7 @@ impl Mesh {
     /// implementation does every generator mesh it loads; see
     /// [`from_obj_str_normalized`](Self::from_obj_str_normalized). Errors name the file.
     pub fn from_obj_normalized(path: impl AsRef<Path>) -> Result<Mesh, MeshError> {
-        let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| MeshError::Io {
-            path: path.to_owned(),
-            source,
-        })?;
-        Mesh::from_obj_str_normalized(&path.display().to_string(), &text)
+        read_obj(path.as_ref(), Mesh::from_obj_str_normalized)
     }
 
     /// Loads a generator part from OBJ text as [`from_obj_str`](Self::from_obj_str) does,
@@ -320,6 +310,19 @@ impl BufRead for LineCounter<'_> {
         self.lines += done.iter().filter(|&&b| b == b'\n').count();
         self.rest = rest;
     }
+}
+
+/// Reads the OBJ file at `path` and makes a mesh of its text with `parse`, which names
+/// it by its path; a file that cannot be read is an error naming it.
+fn read_obj(
+    path: &Path,
+    parse: impl FnOnce(&str, &str) -> Result<Mesh, MeshError>,
+) -> Result<Mesh, MeshError> {
+    let text = std::fs::read_to_string(path).map_err(|source| MeshError::Io {
+        path: path.to_owned(),
+        source,
+    })?;
+    parse(&path.display().to_string(), &text)
 }
 
 #[cfg(test)]

@@ -104,6 +104,28 @@ pub struct Held {
     pub value: u64,
 }
 
+impl Held {
+    /// `copies` genomes for each unit of `value`, the value of `setting`, of which a
+    /// checkpoint saves `saved` for each unit.
+    ///
+    /// ```
+    /// use shapegen_runtime::optimize::Held;
+    ///
+    /// // Each of 8 chains with its proposal and two more copies; checkpoints save the chains.
+    /// let held = Held::per("optimizer.chains", 8, 4, 1);
+    /// assert_eq!((held.genomes, held.saved, held.value), (32, 8, 8));
+    /// ```
+    pub fn per(setting: &'static str, value: u32, copies: u64, saved: u64) -> Held {
+        let value = u64::from(value);
+        Held {
+            genomes: copies * value,
+            saved: saved * value,
+            setting,
+            value,
+        }
+    }
+}
+
 /// A search method, as the driver ([`drive`], [`Session`](super::Session)) runs it.
 ///
 /// Implementations keep a [`Core`] holding the [`Progress`] of their [`Record`]: the

@@ -27,6 +27,17 @@ impl SettingsError {
     }
 }
 
+/// Checks that `value` is at least 1.
+pub(crate) fn check_positive(
+    field: &'static str,
+    value: impl Into<u64>,
+) -> Result<(), SettingsError> {
+    match value.into() {
+        0 => Err(SettingsError::new(field, 0, "at least 1")),
+        _ => Ok(()),
+    }
+}
+
 /// Checks that `value` lies in `[lo, hi]` (and is not NaN).
 pub(crate) fn check_range(
     field: &'static str,

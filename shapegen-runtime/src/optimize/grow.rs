@@ -34,20 +34,34 @@ pub(crate) fn open_links<G: Grammar>(
     open: &mut Vec<(u32, u32)>,
 ) {
     open.clear();
+    for_each_link(genome, limits, depth, |pos, _, link, child, p| {
+        if child == 0 && p > 0.0 {
+            open.push((pos, link));
+        }
+    });
+}
+
+/// Calls `visit(pos, depth, link, child, p)` for every link of every gene above the
+/// maximum depth: the gene's position and depth (filling `depth` by position), the
+/// link, its word (the child's offset, 0 when empty) and its generator probability.
+#[inline]
+fn for_each_link<G: Grammar>(
+    genome: &Genome<G>,
+    limits: &Limits,
+    depth: &mut Vec<u32>,
+    mut visit: impl FnMut(u32, u32, u32, u32, f32),
+) {
     let words = genome.words();
     depths::<G>(words, depth);
     for gene in genome.genes() {
         let pos = gene.pos();
-        if depth[pos as usize] >= limits.max_depth {
+        let d = depth[pos as usize];
+        if d >= limits.max_depth {
             continue;
         }
-        let node = node_of::<G>(gene.kind());
-        for link in 0..node.links {
-            if words[(pos + HEADER_WORDS + link) as usize] == 0
-                && link_facts::<G>(gene.kind(), link).0 > 0.0
-            {
-                open.push((pos, link));
-            }
+        for link in 0..node_of::<G>(gene.kind()).links {
+            let child = words[(pos + HEADER_WORDS + link) as usize];
+            visit(pos, d, link, child, link_facts::<G>(gene.kind(), link).0);
         }
     }
 }
@@ -124,26 +138,16 @@ pub(crate) fn jump_links<G: Grammar>(
 ) {
     links.clear();
     let words = genome.words();
-    depths::<G>(words, depth);
-    for gene in genome.genes() {
-        let pos = gene.pos();
-        let d = depth[pos as usize];
-        if d >= limits.max_depth {
-            continue;
+    for_each_link(genome, limits, depth, |pos, d, link, child, p| {
+        let redrawn = if child == 0 {
+            p > 0.0
+        } else {
+            p < 1.0 || !regrows_identically::<G>(words, pos + child, d + 1, limits, stack)
+        };
+        if redrawn {
+            links.push((pos, link));
         }
-        for link in 0..node_of::<G>(gene.kind()).links {
-            let child = words[(pos + HEADER_WORDS + link) as usize];
-            let p = link_facts::<G>(gene.kind(), link).0;
-            if child == 0 {
-                if p > 0.0 {
-                    links.push((pos, link));
-                }
-            } else if p < 1.0 || !regrows_identically::<G>(words, pos + child, d + 1, limits, stack)
-            {
-                links.push((pos, link));
-            }
-        }
-    }
+    });
 }
 
 /// Whether a jump's redraw of the subtree at `root` (depth `root_depth`), the child of a

@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 use super::best::Best;
 use super::core::Core;
 use super::driver::{Held, Optimizer};
-use super::error::{OptimizeError, SettingsError};
+use super::error::{OptimizeError, SettingsError, check_positive};
 use super::run::stream;
 use super::settings::Settings;
 use crate::derive::Grammar;
@@ -47,10 +47,7 @@ impl Settings for RandomSearchSettings {
     }
 
     fn validate(&self) -> Result<(), SettingsError> {
-        match self.samples {
-            0 => Err(SettingsError::new("samples", 0, "at least 1")),
-            _ => Ok(()),
-        }
+        check_positive("samples", self.samples)
     }
 }
 
@@ -133,12 +130,7 @@ impl<G: Grammar> Optimizer<G> for RandomSearch<G> {
 
     /// The models of one draw; a checkpoint saves none of them.
     fn genomes_held(settings: &RandomSearchSettings) -> Vec<Held> {
-        vec![Held {
-            genomes: settings.samples.into(),
-            saved: 0,
-            setting: "optimizer.samples",
-            value: settings.samples.into(),
-        }]
+        vec![Held::per("optimizer.samples", settings.samples, 1, 0)]
     }
 
     fn new(

@@ -17,7 +17,7 @@ use std::path::Path;
 
 pub use error::JsonError;
 use nested::{genome_from_nested, genome_to_nested, set_from_nested, set_to_nested};
-use read::{GenomeFields, SetFields, check_generator, genome_from_genes};
+use read::{GenomeFields, SetFields, check_generator, genome_from_genes, read_set};
 pub use set::GenomeSet;
 pub use shape::JsonLayout;
 use write::to_json_string;
@@ -270,18 +270,7 @@ impl<G: Grammar> GenomeSet<G> {
         }
         let fields: SetFields = serde_json::from_str(json)?;
         check_generator::<G>(&fields.generator)?;
-        let genomes = fields
-            .genomes
-            .into_iter()
-            .enumerate()
-            .map(|(index, g)| {
-                genome_from_genes(g.genes).map_err(|e| JsonError::InSet {
-                    index,
-                    source: Box::new(e),
-                })
-            })
-            .collect::<Result<_, _>>()?;
-        Ok(GenomeSet { genomes })
+        read_set(fields.genomes, |g| genome_from_genes(g.genes))
     }
 
     /// Writes the set to the file `path`.

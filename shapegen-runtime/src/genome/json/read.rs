@@ -53,20 +53,8 @@ impl<'de, G: Grammar> Deserialize<'de> for GenomeSet<G> {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         let fields = SetFields::deserialize(d)?;
         check_generator::<G>(&fields.generator).map_err(D::Error::custom)?;
-        let genomes = fields
-            .genomes
-            .into_iter()
-            .enumerate()
-            .map(|(index, g)| {
-                genome_from_genes(g.genes).map_err(|e| {
-                    D::Error::custom(crate::error::error_chain(&JsonError::InSet {
-                        index,
-                        source: Box::new(e),
-                    }))
-                })
-            })
-            .collect::<Result<_, _>>()?;
-        Ok(GenomeSet { genomes })
+        read_set(fields.genomes, |g| genome_from_genes(g.genes))
+            .map_err(|e| D::Error::custom(crate::error::error_chain(&e)))
     }
 }
 
@@ -135,6 +123,25 @@ pub(super) fn genome_from_genes<G: Grammar>(
     let genome = Genome::from_parts(words, genes.len() as u32);
     genome.validate()?;
     Ok(genome)
+}
+
+/// The set of the genomes `read` makes of `entries`, in order; an entry that fails
+/// fails the set, with its index.
+pub(super) fn read_set<G: Grammar, T>(
+    entries: impl IntoIterator<Item = T>,
+    mut read: impl FnMut(T) -> Result<Genome<G>, JsonError>,
+) -> Result<GenomeSet<G>, JsonError> {
+    let genomes = entries
+        .into_iter()
+        .enumerate()
+        .map(|(index, entry)| {
+            read(entry).map_err(|e| JsonError::InSet {
+                index,
+                source: Box::new(e),
+            })
+        })
+        .collect::<Result<_, _>>()?;
+    Ok(GenomeSet::new(genomes))
 }
 
 /// Checks that a file written for the generator `found` is one of `G`.

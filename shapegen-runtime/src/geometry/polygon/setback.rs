@@ -87,54 +87,14 @@ impl Polygon {
 mod tests {
     use super::*;
 
-    fn polygon(points: &[[f64; 2]]) -> Polygon {
-        let points: Vec<DVec2> = points.iter().map(|&[x, y]| DVec2::new(x, y)).collect();
-        Polygon::from_f64(&points).unwrap()
-    }
-
-    fn l() -> Polygon {
-        polygon(&[
-            [-4.0, -4.0],
-            [4.0, -4.0],
-            [4.0, 0.0],
-            [0.0, 0.0],
-            [0.0, 4.0],
-            [-4.0, 4.0],
-        ])
-    }
-
-    fn u() -> Polygon {
-        polygon(&[
-            [-5.0, -4.0],
-            [5.0, -4.0],
-            [5.0, 4.0],
-            [2.0, 4.0],
-            [2.0, -1.0],
-            [-2.0, -1.0],
-            [-2.0, 4.0],
-            [-5.0, 4.0],
-        ])
-    }
-
-    fn slanted() -> Polygon {
-        polygon(&[
-            [-4.0, -3.0],
-            [4.0, -3.5],
-            [1.5, 0.2],
-            [4.5, 3.0],
-            [-4.0, 3.0],
-            [-1.0, -0.3],
-        ])
-    }
-
     /// Every footprint with a distance that keeps it whole.
     fn cases() -> Vec<(Polygon, f64)> {
         vec![
             (Polygon::rectangle(glam::vec2(10.0, 6.0)).unwrap(), 1.5),
-            (l(), 1.0),
-            (l(), 1.9),
-            (u(), 1.2),
-            (slanted(), 0.4),
+            (Polygon::l_shape(), 1.0),
+            (Polygon::l_shape(), 1.9),
+            (Polygon::u_shape(), 1.2),
+            (Polygon::slanted(), 0.4),
         ]
     }
 
@@ -174,9 +134,9 @@ mod tests {
         assert!(rectangle.setback(2.9).is_some());
         assert!(rectangle.setback(3.0).is_none());
         assert!(rectangle.setback(3.1).is_none());
-        assert!(l().setback(2.1).is_none());
-        assert!(u().setback(1.6).is_none());
-        assert!(slanted().setback(3.0).is_none());
+        assert!(Polygon::l_shape().setback(2.1).is_none());
+        assert!(Polygon::u_shape().setback(1.6).is_none());
+        assert!(Polygon::slanted().setback(3.0).is_none());
         for distance in [0.0, -1.0, f64::NAN, f64::INFINITY] {
             assert!(rectangle.setback(distance).is_none(), "{distance}");
         }

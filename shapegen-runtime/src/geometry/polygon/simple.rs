@@ -140,3 +140,51 @@ impl Polygon {
         (b - a).normalize().perp()
     }
 }
+
+/// Concave footprints for tests.
+#[cfg(test)]
+impl Polygon {
+    /// The polygon through `points`, in order.
+    fn from_points(points: &[[f64; 2]]) -> Polygon {
+        let points: Vec<DVec2> = points.iter().map(|&[x, y]| DVec2::new(x, y)).collect();
+        Polygon::from_f64(&points).unwrap()
+    }
+
+    /// An 8 x 8 square less its upper right quarter.
+    pub(crate) fn l_shape() -> Polygon {
+        Polygon::from_points(&[
+            [-4.0, -4.0],
+            [4.0, -4.0],
+            [4.0, 0.0],
+            [0.0, 0.0],
+            [0.0, 4.0],
+            [-4.0, 4.0],
+        ])
+    }
+
+    /// A 10 x 8 rectangle with a 4 x 5 notch in the middle of its upper side.
+    pub(crate) fn u_shape() -> Polygon {
+        Polygon::from_points(&[
+            [-5.0, -4.0],
+            [5.0, -4.0],
+            [5.0, 4.0],
+            [2.0, 4.0],
+            [2.0, -1.0],
+            [-2.0, -1.0],
+            [-2.0, 4.0],
+            [-5.0, 4.0],
+        ])
+    }
+
+    /// A concave outline with slanted edges.
+    pub(crate) fn slanted() -> Polygon {
+        Polygon::from_points(&[
+            [-4.0, -3.0],
+            [4.0, -3.5],
+            [1.5, 0.2],
+            [4.5, 3.0],
+            [-4.0, 3.0],
+            [-1.0, -0.3],
+        ])
+    }
+}

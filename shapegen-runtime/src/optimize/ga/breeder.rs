@@ -166,6 +166,15 @@ impl<G: Grammar> Breeder<G> {
         Ok(())
     }
 
+    /// `core` beside the population and its scores, as
+    /// [`Optimizer::parts`](crate::optimize::driver::Optimizer::parts) returns them.
+    pub(crate) fn parts<'a, C>(
+        &'a self,
+        core: &'a mut C,
+    ) -> (&'a mut C, &'a [Genome<G>], &'a [f64]) {
+        (core, &self.population, &self.scores)
+    }
+
     /// Copies of the population and its scores, as a checkpoint saves them.
     pub(crate) fn save(&self) -> (Vec<Genome<G>>, Vec<f64>) {
         (self.population.clone(), self.scores.clone())

@@ -152,11 +152,7 @@ impl<G: Grammar> Optimizer<G> for Ga<G> {
     }
 
     fn parts(&mut self) -> (&mut Core<GaSettings, Best<G>>, &[Genome<G>], &[f64]) {
-        (
-            &mut self.core,
-            &self.breeder.population,
-            &self.breeder.scores,
-        )
+        self.breeder.parts(&mut self.core)
     }
 
     #[allow(clippy::type_complexity)]
@@ -201,7 +197,6 @@ impl<G: Grammar> Optimizer<G> for Ga<G> {
             progress,
             evaluator,
             (&mut b.population, &mut b.scores),
-        )?;
-        Ok(())
+        )
     }
 }

@@ -8,8 +8,8 @@ use crate::derive::Grammar;
 use crate::genome::Limits;
 use crate::ops::{OperatorVariant, Operators};
 use crate::optimize::driver::Held;
-use crate::optimize::error::check_range;
 use crate::optimize::error::{OptimizeError, SettingsError};
+use crate::optimize::error::{check_positive, check_range};
 use crate::optimize::polish;
 use crate::optimize::settings::Settings;
 
@@ -166,9 +166,7 @@ impl Settings for GaSettings {
                 "less than the population",
             ));
         }
-        if self.initial_length == 0 {
-            return Err(SettingsError::new("initial_length", 0, "at least 1"));
-        }
+        check_positive("initial_length", self.initial_length)?;
         check_range(
             "mutation_probability",
             self.mutation_probability,
@@ -188,9 +186,7 @@ impl Settings for GaSettings {
                 "positive when grow_weight and cut_weight are 0 (the weights' sum must be finite and positive)",
             ));
         }
-        if self.tournament == 0 {
-            return Err(SettingsError::new("tournament", 0, "at least 1"));
-        }
+        check_positive("tournament", self.tournament)?;
         polish::check_settings(self.polish, self.polish_sigma)
     }
 }
@@ -199,12 +195,12 @@ impl GaSettings {
     /// The genomes `populations` GAs of these settings hold: each its population, the
     /// next generation and a checkpoint's copy.
     pub(crate) fn held(&self, populations: u64) -> Held {
-        Held {
-            genomes: 3 * u64::from(self.population) * populations,
-            saved: u64::from(self.population) * populations,
-            setting: "optimizer.population",
-            value: self.population.into(),
-        }
+        Held::per(
+            "optimizer.population",
+            self.population,
+            3 * populations,
+            populations,
+        )
     }
 
     /// The children bred each generation, each evaluated: `population - elitism`.

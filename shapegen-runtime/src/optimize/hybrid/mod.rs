@@ -301,12 +301,7 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
     fn genomes_held(settings: &HybridSettings) -> Vec<Held> {
         vec![
             settings.ga.held(1),
-            Held {
-                genomes: 2 * u64::from(settings.refine),
-                saved: 0,
-                setting: "optimizer.refine",
-                value: settings.refine.into(),
-            },
+            Held::per("optimizer.refine", settings.refine, 2, 0),
             polish::held(settings.ga.polish),
         ]
     }
@@ -334,11 +329,7 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
                 let (_, particles, fitness) = smc.parts();
                 (&mut self.core, particles, fitness)
             }
-            None => (
-                &mut self.core,
-                &self.breeder.population,
-                &self.breeder.scores,
-            ),
+            None => self.breeder.parts(&mut self.core),
         }
     }
 
@@ -449,7 +440,6 @@ impl<G: Grammar> Optimizer<G> for Hybrid<G> {
             progress,
             evaluator,
             (&mut b.population, &mut b.scores),
-        )?;
-        Ok(())
+        )
     }
 }

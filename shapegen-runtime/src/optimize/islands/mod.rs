@@ -43,7 +43,7 @@ use super::core::Core;
 use super::driver::resume_with;
 use super::driver::{Agreement, Held, Optimizer, Record};
 use super::error::check_sizes;
-use super::error::{OptimizeError, SettingsError};
+use super::error::{OptimizeError, SettingsError, check_positive};
 use super::fitness::{bits_vec, compare, rank};
 use super::ga::GaSettings;
 use super::ga::{Breeder, Generation, Parents, check_population};
@@ -123,9 +123,7 @@ impl Settings for IslandGaSettings {
             "0 in the island model (run the GA or the hybrid on one island to polish)",
         )?;
         let islands = &self.islands;
-        if islands.count == 0 {
-            return Err(SettingsError::new("islands.count", 0, "at least 1"));
-        }
+        check_positive("islands.count", islands.count)?;
         if islands.migrants >= self.ga.population {
             return Err(SettingsError::new(
                 "islands.migrants",
@@ -133,9 +131,7 @@ impl Settings for IslandGaSettings {
                 "less than the population",
             ));
         }
-        if islands.interval == 0 {
-            return Err(SettingsError::new("islands.interval", 0, "at least 1"));
-        }
+        check_positive("islands.interval", islands.interval)?;
         Ok(())
     }
 }
@@ -466,11 +462,7 @@ impl<G: Grammar> Optimizer<G> for IslandGa<G> {
 
     /// The core, with this process's islands and their fitness.
     fn parts(&mut self) -> (&mut Core<IslandGaSettings, Best<G>>, &[Genome<G>], &[f64]) {
-        (
-            &mut self.core,
-            &self.breeder.population,
-            &self.breeder.scores,
-        )
+        self.breeder.parts(&mut self.core)
     }
 
     /// Every island at rank 0 (see [`IslandGaState`]).

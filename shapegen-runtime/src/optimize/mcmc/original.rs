@@ -15,10 +15,9 @@
 //! ignore the links' probabilities.
 
 use rand::Rng;
-use rayon::prelude::*;
 
 use super::moves::OriginalMove as Move;
-use super::sampler::Mcmc;
+use super::sampler::{Mcmc, propose_each};
 use crate::derive::Grammar;
 use crate::evaluate::Evaluator;
 use crate::genome::{DEPTH_CAP, Genome, depths, node_of};
@@ -54,18 +53,13 @@ struct Scratch {
 }
 
 impl<G: Grammar> Mcmc<G> {
-    /// Builds and evaluates the initial chains with their exponents and log priors.
-    pub(super) fn start_original<E: Evaluator<G> + ?Sized>(
-        &mut self,
-        evaluator: &mut E,
-    ) -> Result<(), OptimizeError> {
-        // The operators follow the original's rules: `createRandomGenome`.
-        self.start_chains(evaluator)?;
+    /// Sets the initial chains' exponents and log priors (the chains themselves grow as
+    /// the original's `createRandomGenome` grows them: the operators follow its rules).
+    pub(super) fn start_original(&mut self) {
         for (i, t) in self.temperatures.iter_mut().enumerate() {
             *t = f64::from(initial_temperature(i));
         }
         self.log_priors.fill(1.0);
-        Ok(())
     }
 
     /// One iteration: a move per chain, each followed by its annealing, then one swap.
@@ -73,24 +67,19 @@ impl<G: Grammar> Mcmc<G> {
         &mut self,
         evaluator: &mut E,
     ) -> Result<(), OptimizeError> {
-        let (seed, generation) = (self.core.progress.seed, self.core.progress.generation + 1);
-        for (i, r) in self.rngs.iter_mut().enumerate() {
-            *r = stream(seed, generation, i as u64);
-        }
+        let generation = self.reseed();
         // The original's `basic_prob`, in percent.
         let basic_prob = (self.core.settings.jump_probability * 100.0) as f32;
-        let (ops, chains, priors) = (&self.ops, &self.chains, &self.log_priors);
-        self.proposals
-            .par_iter_mut()
-            .zip(self.original_moves.par_iter_mut())
-            .zip(self.rngs.par_iter_mut())
-            .enumerate()
-            .for_each_init(
-                || (ops.clone(), Scratch::default()),
-                |(ops, s), (i, ((p, m), rng))| {
-                    *m = propose(basic_prob, ops, &chains[i], priors[i] as f32, p, s, rng);
-                },
-            );
+        let (chains, priors) = (&self.chains, &self.log_priors);
+        propose_each(
+            &self.ops,
+            &mut self.proposals,
+            &mut self.original_moves,
+            &mut self.rngs,
+            |ops, s: &mut Scratch, i, p, rng| {
+                propose(basic_prob, ops, &chains[i], priors[i] as f32, p, s, rng)
+            },
+        );
         self.evaluate_proposals(evaluator)?;
         for i in 0..self.chains.len() {
             let (m, t) = (self.original_moves[i], self.temperatures[i] as f32);
@@ -102,7 +91,7 @@ impl<G: Grammar> Mcmc<G> {
             }
             self.temperatures[i] = f64::from(t * ANNEALING);
         }
-        self.swap_chains(&mut stream(seed, generation, 1 << 31));
+        self.swap_chains(&mut stream(self.core.progress.seed, generation, 1 << 31));
         Ok(())
     }
 

@@ -14,7 +14,7 @@ use crate::optimize::best::Best;
 use crate::optimize::core::Core;
 use crate::optimize::driver::{Held, Optimizer};
 use crate::optimize::error::{OptimizeError, SettingsError};
-use crate::optimize::error::{check_range, check_sizes};
+use crate::optimize::error::{check_positive, check_range, check_sizes};
 use crate::optimize::fitness::bits_vec;
 use crate::optimize::polish::{self, PolishState, Polisher};
 use crate::optimize::run::stream;
@@ -230,12 +230,8 @@ impl Settings for McmcSettings {
     /// Checks every field the variant reads; the error names the first one out of
     /// range.
     fn validate(&self) -> Result<(), SettingsError> {
-        if self.chains == 0 {
-            return Err(SettingsError::new("chains", 0, "at least 1"));
-        }
-        if self.initial_length == 0 {
-            return Err(SettingsError::new("initial_length", 0, "at least 1"));
-        }
+        check_positive("chains", self.chains)?;
+        check_positive("initial_length", self.initial_length)?;
         check_range(
             "jump_probability",
             self.jump_probability,
@@ -272,9 +268,7 @@ impl McmcSettings {
             f64::MAX,
             "at least 1 and finite",
         )?;
-        if self.anneal_interval == 0 {
-            return Err(SettingsError::new("anneal_interval", 0, "at least 1"));
-        }
+        check_positive("anneal_interval", self.anneal_interval)?;
         let open = "strictly between 0 and 1";
         if !(self.hot_acceptance > 0.0 && self.hot_acceptance < 1.0) {
             return Err(SettingsError::new(
@@ -422,6 +416,16 @@ impl<G: Grammar> Mcmc<G> {
         Ok(())
     }
 
+    /// Starts an iteration: chain `i` draws from stream (seed, generation, `i`) for the
+    /// next generation. Returns that generation.
+    pub(super) fn reseed(&mut self) -> u64 {
+        let (seed, generation) = (self.core.progress.seed, self.core.progress.generation + 1);
+        for (i, r) in self.rngs.iter_mut().enumerate() {
+            *r = stream(seed, generation, i as u64);
+        }
+        generation
+    }
+
     /// Evaluates every chain's proposal into `proposal_fitness`, proposal `i` bred from
     /// chain `i`.
     pub(super) fn evaluate_proposals<E: Evaluator<G> + ?Sized>(
@@ -439,6 +443,27 @@ impl<G: Grammar> Mcmc<G> {
     }
 }
 
+/// Writes every chain's proposal in parallel: `propose(ops, scratch, i, proposal, rng)`
+/// writes proposal `i` with chain `i`'s stream and returns its move, which lands in
+/// `moves[i]`. Each thread works with its own copy of the operators and its own scratch.
+pub(super) fn propose_each<G: Grammar, M: Send, S: Default>(
+    ops: &Operators<G>,
+    proposals: &mut [Genome<G>],
+    moves: &mut [M],
+    rngs: &mut [ChaCha8Rng],
+    propose: impl Fn(&mut Operators<G>, &mut S, usize, &mut Genome<G>, &mut ChaCha8Rng) -> M + Sync,
+) {
+    proposals
+        .par_iter_mut()
+        .zip(moves.par_iter_mut())
+        .zip(rngs.par_iter_mut())
+        .enumerate()
+        .for_each_init(
+            || (ops.clone(), S::default()),
+            |(ops, s), (i, ((p, m), rng))| *m = propose(ops, s, i, p, rng),
+        );
+}
+
 impl<G: Grammar> Optimizer<G> for Mcmc<G> {
     type Settings = McmcSettings;
     type State = McmcState<G>;
@@ -448,12 +473,7 @@ impl<G: Grammar> Optimizer<G> for Mcmc<G> {
     /// copy; polishing's candidates and origin.
     fn genomes_held(settings: &McmcSettings) -> Vec<Held> {
         vec![
-            Held {
-                genomes: 4 * u64::from(settings.chains),
-                saved: settings.chains.into(),
-                setting: "optimizer.chains",
-                value: settings.chains.into(),
-            },
+            Held::per("optimizer.chains", settings.chains, 4, 1),
             polish::held(settings.polish),
         ]
     }
@@ -584,10 +604,12 @@ impl<G: Grammar> Optimizer<G> for Mcmc<G> {
     }
 
     fn start(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
+        self.start_chains(evaluator)?;
         match self.core.settings.variant {
-            McmcVariant::Original => self.start_original(evaluator),
-            McmcVariant::Tempered => self.start_tempered(evaluator),
+            McmcVariant::Original => self.start_original(),
+            McmcVariant::Tempered => self.start_tempered(),
         }
+        Ok(())
     }
 
     fn step(&mut self, evaluator: &mut (dyn Evaluator<G> + '_)) -> Result<(), OptimizeError> {
@@ -601,8 +623,7 @@ impl<G: Grammar> Optimizer<G> for Mcmc<G> {
                     progress,
                     evaluator,
                     (&mut self.chains, &mut self.fitness),
-                )?;
-                Ok(())
+                )
             }
         }
     }

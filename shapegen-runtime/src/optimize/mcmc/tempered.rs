@@ -3,10 +3,9 @@
 //! annealing and delayed rejection.
 
 use rand::{Rng, RngExt};
-use rayon::prelude::*;
 
 use super::moves::TemperedMove as Move;
-use super::sampler::Mcmc;
+use super::sampler::{Mcmc, propose_each};
 use crate::derive::Grammar;
 use crate::evaluate::Evaluator;
 use crate::genome::{Genome, node_of};
@@ -27,12 +26,8 @@ pub(crate) struct Scratch {
 }
 
 impl<G: Grammar> Mcmc<G> {
-    /// Builds and evaluates the initial chains and sets the temperature ladder.
-    pub(super) fn start_tempered<E: Evaluator<G> + ?Sized>(
-        &mut self,
-        evaluator: &mut E,
-    ) -> Result<(), OptimizeError> {
-        self.start_chains(evaluator)?;
+    /// Sets the temperature ladder from the initial chains' fitness.
+    pub(super) fn start_tempered(&mut self) {
         let (_, s) = mean_std(&self.fitness);
         let s = if s > 0.0 && s.is_finite() { s } else { 1.0 };
         let cold = -s / self.core.settings.cold_acceptance.ln();
@@ -46,7 +41,6 @@ impl<G: Grammar> Mcmc<G> {
             };
             *t = cold * (hot / cold).powf(x);
         }
-        Ok(())
     }
 
     /// One iteration: a move per chain, delayed rejection, swaps, annealing.
@@ -54,22 +48,15 @@ impl<G: Grammar> Mcmc<G> {
         &mut self,
         evaluator: &mut E,
     ) -> Result<(), OptimizeError> {
-        let (seed, generation) = (self.core.progress.seed, self.core.progress.generation + 1);
-        for (i, r) in self.rngs.iter_mut().enumerate() {
-            *r = stream(seed, generation, i as u64);
-        }
-        let (settings, ops, chains) = (&self.core.settings, &self.ops, &self.chains);
-        self.proposals
-            .par_iter_mut()
-            .zip(self.moves.par_iter_mut())
-            .zip(self.rngs.par_iter_mut())
-            .enumerate()
-            .for_each_init(
-                || (ops.clone(), Scratch::default()),
-                |(ops, s), (i, ((p, m), rng))| {
-                    *m = propose(settings.jump_probability, ops, &chains[i], p, s, rng);
-                },
-            );
+        let generation = self.reseed();
+        let (jump_probability, chains) = (self.core.settings.jump_probability, &self.chains);
+        propose_each(
+            &self.ops,
+            &mut self.proposals,
+            &mut self.moves,
+            &mut self.rngs,
+            |ops, s: &mut Scratch, i, p, rng| propose(jump_probability, ops, &chains[i], p, s, rng),
+        );
         self.evaluate_proposals(evaluator)?;
         self.retry.clear();
         for i in 0..self.chains.len() {
@@ -88,7 +75,7 @@ impl<G: Grammar> Mcmc<G> {
             }
             self.retry_rejected(evaluator)?;
         }
-        self.swap_temperatures(&mut stream(seed, generation, 1 << 31));
+        self.swap_temperatures(&mut stream(self.core.progress.seed, generation, 1 << 31));
         if generation.is_multiple_of(self.core.settings.anneal_interval) {
             for t in &mut self.temperatures {
                 *t /= self.core.settings.anneal_factor;

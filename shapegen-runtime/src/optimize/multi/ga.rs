@@ -203,12 +203,7 @@ impl<G: Grammar> Optimizer<G> for MultiGa<G> {
     fn genomes_held(settings: &MultiGaSettings) -> Vec<Held> {
         vec![
             settings.ga.held(1),
-            Held {
-                genomes: 2 * u64::from(settings.archive),
-                saved: settings.archive.into(),
-                setting: "optimizer.archive",
-                value: settings.archive.into(),
-            },
+            Held::per("optimizer.archive", settings.archive, 2, 1),
         ]
     }
 
@@ -231,11 +226,7 @@ impl<G: Grammar> Optimizer<G> for MultiGa<G> {
     }
 
     fn parts(&mut self) -> (&mut Core<MultiGaSettings, Front<G>>, &[Genome<G>], &[f64]) {
-        (
-            &mut self.core,
-            &self.breeder.population,
-            &self.breeder.scores,
-        )
+        self.breeder.parts(&mut self.core)
     }
 
     fn save_body(&self) -> (Vec<Genome<G>>, Vec<f64>) {

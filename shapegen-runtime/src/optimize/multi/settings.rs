@@ -5,7 +5,7 @@ use crate::optimize::settings::generations_field;
 use serde::{Deserialize, Serialize};
 
 use crate::optimize::error::SettingsError;
-use crate::optimize::error::check_range;
+use crate::optimize::error::{check_positive, check_range};
 use crate::optimize::ga::GaSettings;
 use crate::optimize::settings::Settings;
 
@@ -231,9 +231,7 @@ impl Settings for MultiGaSettings {
             "0 with several objectives, which have no single best to polish",
         )?;
         self.selection.validate()?;
-        if self.archive == 0 {
-            return Err(SettingsError::new("archive", 0, "at least 1"));
-        }
+        check_positive("archive", self.archive)?;
         Ok(())
     }
 }

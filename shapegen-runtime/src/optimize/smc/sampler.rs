@@ -151,12 +151,7 @@ impl<G: Grammar> Optimizer<G> for Smc<G> {
     /// copy; polishing's candidates and origin.
     fn genomes_held(settings: &SmcSettings) -> Vec<Held> {
         vec![
-            Held {
-                genomes: 3 * u64::from(settings.particles),
-                saved: settings.particles.into(),
-                setting: "optimizer.particles",
-                value: settings.particles.into(),
-            },
+            Held::per("optimizer.particles", settings.particles, 3, 1),
             polish::held(settings.polish),
         ]
     }
@@ -318,7 +313,6 @@ impl<G: Grammar> Optimizer<G> for Smc<G> {
             progress,
             evaluator,
             (&mut self.particles, &mut self.fitness),
-        )?;
-        Ok(())
+        )
     }
 }

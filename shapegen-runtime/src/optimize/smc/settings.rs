@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::genome::Limits;
-use crate::optimize::error::{SettingsError, check_range};
+use crate::optimize::error::{SettingsError, check_positive, check_range};
 use crate::optimize::polish;
 use crate::optimize::settings::{Settings, generations_field};
 
@@ -199,9 +199,7 @@ impl Settings for SmcSettings {
 
     /// Checks every field the variant reads; the error names the first one out of range.
     fn validate(&self) -> Result<(), SettingsError> {
-        if self.particles == 0 {
-            return Err(SettingsError::new("particles", 0, "at least 1"));
-        }
+        check_positive("particles", self.particles)?;
         match self.variant {
             SmcVariant::Original => check_range(
                 "step_back_probability",
@@ -211,9 +209,7 @@ impl Settings for SmcSettings {
                 "between 0 and 1",
             )?,
             SmcVariant::Generative => {
-                if self.max_grows_per_step == 0 {
-                    return Err(SettingsError::new("max_grows_per_step", 0, "at least 1"));
-                }
+                check_positive("max_grows_per_step", self.max_grows_per_step)?;
             }
         }
         polish::check_settings(self.polish, self.polish_sigma)

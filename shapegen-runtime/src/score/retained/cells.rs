@@ -130,10 +130,7 @@ impl CellCounts {
         let tile = Arc::make_mut(self.tiles[tile].get_or_insert_with(|| Arc::new(Tile::empty())));
         let cells = &mut tile.counts[word * 64..word * 64 + 64];
         let mut changed = Changed::default();
-        let mut rest = bits;
-        while rest != 0 {
-            let bit = rest.trailing_zeros();
-            rest &= rest - 1;
+        for bit in set_bits(bits) {
             let cell = &mut cells[bit as usize];
             match *cell {
                 0 => changed.first |= 1 << bit,
@@ -162,10 +159,7 @@ impl CellCounts {
         let t = Arc::make_mut(shared);
         let cells = &mut t.counts[word * 64..word * 64 + 64];
         let mut changed = Changed::default();
-        let mut rest = bits;
-        while rest != 0 {
-            let bit = rest.trailing_zeros();
-            rest &= rest - 1;
+        for bit in set_bits(bits) {
             let cell = &mut cells[bit as usize];
             match *cell {
                 0 => panic!("a hit removed from a cell that has none"),
@@ -203,3 +197,14 @@ impl CellCounts {
 
 /// Bytes of one tile.
 pub const TILE_BYTES: usize = size_of::<Tile>();
+
+/// The positions of the bits set in `bits`, lowest first.
+#[inline]
+fn set_bits(bits: u64) -> impl Iterator<Item = u32> {
+    let mut rest = bits;
+    std::iter::from_fn(move || {
+        let bit = rest.trailing_zeros();
+        rest &= rest.wrapping_sub(1);
+        (bit < 64).then_some(bit)
+    })
+}

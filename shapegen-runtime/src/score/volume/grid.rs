@@ -239,6 +239,20 @@ fn floor_i32(x: f32) -> i32 {
 }
 
 #[cfg(test)]
+impl Grid {
+    /// The spaceship scene's grid, for tests: 100 x 200 x 100 voxels from (-5, -5, -2)
+    /// to (5, 5, 18), of 0.1 x 0.05 x 0.2.
+    pub(crate) fn spaceship() -> Grid {
+        Grid::new(
+            Vec3::new(-5.0, -5.0, -2.0),
+            Vec3::new(5.0, 5.0, 18.0),
+            [100, 200, 100],
+        )
+        .unwrap()
+    }
+}
+
+#[cfg(test)]
 mod tests {
     use super::*;
 
@@ -305,12 +319,7 @@ mod tests {
 
     #[test]
     fn positions_round_to_the_voxel_holding_them() {
-        let grid = Grid::new(
-            Vec3::new(-5.0, -5.0, -2.0),
-            Vec3::new(5.0, 5.0, 18.0),
-            [100, 200, 100],
-        )
-        .unwrap();
+        let grid = Grid::spaceship();
         assert_eq!(grid.voxel_of(Vec3::new(-5.0, -5.0, -2.0)), [0, 0, 0]);
         assert_eq!(grid.voxel_of(Vec3::new(-5.01, 4.99, 17.9)), [-1, 199, 99]);
         // The upper bound lies in the voxel beyond the grid.
@@ -323,12 +332,7 @@ mod tests {
 
     #[test]
     fn lattice_round_trips() {
-        let grid = Grid::new(
-            Vec3::new(-5.0, -5.0, -2.0),
-            Vec3::new(5.0, 5.0, 18.0),
-            [100, 200, 100],
-        )
-        .unwrap();
+        let grid = Grid::spaceship();
         assert_eq!(grid.cell(), DVec3::new(0.1, 0.05, 0.2));
         for idx in [[0, 0, 0], [99, 199, 99], [-3, 250, 7]] {
             let back = grid.to_lattice(grid.centre(idx));

@@ -318,12 +318,7 @@ mod tests {
         // A wing box of the spaceship, 0.02 wide on a grid of 0.1 voxels: one lattice
         // point along x, whose coefficient (about 5 per point) scaled to the budget of
         // the other terms would not fit an i32.
-        let grid = Grid::new(
-            Vec3::new(-5.0, -5.0, -2.0),
-            Vec3::new(5.0, 5.0, 18.0),
-            [100, 200, 100],
-        )
-        .unwrap();
+        let grid = Grid::spaceship();
         let t = Affine3A::from_cols_array(&[
             -0.021694506,
             -1.896594e-9,

@@ -100,12 +100,7 @@ mod tests {
 
     #[test]
     fn the_box_closed_form_is_the_span_of_its_eight_corners() {
-        let grid = Grid::new(
-            Vec3::new(-5.0, -5.0, -2.0),
-            Vec3::new(5.0, 5.0, 18.0),
-            [100, 200, 100],
-        )
-        .unwrap();
+        let grid = Grid::spaceship();
         let corners: Vec<Vec3> = (0..8)
             .map(|c: u32| Vec3::new((c & 1) as f32, (c >> 1 & 1) as f32, (c >> 2) as f32) - 0.5)
             .collect();

@@ -11,7 +11,7 @@ use super::path::{PlaceId, Places};
 use crate::derive::Grammar;
 use crate::genome::json::error::JsonError;
 use crate::genome::json::params::{ParamError, names, names_or_none, read_params, slot_names};
-use crate::genome::json::read::check_generator;
+use crate::genome::json::read::{check_generator, read_set};
 use crate::genome::json::set::GenomeSet;
 use crate::genome::packed::{Genome, node_of};
 use crate::graph::{HEADER_WORDS, NodeDesc, SlotDesc};
@@ -58,18 +58,7 @@ pub(in crate::genome::json) fn set_from_nested<G: Grammar>(
 ) -> Result<GenomeSet<G>, JsonError> {
     let fields: NestedSetFields = parse(json)?;
     check_generator::<G>(&fields.generator)?;
-    let genomes = fields
-        .genomes
-        .iter()
-        .enumerate()
-        .map(|(index, g)| {
-            genome_from_tree(&g.tree).map_err(|e| JsonError::InSet {
-                index,
-                source: Box::new(e),
-            })
-        })
-        .collect::<Result<_, _>>()?;
-    Ok(GenomeSet::new(genomes))
+    read_set(&fields.genomes, |g| genome_from_tree(&g.tree))
 }
 
 /// Parses `json`, telling a text nested too deep for `serde_json` from other faults.
