@@ -123,7 +123,7 @@ impl<'a> GeneView<'a> {
     }
 
     /// The child on link `link`, with its parameters read as `P`.
-    #[inline]
+    #[inline(always)]
     pub fn child<P: NodeParams>(&self, link: u32) -> Option<Child<'a, P>> {
         self.link(link).map(|pos| {
             let gene = GeneView::new(self.words, pos);
