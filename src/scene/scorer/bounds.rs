@@ -130,19 +130,15 @@ impl BoundsScorer {
         (outside * PER_CUBIC_UNIT).round() as u64
     }
 
-    /// Adds the instances' counts to `counts`, or takes them away when `sign` is false.
-    fn add(&self, counts: &mut BoundsCounts, instances: &[Instance], sign: bool) {
+    /// The counts of `instances` alone.
+    fn tally(&self, instances: &[Instance]) -> BoundsCounts {
+        let mut counts = BoundsCounts::default();
         for instance in instances {
             let outside = self.outside(instance);
-            let poking = u32::from(outside > 0);
-            if sign {
-                counts.outside += outside;
-                counts.instances += poking;
-            } else {
-                counts.outside -= outside;
-                counts.instances -= poking;
-            }
+            counts.outside += outside;
+            counts.instances += u32::from(outside > 0);
         }
+        counts
     }
 }
 
@@ -153,9 +149,7 @@ impl Scorer for BoundsScorer {
     fn scratch(&self) {}
 
     fn count(&self, instances: &[Instance], (): &mut ()) -> BoundsCounts {
-        let mut counts = BoundsCounts::default();
-        self.add(&mut counts, instances, true);
-        counts
+        self.tally(instances)
     }
 
     fn fitness(&self, counts: &BoundsCounts) -> f64 {
@@ -177,8 +171,9 @@ impl RetainedScorer for BoundsScorer {
         added: &[Instance],
         (): &mut (),
     ) -> Result<(), Overflow> {
-        self.add(state, removed, false);
-        self.add(state, added, true);
+        let (gone, new) = (self.tally(removed), self.tally(added));
+        state.outside = state.outside - gone.outside + new.outside;
+        state.instances = state.instances - gone.instances + new.instances;
         Ok(())
     }
 
