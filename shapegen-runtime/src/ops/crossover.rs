@@ -3,7 +3,7 @@
 
 use rand::Rng;
 
-use super::edit::{Donor, Split, splice, split, survey_pair};
+use super::edit::{Split, splice, split, survey_pair};
 use super::operators::{CROSSOVER_RETRIES, OperatorVariant, Operators};
 use super::weight::below;
 use crate::derive::Grammar;
@@ -229,41 +229,13 @@ impl<G: Grammar> Operators<G> {
         out_a: &mut Genome<G>,
         out_b: &mut Genome<G>,
     ) {
-        let s = &self.s;
         let (da, db) = (
-            Donor {
-                words: &a.words,
-                starts: &s.pa.starts,
-                map: &s.pa.map,
-                split: sa,
-            },
-            Donor {
-                words: &b.words,
-                starts: &s.pb.starts,
-                map: &s.pb.map,
-                split: sb,
-            },
+            self.s.pa.split_genome(&a.words, sa),
+            self.s.pb.split_genome(&b.words, sb),
         );
-        let (pa, pb) = (&s.pa, &s.pb);
-        splice(
-            &self.kinds,
-            &mut out_a.words,
-            &a.words,
-            &pa.starts,
-            &pa.map,
-            sa,
-            Some(db),
-        );
+        splice(&self.kinds, &mut out_a.words, da, Some(db));
         out_a.len = a.len - sa.sub_genes + sb.sub_genes;
-        splice(
-            &self.kinds,
-            &mut out_b.words,
-            &b.words,
-            &pb.starts,
-            &pb.map,
-            sb,
-            Some(da),
-        );
+        splice(&self.kinds, &mut out_b.words, db, Some(da));
         out_b.len = b.len - sb.sub_genes + sa.sub_genes;
     }
 
@@ -288,17 +260,9 @@ impl<G: Grammar> Operators<G> {
         if !len_ok(len_a) || !len_ok(len_b) {
             return false;
         }
-        if track_depth {
-            // The donated subtree keeps its own height, hung at the taken subtree's depth.
-            let depth_a = sa
-                .rest_max_depth
-                .max(sa.root_depth + sb.sub_max_depth - sb.root_depth);
-            let depth_b = sb
-                .rest_max_depth
-                .max(sb.root_depth + sa.sub_max_depth - sa.root_depth);
-            if depth_a > lim.max_depth || depth_b > lim.max_depth {
-                return false;
-            }
+        if track_depth && (sa.depth_with(&sb) > lim.max_depth || sb.depth_with(&sa) > lim.max_depth)
+        {
+            return false;
         }
         self.build_children(a, &sa, b, &sb, out_a, out_b);
         true

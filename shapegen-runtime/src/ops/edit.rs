@@ -215,6 +215,16 @@ pub(super) struct Split {
     pub rest_max_depth: u32,
 }
 
+impl Split {
+    /// The depth of the genome this split is of once `other`'s subtree replaces its own:
+    /// the donated subtree keeps its own height, hung at the taken subtree's depth.
+    #[inline]
+    pub(super) fn depth_with(&self, other: &Split) -> u32 {
+        self.rest_max_depth
+            .max(self.root_depth + other.sub_max_depth - other.root_depth)
+    }
+}
+
 /// Splits the valid genome in `words`, surveyed into `sv` (with depths when
 /// `track_depth`), at the gene `root`: fills `sv.map`, from `root` on, with each gene's
 /// position in the rest (compacted) or, marked [`SUB`], relative to the subtree's start.
@@ -263,30 +273,44 @@ pub(super) fn split(
     s
 }
 
-/// A subtree to hang into another genome: the donor genome's words and gene starts, the
-/// map [`split`] filled for it, and the split.
+/// A genome split by [`split`]: its words and gene starts, the map [`split`] filled for
+/// it, and the split. The side that keeps its rest, or the donor of the subtree.
 #[derive(Clone, Copy)]
-pub(super) struct Donor<'a> {
+pub(super) struct SplitGenome<'a> {
     pub words: &'a [u32],
     pub starts: &'a [u32],
     pub map: &'a [u32],
     pub split: &'a Split,
 }
 
-/// Writes into `out` the genome `keep` with the subtree `ks` split off and, when given,
-/// the `donor`'s subtree hung in its place (else the link that held it becomes empty),
-/// given `keep`'s gene starts and the map [`split`] filled. The genes before the
-/// subtree's root are copied as one block; the donor's subtree goes after all kept genes,
-/// in its own order.
+impl Survey {
+    /// The genome in `words`, surveyed here and split by `split` (which filled the map).
+    #[inline]
+    pub(super) fn split_genome<'a>(
+        &'a self,
+        words: &'a [u32],
+        split: &'a Split,
+    ) -> SplitGenome<'a> {
+        SplitGenome {
+            words,
+            starts: &self.starts,
+            map: &self.map,
+            split,
+        }
+    }
+}
+
+/// Writes into `out` the split genome `kept` without its subtree and, when given, the
+/// `donor`'s subtree hung in its place (else the link that held it becomes empty). The
+/// genes before the subtree's root are copied as one block; the donor's subtree goes
+/// after all kept genes, in its own order.
 pub(super) fn splice(
     kinds: &[KindInfo],
     out: &mut Vec<u32>,
-    keep: &[u32],
-    keep_starts: &[u32],
-    keep_map: &[u32],
-    ks: &Split,
-    donor: Option<Donor<'_>>,
+    kept: SplitGenome<'_>,
+    donor: Option<SplitGenome<'_>>,
 ) {
+    let (keep, keep_starts, keep_map, ks) = (kept.words, kept.starts, kept.map, kept.split);
     out.clear();
     let base = keep.len() as u32 - ks.sub_words;
     out.reserve((base + donor.map_or(0, |d| d.split.sub_words)) as usize);
@@ -349,7 +373,7 @@ pub(super) fn graft(
     keep: &[u32],
     at: u32,
     link: u32,
-    donor: Donor<'_>,
+    donor: SplitGenome<'_>,
 ) {
     out.clear();
     out.reserve(keep.len() + donor.split.sub_words as usize);
@@ -364,7 +388,7 @@ pub(super) fn graft(
 /// the gene at `parent` of `out` (whose link the caller sets), recomputing the offsets:
 /// the subtree's genes were not contiguous in the donor. O(W_donor from the subtree's
 /// root).
-fn append_subtree(kinds: &[KindInfo], out: &mut Vec<u32>, parent: u32, donor: Donor<'_>) {
+fn append_subtree(kinds: &[KindInfo], out: &mut Vec<u32>, parent: u32, donor: SplitGenome<'_>) {
     let base = out.len() as u32;
     let ds = donor.split;
     for &pos in &donor.starts[ds.first..] {

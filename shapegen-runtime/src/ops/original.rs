@@ -5,7 +5,7 @@
 use rand::Rng;
 
 use super::draw::{int_value, pick};
-use super::edit::{Donor, cover, graft, remove_subtree, splice, split};
+use super::edit::{cover, graft, remove_subtree, splice, split};
 use super::kinds::{KindInfo, gene_starts};
 use super::operators::{ORIGINAL_CROSSOVER_ATTEMPTS, Operators};
 use crate::derive::Grammar;
@@ -238,16 +238,8 @@ impl<G: Grammar> Operators<G> {
         out_b: &mut Genome<G>,
     ) -> bool {
         let (sa, sb) = self.split_both(a, ra, b, rb, track);
-        if track {
-            let depth_a = sa
-                .rest_max_depth
-                .max(sa.root_depth + sb.sub_max_depth - sb.root_depth);
-            let depth_b = sb
-                .rest_max_depth
-                .max(sb.root_depth + sa.sub_max_depth - sa.root_depth);
-            if depth_a > DEPTH_CAP || depth_b > DEPTH_CAP {
-                return false;
-            }
+        if track && (sa.depth_with(&sb) > DEPTH_CAP || sb.depth_with(&sa) > DEPTH_CAP) {
+            return false;
         }
         self.build_children(a, &sa, b, &sb, out_a, out_b);
         true
@@ -277,23 +269,9 @@ impl<G: Grammar> Operators<G> {
                 return false;
             }
         }
-        let pa = &s.pa;
-        splice(
-            &self.kinds,
-            &mut out_a.words,
-            &a.words,
-            &pa.starts,
-            &pa.map,
-            &sa,
-            None,
-        );
+        let donor = s.pa.split_genome(&a.words, &sa);
+        splice(&self.kinds, &mut out_a.words, donor, None);
         out_a.len = a.len - sa.sub_genes;
-        let donor = Donor {
-            words: &a.words,
-            starts: &pa.starts,
-            map: &pa.map,
-            split: &sa,
-        };
         graft(&self.kinds, &mut out_b.words, &b.words, pb, link, donor);
         out_b.len = b.len + sa.sub_genes;
         true

@@ -5,14 +5,13 @@ use super::surface::Surface;
 use crate::geometry::{BoundMeshes, Instance};
 use crate::score::retained::{
     CellCounts, Footprinted, Footprints, Grids, Hit, Overflow, PixelCounts, Recorder,
-    RetainedScorer,
 };
 use crate::score::scorer::Scorer;
 use crate::score::silhouette::raster::Coverage;
 
 /// A [`ProjectionMatch`] measured on models made of a grammar's meshes: a [`Scorer`]
 /// whose counts are the pixels a model's projection gets wrong and whose fitness is the
-/// match, and a [`RetainedScorer`], so that a bred child's projection is counted from
+/// match, and a [`RetainedScorer`](crate::score::retained::RetainedScorer), so that a bred child's projection is counted from
 /// its parent's (see [`score::retained`](crate::score::retained)).
 ///
 /// Whether a pixel is covered depends on each triangle alone, and each instance's
@@ -96,6 +95,28 @@ impl ProjectionScorer {
 }
 
 impl Footprinted for ProjectionScorer {
+    type Kept = ProjectionState;
+
+    /// Every pixel of the mask mismatched.
+    fn empty(&self, instances: usize) -> ProjectionState {
+        let p = &self.projection;
+        ProjectionState {
+            pixels: PixelCounts::new(p.width(), p.height()),
+            counts: ProjectionCounts {
+                mismatched: p.mask_pixels(),
+            },
+            footprints: Footprints::with_capacity(instances),
+        }
+    }
+
+    fn kept_counts(&self, state: &ProjectionState) -> ProjectionCounts {
+        state.counts
+    }
+
+    fn kept_cells(&self, state: &ProjectionState, visit: &mut dyn FnMut(&CellCounts)) {
+        visit(state.pixels.cells());
+    }
+
     fn grids(&self) -> usize {
         1
     }
@@ -145,7 +166,11 @@ impl Footprinted for ProjectionScorer {
         Ok(())
     }
 
-    fn footprints(state: &mut ProjectionState) -> &mut Footprints {
+    fn footprints(state: &ProjectionState) -> &Footprints {
+        &state.footprints
+    }
+
+    fn footprints_mut(state: &mut ProjectionState) -> &mut Footprints {
         &mut state.footprints
     }
 
@@ -175,50 +200,5 @@ impl Scorer for ProjectionScorer {
     /// The objective's value: the fraction of pixels whose coverage equals the mask.
     fn fitness(&self, counts: &ProjectionCounts) -> f64 {
         self.projection.value(counts.mismatched)
-    }
-}
-
-impl RetainedScorer for ProjectionScorer {
-    type State = ProjectionState;
-
-    fn count_retained(
-        &self,
-        instances: &[Instance],
-        scratch: &mut ProjectionScratch,
-    ) -> Result<ProjectionState, Overflow> {
-        let p = &self.projection;
-        let mut state = ProjectionState {
-            pixels: PixelCounts::new(p.width(), p.height()),
-            counts: ProjectionCounts {
-                mismatched: p.mask_pixels(),
-            },
-            footprints: Footprints::with_capacity(instances.len()),
-        };
-        for instance in instances {
-            self.rasterize_into(&mut state, instance, Hit::Add, scratch)?;
-        }
-        Ok(state)
-    }
-
-    fn update(
-        &self,
-        state: &mut ProjectionState,
-        removed: &[Instance],
-        added: &[Instance],
-        scratch: &mut ProjectionScratch,
-    ) -> Result<(), Overflow> {
-        self.update_instances(state, removed, added, scratch)
-    }
-
-    fn state_counts(&self, state: &ProjectionState) -> ProjectionCounts {
-        state.counts
-    }
-
-    fn visit_cells(&self, state: &ProjectionState, visit: &mut dyn FnMut(&CellCounts)) {
-        visit(state.pixels.cells());
-    }
-
-    fn visit_blocks(&self, state: &ProjectionState, visit: &mut dyn FnMut(usize, usize)) {
-        state.footprints.visit(visit);
     }
 }

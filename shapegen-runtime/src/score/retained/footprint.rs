@@ -13,11 +13,12 @@
 
 use std::sync::Arc;
 
-use super::cells::Overflow;
+use super::cells::{CellCounts, Overflow};
 use super::diff::{InstanceKey, instance_key};
 use super::pixels::Hit;
 use super::scorer::RetainedScorer;
 use crate::geometry::Instance;
+use crate::score::scorer::Scorer;
 
 /// The fewest triangles (or hull points) whose rasterization a kept footprint saves.
 pub(crate) const MIN_COST: usize = 32;
@@ -28,7 +29,7 @@ pub(crate) const MAX_GRIDS: usize = 8;
 /// The cells one instance covers in each grid of a scorer: the non-zero coverage words
 /// it rasterizes to, as (word index, bits), grid after grid.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Grids<'a> {
+pub struct Grids<'a> {
     words: &'a [(u32, u64)],
     /// Where each grid's words end in `words`.
     ends: &'a [u32; MAX_GRIDS],
@@ -45,7 +46,7 @@ impl<'a> Grids<'a> {
 /// A buffer that one instance's words are recorded into, reused from instance to
 /// instance.
 #[derive(Clone, Debug, Default)]
-pub(crate) struct Recorder {
+pub struct Recorder {
     words: Vec<(u32, u64)>,
     ends: [u32; MAX_GRIDS],
 }
@@ -96,7 +97,7 @@ impl Footprint {
 /// twice has two), shared with the states of related models: cloning copies the list,
 /// not the footprints.
 #[derive(Clone, Debug, Default)]
-pub(crate) struct Footprints(Vec<Arc<Footprint>>);
+pub struct Footprints(Vec<Arc<Footprint>>);
 
 impl Footprints {
     /// Room for `n` footprints.
@@ -138,10 +139,28 @@ impl Footprints {
     }
 }
 
-/// A [`RetainedScorer`] whose states count, per cell, the instances covering it, and
-/// keep [`Footprints`]: what it says about rasterizing and counting, from which adding
-/// an instance to a state and updating a state follow.
-pub(crate) trait Footprinted: RetainedScorer {
+/// A scorer whose kept states count, per cell, the instances covering it, and keep
+/// [`Footprints`]: what it says about its states, rasterizing and counting, from which
+/// its [`RetainedScorer`] follows (adding an instance to a state, counting a model from
+/// nothing, updating a state).
+///
+/// Declared `pub` in this private module, as are the types it names, so that the public
+/// [`RetainedScorer`] can be implemented for every such scorer at once; nothing outside
+/// the crate can name it.
+pub trait Footprinted: Scorer {
+    /// What is kept of one model ([`RetainedScorer::State`]).
+    type Kept: Clone + Send + Sync;
+
+    /// The state of a model of no instances, with room for the footprints of
+    /// `instances`.
+    fn empty(&self, instances: usize) -> Self::Kept;
+
+    /// The counts of the model `state` describes ([`RetainedScorer::state_counts`]).
+    fn kept_counts(&self, state: &Self::Kept) -> Self::Counts;
+
+    /// Every cell grid of `state` ([`RetainedScorer::visit_cells`]).
+    fn kept_cells(&self, state: &Self::Kept, visit: &mut dyn FnMut(&CellCounts));
+
     /// The grids (images) an instance is rasterized into, at most [`MAX_GRIDS`].
     fn grids(&self) -> usize;
 
@@ -158,10 +177,13 @@ pub(crate) trait Footprinted: RetainedScorer {
     fn raster_cost(&self, instance: &Instance) -> usize;
 
     /// Adds the cells of `grids` to `state`, or takes them away.
-    fn apply(&self, state: &mut Self::State, grids: Grids<'_>, hit: Hit) -> Result<(), Overflow>;
+    fn apply(&self, state: &mut Self::Kept, grids: Grids<'_>, hit: Hit) -> Result<(), Overflow>;
 
     /// The footprints `state` keeps.
-    fn footprints(state: &mut Self::State) -> &mut Footprints;
+    fn footprints(state: &Self::Kept) -> &Footprints;
+
+    /// The footprints `state` keeps, to change.
+    fn footprints_mut(state: &mut Self::Kept) -> &mut Footprints;
 
     /// The buffer instances are recorded into.
     fn recorder(scratch: &mut Self::Scratch) -> &mut Recorder;
@@ -179,7 +201,7 @@ pub(crate) trait Footprinted: RetainedScorer {
     /// an added instance's footprint is kept where that is worth it.
     fn rasterize_into(
         &self,
-        state: &mut Self::State,
+        state: &mut Self::Kept,
         instance: &Instance,
         hit: Hit,
         scratch: &mut Self::Scratch,
@@ -187,24 +209,40 @@ pub(crate) trait Footprinted: RetainedScorer {
         let recorded = self.record(instance, scratch);
         let applied = self.apply(state, recorded.grids(), hit);
         if applied.is_ok() && hit == Hit::Add {
-            Self::footprints(state).keep(instance, &recorded, self.raster_cost(instance));
+            Self::footprints_mut(state).keep(instance, &recorded, self.raster_cost(instance));
         }
         *Self::recorder(scratch) = recorded;
         applied
     }
+}
+
+impl<T: Footprinted> RetainedScorer for T {
+    type State = T::Kept;
+
+    /// Rasterizes every instance into an empty state.
+    fn count_retained(
+        &self,
+        instances: &[Instance],
+        scratch: &mut Self::Scratch,
+    ) -> Result<T::Kept, Overflow> {
+        let mut state = self.empty(instances.len());
+        for instance in instances {
+            self.rasterize_into(&mut state, instance, Hit::Add, scratch)?;
+        }
+        Ok(state)
+    }
 
     /// Takes each of `removed` out of `state` by replaying its kept footprint (or
-    /// rasterizing it, where none was worth keeping), and adds each of `added`: what
-    /// [`RetainedScorer::update`] does.
-    fn update_instances(
+    /// rasterizing it, where none was worth keeping), and adds each of `added`.
+    fn update(
         &self,
-        state: &mut Self::State,
+        state: &mut T::Kept,
         removed: &[Instance],
         added: &[Instance],
         scratch: &mut Self::Scratch,
     ) -> Result<(), Overflow> {
         for instance in removed {
-            match Self::footprints(state).take(instance) {
+            match T::footprints_mut(state).take(instance) {
                 Some(footprint) => self.apply(state, footprint.grids(), Hit::Remove)?,
                 None => self.rasterize_into(state, instance, Hit::Remove, scratch)?,
             }
@@ -213,5 +251,18 @@ pub(crate) trait Footprinted: RetainedScorer {
             self.rasterize_into(state, instance, Hit::Add, scratch)?;
         }
         Ok(())
+    }
+
+    fn state_counts(&self, state: &T::Kept) -> Self::Counts {
+        self.kept_counts(state)
+    }
+
+    fn visit_cells(&self, state: &T::Kept, visit: &mut dyn FnMut(&CellCounts)) {
+        self.kept_cells(state, visit);
+    }
+
+    /// The footprints.
+    fn visit_blocks(&self, state: &T::Kept, visit: &mut dyn FnMut(usize, usize)) {
+        T::footprints(state).visit(visit);
     }
 }

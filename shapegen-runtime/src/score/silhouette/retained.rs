@@ -7,7 +7,6 @@ use super::target::ImageTarget;
 use crate::geometry::Instance;
 use crate::score::retained::{
     CellCounts, Footprinted, Footprints, Grids, Hit, MAX_GRIDS, Overflow, PixelCounts, Recorder,
-    RetainedScorer,
 };
 
 const _: () = assert!(MAX_TARGETS <= MAX_GRIDS, "a footprint holds every target");
@@ -46,6 +45,32 @@ impl TargetState {
 }
 
 impl Footprinted for SilhouetteScorer {
+    type Kept = SilhouetteState;
+
+    fn empty(&self, instances: usize) -> SilhouetteState {
+        SilhouetteState {
+            targets: self.targets().iter().map(TargetState::new).collect(),
+            footprints: Footprints::with_capacity(instances),
+        }
+    }
+
+    fn kept_counts(&self, state: &SilhouetteState) -> SilhouetteCounts {
+        let mut counts = SilhouetteCounts::zeroed(state.targets.len());
+        for (out, part) in counts.targets_mut().iter_mut().zip(&state.targets) {
+            *out = TargetCounts {
+                off_target: part.counts.covered - part.counts.on_target,
+                ..part.counts
+            };
+        }
+        counts
+    }
+
+    fn kept_cells(&self, state: &SilhouetteState, visit: &mut dyn FnMut(&CellCounts)) {
+        for part in &state.targets {
+            visit(part.pixels.cells());
+        }
+    }
+
     fn grids(&self) -> usize {
         self.targets().len()
     }
@@ -104,61 +129,15 @@ impl Footprinted for SilhouetteScorer {
         Ok(())
     }
 
-    fn footprints(state: &mut SilhouetteState) -> &mut Footprints {
+    fn footprints(state: &SilhouetteState) -> &Footprints {
+        &state.footprints
+    }
+
+    fn footprints_mut(state: &mut SilhouetteState) -> &mut Footprints {
         &mut state.footprints
     }
 
     fn recorder(scratch: &mut SilhouetteScratch) -> &mut Recorder {
         &mut scratch.recorder
-    }
-}
-
-impl RetainedScorer for SilhouetteScorer {
-    type State = SilhouetteState;
-
-    fn count_retained(
-        &self,
-        instances: &[Instance],
-        scratch: &mut SilhouetteScratch,
-    ) -> Result<SilhouetteState, Overflow> {
-        let mut state = SilhouetteState {
-            targets: self.targets().iter().map(TargetState::new).collect(),
-            footprints: Footprints::with_capacity(instances.len()),
-        };
-        for instance in instances {
-            self.rasterize_into(&mut state, instance, Hit::Add, scratch)?;
-        }
-        Ok(state)
-    }
-
-    fn update(
-        &self,
-        state: &mut SilhouetteState,
-        removed: &[Instance],
-        added: &[Instance],
-        scratch: &mut SilhouetteScratch,
-    ) -> Result<(), Overflow> {
-        self.update_instances(state, removed, added, scratch)
-    }
-
-    fn state_counts(&self, state: &SilhouetteState) -> SilhouetteCounts {
-        let mut counts = SilhouetteCounts::zeroed(state.targets.len());
-        for (out, part) in counts.targets_mut().iter_mut().zip(&state.targets) {
-            *out = TargetCounts {
-                off_target: part.counts.covered - part.counts.on_target,
-                ..part.counts
-            };
-        }
-        counts
-    }
-
-    fn visit_cells(&self, state: &SilhouetteState, visit: &mut dyn FnMut(&CellCounts)) {
-        for part in &state.targets {
-            visit(part.pixels.cells());
-        }
-    }
-
-    fn visit_blocks(&self, state: &SilhouetteState, visit: &mut dyn FnMut(usize, usize)) {
-        state.footprints.visit(visit);
     }
 }
