@@ -7,7 +7,7 @@ use super::edit::{Split, splice, split, survey_pair};
 use super::operators::{CROSSOVER_RETRIES, OperatorVariant, Operators};
 use super::weight::below;
 use crate::derive::Grammar;
-use crate::genome::{GeneAt, Genome, GenomeError, node_of, parent_pos, slot_at};
+use crate::genome::{GeneAt, Genome, GenomeError, Limits, node_of, parent_pos, slot_at};
 use crate::graph::HEADER_WORDS;
 
 impl<G: Grammar> Operators<G> {
@@ -125,7 +125,7 @@ impl<G: Grammar> Operators<G> {
                 continue;
             }
             let rb = s.cand[below(rng, s.cand.len() as u64) as usize];
-            if self.try_swap(a, ra, b, rb, track_depth, out_a, out_b) {
+            if self.try_swap(a, ra, b, rb, track_depth, self.limits, out_a, out_b) {
                 return true;
             }
         }
@@ -239,20 +239,21 @@ impl<G: Grammar> Operators<G> {
         out_b.len = b.len - sb.sub_genes + sa.sub_genes;
     }
 
-    /// Swaps the subtrees at `ra` and `rb` into the outputs if both children meet the
-    /// limits; `false` otherwise. The parents' surveys hold depths when `track_depth`.
+    /// Swaps the subtrees at `ra` and `rb` into the outputs if both children meet `lim`
+    /// (their depths checked only when `track_depth`, with which the parents' surveys
+    /// hold depths); `false` otherwise.
     #[allow(clippy::too_many_arguments)]
-    fn try_swap(
+    pub(super) fn try_swap(
         &mut self,
         a: &Genome<G>,
         ra: u32,
         b: &Genome<G>,
         rb: u32,
         track_depth: bool,
+        lim: Limits,
         out_a: &mut Genome<G>,
         out_b: &mut Genome<G>,
     ) -> bool {
-        let lim = self.limits;
         let (sa, sb) = self.split_both(a, ra, b, rb, track_depth);
         let len_a = a.len - sa.sub_genes + sb.sub_genes;
         let len_b = b.len - sb.sub_genes + sa.sub_genes;

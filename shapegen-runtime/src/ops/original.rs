@@ -211,7 +211,11 @@ impl<G: Grammar> Operators<G> {
                 }
             }
             let done = match child {
-                Some(rb) => self.exchange(a, ra, b, rb, track, out_a, out_b),
+                Some(rb) => {
+                    // Any length, and a depth checked against the cap alone.
+                    let lim = self.limits.without_length().without_depth();
+                    self.try_swap(a, ra, b, rb, track, lim, out_a, out_b)
+                }
                 None => {
                     let link = empty.expect("a gene taking the symbol has a link for it");
                     self.graft_into(a, ra, b, pb, link, track, out_a, out_b)
@@ -222,27 +226,6 @@ impl<G: Grammar> Operators<G> {
             }
         }
         false
-    }
-
-    /// Swaps the subtrees at `ra` and `rb` into the outputs, unless a child would be
-    /// deeper than [`DEPTH_CAP`] (checked when `track`).
-    #[allow(clippy::too_many_arguments)]
-    fn exchange(
-        &mut self,
-        a: &Genome<G>,
-        ra: u32,
-        b: &Genome<G>,
-        rb: u32,
-        track: bool,
-        out_a: &mut Genome<G>,
-        out_b: &mut Genome<G>,
-    ) -> bool {
-        let (sa, sb) = self.split_both(a, ra, b, rb, track);
-        if track && (sa.depth_with(&sb) > DEPTH_CAP || sb.depth_with(&sa) > DEPTH_CAP) {
-            return false;
-        }
-        self.build_children(a, &sa, b, &sb, out_a, out_b);
-        true
     }
 
     /// Writes `a` without its subtree at `ra` into `out_a`, and `b` with that subtree
