@@ -2,6 +2,8 @@
 
 use glam::Vec2;
 
+use super::parts::Parts;
+
 /// Why an objective or a set of objectives cannot be built or used.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
@@ -145,4 +147,33 @@ pub enum ObjectiveError {
         /// Objectives in the set.
         expected: usize,
     },
+}
+
+impl ObjectiveError {
+    /// `Ok` when `value`, of the number parameter `field`, passes `ok`; otherwise the
+    /// [`Parameter`](Self::Parameter) error that says it must be `valid`.
+    pub(crate) fn check(
+        field: &'static str,
+        value: f32,
+        ok: impl FnOnce(f32) -> bool,
+        valid: &'static str,
+    ) -> Result<(), ObjectiveError> {
+        if ok(value) {
+            return Ok(());
+        }
+        Err(ObjectiveError::Parameter {
+            field,
+            value,
+            valid,
+        })
+    }
+
+    /// `Ok` when `parts`, the parts parameter `field`, names a mesh; otherwise
+    /// [`NoParts`](Self::NoParts).
+    pub(crate) fn check_parts(field: &'static str, parts: &Parts) -> Result<(), ObjectiveError> {
+        if parts.is_empty() {
+            return Err(ObjectiveError::NoParts { field });
+        }
+        Ok(())
+    }
 }

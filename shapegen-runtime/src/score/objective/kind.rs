@@ -16,7 +16,7 @@ use crate::geometry::PointCloud;
 
 /// One kind of geometric objective: a raw value measured on a model's [`Surface`], better
 /// in the direction [`SENSE`](Self::SENSE), read from an `[[objective]]` table of a scene
-/// file as its [`File`](Self::File).
+/// file as its [`File`](FromTable::File).
 ///
 /// Each kind is one type in a file of its own, named by one row of the table of kinds
 /// (`objective_kinds!`), which derives the [`Objective`](super::Objective) enum, its name
@@ -32,17 +32,9 @@ use crate::geometry::PointCloud;
 /// assert_eq!(Height { target: 3.0 }.measure(&empty, &mut ObjectiveScratch::default()), 3.0);
 /// assert!(Height { target: f32::NAN }.validate().is_err());
 /// ```
-pub trait ObjectiveKind: Sized {
-    /// The keys of its `[[objective]]` table, less `kind` and `name`, as serde reads them
-    /// (unknown keys refused).
-    type File: DeserializeOwned + Debug;
-
+pub trait ObjectiveKind: FromTable {
     /// The direction in which its value is better.
     const SENSE: Sense;
-
-    /// The objective a table describes: names of files and meshes resolved through
-    /// `source`, whose errors name the key at fault.
-    fn resolve<S: ObjectiveSource>(file: Self::File, source: &S) -> Result<Self, S::Error>;
 
     /// Checks the parameters (finite, in range); by default there is nothing to check.
     fn validate(&self) -> Result<(), ObjectiveError> {
@@ -57,6 +49,30 @@ pub trait ObjectiveKind: Sized {
     /// (incrementally for bred children, drawn in overlays); `None` by default.
     fn projection(&self) -> Option<&ProjectionMatch> {
         None
+    }
+}
+
+/// How a kind of objective is made from its `[[objective]]` table: the table's form as
+/// serde reads it, and its resolution.
+pub trait FromTable: Sized {
+    /// The keys of its `[[objective]]` table, less `kind` and `name`, as serde reads them
+    /// (unknown keys refused).
+    type File: DeserializeOwned + Debug;
+
+    /// The objective a table describes: names of files and meshes resolved through
+    /// `source`, whose errors name the key at fault.
+    fn resolve<S: ObjectiveSource>(file: Self::File, source: &S) -> Result<Self, S::Error>;
+}
+
+/// A kind of objective whose table is the kind itself, as written: nothing in it names a
+/// file or a mesh.
+pub trait AsWritten: DeserializeOwned + Debug {}
+
+impl<T: AsWritten> FromTable for T {
+    type File = T;
+
+    fn resolve<S: ObjectiveSource>(file: T, _: &S) -> Result<T, S::Error> {
+        Ok(file)
     }
 }
 

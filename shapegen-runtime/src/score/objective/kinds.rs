@@ -12,7 +12,7 @@
 use serde::Deserialize;
 
 use super::error::ObjectiveError;
-use super::kind::{ObjectiveKind, ObjectiveSource};
+use super::kind::{FromTable, ObjectiveKind, ObjectiveSource};
 use super::projection::{ProjectionMatch, View};
 use super::scratch::ObjectiveScratch;
 use super::surface::Surface;
@@ -29,7 +29,7 @@ use crate::evaluate::Sense;
 /// `module` the file of `kinds/` that defines `Type`, an [`ObjectiveKind`]; the module's
 /// public items are re-exported. It expands into [`Objective`] (one variant per kind,
 /// holding its type, and the dispatch to the type's methods), a `From<Type>` for each,
-/// and [`ObjectiveFile`] (one variant per kind, holding its [`File`](ObjectiveKind::File)).
+/// and [`ObjectiveFile`] (one variant per kind, holding its [`File`](FromTable::File)).
 macro_rules! objective_kinds {
     ($(
         $(#[doc = $doc:literal])*
@@ -125,7 +125,7 @@ macro_rules! objective_kinds {
         })*
 
         /// One `[[objective]]` table as written, less its optional `name`: `kind` picks
-        /// the variant, whose keys are its kind's [`File`](ObjectiveKind::File)'s (any
+        /// the variant, whose keys are its kind's [`File`](FromTable::File)'s (any
         /// other is refused, and serde's message lists the valid ones).
         ///
         /// ```
@@ -141,7 +141,7 @@ macro_rules! objective_kinds {
         #[serde(tag = "kind", deny_unknown_fields)]
         pub enum ObjectiveFile {
             $($(#[doc = $doc])* #[serde(rename = $name)]
-            $variant(<$module::$kind as ObjectiveKind>::File),)*
+            $variant(<$module::$kind as FromTable>::File),)*
         }
 
         impl ObjectiveFile {
@@ -157,7 +157,7 @@ macro_rules! objective_kinds {
             pub fn resolve<S: ObjectiveSource>(self, source: &S) -> Result<Objective, S::Error> {
                 match self {
                     $(ObjectiveFile::$variant(file) => {
-                        <$module::$kind>::resolve(file, source).map(Objective::$variant)
+                        <$module::$kind as FromTable>::resolve(file, source).map(Objective::$variant)
                     })*
                 }
             }

@@ -51,7 +51,7 @@ mod weighted;
 
 pub use bred::BredObjectives;
 pub use error::ObjectiveError;
-pub use kind::{ObjectiveKind, ObjectiveSource};
+pub use kind::{AsWritten, FromTable, ObjectiveKind, ObjectiveSource};
 /// The table of kinds: [`Objective`], [`ObjectiveFile`], and each kind's type and file
 /// form.
 pub use kinds::*;

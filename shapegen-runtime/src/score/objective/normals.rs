@@ -14,8 +14,6 @@
 
 use glam::Vec3;
 
-use super::error::ObjectiveError;
-
 /// Slack added to distances and dot-product bounds, far above the rounding of the
 /// `f64` arithmetic on `f32` components (about `1e-15` here) and far below any
 /// distance that matters.
@@ -338,14 +336,58 @@ fn dot(a: Vec3, b: Vec3) -> f64 {
         + f64::from(a.z) * f64::from(b.z)
 }
 
-/// Checks a tolerance between normals counted as one: from 0 to 180 degrees.
-pub(super) fn check_tolerance(tolerance_deg: f32) -> Result<(), ObjectiveError> {
-    if (0.0..=180.0).contains(&tolerance_deg) {
-        return Ok(());
-    }
-    Err(ObjectiveError::Parameter {
-        field: "tolerance_deg",
-        value: tolerance_deg,
-        valid: "an angle from 0 to 180 degrees",
-    })
+/// Declares `$kind`, a kind of objective measured on the model's distinct normals at a
+/// tolerance: a struct of `tolerance_deg` (1 when its table leaves it out, checked to lie
+/// from 0 to 180 degrees), read as written, better when larger, whose value is
+/// `$measure` with the objective's scratch, the surface and the tolerance bound to the
+/// names given.
+macro_rules! normals_kind {
+    (
+        $(#[$doc:meta])*
+        $kind:ident,
+        |$scratch:ident, $surface:ident, $tolerance:ident| $measure:expr
+    ) => {
+        $(#[$doc])*
+        #[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize)]
+        #[serde(deny_unknown_fields)]
+        pub struct $kind {
+            /// Largest angle, in degrees (0 to 180), between normals counted as one.
+            #[serde(default = "crate::score::objective::normals::one_degree")]
+            pub tolerance_deg: f32,
+        }
+
+        impl $crate::score::objective::kind::AsWritten for $kind {}
+
+        impl $crate::score::objective::kind::ObjectiveKind for $kind {
+            const SENSE: $crate::evaluate::Sense = $crate::evaluate::Sense::Maximize;
+
+            /// A tolerance from 0 to 180 degrees.
+            fn validate(&self) -> Result<(), $crate::score::objective::error::ObjectiveError> {
+                let angle = |t: f32| (0.0..=180.0).contains(&t);
+                let valid = "an angle from 0 to 180 degrees";
+                $crate::score::objective::error::ObjectiveError::check(
+                    "tolerance_deg",
+                    self.tolerance_deg,
+                    angle,
+                    valid,
+                )
+            }
+
+            fn measure(
+                &self,
+                $surface: &$crate::score::objective::surface::Surface,
+                $scratch: &mut $crate::score::objective::scratch::ObjectiveScratch,
+            ) -> f64 {
+                let $tolerance = self.tolerance_deg;
+                $measure
+            }
+        }
+    };
+}
+
+pub(super) use normals_kind;
+
+/// The tolerance of a table that leaves it out.
+pub(super) fn one_degree() -> f32 {
+    1.0
 }

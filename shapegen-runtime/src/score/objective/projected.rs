@@ -1,5 +1,6 @@
-//! What the projection kinds (`top_match`, `front_match`) share: their table's keys and
-//! how a [`ProjectionMatch`] is made from it.
+//! What the projection kinds (`top_match`, `front_match`) share: their table's keys, how
+//! a [`ProjectionMatch`] is made from it, and their [`ObjectiveKind`](super::ObjectiveKind)
+//! (`projection_kind!`).
 
 use glam::Vec2;
 use serde::Deserialize;
@@ -34,3 +35,39 @@ impl ProjectionFile {
             .map_err(|err| source.refused("image", err))
     }
 }
+
+/// Makes `$kind`, a tuple struct of the [`ProjectionMatch`] it holds, the projection kind
+/// of objective seen through `$view`: read from a [`ProjectionFile`], measured as the
+/// fraction of matching pixels ([`Sense::Maximize`](crate::evaluate::Sense::Maximize)).
+macro_rules! projection_kind {
+    ($kind:ident, $view:expr) => {
+        impl $crate::score::objective::kind::FromTable for $kind {
+            type File = $crate::score::objective::projected::ProjectionFile;
+
+            fn resolve<S: $crate::score::objective::kind::ObjectiveSource>(
+                file: Self::File,
+                source: &S,
+            ) -> Result<Self, S::Error> {
+                file.resolve($view, source).map($kind)
+            }
+        }
+
+        impl $crate::score::objective::kind::ObjectiveKind for $kind {
+            const SENSE: $crate::evaluate::Sense = $crate::evaluate::Sense::Maximize;
+
+            fn measure(
+                &self,
+                surface: &$crate::score::objective::surface::Surface,
+                scratch: &mut $crate::score::objective::scratch::ObjectiveScratch,
+            ) -> f64 {
+                self.0.score_with(surface, scratch.coverage())
+            }
+
+            fn projection(&self) -> Option<&ProjectionMatch> {
+                Some(&self.0)
+            }
+        }
+    };
+}
+
+pub(super) use projection_kind;

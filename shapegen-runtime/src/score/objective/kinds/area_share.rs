@@ -5,7 +5,7 @@ use serde::Deserialize;
 
 use crate::evaluate::Sense;
 use crate::score::objective::error::ObjectiveError;
-use crate::score::objective::kind::{ObjectiveKind, ObjectiveSource};
+use crate::score::objective::kind::{FromTable, ObjectiveKind, ObjectiveSource};
 use crate::score::objective::parts::{Parts, area};
 use crate::score::objective::scratch::ObjectiveScratch;
 use crate::score::objective::surface::Surface;
@@ -70,9 +70,8 @@ pub struct AreaShareFile {
     pub target: f32,
 }
 
-impl ObjectiveKind for AreaShare {
+impl FromTable for AreaShare {
     type File = AreaShareFile;
-    const SENSE: Sense = Sense::Minimize;
 
     fn resolve<S: ObjectiveSource>(file: AreaShareFile, source: &S) -> Result<Self, S::Error> {
         Ok(AreaShare {
@@ -81,29 +80,23 @@ impl ObjectiveKind for AreaShare {
             target: file.target,
         })
     }
+}
+
+impl ObjectiveKind for AreaShare {
+    const SENSE: Sense = Sense::Minimize;
 
     /// Parts and `of` that name at least one mesh, parts all among `of`, and a target
     /// share from 0 to 1.
     fn validate(&self) -> Result<(), ObjectiveError> {
-        if self.parts.is_empty() {
-            return Err(ObjectiveError::NoParts { field: "parts" });
-        }
+        ObjectiveError::check_parts("parts", &self.parts)?;
         if let Some(of) = &self.of {
-            if of.is_empty() {
-                return Err(ObjectiveError::NoParts { field: "of" });
-            }
+            ObjectiveError::check_parts("of", of)?;
             if !self.parts.is_subset(of) {
                 return Err(ObjectiveError::PartsOutsideOf);
             }
         }
-        if !(0.0..=1.0).contains(&self.target) {
-            return Err(ObjectiveError::Parameter {
-                field: "target",
-                value: self.target,
-                valid: "a share from 0 to 1",
-            });
-        }
-        Ok(())
+        let share = |t: f32| (0.0..=1.0).contains(&t);
+        ObjectiveError::check("target", self.target, share, "a share from 0 to 1")
     }
 
     fn measure(&self, surface: &Surface, _: &mut ObjectiveScratch) -> f64 {

@@ -5,7 +5,7 @@ use serde::Deserialize;
 
 use crate::evaluate::Sense;
 use crate::score::objective::error::ObjectiveError;
-use crate::score::objective::kind::{ObjectiveKind, ObjectiveSource};
+use crate::score::objective::kind::{FromTable, ObjectiveKind, ObjectiveSource};
 use crate::score::objective::scratch::ObjectiveScratch;
 use crate::score::objective::surface::Surface;
 
@@ -51,9 +51,8 @@ pub struct BoundingBoxFile {
     pub target: [f32; 3],
 }
 
-impl ObjectiveKind for BoundingBox {
+impl FromTable for BoundingBox {
     type File = BoundingBoxFile;
-    const SENSE: Sense = Sense::Minimize;
 
     /// The size of `target`; one that is not a size is an error of `target`.
     fn resolve<S: ObjectiveSource>(file: BoundingBoxFile, source: &S) -> Result<Self, S::Error> {
@@ -63,17 +62,19 @@ impl ObjectiveKind for BoundingBox {
         size.validate().map_err(|err| source.refused("target", err))?;
         Ok(size)
     }
+}
+
+impl ObjectiveKind for BoundingBox {
+    const SENSE: Sense = Sense::Minimize;
 
     /// A target that is finite and at least 0 along every axis.
     fn validate(&self) -> Result<(), ObjectiveError> {
-        match self.target.to_array().into_iter().find(|t| !(t.is_finite() && *t >= 0.0)) {
-            None => Ok(()),
-            Some(value) => Err(ObjectiveError::Parameter {
-                field: "target",
-                value,
-                valid: "a size: finite and at least 0 along x, y and z",
-            }),
+        let size = |t: f32| t.is_finite() && t >= 0.0;
+        let valid = "a size: finite and at least 0 along x, y and z";
+        for t in self.target.to_array() {
+            ObjectiveError::check("target", t, size, valid)?;
         }
+        Ok(())
     }
 
     fn measure(&self, surface: &Surface, _: &mut ObjectiveScratch) -> f64 {

@@ -11,7 +11,7 @@ use serde::Deserialize;
 use crate::evaluate::Sense;
 use crate::geometry::PointCloud;
 use crate::score::objective::error::ObjectiveError;
-use crate::score::objective::kind::{ObjectiveKind, ObjectiveSource};
+use crate::score::objective::kind::{FromTable, ObjectiveKind, ObjectiveSource};
 use crate::score::objective::scratch::ObjectiveScratch;
 use crate::score::objective::surface::Surface;
 use crate::score::metrics::{nearest, sample, subsample};
@@ -120,15 +120,18 @@ fn chamfer_samples() -> usize {
     512
 }
 
-impl ObjectiveKind for ChamferMatch {
+impl FromTable for ChamferMatch {
     type File = ChamferFile;
-    const SENSE: Sense = Sense::Minimize;
 
     /// The cloud of `points`; a sample count out of range is an error of `samples`.
     fn resolve<S: ObjectiveSource>(file: ChamferFile, source: &S) -> Result<Self, S::Error> {
         let cloud = source.point_cloud("points", &file.points)?;
         ChamferMatch::new(&cloud, file.samples).map_err(|err| source.refused("samples", err))
     }
+}
+
+impl ObjectiveKind for ChamferMatch {
+    const SENSE: Sense = Sense::Minimize;
 
     fn measure(&self, surface: &Surface, _: &mut ObjectiveScratch) -> f64 {
         ChamferMatch::measure(self, surface)

@@ -5,7 +5,7 @@ use serde::Deserialize;
 
 use crate::evaluate::Sense;
 use crate::score::objective::error::ObjectiveError;
-use crate::score::objective::kind::{ObjectiveKind, ObjectiveSource};
+use crate::score::objective::kind::{FromTable, ObjectiveKind, ObjectiveSource};
 use crate::score::objective::scratch::ObjectiveScratch;
 use crate::score::objective::surface::Surface;
 
@@ -44,9 +44,8 @@ pub struct FootprintExcessFile {
     pub max: [f32; 2],
 }
 
-impl ObjectiveKind for FootprintExcess {
+impl FromTable for FootprintExcess {
     type File = FootprintExcessFile;
-    const SENSE: Sense = Sense::Minimize;
 
     fn resolve<S: ObjectiveSource>(file: FootprintExcessFile, _: &S) -> Result<Self, S::Error> {
         Ok(FootprintExcess {
@@ -54,6 +53,10 @@ impl ObjectiveKind for FootprintExcess {
             max: Vec2::from(file.max),
         })
     }
+}
+
+impl ObjectiveKind for FootprintExcess {
+    const SENSE: Sense = Sense::Minimize;
 
     /// A finite rectangle with `min <= max` in both coordinates.
     fn validate(&self) -> Result<(), ObjectiveError> {

@@ -1,16 +1,13 @@
 //! [`FrontMatch`]: how well the model seen from the front matches a target image.
 
-use crate::evaluate::Sense;
-use crate::score::objective::kind::{ObjectiveKind, ObjectiveSource};
-use crate::score::objective::projected::ProjectionFile;
+use crate::score::objective::projected::projection_kind;
 use crate::score::objective::projection::{ProjectionMatch, View};
-use crate::score::objective::scratch::ObjectiveScratch;
-use crate::score::objective::surface::Surface;
 
 /// Fraction of the pixels of the orthographic projection from the front (onto x/y) that
-/// match a target image, in `[0, 1]` ([`Sense::Maximize`]); see [`ProjectionMatch`].
-/// Made from its table (`kind = "front_match"`, `image`, `min`, `max`), or from a match
-/// whose view is [`View::Front`] by [`Objective::from`](super::Objective::from).
+/// match a target image, in `[0, 1]`
+/// ([`Sense::Maximize`](crate::evaluate::Sense::Maximize)); see [`ProjectionMatch`]. Made
+/// from its table (`kind = "front_match"`, `image`, `min`, `max`), or from a match whose
+/// view is [`View::Front`] by [`Objective::from`](super::Objective::from).
 ///
 /// ```
 /// use glam::{Affine3A, Vec2};
@@ -32,19 +29,4 @@ use crate::score::objective::surface::Surface;
 #[derive(Clone, Debug, PartialEq)]
 pub struct FrontMatch(pub(super) ProjectionMatch);
 
-impl ObjectiveKind for FrontMatch {
-    type File = ProjectionFile;
-    const SENSE: Sense = Sense::Maximize;
-
-    fn resolve<S: ObjectiveSource>(file: ProjectionFile, source: &S) -> Result<Self, S::Error> {
-        file.resolve(View::Front, source).map(FrontMatch)
-    }
-
-    fn measure(&self, surface: &Surface, scratch: &mut ObjectiveScratch) -> f64 {
-        self.0.score_with(surface, scratch.coverage())
-    }
-
-    fn projection(&self) -> Option<&ProjectionMatch> {
-        Some(&self.0)
-    }
-}
+projection_kind!(FrontMatch, View::Front);

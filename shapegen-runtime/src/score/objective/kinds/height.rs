@@ -4,7 +4,7 @@ use serde::Deserialize;
 
 use crate::evaluate::Sense;
 use crate::score::objective::error::ObjectiveError;
-use crate::score::objective::kind::{ObjectiveKind, ObjectiveSource};
+use crate::score::objective::kind::{AsWritten, ObjectiveKind};
 use crate::score::objective::scratch::ObjectiveScratch;
 use crate::score::objective::surface::Surface;
 
@@ -32,24 +32,14 @@ pub struct Height {
     pub target: f32,
 }
 
-impl ObjectiveKind for Height {
-    type File = Height;
-    const SENSE: Sense = Sense::Minimize;
+impl AsWritten for Height {}
 
-    fn resolve<S: ObjectiveSource>(file: Height, _: &S) -> Result<Height, S::Error> {
-        Ok(file)
-    }
+impl ObjectiveKind for Height {
+    const SENSE: Sense = Sense::Minimize;
 
     /// A finite `target`.
     fn validate(&self) -> Result<(), ObjectiveError> {
-        if self.target.is_finite() {
-            return Ok(());
-        }
-        Err(ObjectiveError::Parameter {
-            field: "target",
-            value: self.target,
-            valid: "a finite number",
-        })
+        ObjectiveError::check("target", self.target, f32::is_finite, "a finite number")
     }
 
     fn measure(&self, surface: &Surface, _: &mut ObjectiveScratch) -> f64 {

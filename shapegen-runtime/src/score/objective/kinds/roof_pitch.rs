@@ -5,7 +5,7 @@ use serde::Deserialize;
 
 use crate::evaluate::Sense;
 use crate::score::objective::error::ObjectiveError;
-use crate::score::objective::kind::{ObjectiveKind, ObjectiveSource};
+use crate::score::objective::kind::{FromTable, ObjectiveKind, ObjectiveSource};
 use crate::score::objective::parts::{MIN_UPWARD_Y, Parts, area};
 use crate::score::objective::scratch::ObjectiveScratch;
 use crate::score::objective::surface::Surface;
@@ -71,9 +71,8 @@ fn roof_parts() -> Vec<String> {
     vec!["roof".to_owned()]
 }
 
-impl ObjectiveKind for RoofPitch {
+impl FromTable for RoofPitch {
     type File = RoofPitchFile;
-    const SENSE: Sense = Sense::Minimize;
 
     fn resolve<S: ObjectiveSource>(file: RoofPitchFile, source: &S) -> Result<Self, S::Error> {
         Ok(RoofPitch {
@@ -81,20 +80,16 @@ impl ObjectiveKind for RoofPitch {
             target_deg: file.target_deg,
         })
     }
+}
+
+impl ObjectiveKind for RoofPitch {
+    const SENSE: Sense = Sense::Minimize;
 
     /// Parts that name at least one mesh and a pitch from 0 to 90 degrees.
     fn validate(&self) -> Result<(), ObjectiveError> {
-        if self.parts.is_empty() {
-            return Err(ObjectiveError::NoParts { field: "parts" });
-        }
-        if !(0.0..=90.0).contains(&self.target_deg) {
-            return Err(ObjectiveError::Parameter {
-                field: "target_deg",
-                value: self.target_deg,
-                valid: "an angle from 0 to 90 degrees",
-            });
-        }
-        Ok(())
+        ObjectiveError::check_parts("parts", &self.parts)?;
+        let angle = |t: f32| (0.0..=90.0).contains(&t);
+        ObjectiveError::check("target_deg", self.target_deg, angle, "an angle from 0 to 90 degrees")
     }
 
     fn measure(&self, surface: &Surface, _: &mut ObjectiveScratch) -> f64 {

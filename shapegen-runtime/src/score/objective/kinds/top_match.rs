@@ -1,16 +1,13 @@
 //! [`TopMatch`]: how well the model seen from above matches a target image.
 
-use crate::evaluate::Sense;
-use crate::score::objective::kind::{ObjectiveKind, ObjectiveSource};
-use crate::score::objective::projected::ProjectionFile;
+use crate::score::objective::projected::projection_kind;
 use crate::score::objective::projection::{ProjectionMatch, View};
-use crate::score::objective::scratch::ObjectiveScratch;
-use crate::score::objective::surface::Surface;
 
 /// Fraction of the pixels of the orthographic projection from above (onto x/z) that
-/// match a target image, in `[0, 1]` ([`Sense::Maximize`]); see [`ProjectionMatch`].
-/// Made from its table (`kind = "top_match"`, `image`, `min`, `max`), or from a match
-/// whose view is [`View::Top`] by [`Objective::from`](super::Objective::from).
+/// match a target image, in `[0, 1]`
+/// ([`Sense::Maximize`](crate::evaluate::Sense::Maximize)); see [`ProjectionMatch`]. Made
+/// from its table (`kind = "top_match"`, `image`, `min`, `max`), or from a match whose
+/// view is [`View::Top`] by [`Objective::from`](super::Objective::from).
 ///
 /// ```
 /// use glam::{Affine3A, Vec2};
@@ -32,19 +29,4 @@ use crate::score::objective::surface::Surface;
 #[derive(Clone, Debug, PartialEq)]
 pub struct TopMatch(pub(super) ProjectionMatch);
 
-impl ObjectiveKind for TopMatch {
-    type File = ProjectionFile;
-    const SENSE: Sense = Sense::Maximize;
-
-    fn resolve<S: ObjectiveSource>(file: ProjectionFile, source: &S) -> Result<Self, S::Error> {
-        file.resolve(View::Top, source).map(TopMatch)
-    }
-
-    fn measure(&self, surface: &Surface, scratch: &mut ObjectiveScratch) -> f64 {
-        self.0.score_with(surface, scratch.coverage())
-    }
-
-    fn projection(&self) -> Option<&ProjectionMatch> {
-        Some(&self.0)
-    }
-}
+projection_kind!(TopMatch, View::Top);

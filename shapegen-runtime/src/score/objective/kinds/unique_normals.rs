@@ -1,66 +1,33 @@
 //! [`UniqueNormals`]: how many distinct face normals the model has.
 
-use serde::Deserialize;
+use crate::score::objective::normals::normals_kind;
 
-use crate::evaluate::Sense;
-use crate::score::objective::error::ObjectiveError;
-use crate::score::objective::normals::check_tolerance;
-use crate::score::objective::kind::{ObjectiveKind, ObjectiveSource};
-use crate::score::objective::scratch::ObjectiveScratch;
-use crate::score::objective::surface::Surface;
-
-/// Number of distinct face normals ([`Sense::Maximize`]). The surface's normals are
-/// clustered greedily in triangle order: each joins the first distinct normal found so
-/// far within `tolerance_deg` of it (`n . r >= cos(tolerance)`), else it is a new
-/// distinct normal. Any two distinct normals are thus more than the tolerance apart; a
-/// unit cube has 6; an empty model 0. Use a tolerance above rounding (a degree, say), so
-/// that the two triangles of a rotated quad agree. Its table: `kind = "unique_normals"`
-/// and `tolerance_deg` (1 when left out).
-///
-/// ```
-/// use glam::{Affine3A, Quat};
-/// use shapegen_runtime::score::objective::{ObjectiveKind, ObjectiveScratch, Surface, UniqueNormals};
-/// use shapegen_runtime::{CUBE, Instance, MeshLibrary};
-///
-/// let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"])?;
-/// let tilted = Affine3A::from_quat(Quat::from_rotation_y(0.01));
-/// let model = [
-///     Instance { transform: Affine3A::IDENTITY, mesh: CUBE },
-///     Instance { transform: tilted, mesh: CUBE },
-/// ];
-/// let surface = Surface::from_instances(&model, &meshes);
-/// let mut scratch = ObjectiveScratch::default();
-/// // Turned by about 0.57 degrees, the second cube's sides are within 1 degree.
-/// assert_eq!(UniqueNormals { tolerance_deg: 1.0 }.measure(&surface, &mut scratch), 6.0);
-/// # Ok::<(), shapegen_runtime::MeshError>(())
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct UniqueNormals {
-    /// Largest angle, in degrees (0 to 180), between normals counted as one.
-    #[serde(default = "one_degree")]
-    pub tolerance_deg: f32,
-}
-
-/// The tolerance of a table that leaves it out.
-fn one_degree() -> f32 {
-    1.0
-}
-
-impl ObjectiveKind for UniqueNormals {
-    type File = UniqueNormals;
-    const SENSE: Sense = Sense::Maximize;
-
-    fn resolve<S: ObjectiveSource>(file: UniqueNormals, _: &S) -> Result<Self, S::Error> {
-        Ok(file)
-    }
-
-    /// A tolerance from 0 to 180 degrees.
-    fn validate(&self) -> Result<(), ObjectiveError> {
-        check_tolerance(self.tolerance_deg)
-    }
-
-    fn measure(&self, surface: &Surface, scratch: &mut ObjectiveScratch) -> f64 {
-        scratch.distinct(surface, self.tolerance_deg).len() as f64
-    }
+normals_kind! {
+    /// Number of distinct face normals ([`Sense::Maximize`](crate::evaluate::Sense::Maximize)). The surface's normals are
+    /// clustered greedily in triangle order: each joins the first distinct normal found so
+    /// far within `tolerance_deg` of it (`n . r >= cos(tolerance)`), else it is a new
+    /// distinct normal. Any two distinct normals are thus more than the tolerance apart; a
+    /// unit cube has 6; an empty model 0. Use a tolerance above rounding (a degree, say), so
+    /// that the two triangles of a rotated quad agree. Its table: `kind = "unique_normals"`
+    /// and `tolerance_deg` (1 when left out).
+    ///
+    /// ```
+    /// use glam::{Affine3A, Quat};
+    /// use shapegen_runtime::score::objective::{ObjectiveKind, ObjectiveScratch, Surface, UniqueNormals};
+    /// use shapegen_runtime::{CUBE, Instance, MeshLibrary};
+    ///
+    /// let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"])?;
+    /// let tilted = Affine3A::from_quat(Quat::from_rotation_y(0.01));
+    /// let model = [
+    ///     Instance { transform: Affine3A::IDENTITY, mesh: CUBE },
+    ///     Instance { transform: tilted, mesh: CUBE },
+    /// ];
+    /// let surface = Surface::from_instances(&model, &meshes);
+    /// let mut scratch = ObjectiveScratch::default();
+    /// // Turned by about 0.57 degrees, the second cube's sides are within 1 degree.
+    /// assert_eq!(UniqueNormals { tolerance_deg: 1.0 }.measure(&surface, &mut scratch), 6.0);
+    /// # Ok::<(), shapegen_runtime::MeshError>(())
+    /// ```
+    UniqueNormals,
+    |scratch, surface, tolerance| scratch.distinct(surface, tolerance).len() as f64
 }
