@@ -183,50 +183,15 @@ mod tests {
 
     #[test]
     fn face_centres_normals_and_sizes_in_world_space() {
-        // (face, centre, outward normal, up axis, size)
+        // face, centre, outward normal, up axis, size (x, y)
+        #[rustfmt::skip]
         let expected = [
-            (
-                Face::Front,
-                vec3(13.0, 20.0, 30.0),
-                Vec3::X,
-                Vec3::Y,
-                vec3(2.0, 4.0, 0.0),
-            ),
-            (
-                Face::Back,
-                vec3(7.0, 20.0, 30.0),
-                Vec3::NEG_X,
-                Vec3::Y,
-                vec3(2.0, 4.0, 0.0),
-            ),
-            (
-                Face::Left,
-                vec3(10.0, 20.0, 31.0),
-                Vec3::Z,
-                Vec3::Y,
-                vec3(6.0, 4.0, 0.0),
-            ),
-            (
-                Face::Right,
-                vec3(10.0, 20.0, 29.0),
-                Vec3::NEG_Z,
-                Vec3::Y,
-                vec3(6.0, 4.0, 0.0),
-            ),
-            (
-                Face::Top,
-                vec3(10.0, 22.0, 30.0),
-                Vec3::Y,
-                Vec3::NEG_X,
-                vec3(2.0, 6.0, 0.0),
-            ),
-            (
-                Face::Bottom,
-                vec3(10.0, 18.0, 30.0),
-                Vec3::NEG_Y,
-                Vec3::X,
-                vec3(2.0, 6.0, 0.0),
-            ),
+            (Face::Front, vec3(13.0, 20.0, 30.0), Vec3::X, Vec3::Y, vec3(2.0, 4.0, 0.0)),
+            (Face::Back, vec3(7.0, 20.0, 30.0), Vec3::NEG_X, Vec3::Y, vec3(2.0, 4.0, 0.0)),
+            (Face::Left, vec3(10.0, 20.0, 31.0), Vec3::Z, Vec3::Y, vec3(6.0, 4.0, 0.0)),
+            (Face::Right, vec3(10.0, 20.0, 29.0), Vec3::NEG_Z, Vec3::Y, vec3(6.0, 4.0, 0.0)),
+            (Face::Top, vec3(10.0, 22.0, 30.0), Vec3::Y, Vec3::NEG_X, vec3(2.0, 6.0, 0.0)),
+            (Face::Bottom, vec3(10.0, 18.0, 30.0), Vec3::NEG_Y, Vec3::X, vec3(2.0, 6.0, 0.0)),
         ];
         let faces: Vec<_> = turned_box().faces().collect();
         assert_eq!(faces.len(), 6);
