@@ -6,6 +6,7 @@
 mod compare;
 mod export;
 mod genome;
+mod on_scene;
 mod render;
 mod report;
 mod run;
@@ -21,6 +22,7 @@ use shapegen_runtime::Grammar;
 use crate::cli::generators::{Generators, Jobs, Visit};
 use crate::cli::memory::MemoryCheck;
 use crate::registry::Entry;
+use on_scene::visit_scene;
 
 /// The commands of the tool, each with its arguments.
 #[derive(Debug, Subcommand)]
@@ -82,9 +84,9 @@ impl Command {
     pub fn run(self, tool: &Generators<Commands>) -> anyhow::Result<()> {
         match self {
             Command::Sample(args) => sample::run(&args, tool),
-            Command::Score(args) => score::run(&args, tool),
-            Command::Target(args) => target::run(&args, tool),
-            Command::Render(args) => render::run(&args, tool),
+            Command::Score(args) => visit_scene(&args.scene, &args, tool),
+            Command::Target(args) => visit_scene(&args.scene, &args, tool),
+            Command::Render(args) => visit_scene(&args.scene, &args, tool),
             Command::Run(args) => run::run(&args, tool),
             Command::Compare(args) => compare::run(&args, tool),
             Command::Sweep(args) => sweep::run(&args, tool),

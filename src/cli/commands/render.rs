@@ -7,19 +7,21 @@ use clap::Args;
 use rayon::prelude::*;
 use shapegen::Grammar;
 use shapegen::export::{Palette, Preview};
-use shapegen::scene::{Overrides, Scene, SceneScorer};
+use shapegen::scene::SceneScorer;
 use shapegen::score::objective::Surface;
 
-use crate::cli::generators::{Generators, Jobs, Visit};
+use crate::cli::generators::Visit;
 use crate::cli::genomes::load_genomes;
 use crate::cli::overlay::{numbered, overlay, projection_overlay, projections};
 use crate::registry::Entry;
+
+use super::on_scene::OnScene;
 
 /// Arguments of `shapegen render`.
 #[derive(Debug, Args)]
 pub struct RenderArgs {
     /// The scene file (TOML): its first camera frames the previews.
-    scene: PathBuf,
+    pub(super) scene: PathBuf,
     /// The genomes to draw: a single genome or a set.
     #[arg(long)]
     genomes: PathBuf,
@@ -27,37 +29,15 @@ pub struct RenderArgs {
     #[arg(long)]
     out: PathBuf,
     /// Preview width and height for scenes without a camera.
-    #[arg(long, value_name = "W", default_value_t = 800)]
+    #[arg(long, value_name = "W", default_value_t = 800, value_parser = clap::value_parser!(u32).range(1..))]
     width: u32,
     /// Preview height for scenes without a camera.
-    #[arg(long, value_name = "H", default_value_t = 600)]
+    #[arg(long, value_name = "H", default_value_t = 600, value_parser = clap::value_parser!(u32).range(1..))]
     height: u32,
 }
 
-/// Runs `shapegen render`.
-pub fn run<J: Jobs>(args: &RenderArgs, tool: &Generators<J>) -> anyhow::Result<()>
-where
-    for<'a> J::Job<'a>: From<Render<'a>>,
-{
-    anyhow::ensure!(
-        args.width > 0 && args.height > 0,
-        "--width and --height must be at least 1"
-    );
-    let scene = Scene::open(&args.scene, tool.registry(), &Overrides::default())?;
-    tool.visit(
-        &scene.generator,
-        Render {
-            args,
-            scene: &scene,
-        },
-    )
-}
-
 /// The body of `shapegen render`.
-pub struct Render<'a> {
-    args: &'a RenderArgs,
-    scene: &'a Scene,
-}
+pub type Render<'a> = OnScene<'a, RenderArgs>;
 
 impl Visit for Render<'_> {
     fn visit<G: Grammar>(self, _: &Entry) -> anyhow::Result<()> {

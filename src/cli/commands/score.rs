@@ -8,20 +8,22 @@ use anyhow::Context;
 use clap::Args;
 use serde::Serialize;
 use shapegen::optimize::multi::MultiEvaluator;
-use shapegen::scene::{ObjectiveEvaluator, Overrides, Scene, SceneCounts, SceneScorer};
+use shapegen::scene::{ObjectiveEvaluator, Scene, SceneCounts, SceneScorer};
 use shapegen::score::InstanceBatch;
 use shapegen::{Genome, Grammar};
 
 use crate::cli::backend::BackendArgs;
-use crate::cli::generators::{Generators, Jobs, Visit};
+use crate::cli::generators::Visit;
 use crate::cli::genomes::load_genomes;
 use crate::registry::Entry;
+
+use super::on_scene::OnScene;
 
 /// Arguments of `shapegen score`.
 #[derive(Debug, Args)]
 pub struct ScoreArgs {
     /// The scene file (TOML).
-    scene: PathBuf,
+    pub(super) scene: PathBuf,
     /// Genomes to score: a file written by `shapegen sample` or `shapegen run`.
     #[arg(long)]
     genomes: PathBuf,
@@ -40,26 +42,8 @@ struct Line<'a> {
     counts: &'a SceneCounts,
 }
 
-/// Runs `shapegen score`.
-pub fn run<J: Jobs>(args: &ScoreArgs, tool: &Generators<J>) -> anyhow::Result<()>
-where
-    for<'a> J::Job<'a>: From<Score<'a>>,
-{
-    let scene = Scene::open(&args.scene, tool.registry(), &Overrides::default())?;
-    tool.visit(
-        &scene.generator,
-        Score {
-            args,
-            scene: &scene,
-        },
-    )
-}
-
 /// The body of `shapegen score`.
-pub struct Score<'a> {
-    args: &'a ScoreArgs,
-    scene: &'a Scene,
-}
+pub type Score<'a> = OnScene<'a, ScoreArgs>;
 
 impl Visit for Score<'_> {
     fn visit<G: Grammar>(self, _: &Entry) -> anyhow::Result<()> {

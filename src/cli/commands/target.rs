@@ -8,21 +8,23 @@ use clap::Args;
 use image::{GrayImage, Luma};
 use shapegen::Grammar;
 use shapegen::Instance;
-use shapegen::scene::{Overrides, Scene, SceneScorer};
+use shapegen::scene::{Scene, SceneScorer};
 use shapegen::score::Scorer;
 use shapegen::score::objective::{ObjectiveSet, Surface};
 
-use crate::cli::generators::{Generators, Jobs, Visit};
+use crate::cli::generators::Visit;
 use crate::cli::genomes::load_genome;
 use crate::cli::overlay::{numbered, projections};
 use crate::cli::voxels::voxel_surface_obj;
 use crate::registry::Entry;
 
+use super::on_scene::OnScene;
+
 /// Arguments of `shapegen target`.
 #[derive(Debug, Args)]
 pub struct TargetArgs {
     /// The scene file (TOML) whose grid or cameras the target is made for.
-    scene: PathBuf,
+    pub(super) scene: PathBuf,
     /// The genome to make the target of: a single genome or a set.
     #[arg(long)]
     genome: PathBuf,
@@ -37,26 +39,8 @@ pub struct TargetArgs {
     out: PathBuf,
 }
 
-/// Runs `shapegen target`.
-pub fn run<J: Jobs>(args: &TargetArgs, tool: &Generators<J>) -> anyhow::Result<()>
-where
-    for<'a> J::Job<'a>: From<Target<'a>>,
-{
-    let scene = Scene::open(&args.scene, tool.registry(), &Overrides::default())?;
-    tool.visit(
-        &scene.generator,
-        Target {
-            args,
-            scene: &scene,
-        },
-    )
-}
-
 /// The body of `shapegen target`.
-pub struct Target<'a> {
-    args: &'a TargetArgs,
-    scene: &'a Scene,
-}
+pub type Target<'a> = OnScene<'a, TargetArgs>;
 
 impl Visit for Target<'_> {
     fn visit<G: Grammar>(self, _: &Entry) -> anyhow::Result<()> {
