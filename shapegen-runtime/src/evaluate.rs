@@ -15,9 +15,28 @@ use crate::genome::Genome;
 #[error("evaluation failed: {0}")]
 pub struct EvaluateError(pub String);
 
+/// Children bred from a scored population, with their lineage: `children[i]` was made from
+/// `parents[from[i]]` ([`Evaluator::evaluate_bred`]).
+pub struct Bred<'a, G> {
+    /// The children.
+    pub children: &'a [Genome<G>],
+    /// The population they were bred from.
+    pub parents: &'a [Genome<G>],
+    /// Per child, the index of the parent it was made from; as long as `children`.
+    pub from: &'a [u32],
+}
+
+impl<G> Clone for Bred<'_, G> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<G> Copy for Bred<'_, G> {}
+
 /// Declares a trait scoring whole populations of genomes, `pub trait $name<G: Grammar>`,
-/// with `evaluate(&mut self, genomes, out)`, `evaluate_bred(&mut self, genomes, parents,
-/// from, out)`, whose default ignores the lineage and calls `evaluate`, and the `&self`
+/// with `evaluate(&mut self, genomes, out)`, `evaluate_bred(&mut self, bred, out)`, whose
+/// default ignores the lineage and calls `evaluate` on the children, and the `&self`
 /// methods of its own listed after them (declared first), each with the documentation
 /// given; and implements the trait for `&mut E` by forwarding every method.
 macro_rules! population_evaluator {
@@ -49,15 +68,8 @@ macro_rules! population_evaluator {
             ) -> Result<(), EvaluateError>;
 
             $(#[$bred_doc])*
-            fn evaluate_bred(
-                &mut self,
-                genomes: &[Genome<G>],
-                parents: &[Genome<G>],
-                from: &[u32],
-                out: &mut [f64],
-            ) -> Result<(), EvaluateError> {
-                let _ = (parents, from);
-                self.evaluate(genomes, out)
+            fn evaluate_bred(&mut self, bred: Bred<'_, G>, out: &mut [f64]) -> Result<(), EvaluateError> {
+                self.evaluate(bred.children, out)
             }
         }
 
@@ -76,14 +88,8 @@ macro_rules! population_evaluator {
                 (**self).evaluate(genomes, out)
             }
 
-            fn evaluate_bred(
-                &mut self,
-                genomes: &[Genome<G>],
-                parents: &[Genome<G>],
-                from: &[u32],
-                out: &mut [f64],
-            ) -> Result<(), EvaluateError> {
-                (**self).evaluate_bred(genomes, parents, from, out)
+            fn evaluate_bred(&mut self, bred: Bred<'_, G>, out: &mut [f64]) -> Result<(), EvaluateError> {
+                (**self).evaluate_bred(bred, out)
             }
         }
     };
@@ -107,15 +113,16 @@ population_evaluator! {
         /// length of `genomes`.
         fn evaluate;
 
-        /// As [`evaluate`](Self::evaluate), for children bred from `parents`: `genomes[i]`
-        /// was made from `parents[from[i]]` by a few operators (a mutation, or a crossover
-        /// that put another parent's subtree into it), and `parents` is the population the
-        /// optimizer breeds from, which it scored earlier. The fitness must be exactly what
-        /// `evaluate` gives: lineage only lets an evaluator do less work. An evaluator that
-        /// keeps state between calls may drop whatever is of neither `parents` nor
-        /// `genomes`. The default ignores the lineage.
+        /// As [`evaluate`](Self::evaluate) of `bred.children`, for children bred from
+        /// `bred.parents`: `children[i]` was made from `parents[from[i]]` by a few
+        /// operators (a mutation, or a crossover that put another parent's subtree into
+        /// it), and `parents` is the population the optimizer breeds from, which it scored
+        /// earlier. The fitness must be exactly what `evaluate` gives: lineage only lets an
+        /// evaluator do less work. An evaluator that keeps state between calls may drop
+        /// whatever is of neither `parents` nor `children`. The default ignores the
+        /// lineage.
         ///
-        /// `from` has the length of `genomes`, and each entry indexes `parents`.
+        /// `from` has the length of `children`, and each entry indexes `parents`.
         fn evaluate_bred;
     }
 }

@@ -21,7 +21,7 @@ use generators::building::{self, Building};
 use glam::{Affine3A, Quat, Vec2, Vec3};
 use rand::{Rng, RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use shapegen_runtime::evaluate::Evaluator;
+use shapegen_runtime::evaluate::{Bred, Evaluator};
 use shapegen_runtime::geometry::{BoundMeshes, Mesh, MeshId, MeshLibrary};
 use shapegen_runtime::ops::{OperatorVariant, Operators};
 use shapegen_runtime::score::InstanceBatch;
@@ -356,12 +356,13 @@ fn weighted_objectives_score_bred_children_as_in_full() {
             .map(|&p| bred(&mut ops, &population[p as usize], 30, &mut rng))
             .collect();
         let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
-        bred_fitness
-            .evaluate_bred(&children, &population, &from, &mut a)
-            .unwrap();
-        full_fitness
-            .evaluate_bred(&children, &population, &from, &mut b)
-            .unwrap();
+        let bred = Bred {
+            children: &children,
+            parents: &population,
+            from: &from,
+        };
+        bred_fitness.evaluate_bred(bred, &mut a).unwrap();
+        full_fitness.evaluate_bred(bred, &mut b).unwrap();
         assert_eq!(a, b);
         population = children;
     }

@@ -3,7 +3,7 @@
 //! turned into fitness. The kinds of scorer are listed in `scorer.rs`.
 
 use shapegen_runtime::gpu::{GpuContext, GpuError, wgpu};
-use shapegen_runtime::optimize::{EvaluateError, Evaluator, Held};
+use shapegen_runtime::optimize::{Bred, EvaluateError, Evaluator, Held};
 use shapegen_runtime::score::InstanceBatch;
 use shapegen_runtime::score::retained::{Retention, RetentionStats};
 use shapegen_runtime::score::silhouette::GpuRetention;
@@ -292,19 +292,14 @@ impl<G: Grammar> Evaluator<G> for SceneEvaluator<'_> {
         Ok(())
     }
 
-    fn evaluate_bred(
-        &mut self,
-        genomes: &[Genome<G>],
-        parents: &[Genome<G>],
-        from: &[u32],
-        out: &mut [f64],
-    ) -> Result<(), EvaluateError> {
+    fn evaluate_bred(&mut self, bred: Bred<'_, G>, out: &mut [f64]) -> Result<(), EvaluateError> {
+        let genomes = bred.children;
         if let Some((kept, retention)) = &mut self.gpu_retention {
             self.batch.set_genomes(genomes);
             let (batch, counts) = (&self.batch, &mut self.counts);
-            let bred = (genomes, parents, from);
+            let lineage = (genomes, bred.parents, bred.from);
             self.backend
-                .count_bred((*kept, retention), bred, batch, counts)
+                .count_bred((*kept, retention), lineage, batch, counts)
                 .map_err(|err| EvaluateError(err.to_string()))?;
             self.write_fitness(genomes, out);
             return Ok(());
@@ -325,8 +320,8 @@ impl<G: Grammar> Evaluator<G> for SceneEvaluator<'_> {
             scorers,
             genomes,
             &self.batch,
-            parents,
-            from,
+            bred.parents,
+            bred.from,
             &mut self.parts,
         );
         for (i, (slot, genome)) in out.iter_mut().zip(genomes).enumerate() {

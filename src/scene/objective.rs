@@ -5,7 +5,7 @@ use image::GrayImage;
 use shapegen_runtime::geometry::BoundMeshes;
 use shapegen_runtime::geometry::PointCloud;
 use shapegen_runtime::optimize::multi::MultiEvaluator;
-use shapegen_runtime::optimize::{EvaluateError, Sense};
+use shapegen_runtime::optimize::{Bred, EvaluateError, Sense};
 use shapegen_runtime::score::InstanceBatch;
 use shapegen_runtime::score::objective::{
     BredObjectives, ObjectiveError, ObjectiveFile, ObjectiveSet, ObjectiveSource,
@@ -212,16 +212,12 @@ impl<G: Grammar> MultiEvaluator<G> for ObjectiveEvaluator<'_> {
         Ok(())
     }
 
-    fn evaluate_bred(
-        &mut self,
-        genomes: &[Genome<G>],
-        parents: &[Genome<G>],
-        from: &[u32],
-        out: &mut [f64],
-    ) -> Result<(), EvaluateError> {
-        self.batch.set_genomes(genomes);
+    fn evaluate_bred(&mut self, bred: Bred<'_, G>, out: &mut [f64]) -> Result<(), EvaluateError> {
+        self.batch.set_genomes(bred.children);
         match &mut self.bred {
-            Some(bred) => bred.measure_bred(genomes, &self.batch, parents, from, out),
+            Some(kept) => {
+                kept.measure_bred(bred.children, &self.batch, bred.parents, bred.from, out)
+            }
             None => self.set.measure_batch(&self.batch, &self.meshes, out),
         }
         Ok(())

@@ -56,7 +56,7 @@ mod settings;
 mod smc;
 
 pub use self::core::{Checkpoint, Core};
-pub use crate::evaluate::{EvaluateError, Evaluator, FnEvaluator, MultiEvaluator, Sense};
+pub use crate::evaluate::{Bred, EvaluateError, Evaluator, FnEvaluator, MultiEvaluator, Sense};
 pub use best::Best;
 pub use driver::{Agreement, CoreOf, Held, Optimizer, Record, drive};
 pub use error::{BufferSize, CheckpointError, OptimizeError, SettingsError};

@@ -8,7 +8,7 @@ use rayon::prelude::*;
 use super::breed::{Generation, Parents};
 use super::settings::GaSettings;
 use crate::derive::Grammar;
-use crate::evaluate::{EvaluateError, Evaluator};
+use crate::evaluate::{Bred, EvaluateError, Evaluator};
 use crate::genome::{Genome, Limits};
 use crate::ops::Operators;
 use crate::optimize::error::OptimizeError;
@@ -111,7 +111,14 @@ impl<G: Grammar> Breeder<G> {
             seed,
             generation,
             None,
-            |children, parents, from, out| evaluator.evaluate_bred(children, parents, from, out),
+            |children, parents, from, out| {
+                let bred = Bred {
+                    children,
+                    parents,
+                    from,
+                };
+                evaluator.evaluate_bred(bred, out)
+            },
         )?;
         progress.evaluations += settings.children();
         Ok(())

@@ -8,7 +8,7 @@ use super::super::fitness::{compare, rank};
 use super::super::mcmc::{MoveScratch, propose};
 use super::super::run::stream;
 use crate::derive::Grammar;
-use crate::evaluate::Evaluator;
+use crate::evaluate::{Bred, Evaluator};
 use crate::genome::Genome;
 use crate::ops::Operators;
 use crate::optimize::error::OptimizeError;
@@ -90,9 +90,11 @@ impl<G: Grammar> Chains<G> {
                     },
                 );
             evaluator.evaluate_bred(
-                &self.proposals[..n],
-                population,
-                &self.chosen,
+                Bred {
+                    children: &self.proposals[..n],
+                    parents: population,
+                    from: &self.chosen,
+                },
                 &mut self.proposal_fitness[..n],
             )?;
             for i in 0..n {

@@ -50,7 +50,7 @@ use super::ga::{Breeder, Generation, Parents, check_population};
 use super::run::{StopReason, derived_seed, grammar_struct_traits};
 use super::settings::Settings;
 use crate::derive::Grammar;
-use crate::evaluate::Evaluator;
+use crate::evaluate::{Bred, Evaluator};
 use crate::genome::{Genome, Limits};
 use wire::{Reader, Writer};
 
@@ -603,9 +603,11 @@ impl<G: Grammar> Optimizer<G> for IslandGa<G> {
             from.iter_mut().for_each(|f| *f += (k * n) as u32);
         }
         evaluator.evaluate_bred(
-            &self.children,
-            &b.population,
-            &b.from,
+            Bred {
+                children: &self.children,
+                parents: &b.population,
+                from: &b.from,
+            },
             &mut self.child_fitness,
         )?;
         for (i, (child, f)) in self

@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use super::moves::{OriginalMove, TemperedMove};
 use crate::derive::Grammar;
-use crate::evaluate::Evaluator;
+use crate::evaluate::{Bred, Evaluator};
 use crate::genome::{Genome, Limits};
 use crate::ops::{OperatorVariant, Operators};
 use crate::optimize::best::Best;
@@ -433,9 +433,11 @@ impl<G: Grammar> Mcmc<G> {
         evaluator: &mut E,
     ) -> Result<(), OptimizeError> {
         evaluator.evaluate_bred(
-            &self.proposals,
-            &self.chains,
-            &self.own_chain,
+            Bred {
+                children: &self.proposals,
+                parents: &self.chains,
+                from: &self.own_chain,
+            },
             &mut self.proposal_fitness,
         )?;
         self.core.progress.evaluations += self.chains.len() as u64;

@@ -7,7 +7,7 @@ use rand::{Rng, RngExt};
 use super::moves::TemperedMove as Move;
 use super::sampler::{Mcmc, propose_each};
 use crate::derive::Grammar;
-use crate::evaluate::Evaluator;
+use crate::evaluate::{Bred, Evaluator};
 use crate::genome::{Genome, node_of};
 use crate::graph::HEADER_WORDS;
 use crate::ops::Operators;
@@ -101,9 +101,11 @@ impl<G: Grammar> Mcmc<G> {
             self.retry_genomes[k].clone_from(&self.proposals[i]);
         }
         evaluator.evaluate_bred(
-            &self.retry_genomes[..n],
-            &self.chains,
-            &self.retry,
+            Bred {
+                children: &self.retry_genomes[..n],
+                parents: &self.chains,
+                from: &self.retry,
+            },
             &mut self.retry_fitness[..n],
         )?;
         self.core.progress.evaluations += n as u64;

@@ -4,7 +4,7 @@ use super::bred::BredObjectives;
 use super::error::ObjectiveError;
 use super::set::ObjectiveSet;
 use crate::derive::Grammar;
-use crate::evaluate::{EvaluateError, Evaluator};
+use crate::evaluate::{Bred, EvaluateError, Evaluator};
 use crate::genome::Genome;
 use crate::geometry::BoundMeshes;
 use crate::score::batch::InstanceBatch;
@@ -123,14 +123,8 @@ impl<G: Grammar> Evaluator<G> for WeightedObjectives {
         Ok(())
     }
 
-    fn evaluate_bred(
-        &mut self,
-        genomes: &[Genome<G>],
-        parents: &[Genome<G>],
-        from: &[u32],
-        out: &mut [f64],
-    ) -> Result<(), EvaluateError> {
-        self.score(genomes, Some((parents, from)), out);
+    fn evaluate_bred(&mut self, bred: Bred<'_, G>, out: &mut [f64]) -> Result<(), EvaluateError> {
+        self.score(bred.children, Some((bred.parents, bred.from)), out);
         Ok(())
     }
 }
