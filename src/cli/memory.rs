@@ -213,6 +213,14 @@ fn cgroup_left() -> Option<(u64, PathBuf)> {
             })
             .unwrap_or(0)
     };
+    // What the cgroup of folder `dir` leaves: its limit (file `limit`) less what it is
+    // charged (file `usage`) beyond its page cache (`cache` of `memory.stat`); `None`
+    // without a limit.
+    let left = |dir: &Path, limit: &str, usage: &str, cache: &str| -> Option<u64> {
+        let (max, used) = (read(&dir.join(limit))?, read(&dir.join(usage))?);
+        let cache = file_cache(&dir.join("memory.stat"), cache);
+        Some(max.saturating_sub(used.saturating_sub(cache)))
+    };
     let mut least: Option<(u64, PathBuf)> = None;
     let mut consider = |left: u64, dir: PathBuf| {
         if least.as_ref().is_none_or(|(l, _)| left < *l) {
@@ -225,15 +233,8 @@ fn cgroup_left() -> Option<(u64, PathBuf)> {
         let root = Path::new("/sys/fs/cgroup");
         let mut dir = root.join(path.trim_start_matches('/'));
         while dir.starts_with(root) {
-            if let (Some(max), Some(current)) = (
-                read(&dir.join("memory.max")),
-                read(&dir.join("memory.current")),
-            ) {
-                let cache = file_cache(&dir.join("memory.stat"), "file");
-                consider(
-                    max.saturating_sub(current.saturating_sub(cache)),
-                    dir.clone(),
-                );
+            if let Some(free) = left(&dir, "memory.max", "memory.current", "file") {
+                consider(free, dir.clone());
             }
             if !dir.pop() {
                 break;
@@ -242,15 +243,13 @@ fn cgroup_left() -> Option<(u64, PathBuf)> {
     }
     // cgroup v1: the memory controller's own hierarchy.
     let v1 = Path::new("/sys/fs/cgroup/memory");
-    if let (Some(max), Some(used)) = (
-        read(&v1.join("memory.limit_in_bytes")),
-        read(&v1.join("memory.usage_in_bytes")),
+    if let Some(free) = left(
+        v1,
+        "memory.limit_in_bytes",
+        "memory.usage_in_bytes",
+        "cache",
     ) {
-        let cache = file_cache(&v1.join("memory.stat"), "cache");
-        consider(
-            max.saturating_sub(used.saturating_sub(cache)),
-            v1.to_owned(),
-        );
+        consider(free, v1.to_owned());
     }
     least
 }
