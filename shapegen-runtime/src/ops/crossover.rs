@@ -170,8 +170,14 @@ impl<G: Grammar> Operators<G> {
         self.survey_parents(a, b, true);
         let mut c = Genome::from_parts(Vec::new(), 0);
         let mut d = Genome::from_parts(Vec::new(), 0);
-        let (sa, sb) = self.split_both(a, a_pos, b, b_pos, true);
-        self.build_children(a, &sa, b, &sb, &mut c, &mut d);
+        // Built whatever they hold, then checked against the limits, to say which fails.
+        let any = Limits {
+            min_len: 0,
+            max_len: u32::MAX,
+            max_depth: u32::MAX,
+        };
+        let built = self.try_swap(a, a_pos, b, b_pos, true, any, &mut c, &mut d);
+        debug_assert!(built, "no limit refuses the swap");
         c.validate_limits(&self.limits)?;
         d.validate_limits(&self.limits)?;
         Ok((c, d))
@@ -202,25 +208,8 @@ impl<G: Grammar> Operators<G> {
         );
     }
 
-    /// Splits `a` at `ra` and `b` at `rb`, both surveyed into the scratch buffers (with
-    /// depths when `track_depth`).
-    pub(super) fn split_both(
-        &mut self,
-        a: &Genome<G>,
-        ra: u32,
-        b: &Genome<G>,
-        rb: u32,
-        track_depth: bool,
-    ) -> (Split, Split) {
-        let s = &mut self.s;
-        (
-            split(&self.kinds, &a.words, &mut s.pa, ra, track_depth),
-            split(&self.kinds, &b.words, &mut s.pb, rb, track_depth),
-        )
-    }
-
     /// Writes both children of a swap whose splits are done.
-    pub(super) fn build_children(
+    fn build_children(
         &mut self,
         a: &Genome<G>,
         sa: &Split,
@@ -254,7 +243,9 @@ impl<G: Grammar> Operators<G> {
         out_a: &mut Genome<G>,
         out_b: &mut Genome<G>,
     ) -> bool {
-        let (sa, sb) = self.split_both(a, ra, b, rb, track_depth);
+        let s = &mut self.s;
+        let sa = split(&self.kinds, &a.words, &mut s.pa, ra, track_depth);
+        let sb = split(&self.kinds, &b.words, &mut s.pb, rb, track_depth);
         let len_a = a.len - sa.sub_genes + sb.sub_genes;
         let len_b = b.len - sb.sub_genes + sa.sub_genes;
         let len_ok = |len: u32| len >= lim.min_len && len <= lim.max_len;

@@ -106,20 +106,9 @@ impl<G: Grammar> Breeder<G> {
         evaluator: &mut (dyn Evaluator<G> + '_),
     ) -> Result<(), OptimizeError> {
         let (seed, generation) = (progress.seed, progress.generation + 1);
-        self.step(
-            settings,
-            seed,
-            generation,
-            None,
-            |children, parents, from, out| {
-                let bred = Bred {
-                    children,
-                    parents,
-                    from,
-                };
-                evaluator.evaluate_bred(bred, out)
-            },
-        )?;
+        self.step(settings, seed, generation, None, |bred, out| {
+            evaluator.evaluate_bred(bred, out)
+        })?;
         progress.evaluations += settings.children();
         Ok(())
     }
@@ -135,12 +124,7 @@ impl<G: Grammar> Breeder<G> {
         seed: u64,
         generation: u64,
         selection: Option<&[f64]>,
-        evaluate: impl FnOnce(
-            &[Genome<G>],
-            &[Genome<G>],
-            &[u32],
-            &mut [f64],
-        ) -> Result<(), EvaluateError>,
+        evaluate: impl FnOnce(Bred<'_, G>, &mut [f64]) -> Result<(), EvaluateError>,
     ) -> Result<(), OptimizeError> {
         let elite = settings.elitism as usize;
         let k = self.scores.len() / self.population.len();
@@ -163,12 +147,12 @@ impl<G: Grammar> Breeder<G> {
             (elites, &mut self.next_scores[..elite * k]),
             (children, &mut self.from),
         )?;
-        evaluate(
-            &self.next[elite..],
-            &self.population,
-            &self.from,
-            &mut self.next_scores[elite * k..],
-        )?;
+        let bred = Bred {
+            children: &self.next[elite..],
+            parents: &self.population,
+            from: &self.from,
+        };
+        evaluate(bred, &mut self.next_scores[elite * k..])?;
         self.advance();
         Ok(())
     }

@@ -6,7 +6,7 @@ use super::record::{Front, Member};
 use super::settings::MultiGaSettings;
 use super::state::MultiGaState;
 use crate::derive::Grammar;
-use crate::evaluate::{Bred, EvaluateError, MultiEvaluator};
+use crate::evaluate::{EvaluateError, MultiEvaluator};
 use crate::genome::{Genome, Limits};
 use crate::optimize::core::Core;
 use crate::optimize::driver::{Held, Optimizer, Record};
@@ -318,14 +318,7 @@ impl<G: Grammar> Optimizer<G> for MultiGa<G> {
             progress.seed,
             progress.generation + 1,
             Some(&self.fitness),
-            |children, parents, from, out| {
-                let bred = Bred {
-                    children,
-                    parents,
-                    from,
-                };
-                evaluator.evaluate_bred(bred, out)
-            },
+            |bred, out| evaluator.evaluate_bred(bred, out),
         )?;
         self.core.progress.evaluations += self.step_cost();
         self.update(self.core.settings.ga.elitism as usize);
