@@ -31,34 +31,37 @@ impl ParamValue for f32 {
     }
 }
 
-impl ParamValue for Vec2 {
-    const WORDS: usize = 2;
-    #[inline]
-    fn read(words: &[u32]) -> Self {
-        Vec2::new(f32::from_bits(words[0]), f32::from_bits(words[1]))
-    }
-    #[inline]
-    fn write(self, words: &mut [u32]) {
-        words[0] = self.x.to_bits();
-        words[1] = self.y.to_bits();
-    }
+/// Packs glam vectors of `$n` floats as their components' bits, in order.
+macro_rules! float_vectors {
+    ($($ty:ident: $n:literal),*) => {$(
+        impl ParamValue for $ty {
+            const WORDS: usize = $n;
+            #[inline]
+            fn read(words: &[u32]) -> Self {
+                $ty::from_array(read_floats(words))
+            }
+            #[inline]
+            fn write(self, words: &mut [u32]) {
+                write_floats(self.to_array(), words);
+            }
+        }
+    )*};
 }
 
-impl ParamValue for Vec3 {
-    const WORDS: usize = 3;
-    #[inline]
-    fn read(words: &[u32]) -> Self {
-        Vec3::new(
-            f32::from_bits(words[0]),
-            f32::from_bits(words[1]),
-            f32::from_bits(words[2]),
-        )
-    }
-    #[inline]
-    fn write(self, words: &mut [u32]) {
-        words[0] = self.x.to_bits();
-        words[1] = self.y.to_bits();
-        words[2] = self.z.to_bits();
+float_vectors!(Vec2: 2, Vec3: 3);
+
+/// The `N` floats whose bits the first `N` words of `words` hold.
+#[inline(always)]
+fn read_floats<const N: usize>(words: &[u32]) -> [f32; N] {
+    let words = &words[..N];
+    std::array::from_fn(|i| f32::from_bits(words[i]))
+}
+
+/// Writes the bits of the `N` floats `values` into the first `N` words of `words`.
+#[inline(always)]
+fn write_floats<const N: usize>(values: [f32; N], words: &mut [u32]) {
+    for (w, v) in words[..N].iter_mut().zip(values) {
+        *w = v.to_bits();
     }
 }
 
