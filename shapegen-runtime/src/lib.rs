@@ -24,6 +24,8 @@ pub mod ops;
 pub mod optimize;
 pub mod param;
 pub mod score;
+#[cfg(test)]
+mod testing;
 
 pub use derive::{Child, GeneView, Grammar, NodeParams, NodeRule, Shape, Site, Slots};
 pub use error::error_chain;

@@ -361,11 +361,11 @@ fn valid_sub_gene<G: Grammar>(
 
 #[cfg(test)]
 mod tests {
-    use rand::SeedableRng;
     use rand_chacha::ChaCha8Rng;
 
     use super::*;
     use crate::genome::Limits;
+    use crate::testing::{Line, rng};
 
     crate::prelude::generator! {
         /// Branches of three kinds; `C` is a leaf.
@@ -382,18 +382,6 @@ mod tests {
             }
             node C { params { y: f32 ~ uniform(0.0, 1.0) } }
         }
-    }
-
-    crate::prelude::generator! {
-        /// A chain: every gene has one link.
-        pub Line {
-            axiom Seg;
-            node Seg { children { next: Seg = 0.5 } }
-        }
-    }
-
-    fn rng(seed: u64) -> ChaCha8Rng {
-        ChaCha8Rng::seed_from_u64(seed)
     }
 
     fn kind(name: &str) -> u32 {

@@ -168,11 +168,9 @@ impl Wheel {
 
 #[cfg(test)]
 mod tests {
-    use rand::SeedableRng;
-    use rand_chacha::ChaCha8Rng;
-
     use super::*;
     use crate::genome::parent_pos;
+    use crate::testing::{Line, rng};
 
     crate::prelude::generator! {
         /// Every gene may take two children.
@@ -189,18 +187,6 @@ mod tests {
             node R { children { a: L = 0.9, z: L = 0.0, b: L = 0.05, c: L = 0.05 } }
             node L { params { x: f32 ~ uniform(0.0, 1.0) } }
         }
-    }
-
-    crate::prelude::generator! {
-        /// A chain.
-        pub Line {
-            axiom S;
-            node S { children { next: S = 0.5 } }
-        }
-    }
-
-    fn rng(seed: u64) -> ChaCha8Rng {
-        ChaCha8Rng::seed_from_u64(seed)
     }
 
     /// R with, in the order added: Z on link b, X on link a, Y below X, W below Z. The

@@ -1,0 +1,17 @@
+//! What the unit tests of several modules share: small grammars and seeded streams.
+
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+
+crate::prelude::generator! {
+    /// A chain: every gene has one link.
+    pub Line {
+        axiom Seg;
+        node Seg { children { next: Seg = 0.5 } }
+    }
+}
+
+/// The ChaCha8 stream of `seed`.
+pub(crate) fn rng(seed: u64) -> ChaCha8Rng {
+    ChaCha8Rng::seed_from_u64(seed)
+}
