@@ -6,8 +6,19 @@ use rand_chacha::ChaCha8Rng;
 crate::prelude::generator! {
     /// A chain: every gene has one link.
     pub Line {
+        axiom Link;
+        node Link { children { next: Link = 0.5 } }
+    }
+}
+
+crate::prelude::generator! {
+    /// A chain of blocks, each a cube.
+    pub Chain {
         axiom Seg;
-        node Seg { children { next: Seg = 0.5 } }
+        node Seg {
+            children { next: Seg = 0.5 }
+            derive(s) { s.emit(crate::geometry::CUBE); if let Some(n) = next { s.derive(n); } }
+        }
     }
 }
 

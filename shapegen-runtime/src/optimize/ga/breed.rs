@@ -292,17 +292,7 @@ enum Mutation {
 mod tests {
     use super::*;
     use crate::genome::Limits;
-
-    crate::prelude::generator! {
-        /// A chain of blocks.
-        pub Chain {
-            axiom Seg;
-            node Seg {
-                children { next: Seg = 0.5 }
-                derive(s) { s.emit(crate::geometry::CUBE); if let Some(n) = next { s.derive(n); } }
-            }
-        }
-    }
+    use crate::testing::Chain;
 
     const DRAWS: usize = 100_000;
 
