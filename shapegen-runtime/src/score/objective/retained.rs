@@ -4,7 +4,7 @@ use super::projection::ProjectionMatch;
 use super::surface::Surface;
 use crate::geometry::{BoundMeshes, Instance};
 use crate::score::retained::{
-    CellCounts, Footprinted, Footprints, Grids, Hit, Overflow, PixelCounts, Recorder,
+    CellCounts, Footprinted, Grids, Hit, Overflow, PixelCounts, Recorder,
 };
 use crate::score::scorer::Scorer;
 use crate::score::silhouette::raster::Coverage;
@@ -71,15 +71,13 @@ pub struct ProjectionScratch {
     recorder: Recorder,
 }
 
-/// What a [`ProjectionScorer`] keeps of one model: how many of its instances cover each
-/// pixel, its counts, and the pixels each instance covers where that is worth keeping
-/// (shared with the states of related models), so that taking an instance away replays
-/// them.
+/// What a [`ProjectionScorer`] keeps of one model beside its instances' footprints
+/// ([`WithFootprints`](crate::score::retained::WithFootprints)): how many of its
+/// instances cover each pixel, and its counts.
 #[derive(Clone, Debug)]
 pub struct ProjectionState {
     pixels: PixelCounts,
     counts: ProjectionCounts,
-    footprints: Footprints,
 }
 
 impl ProjectionScorer {
@@ -95,17 +93,16 @@ impl ProjectionScorer {
 }
 
 impl Footprinted for ProjectionScorer {
-    type Kept = ProjectionState;
+    type Cells = ProjectionState;
 
     /// Every pixel of the mask mismatched.
-    fn empty(&self, instances: usize) -> ProjectionState {
+    fn empty(&self) -> ProjectionState {
         let p = &self.projection;
         ProjectionState {
             pixels: PixelCounts::new(p.width(), p.height()),
             counts: ProjectionCounts {
                 mismatched: p.mask_pixels(),
             },
-            footprints: Footprints::with_capacity(instances),
         }
     }
 
@@ -152,7 +149,7 @@ impl Footprinted for ProjectionScorer {
         grids: Grids<'_>,
         hit: Hit,
     ) -> Result<(), Overflow> {
-        let ProjectionState { pixels, counts, .. } = state;
+        let ProjectionState { pixels, counts } = state;
         for &(w, bits) in grids.grid(0) {
             let flipped = pixels.apply(hit, w as usize, bits)?;
             let (before, after) = match hit {
@@ -164,14 +161,6 @@ impl Footprinted for ProjectionScorer {
                     .remismatched(counts.mismatched, w as usize, before, after);
         }
         Ok(())
-    }
-
-    fn footprints(state: &ProjectionState) -> &Footprints {
-        &state.footprints
-    }
-
-    fn footprints_mut(state: &mut ProjectionState) -> &mut Footprints {
-        &mut state.footprints
     }
 
     fn recorder(scratch: &mut ProjectionScratch) -> &mut Recorder {

@@ -139,27 +139,40 @@ impl Footprints {
     }
 }
 
+/// What a scorer that keeps footprints (the projection and silhouette scorers) keeps of
+/// one model ([`RetainedScorer::State`]): its cells and counts, `C`, and the footprints of
+/// its instances where worth keeping, shared with the states of related models (a
+/// child's state holds its parent's, less those of the instances it lost, plus those of
+/// the instances it gained), so that taking an instance away replays its footprint
+/// instead of rasterizing it again.
+#[derive(Clone, Debug)]
+pub struct WithFootprints<C> {
+    cells: C,
+    footprints: Footprints,
+}
+
 /// A scorer whose kept states count, per cell, the instances covering it, and keep
-/// [`Footprints`]: what it says about its states, rasterizing and counting, from which
-/// its [`RetainedScorer`] follows (adding an instance to a state, counting a model from
-/// nothing, updating a state).
+/// [`Footprints`] beside them ([`WithFootprints`]): what it says about its cells,
+/// rasterizing and counting, from which its [`RetainedScorer`] follows (adding an
+/// instance to a state, counting a model from nothing, updating a state).
 ///
 /// Declared `pub` in this private module, as are the types it names, so that the public
 /// [`RetainedScorer`] can be implemented for every such scorer at once; nothing outside
 /// the crate can name it.
 pub trait Footprinted: Scorer {
-    /// What is kept of one model ([`RetainedScorer::State`]).
-    type Kept: Clone + Send + Sync;
+    /// What is kept of one model beside its footprints: per-cell counts and the model's
+    /// counts.
+    type Cells: Clone + Send + Sync;
 
-    /// The state of a model of no instances, with room for the footprints of
-    /// `instances`.
-    fn empty(&self, instances: usize) -> Self::Kept;
+    /// The cells of a model of no instances.
+    fn empty(&self) -> Self::Cells;
 
-    /// The counts of the model `state` describes ([`RetainedScorer::state_counts`]).
-    fn kept_counts(&self, state: &Self::Kept) -> Self::Counts;
+    /// The counts of the model whose cells are `cells`
+    /// ([`RetainedScorer::state_counts`]).
+    fn kept_counts(&self, cells: &Self::Cells) -> Self::Counts;
 
-    /// Every cell grid of `state` ([`RetainedScorer::visit_cells`]).
-    fn kept_cells(&self, state: &Self::Kept, visit: &mut dyn FnMut(&CellCounts));
+    /// Every cell grid of `cells` ([`RetainedScorer::visit_cells`]).
+    fn kept_cells(&self, cells: &Self::Cells, visit: &mut dyn FnMut(&CellCounts));
 
     /// The grids (images) an instance is rasterized into, at most [`MAX_GRIDS`].
     fn grids(&self) -> usize;
@@ -176,14 +189,8 @@ pub trait Footprinted: Scorer {
     /// The triangles or hull points that rasterizing `instance` goes through.
     fn raster_cost(&self, instance: &Instance) -> usize;
 
-    /// Adds the cells of `grids` to `state`, or takes them away.
-    fn apply(&self, state: &mut Self::Kept, grids: Grids<'_>, hit: Hit) -> Result<(), Overflow>;
-
-    /// The footprints `state` keeps.
-    fn footprints(state: &Self::Kept) -> &Footprints;
-
-    /// The footprints `state` keeps, to change.
-    fn footprints_mut(state: &mut Self::Kept) -> &mut Footprints;
+    /// Adds the cells of `grids` to `cells`, or takes them away.
+    fn apply(&self, cells: &mut Self::Cells, grids: Grids<'_>, hit: Hit) -> Result<(), Overflow>;
 
     /// The buffer instances are recorded into.
     fn recorder(scratch: &mut Self::Scratch) -> &mut Recorder;
@@ -201,15 +208,16 @@ pub trait Footprinted: Scorer {
     /// an added instance's footprint is kept where that is worth it.
     fn rasterize_into(
         &self,
-        state: &mut Self::Kept,
+        state: &mut WithFootprints<Self::Cells>,
         instance: &Instance,
         hit: Hit,
         scratch: &mut Self::Scratch,
     ) -> Result<(), Overflow> {
         let recorded = self.record(instance, scratch);
-        let applied = self.apply(state, recorded.grids(), hit);
+        let applied = self.apply(&mut state.cells, recorded.grids(), hit);
         if applied.is_ok() && hit == Hit::Add {
-            Self::footprints_mut(state).keep(instance, &recorded, self.raster_cost(instance));
+            let cost = self.raster_cost(instance);
+            state.footprints.keep(instance, &recorded, cost);
         }
         *Self::recorder(scratch) = recorded;
         applied
@@ -217,15 +225,18 @@ pub trait Footprinted: Scorer {
 }
 
 impl<T: Footprinted> RetainedScorer for T {
-    type State = T::Kept;
+    type State = WithFootprints<T::Cells>;
 
-    /// Rasterizes every instance into an empty state.
+    /// Rasterizes every instance into empty cells.
     fn count_retained(
         &self,
         instances: &[Instance],
         scratch: &mut Self::Scratch,
-    ) -> Result<T::Kept, Overflow> {
-        let mut state = self.empty(instances.len());
+    ) -> Result<Self::State, Overflow> {
+        let mut state = WithFootprints {
+            cells: self.empty(),
+            footprints: Footprints::with_capacity(instances.len()),
+        };
         for instance in instances {
             self.rasterize_into(&mut state, instance, Hit::Add, scratch)?;
         }
@@ -236,14 +247,14 @@ impl<T: Footprinted> RetainedScorer for T {
     /// rasterizing it, where none was worth keeping), and adds each of `added`.
     fn update(
         &self,
-        state: &mut T::Kept,
+        state: &mut Self::State,
         removed: &[Instance],
         added: &[Instance],
         scratch: &mut Self::Scratch,
     ) -> Result<(), Overflow> {
         for instance in removed {
-            match T::footprints_mut(state).take(instance) {
-                Some(footprint) => self.apply(state, footprint.grids(), Hit::Remove)?,
+            match state.footprints.take(instance) {
+                Some(footprint) => self.apply(&mut state.cells, footprint.grids(), Hit::Remove)?,
                 None => self.rasterize_into(state, instance, Hit::Remove, scratch)?,
             }
         }
@@ -253,16 +264,16 @@ impl<T: Footprinted> RetainedScorer for T {
         Ok(())
     }
 
-    fn state_counts(&self, state: &T::Kept) -> Self::Counts {
-        self.kept_counts(state)
+    fn state_counts(&self, state: &Self::State) -> Self::Counts {
+        self.kept_counts(&state.cells)
     }
 
-    fn visit_cells(&self, state: &T::Kept, visit: &mut dyn FnMut(&CellCounts)) {
-        self.kept_cells(state, visit);
+    fn visit_cells(&self, state: &Self::State, visit: &mut dyn FnMut(&CellCounts)) {
+        self.kept_cells(&state.cells, visit);
     }
 
     /// The footprints.
-    fn visit_blocks(&self, state: &T::Kept, visit: &mut dyn FnMut(usize, usize)) {
-        T::footprints(state).visit(visit);
+    fn visit_blocks(&self, state: &Self::State, visit: &mut dyn FnMut(usize, usize)) {
+        state.footprints.visit(visit);
     }
 }

@@ -63,7 +63,8 @@ mod scorer;
 
 pub use cells::{CellCounts, Changed, Overflow, TILE_BYTES, TILE_WORDS};
 pub use diff::InstanceDiff;
-pub(crate) use footprint::{Footprinted, Footprints, Grids, MAX_GRIDS, Recorder};
+pub use footprint::WithFootprints;
+pub(crate) use footprint::{Footprinted, Grids, MAX_GRIDS, Recorder};
 pub use pixels::{Hit, PixelCounts};
 #[cfg(feature = "gpu")]
 pub(crate) use retention::genome_key;

@@ -6,26 +6,22 @@ use super::scorer::{SilhouetteScorer, SilhouetteScratch};
 use super::target::ImageTarget;
 use crate::geometry::Instance;
 use crate::score::retained::{
-    CellCounts, Footprinted, Footprints, Grids, Hit, MAX_GRIDS, Overflow, PixelCounts, Recorder,
+    CellCounts, Footprinted, Grids, Hit, MAX_GRIDS, Overflow, PixelCounts, Recorder,
 };
 
 const _: () = assert!(MAX_TARGETS <= MAX_GRIDS, "a footprint holds every target");
 
-/// What a [`SilhouetteScorer`] keeps of one model: per target, how many of the model's
-/// instances cover each pixel, and the model's counts; and per instance, the pixels it
-/// covers, so that taking it away again replays them instead of rasterizing it.
+/// What a [`SilhouetteScorer`] keeps of one model beside its instances' footprints
+/// ([`WithFootprints`](crate::score::retained::WithFootprints)): per target, how many of
+/// the model's instances cover each pixel, and the model's counts.
 ///
 /// A pixel's count is the number of instances whose own silhouette covers it (each
 /// instance counts a pixel once, however many of its triangles cover it), so a pixel is
 /// covered by the model exactly when its count is above 0. Tiles are 8 rows of one
-/// 64-pixel word of the target's coverage rows. The instances' footprints (where worth
-/// keeping) are shared
-/// between the states of related models: a child's state holds its parent's, less those
-/// of the instances it lost, plus those of the instances it gained.
+/// 64-pixel word of the target's coverage rows.
 #[derive(Clone, Debug)]
 pub struct SilhouetteState {
     targets: Vec<TargetState>,
-    footprints: Footprints,
 }
 
 /// One target's part of a [`SilhouetteState`].
@@ -45,12 +41,11 @@ impl TargetState {
 }
 
 impl Footprinted for SilhouetteScorer {
-    type Kept = SilhouetteState;
+    type Cells = SilhouetteState;
 
-    fn empty(&self, instances: usize) -> SilhouetteState {
+    fn empty(&self) -> SilhouetteState {
         SilhouetteState {
             targets: self.targets().iter().map(TargetState::new).collect(),
-            footprints: Footprints::with_capacity(instances),
         }
     }
 
@@ -127,14 +122,6 @@ impl Footprinted for SilhouetteScorer {
             }
         }
         Ok(())
-    }
-
-    fn footprints(state: &SilhouetteState) -> &Footprints {
-        &state.footprints
-    }
-
-    fn footprints_mut(state: &mut SilhouetteState) -> &mut Footprints {
-        &mut state.footprints
     }
 
     fn recorder(scratch: &mut SilhouetteScratch) -> &mut Recorder {

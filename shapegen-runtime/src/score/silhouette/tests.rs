@@ -11,6 +11,7 @@ use super::raster::{Coverage, MAX_POLYGON, clip_triangle, convex_hull};
 use super::*;
 use crate::geometry::{CUBE, Instance, MeshLibrary};
 use crate::score::form::{Form, smoothstep};
+use crate::score::retained::WithFootprints;
 use crate::score::scorer::Scorer;
 
 const SMOOTH: Form = Form::Smooth {
@@ -1014,7 +1015,7 @@ fn a_state_keeps_and_shares_the_footprints_worth_keeping() {
     };
     let (a, b, c) = (ball(-1.0, 0.0), ball(0.0, 0.1), ball(0.8, 0.3));
     let big = cube(Vec3::splat(1.5), vec3(0.5, -0.5, 0.0));
-    let blocks = |state: &SilhouetteState| {
+    let blocks = |state: &WithFootprints<SilhouetteState>| {
         let mut seen = Vec::new();
         scorer.visit_blocks(state, &mut |address, bytes| seen.push((address, bytes)));
         seen
