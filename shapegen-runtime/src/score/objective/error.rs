@@ -2,8 +2,6 @@
 
 use glam::Vec2;
 
-use super::parts::Parts;
-
 /// Why an objective or a set of objectives cannot be built or used.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
@@ -166,14 +164,5 @@ impl ObjectiveError {
             value,
             valid,
         })
-    }
-
-    /// `Ok` when `parts`, the parts parameter `field`, names a mesh; otherwise
-    /// [`NoParts`](Self::NoParts).
-    pub(crate) fn check_parts(field: &'static str, parts: &Parts) -> Result<(), ObjectiveError> {
-        if parts.is_empty() {
-            return Err(ObjectiveError::NoParts { field });
-        }
-        Ok(())
     }
 }

@@ -40,6 +40,7 @@ mod error;
 mod kind;
 mod kinds;
 mod normals;
+mod normals_kind;
 mod parts;
 mod projected;
 mod projection;

@@ -113,6 +113,15 @@ impl Parts {
         self.mask.iter().all(|&word| word == 0)
     }
 
+    /// `Ok` when the set, the parts parameter `field`, names a mesh; otherwise
+    /// [`ObjectiveError::NoParts`].
+    pub(crate) fn check_named(&self, field: &'static str) -> Result<(), ObjectiveError> {
+        if self.is_empty() {
+            return Err(ObjectiveError::NoParts { field });
+        }
+        Ok(())
+    }
+
     /// Whether every mesh of `self` is in `other`.
     pub fn is_subset(&self, other: &Parts) -> bool {
         self.mask

@@ -88,9 +88,9 @@ impl ObjectiveKind for AreaShare {
     /// Parts and `of` that name at least one mesh, parts all among `of`, and a target
     /// share from 0 to 1.
     fn validate(&self) -> Result<(), ObjectiveError> {
-        ObjectiveError::check_parts("parts", &self.parts)?;
+        self.parts.check_named("parts")?;
         if let Some(of) = &self.of {
-            ObjectiveError::check_parts("of", of)?;
+            of.check_named("of")?;
             if !self.parts.is_subset(of) {
                 return Err(ObjectiveError::PartsOutsideOf);
             }

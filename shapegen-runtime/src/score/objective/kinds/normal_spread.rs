@@ -1,6 +1,6 @@
 //! [`NormalSpread`]: how far apart the model's distinct face normals are.
 
-use crate::score::objective::normals::normals_kind;
+use crate::score::objective::normals_kind::normals_kind;
 
 normals_kind! {
     /// Sum over the distinct normals (as for [`UniqueNormals`](super::UniqueNormals)) of the

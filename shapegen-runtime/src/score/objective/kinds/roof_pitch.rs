@@ -87,7 +87,7 @@ impl ObjectiveKind for RoofPitch {
 
     /// Parts that name at least one mesh and a pitch from 0 to 90 degrees.
     fn validate(&self) -> Result<(), ObjectiveError> {
-        ObjectiveError::check_parts("parts", &self.parts)?;
+        self.parts.check_named("parts")?;
         let angle = |t: f32| (0.0..=90.0).contains(&t);
         ObjectiveError::check("target_deg", self.target_deg, angle, "an angle from 0 to 90 degrees")
     }

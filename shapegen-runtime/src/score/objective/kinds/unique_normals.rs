@@ -1,6 +1,6 @@
 //! [`UniqueNormals`]: how many distinct face normals the model has.
 
-use crate::score::objective::normals::normals_kind;
+use crate::score::objective::normals_kind::normals_kind;
 
 normals_kind! {
     /// Number of distinct face normals ([`Sense::Maximize`](crate::evaluate::Sense::Maximize)). The surface's normals are
