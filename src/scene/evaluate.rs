@@ -187,7 +187,7 @@ impl Backend<'_> {
     fn count_bred<G: Grammar>(
         &self,
         (kept, retention): (usize, &mut GpuRetention),
-        genomes: (&[Genome<G>], &[Genome<G>], &[u32]),
+        bred: Bred<'_, G>,
         batch: &InstanceBatch,
         out: &mut Vec<SceneCounts>,
     ) -> Result<(), GpuError> {
@@ -197,7 +197,7 @@ impl Backend<'_> {
         }
         for (i, scorer) in self.scorer.scorers.iter().enumerate() {
             match self.gpu.get(i).and_then(Option::as_ref) {
-                Some(gpu) if i == kept => gpu.count_bred(retention, genomes, batch, out)?,
+                Some(gpu) if i == kept => gpu.count_bred(retention, bred, batch, out)?,
                 gpu => scorer.count(gpu, batch, out)?,
             }
         }
@@ -297,9 +297,8 @@ impl<G: Grammar> Evaluator<G> for SceneEvaluator<'_> {
         if let Some((kept, retention)) = &mut self.gpu_retention {
             self.batch.set_genomes(genomes);
             let (batch, counts) = (&self.batch, &mut self.counts);
-            let lineage = (genomes, bred.parents, bred.from);
             self.backend
-                .count_bred((*kept, retention), lineage, batch, counts)
+                .count_bred((*kept, retention), bred, batch, counts)
                 .map_err(|err| EvaluateError(err.to_string()))?;
             self.write_fitness(genomes, out);
             return Ok(());

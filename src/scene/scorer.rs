@@ -22,10 +22,11 @@
 use serde::{Serialize, Serializer};
 use shapegen_runtime::geometry::BoundMeshes;
 use shapegen_runtime::gpu::{GpuContext, GpuError};
+use shapegen_runtime::optimize::Bred;
 use shapegen_runtime::score::retained::{CellCounts, Overflow, RetainedScorer};
 use shapegen_runtime::score::silhouette::GpuRetention;
 use shapegen_runtime::score::{InstanceBatch, LengthPenalty, Scorer, count_batch};
-use shapegen_runtime::{Genome, Grammar, Instance, Site};
+use shapegen_runtime::{Grammar, Instance, Site};
 
 use super::error::ValueError;
 use super::scorer_kind::{GpuCount, SceneScorerKind, ScorerMemory};
@@ -302,14 +303,14 @@ macro_rules! scorer_kinds {
             pub(super) fn count_bred<G: Grammar>(
                 &self,
                 retention: &mut GpuRetention,
-                genomes: (&[Genome<G>], &[Genome<G>], &[u32]),
+                bred: Bred<'_, G>,
                 batch: &InstanceBatch,
                 out: &mut [SceneCounts],
             ) -> Result<(), GpuError> {
                 match self {
                     $(AnyGpuScorer::$kind(g) => {
                         let mut counts = vec![Default::default(); batch.len()];
-                        <crate::scene::scorer::$name::$kind>::count_bred(g, retention, genomes, batch, &mut counts)?;
+                        <crate::scene::scorer::$name::$kind>::count_bred(g, retention, bred, batch, &mut counts)?;
                         for (slot, c) in out.iter_mut().zip(counts) {
                             slot.parts.push(AnyCounts::$kind(c));
                         }

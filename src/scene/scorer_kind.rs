@@ -9,11 +9,12 @@ use std::fmt::Debug;
 
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
+use shapegen_runtime::Grammar;
 use shapegen_runtime::geometry::BoundMeshes;
 use shapegen_runtime::gpu::{GpuContext, GpuError};
+use shapegen_runtime::optimize::Bred;
 use shapegen_runtime::score::silhouette::GpuRetention;
 use shapegen_runtime::score::{Form, InstanceBatch, retained::RetainedScorer};
-use shapegen_runtime::{Genome, Grammar};
 
 use super::error::{SceneError, ValueError};
 use super::resolver::Resolver;
@@ -83,11 +84,11 @@ pub trait SceneScorerKind {
     fn count_bred<G: Grammar>(
         gpu: &Self::Gpu<'_>,
         retention: &mut GpuRetention,
-        (children, parents, from): (&[Genome<G>], &[Genome<G>], &[u32]),
+        bred: Bred<'_, G>,
         batch: &InstanceBatch,
         out: &mut [Self::Counts],
     ) -> Result<(), GpuError> {
-        let _ = (retention, children, parents, from);
+        let _ = (retention, bred);
         gpu.count_batch(batch, out)
     }
 }

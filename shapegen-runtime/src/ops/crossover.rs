@@ -170,7 +170,9 @@ impl<G: Grammar> Operators<G> {
         self.survey_parents(a, b, true);
         let mut c = Genome::from_parts(Vec::new(), 0);
         let mut d = Genome::from_parts(Vec::new(), 0);
-        // Built whatever they hold, then checked against the limits, to say which fails.
+        // No bound on the swap itself (a value beyond what `Limits::check` accepts): both
+        // children are built, then checked against the operators' limits, so that the
+        // error says which limit a child breaks.
         let any = Limits {
             min_len: 0,
             max_len: u32::MAX,

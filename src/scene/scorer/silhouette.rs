@@ -21,7 +21,8 @@ use shapegen_runtime::score::silhouette::{
     SilhouetteCounts, SilhouetteScorer,
 };
 use shapegen_runtime::score::{Form, InstanceBatch};
-use shapegen_runtime::{Genome, Grammar};
+use shapegen_runtime::Grammar;
+use shapegen_runtime::optimize::Bred;
 
 use crate::scene::error::{SceneError, ValueError};
 use crate::scene::image::read_image;
@@ -165,11 +166,11 @@ impl SceneScorerKind for Silhouette {
     fn count_bred<G: Grammar>(
         gpu: &GpuSilhouetteScorer<'_>,
         retention: &mut GpuRetention,
-        (children, parents, from): (&[Genome<G>], &[Genome<G>], &[u32]),
+        bred: Bred<'_, G>,
         batch: &InstanceBatch,
         out: &mut [SilhouetteCounts],
     ) -> Result<(), GpuError> {
-        retention.count_bred(gpu, children, batch, parents, from, out)
+        retention.count_bred(gpu, bred.children, batch, bred.parents, bred.from, out)
     }
 }
 

@@ -139,7 +139,19 @@ impl<'a> Reader<'a> {
 mod tests {
     use super::*;
     use crate::optimize::run::stream;
-    use crate::testing::Chain;
+
+    crate::prelude::generator! {
+        /// A chain of blocks, each with a parameter, so that messages carry parameter
+        /// words.
+        pub Chain {
+            axiom Seg;
+            node Seg {
+                params { w: f32 ~ uniform(0.5, 2.0) }
+                children { next: Seg = 0.5 }
+                derive(s) { s.emit(crate::geometry::CUBE); if let Some(n) = next { s.derive(n); } }
+            }
+        }
+    }
 
     #[test]
     fn what_is_written_reads_back_and_damage_is_refused() {

@@ -63,7 +63,7 @@ macro_rules! projection_kind {
                 self.0.score_with(surface, scratch.coverage())
             }
 
-            fn projection(&self) -> Option<&ProjectionMatch> {
+            fn projection(&self) -> Option<&$crate::score::objective::projection::ProjectionMatch> {
                 Some(&self.0)
             }
         }

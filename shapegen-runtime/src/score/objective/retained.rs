@@ -11,8 +11,9 @@ use crate::score::silhouette::raster::Coverage;
 
 /// A [`ProjectionMatch`] measured on models made of a grammar's meshes: a [`Scorer`]
 /// whose counts are the pixels a model's projection gets wrong and whose fitness is the
-/// match, and a [`RetainedScorer`](crate::score::retained::RetainedScorer), so that a bred child's projection is counted from
-/// its parent's (see [`score::retained`](crate::score::retained)).
+/// match, and a [`RetainedScorer`](crate::score::retained::RetainedScorer), so that a
+/// bred child's projection is counted from its parent's (see
+/// [`score::retained`](crate::score::retained)).
 ///
 /// Whether a pixel is covered depends on each triangle alone, and each instance's
 /// triangles on the instance alone, so the pixels a model covers are the union of those

@@ -97,7 +97,7 @@ impl Footprint {
 /// twice has two), shared with the states of related models: cloning copies the list,
 /// not the footprints.
 #[derive(Clone, Debug, Default)]
-pub struct Footprints(Vec<Arc<Footprint>>);
+pub(crate) struct Footprints(Vec<Arc<Footprint>>);
 
 impl Footprints {
     /// Room for `n` footprints.

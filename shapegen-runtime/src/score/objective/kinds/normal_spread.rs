@@ -3,10 +3,11 @@
 use crate::score::objective::normals_kind::normals_kind;
 
 normals_kind! {
-    /// Sum over the distinct normals (as for [`UniqueNormals`](super::UniqueNormals)) of the
-    /// angle in radians to the nearest other distinct normal ([`Sense::Maximize`](crate::evaluate::Sense::Maximize)); 0 with
-    /// fewer than two. A cube: `6 * pi / 2`. Its table: `kind = "normal_spread"` and
-    /// `tolerance_deg` (1 when left out).
+    /// Sum over the distinct normals (as for [`UniqueNormals`](super::UniqueNormals)) of
+    /// the angle in radians to the nearest other distinct normal
+    /// ([`Sense::Maximize`](crate::evaluate::Sense::Maximize)); 0 with fewer than two. A
+    /// cube: `6 * pi / 2`. Its table: `kind = "normal_spread"` and `tolerance_deg` (1 when
+    /// left out).
     ///
     /// ```
     /// use glam::Affine3A;

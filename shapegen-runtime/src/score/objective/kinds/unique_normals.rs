@@ -3,13 +3,14 @@
 use crate::score::objective::normals_kind::normals_kind;
 
 normals_kind! {
-    /// Number of distinct face normals ([`Sense::Maximize`](crate::evaluate::Sense::Maximize)). The surface's normals are
-    /// clustered greedily in triangle order: each joins the first distinct normal found so
-    /// far within `tolerance_deg` of it (`n . r >= cos(tolerance)`), else it is a new
-    /// distinct normal. Any two distinct normals are thus more than the tolerance apart; a
-    /// unit cube has 6; an empty model 0. Use a tolerance above rounding (a degree, say), so
-    /// that the two triangles of a rotated quad agree. Its table: `kind = "unique_normals"`
-    /// and `tolerance_deg` (1 when left out).
+    /// Number of distinct face normals
+    /// ([`Sense::Maximize`](crate::evaluate::Sense::Maximize)). The surface's normals are
+    /// clustered greedily in triangle order: each joins the first distinct normal found
+    /// so far within `tolerance_deg` of it (`n . r >= cos(tolerance)`), else it is a new
+    /// distinct normal. Any two distinct normals are thus more than the tolerance apart;
+    /// a unit cube has 6; an empty model 0. Use a tolerance above rounding (a degree,
+    /// say), so that the two triangles of a rotated quad agree. Its table:
+    /// `kind = "unique_normals"` and `tolerance_deg` (1 when left out).
     ///
     /// ```
     /// use glam::{Affine3A, Quat};
