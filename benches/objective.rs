@@ -23,6 +23,7 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use generators::Building;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use shapegen::evaluate::Bred;
 use shapegen::ops::{OperatorVariant, Operators};
 use shapegen::registry::Registry;
 use shapegen::scene::{Overrides, Scene};
@@ -328,12 +329,15 @@ fn bred_children(c: &mut Criterion) {
         group.bench_function(BenchmarkId::new("full", op.name()), |b| {
             b.iter(|| single.install(|| set.measure_batch(&batch, &meshes, &mut out)))
         });
+        let lineage = Bred {
+            children: &children,
+            parents: &parents,
+            from: &from,
+        };
         let mut bred = BredObjectives::new(set, &meshes).expect("the scene has projections");
-        single.install(|| bred.measure_bred(&children, &batch, &parents, &from, &mut out));
+        single.install(|| bred.measure_bred(lineage, &batch, &mut out));
         group.bench_function(BenchmarkId::new("incremental", op.name()), |b| {
-            b.iter(|| {
-                single.install(|| bred.measure_bred(&children, &batch, &parents, &from, &mut out))
-            })
+            b.iter(|| single.install(|| bred.measure_bred(lineage, &batch, &mut out)))
         });
         let stats = bred.stats();
         eprintln!(

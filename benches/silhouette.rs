@@ -16,6 +16,7 @@ use generators::{city, tree};
 use glam::{Vec3, vec2};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use shapegen::evaluate::Bred;
 use shapegen::genome::Limits;
 use shapegen::ops::Operators;
 use shapegen::score::retained::RetainedScorer;
@@ -287,10 +288,15 @@ fn gpu_bred(c: &mut Criterion) {
         for child in &children {
             batch.push_genome(child);
         }
+        let bred = Bred {
+            children: &children,
+            parents: &parents,
+            from: &from,
+        };
         let mut retention = GpuRetention::new(&scorer).unwrap();
         let mut kept = vec![SilhouetteCounts::default(); POPULATION];
         retention
-            .count_bred(&scorer, &children, &batch, &parents, &from, &mut kept)
+            .count_bred(&scorer, bred, &batch, &mut kept)
             .unwrap();
         let mut full = vec![SilhouetteCounts::default(); POPULATION];
         scorer.count_batch(&batch, &mut full).unwrap();
@@ -301,7 +307,7 @@ fn gpu_bred(c: &mut Criterion) {
         group.bench_function(BenchmarkId::new("gpu, from parents", op.name()), |b| {
             b.iter(|| {
                 retention
-                    .count_bred(&scorer, &children, &batch, &parents, &from, &mut kept)
+                    .count_bred(&scorer, bred, &batch, &mut kept)
                     .unwrap()
             })
         });

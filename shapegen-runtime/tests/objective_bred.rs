@@ -230,7 +230,12 @@ fn bred_values<G: Grammar>(
             }
             let k = set.len();
             let mut values = vec![f64::NAN; children.len() * k];
-            bred_objectives.measure_bred(&children, &batch, &population, &from, &mut values);
+            let lineage = Bred {
+                children: &children,
+                parents: &population,
+                from: &from,
+            };
+            bred_objectives.measure_bred(lineage, &batch, &mut values);
             let mut full = vec![f64::NAN; children.len() * k];
             set.measure_batch(&batch, &meshes, &mut full);
             for (i, (row, expected)) in values.chunks(k).zip(full.chunks(k)).enumerate() {
@@ -327,7 +332,12 @@ fn unrelated_parents_still_give_exact_values() {
     }
     let mut bred_objectives = BredObjectives::new(&set, &meshes).unwrap();
     let mut values = vec![0.0; n * set.len()];
-    bred_objectives.measure_bred(&children, &batch, &parents, &from, &mut values);
+    let lineage = Bred {
+        children: &children,
+        parents: &parents,
+        from: &from,
+    };
+    bred_objectives.measure_bred(lineage, &batch, &mut values);
     let mut full = vec![0.0; n * set.len()];
     set.measure_batch(&batch, &meshes, &mut full);
     assert_eq!(values, full);

@@ -19,6 +19,7 @@ use generators::{building, city, spaceship, tree};
 use glam::Vec3;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use shapegen_runtime::evaluate::Bred;
 use shapegen_runtime::ops::{OperatorVariant, Operators};
 use shapegen_runtime::score::objective::ProjectionScorer;
 use shapegen_runtime::score::retained::{InstanceDiff, RetainedScorer, Retention};
@@ -347,7 +348,12 @@ fn bred_counts<G: Grammar, S: RetainedScorer<Counts: Default>>(
             }
             let mut counts = vec![S::Counts::default(); children.len()];
             let scorers = std::slice::from_ref(scorer);
-            retention.count_bred(scorers, &children, &batch, &population, &from, &mut counts);
+            let lineage = Bred {
+                children: &children,
+                parents: &population,
+                from: &from,
+            };
+            retention.count_bred(scorers, lineage, &batch, &mut counts);
             let mut full = vec![S::Counts::default(); children.len()];
             count_batch(scorer, &batch, &mut full);
             assert_eq!(counts, full, "{threads} threads");

@@ -315,14 +315,7 @@ impl<G: Grammar> Evaluator<G> for SceneEvaluator<'_> {
             self.parts.extend(scorers.iter().map(AnyScorer::nothing));
         }
         let retention = self.retention.as_mut().expect("checked above");
-        retention.count_bred(
-            scorers,
-            genomes,
-            &self.batch,
-            bred.parents,
-            bred.from,
-            &mut self.parts,
-        );
+        retention.count_bred(scorers, bred, &self.batch, &mut self.parts);
         for (i, (slot, genome)) in out.iter_mut().zip(genomes).enumerate() {
             *slot = scorer.fitness_of_parts(&self.parts[i * k..(i + 1) * k], genome.len());
         }

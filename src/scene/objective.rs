@@ -215,9 +215,7 @@ impl<G: Grammar> MultiEvaluator<G> for ObjectiveEvaluator<'_> {
     fn evaluate_bred(&mut self, bred: Bred<'_, G>, out: &mut [f64]) -> Result<(), EvaluateError> {
         self.batch.set_genomes(bred.children);
         match &mut self.bred {
-            Some(kept) => {
-                kept.measure_bred(bred.children, &self.batch, bred.parents, bred.from, out)
-            }
+            Some(kept) => kept.measure_bred(bred, &self.batch, out),
             None => self.set.measure_batch(&self.batch, &self.meshes, out),
         }
         Ok(())

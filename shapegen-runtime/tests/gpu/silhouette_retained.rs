@@ -4,6 +4,7 @@
 use generators::{city, tree};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use shapegen_runtime::evaluate::Bred;
 use shapegen_runtime::gpu::GpuContext;
 use shapegen_runtime::ops::Operators;
 use shapegen_runtime::score::InstanceBatch;
@@ -67,8 +68,13 @@ fn breed<G: Grammar>(
             batch.push_genome(child);
         }
         let mut counts = vec![SilhouetteCounts::default(); children.len()];
+        let lineage = Bred {
+            children: &children,
+            parents: &parents,
+            from: &from,
+        };
         retention
-            .count_bred(on_gpu, &children, &batch, &parents, &from, &mut counts)
+            .count_bred(on_gpu, lineage, &batch, &mut counts)
             .unwrap();
         let mut full = vec![SilhouetteCounts::default(); children.len()];
         on_gpu.count_batch(&batch, &mut full).unwrap();

@@ -170,7 +170,7 @@ impl SceneScorerKind for Silhouette {
         batch: &InstanceBatch,
         out: &mut [SilhouetteCounts],
     ) -> Result<(), GpuError> {
-        retention.count_bred(gpu, bred.children, batch, bred.parents, bred.from, out)
+        retention.count_bred(gpu, bred, batch, out)
     }
 }
 

@@ -5,7 +5,7 @@ use super::kinds::Objective;
 use super::retained::{ProjectionCounts, ProjectionScorer};
 use super::set::ObjectiveSet;
 use crate::derive::Grammar;
-use crate::genome::Genome;
+use crate::evaluate::Bred;
 use crate::geometry::BoundMeshes;
 use crate::score::batch::InstanceBatch;
 use crate::score::retained::{Retention, RetentionStats};
@@ -20,6 +20,7 @@ use crate::score::scorer::Scorer;
 /// ```
 /// use glam::Vec2;
 /// use rand::SeedableRng;
+/// use shapegen_runtime::evaluate::Bred;
 /// use shapegen_runtime::prelude::*;
 /// use shapegen_runtime::score::InstanceBatch;
 /// use shapegen_runtime::score::objective::{BredObjectives, Objective, ObjectiveSet, ProjectionMatch, UniqueNormals, View};
@@ -58,7 +59,9 @@ use crate::score::scorer::Scorer;
 /// batch.push_genome(&child);
 ///
 /// let mut values = [0.0; 2];
-/// bred.measure_bred(&[child], &batch, &parents, &[0], &mut values);
+/// let children = [child];
+/// let lineage = Bred { children: &children, parents: &parents, from: &[0] };
+/// bred.measure_bred(lineage, &batch, &mut values);
 /// let mut full = [0.0; 2];
 /// set.measure_batch(&batch, &meshes, &mut full);
 /// assert_eq!(values, full);
@@ -102,8 +105,8 @@ impl BredObjectives {
         &self.set
     }
 
-    /// Writes the values of `children` (whose instances are the models of `batch`, in
-    /// order), child `i` bred from `parents[from[i]]`, to `out` as
+    /// Writes the values of the `children` of `bred` (whose instances are the models of
+    /// `batch`, in order), child `i` bred from `parents[from[i]]`, to `out` as
     /// [`ObjectiveSet::measure_batch`] does (one row of [`len`](ObjectiveSet::len)
     /// values per child), with exactly its values. Afterwards only the states of
     /// `parents` and `children` are kept. The result does not depend on the number of
@@ -114,26 +117,19 @@ impl BredObjectives {
     /// per child) or an entry of `from` is out of range.
     pub fn measure_bred<G: Grammar>(
         &mut self,
-        children: &[Genome<G>],
+        bred: Bred<'_, G>,
         batch: &InstanceBatch,
-        parents: &[Genome<G>],
-        from: &[u32],
         out: &mut [f64],
     ) {
+        let children = bred.children.len();
         let k = self.set.len();
-        assert_eq!(out.len(), children.len() * k, "one row of values per child");
+        assert_eq!(out.len(), children * k, "one row of values per child");
         let p = self.projections.len();
         self.counts.clear();
         self.counts
-            .resize(children.len() * p, ProjectionCounts::default());
-        self.retention.count_bred(
-            &self.projections,
-            children,
-            batch,
-            parents,
-            from,
-            &mut self.counts,
-        );
+            .resize(children * p, ProjectionCounts::default());
+        self.retention
+            .count_bred(&self.projections, bred, batch, &mut self.counts);
         let is_projection = |o: &Objective| o.projection().is_some();
         self.set
             .measure_rows(batch, &self.meshes, out, |o| !is_projection(o));

@@ -92,21 +92,19 @@ impl WeightedObjectives {
     }
 
     /// Writes the fitness of `genomes` to `out`, counting their projections from their
-    /// parents' kept state when `lineage` (`parents`, `from`) is given and incremental
-    /// counting is on.
+    /// parents' kept state when `lineage` (of which `genomes` are the children) is given
+    /// and incremental counting is on.
     fn score<G: Grammar>(
         &mut self,
         genomes: &[Genome<G>],
-        lineage: Option<(&[Genome<G>], &[u32])>,
+        lineage: Option<Bred<'_, G>>,
         out: &mut [f64],
     ) {
         self.batch.set_genomes(genomes);
         let k = self.set.len();
         self.values.resize(genomes.len() * k, 0.0);
         match (&mut self.bred, lineage) {
-            (Some(bred), Some((parents, from))) => {
-                bred.measure_bred(genomes, &self.batch, parents, from, &mut self.values)
-            }
+            (Some(kept), Some(bred)) => kept.measure_bred(bred, &self.batch, &mut self.values),
             _ => self
                 .set
                 .measure_batch(&self.batch, &self.meshes, &mut self.values),
@@ -124,7 +122,7 @@ impl<G: Grammar> Evaluator<G> for WeightedObjectives {
     }
 
     fn evaluate_bred(&mut self, bred: Bred<'_, G>, out: &mut [f64]) -> Result<(), EvaluateError> {
-        self.score(bred.children, Some((bred.parents, bred.from)), out);
+        self.score(bred.children, Some(bred), out);
         Ok(())
     }
 }

@@ -10,6 +10,7 @@ use super::cells::TILE_BYTES;
 use super::diff::InstanceDiff;
 use super::scorer::RetainedScorer;
 use crate::derive::{Grammar, Site};
+use crate::evaluate::Bred;
 use crate::genome::Genome;
 use crate::geometry::Instance;
 use crate::score::batch::InstanceBatch;
@@ -61,6 +62,7 @@ pub struct RetentionStats {
 /// from them. See the [module documentation](super).
 ///
 /// ```
+/// use shapegen_runtime::evaluate::Bred;
 /// use shapegen_runtime::score::retained::Retention;
 /// use shapegen_runtime::score::volume::{Fill, Grid, VolumeScorer, VolumeTarget};
 /// use shapegen_runtime::score::{Form, InstanceBatch, Scorer, count_batch};
@@ -101,7 +103,8 @@ pub struct RetentionStats {
 /// batch.push_genome(&children[0]);
 /// let mut retention = Retention::new();
 /// let mut counts = [Default::default()];
-/// retention.count_bred(&[scorer.clone()], &children, &batch, &parents, &[0], &mut counts);
+/// let bred = Bred { children: &children, parents: &parents, from: &[0] };
+/// retention.count_bred(&[scorer.clone()], bred, &batch, &mut counts);
 /// let mut full = [Default::default()];
 /// count_batch(&scorer, &batch, &mut full);
 /// assert_eq!(counts, full);
@@ -220,12 +223,13 @@ impl<S: RetainedScorer> Retention<S> {
         self.kept.values().map(|kept| kept.bound).sum()
     }
 
-    /// Counts `children` (whose instances are the models of `batch`, in order) with each
-    /// of `scorers`, child `i` bred from `parents[from[i]]`: `out[i * k + j]` gets child
-    /// `i`'s counts of scorer `j`, `k = scorers.len()`, exactly as counting it from
-    /// nothing would. Parents not kept are derived on the batch's
-    /// [site](InstanceBatch::site). Afterwards only the states of `parents` and
-    /// `children` are kept. The result does not depend on the number of threads, nor on what was kept.
+    /// Counts the `children` of `bred` (whose instances are the models of `batch`, in
+    /// order) with each of `scorers`, child `i` bred from `parents[from[i]]`:
+    /// `out[i * k + j]` gets child `i`'s counts of scorer `j`, `k = scorers.len()`,
+    /// exactly as counting it from nothing would. Parents not kept are derived on the
+    /// batch's [site](InstanceBatch::site). Afterwards only the states of `parents` and
+    /// `children` are kept. The result does not depend on the number of threads, nor on
+    /// what was kept.
     ///
     /// # Panics
     /// If the lengths disagree (`batch` and `from` one model per child, `out` `k` per
@@ -233,12 +237,15 @@ impl<S: RetainedScorer> Retention<S> {
     pub fn count_bred<G: Grammar>(
         &mut self,
         scorers: &[S],
-        children: &[Genome<G>],
+        bred: Bred<'_, G>,
         batch: &InstanceBatch,
-        parents: &[Genome<G>],
-        from: &[u32],
         out: &mut [S::Counts],
     ) {
+        let Bred {
+            children,
+            parents,
+            from,
+        } = bred;
         let k = scorers.len();
         assert_eq!(batch.len(), children.len(), "one model per child");
         assert_eq!(from.len(), children.len(), "one parent per child");

@@ -20,6 +20,7 @@ use super::counts::{SilhouetteCounts, TargetCounts};
 use super::gpu::GpuSilhouetteScorer;
 use super::gpu_draw::{Counters, Passes, Program, TargetIndex, View, counter_bytes, rows};
 use crate::derive::{Grammar, Site};
+use crate::evaluate::Bred;
 use crate::genome::Genome;
 use crate::geometry::Instance;
 use crate::gpu::GpuError;
@@ -93,7 +94,7 @@ struct Draw<'a> {
 /// let on_gpu = GpuSilhouetteScorer::new(&gpu, scorer)?;
 /// let retention = GpuRetention::new(&on_gpu)?.with_max_bytes(256 << 20);
 /// println!("one model's slot takes {} bytes", retention.slot_bytes());
-/// // Each generation: retention.count_bred(&on_gpu, &children, &batch, &parents, &from, &mut counts)?;
+/// // Each generation: retention.count_bred(&on_gpu, bred, &batch, &mut counts)?;
 /// # Ok(()) }
 /// ```
 pub struct GpuRetention {
@@ -213,8 +214,8 @@ impl GpuRetention {
         u64::from(self.slots_per_page) * self.slot_bytes()
     }
 
-    /// Counts `children` (the models of `batch`, in order), child `i` bred from
-    /// `parents[from[i]]`, writing child `i`'s counts to `out[i]`, exactly as
+    /// Counts the `children` of `bred` (the models of `batch`, in order), child `i` bred
+    /// from `parents[from[i]]`, writing child `i`'s counts to `out[i]`, exactly as
     /// [`GpuSilhouetteScorer::count_batch`] counts them. Parents not kept are derived on
     /// the batch's [site](InstanceBatch::site). Afterwards only the slots of `parents`
     /// and `children` are kept.
@@ -228,12 +229,15 @@ impl GpuRetention {
     pub fn count_bred<G: Grammar>(
         &mut self,
         scorer: &GpuSilhouetteScorer<'_>,
-        children: &[Genome<G>],
+        bred: Bred<'_, G>,
         batch: &InstanceBatch,
-        parents: &[Genome<G>],
-        from: &[u32],
         out: &mut [SilhouetteCounts],
     ) -> Result<(), GpuError> {
+        let Bred {
+            children,
+            parents,
+            from,
+        } = bred;
         assert_eq!(batch.len(), children.len(), "one model per child");
         assert_eq!(from.len(), children.len(), "one parent per child");
         assert_eq!(out.len(), children.len(), "one count per child");
