@@ -3,7 +3,7 @@
 
 use rand::Rng;
 
-use super::edit::{cover, record_links, remove_subtree};
+use super::edit::cover;
 use super::kinds::{KindInfo, gene_starts};
 use super::operators::{OperatorVariant, Operators};
 use super::weight::{ONE, below};
@@ -81,13 +81,20 @@ impl<G: Grammar> Operators<G> {
         let r = below(rng, total);
         let mut child = cand[cum.partition_point(|&c| c <= r)];
         if child < sure_from
-            && subtree_len(&self.kinds, words, child, &s.map, &mut s.depth, max_cut) > max_cut
+            && subtree_len(
+                &self.kinds,
+                words,
+                child,
+                &s.genes.map,
+                &mut s.depth,
+                max_cut,
+            ) > max_cut
         {
             // Drawn too large: draw again among the cuttable links only. Accepting the
             // first draw when it fits and redrawing exactly otherwise gives each cuttable
             // link its weight over the cuttable links' total weight.
-            gene_starts(&self.kinds, words, &mut s.starts);
-            subtree_sizes(&s.starts, &s.map, &mut s.depth);
+            gene_starts(&self.kinds, words, &mut s.genes.starts);
+            subtree_sizes(&s.genes.starts, &s.genes.map, &mut s.depth);
             let total = cuttable_weights(cand, cum, &s.depth, max_cut);
             if total == 0 {
                 return false;
@@ -95,23 +102,18 @@ impl<G: Grammar> Operators<G> {
             let r = below(rng, total);
             child = cand[cum.partition_point(|&c| c <= r)];
         }
-        let removed = remove_subtree(
-            &self.kinds,
-            &mut genome.words,
-            child,
-            &mut s.map,
-            &s.link_of,
-        );
-        genome.len -= removed;
+        genome.len -= s
+            .genes
+            .remove_subtree(&self.kinds, &mut genome.words, child);
         true
     }
 
     /// The cut candidates of the genome in `words` (`len` genes, at least `min_len + 1`):
     /// every expressed link of weight `1 - p > 0`, its child written to `s.cand` and
-    /// the running total of the weights to `s.cum`, each gene's parent and link to
-    /// `s.map` and `s.link_of`. Returns the candidates' count, their total weight, and
-    /// where the genes from index `min_len` on start (subtrees rooted there are never
-    /// too large to cut; `u32::MAX` if none).
+    /// the running total of the weights to `s.cum`, the genes mapped into `s.genes`.
+    /// Returns the candidates' count, their total weight, and where the genes from index
+    /// `min_len` on start (subtrees rooted there are never too large to cut; `u32::MAX`
+    /// if none).
     fn survey_cuts(&mut self, words: &[u32], len: u32, min_len: u32) -> (usize, u64, u32) {
         let s = &mut self.s;
         // Every gene but the root hangs from one expressed link: `len - 1` candidates at
@@ -125,14 +127,8 @@ impl<G: Grammar> Operators<G> {
         let (cand, cum) = (&mut s.cand[..], &mut s.cum[..]);
         let mut m = 0;
         let mut total = 0u64;
-        record_links(
-            &self.kinds,
-            &self.links,
-            words,
-            &mut s.map,
-            &mut s.link_of,
-            Some(&mut s.starts),
-            |child, info| {
+        s.genes
+            .record(&self.kinds, &self.links, words, |child, info| {
                 let w = ONE - info.grow;
                 if w > 0 {
                     total += w;
@@ -140,9 +136,13 @@ impl<G: Grammar> Operators<G> {
                     cum[m] = total;
                     m += 1;
                 }
-            },
-        );
-        let sure_from = s.starts.get(min_len as usize).copied().unwrap_or(u32::MAX);
+            });
+        let sure_from = s
+            .genes
+            .starts
+            .get(min_len as usize)
+            .copied()
+            .unwrap_or(u32::MAX);
         (m, total, sure_from)
     }
 
@@ -153,7 +153,7 @@ impl<G: Grammar> Operators<G> {
     pub fn cut_at(&mut self, genome: &mut Genome<G>, pos: u32) -> Result<u32, GenomeError> {
         self.map_links(&genome.words);
         let s = &mut self.s;
-        if s.starts.binary_search(&pos).is_err() {
+        if s.genes.starts.binary_search(&pos).is_err() {
             return Err(GenomeError::NotAGene {
                 pos,
                 words: genome.words.len() as u32,
@@ -162,7 +162,7 @@ impl<G: Grammar> Operators<G> {
         if pos == 0 {
             return Err(GenomeError::IsRoot);
         }
-        subtree_sizes(&s.starts, &s.map, &mut s.depth);
+        subtree_sizes(&s.genes.starts, &s.genes.map, &mut s.depth);
         let left = genome.len - s.depth[pos as usize];
         if left < self.limits.min_len {
             return Err(GenomeError::TooShort {
@@ -170,7 +170,7 @@ impl<G: Grammar> Operators<G> {
                 min_len: self.limits.min_len,
             });
         }
-        let removed = remove_subtree(&self.kinds, &mut genome.words, pos, &mut s.map, &s.link_of);
+        let removed = s.genes.remove_subtree(&self.kinds, &mut genome.words, pos);
         genome.len -= removed;
         Ok(removed)
     }

@@ -5,7 +5,7 @@
 use rand::Rng;
 
 use super::draw::{int_value, pick};
-use super::edit::{cover, graft, remove_subtree, splice, split};
+use super::edit::{cover, graft, splice, split};
 use super::kinds::{KindInfo, gene_starts};
 use super::operators::{ORIGINAL_CROSSOVER_ATTEMPTS, Operators};
 use crate::derive::Grammar;
@@ -130,8 +130,8 @@ impl<G: Grammar> Operators<G> {
         }
         self.map_links(&genome.words);
         let s = &mut self.s;
-        let pos = s.starts[random_gene(genome.len, rng)];
-        genome.len -= remove_subtree(&self.kinds, &mut genome.words, pos, &mut s.map, &s.link_of);
+        let pos = s.genes.starts[random_gene(genome.len, rng)];
+        genome.len -= s.genes.remove_subtree(&self.kinds, &mut genome.words, pos);
         if genome.len == 1 {
             self.grow_original(genome, 1, rng);
         }
@@ -145,8 +145,8 @@ impl<G: Grammar> Operators<G> {
         if genome.len <= 1 {
             return false;
         }
-        gene_starts(&self.kinds, &genome.words, &mut self.s.starts);
-        let pos = self.s.starts[random_gene(genome.len, rng)];
+        gene_starts(&self.kinds, &genome.words, &mut self.s.genes.starts);
+        let pos = self.s.genes.starts[random_gene(genome.len, rng)];
         if !self.kind_at(&genome.words, pos).has_params {
             return false;
         }
