@@ -6,7 +6,7 @@
 use serde::{Deserialize, Serialize};
 use shapegen_runtime::score::Scorer;
 use shapegen_runtime::score::metrics::{
-    SurfaceDistance, Triangle, mesh_triangles, model_triangles, silhouette_iou, voxel_iou,
+    Sampling, SurfaceDistance, Triangle, mesh_triangles, model_triangles, silhouette_iou, voxel_iou,
 };
 use shapegen_runtime::score::objective::Objective;
 use shapegen_runtime::{BoundMeshes, Genome, Grammar, Instance, Mesh};
@@ -179,7 +179,17 @@ fn surface(scene: &Scene, model: &[Triangle]) -> Option<SurfaceDistance> {
         .collect();
     let threshold = f_score_threshold(meshes.iter().copied())?;
     let target: Vec<Triangle> = meshes.iter().flat_map(|m| mesh_triangles(m)).collect();
-    SurfaceDistance::between(model, &target, threshold, SURFACE_SAMPLES, 0)
+    SurfaceDistance::between(model, &target, sampling(threshold))
+}
+
+/// [`SURFACE_SAMPLES`] points a side from the stream of seed 0, matched within
+/// `threshold`.
+fn sampling(threshold: f64) -> Sampling {
+    Sampling {
+        threshold,
+        samples: SURFACE_SAMPLES,
+        seed: 0,
+    }
 }
 
 /// The model's surface against each `chamfer` objective's whole cloud.
@@ -197,8 +207,7 @@ fn point_clouds(scene: &Scene, model: &[Triangle]) -> Vec<CloudDistance> {
         .filter_map(|(name, cloud)| {
             let (lo, hi) = cloud.bounds();
             let threshold = F_SCORE_THRESHOLD * f64::from((hi - lo).length());
-            let distance =
-                SurfaceDistance::to_points(model, &cloud.points, threshold, SURFACE_SAMPLES, 0)?;
+            let distance = SurfaceDistance::to_points(model, &cloud.points, sampling(threshold))?;
             Some(CloudDistance {
                 objective: name.clone(),
                 distance,

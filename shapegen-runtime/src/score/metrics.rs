@@ -5,7 +5,7 @@
 //!
 //! ```
 //! use glam::Vec3;
-//! use shapegen_runtime::score::metrics::{SurfaceDistance, Triangle};
+//! use shapegen_runtime::score::metrics::{Sampling, SurfaceDistance, Triangle};
 //!
 //! // Two unit squares, one 0.01 above the other: every sample has one of the other
 //! // square's samples within 0.1, so the F-score at 0.1 is 1.
@@ -13,7 +13,8 @@
 //!     let p = |x: f32, y: f32| Vec3::new(x, y, z);
 //!     vec![[p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0)], [p(0.0, 0.0), p(1.0, 1.0), p(0.0, 1.0)]]
 //! };
-//! let d = SurfaceDistance::between(&square(0.0), &square(0.01), 0.1, 500, 7).unwrap();
+//! let sampling = Sampling { threshold: 0.1, samples: 500, seed: 7 };
+//! let d = SurfaceDistance::between(&square(0.0), &square(0.01), sampling).unwrap();
 //! assert_eq!(d.f_score, 1.0);
 //! assert!(d.chamfer >= 0.01 && d.chamfer < 0.05);
 //! ```
@@ -70,6 +71,28 @@ pub fn mesh_triangles(mesh: &Mesh) -> impl Iterator<Item = Triangle> + '_ {
         .map(|t| t.map(|i| mesh.positions[i as usize]))
 }
 
+/// How [`SurfaceDistance`] samples two surfaces and matches their samples.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sampling {
+    /// The distance under which a sample counts as matched, for the F-score.
+    pub threshold: f64,
+    /// Points sampled on each surface, uniformly by area.
+    pub samples: usize,
+    /// The seed of the ChaCha8 stream the samples are drawn from, the model's before the
+    /// other side's.
+    pub seed: u64,
+}
+
+impl Sampling {
+    /// The seeded stream, and the model's samples drawn from it; `None` when the model
+    /// has no area or no samples are asked for.
+    fn model_samples(self, model: &[Triangle]) -> Option<(ChaCha8Rng, Vec<DVec3>)> {
+        let mut rng = ChaCha8Rng::seed_from_u64(self.seed);
+        let samples = sample(model, self.samples, &mut rng)?;
+        Some((rng, samples))
+    }
+}
+
 /// How far apart two surfaces are, measured on points sampled uniformly by area on each.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SurfaceDistance {
@@ -87,32 +110,24 @@ pub struct SurfaceDistance {
 }
 
 impl SurfaceDistance {
-    /// The distance between `model` and `target`, each sampled at `samples` points
-    /// (uniformly by area, from a ChaCha8 stream of `seed`), the F-score at `threshold`.
+    /// The distance between `model` and `target`, each sampled as `sampling` says.
     /// Nearest samples are found exactly, by comparing every pair. `None` when either
-    /// surface has no area or `samples` is 0.
-    pub fn between(
-        model: &[Triangle],
-        target: &[Triangle],
-        threshold: f64,
-        samples: usize,
-        seed: u64,
-    ) -> Option<SurfaceDistance> {
-        let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        let a = sample(model, samples, &mut rng)?;
-        let b = sample(target, samples, &mut rng)?;
-        Some(Self::of_samples(&a, &b, threshold))
+    /// surface has no area or no samples are asked for.
+    pub fn between(model: &[Triangle], target: &[Triangle], sampling: Sampling) -> Option<Self> {
+        let (mut rng, a) = sampling.model_samples(model)?;
+        let b = sample(target, sampling.samples, &mut rng)?;
+        Some(Self::of_samples(&a, &b, sampling.threshold))
     }
 
-    /// The distance between `model` and the point cloud `points`: the model sampled at
-    /// `samples` points as in [`between`](Self::between), the cloud taken whole when it
-    /// has at most `samples` points and otherwise `samples` of them drawn without
+    /// The distance between `model` and the point cloud `points`: the model sampled as
+    /// in [`between`](Self::between), the cloud taken whole when it has at most
+    /// `sampling.samples` points and otherwise that many of them drawn without
     /// replacement from the same seeded stream. `None` when the model has no area or
     /// either side is empty.
     ///
     /// ```
     /// use glam::Vec3;
-    /// use shapegen_runtime::score::metrics::SurfaceDistance;
+    /// use shapegen_runtime::score::metrics::{Sampling, SurfaceDistance};
     ///
     /// let square = [
     ///     [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0)],
@@ -122,24 +137,18 @@ impl SurfaceDistance {
     /// let scan: Vec<Vec3> = (0..100)
     ///     .map(|i| Vec3::new((i % 10) as f32 / 9.0, (i / 10) as f32 / 9.0, 0.2))
     ///     .collect();
-    /// let d = SurfaceDistance::to_points(&square, &scan, 0.25, 1000, 0).unwrap();
+    /// let sampling = Sampling { threshold: 0.25, samples: 1000, seed: 0 };
+    /// let d = SurfaceDistance::to_points(&square, &scan, sampling).unwrap();
     /// assert_eq!(d.f_score, 1.0);
     /// assert!(d.chamfer >= 0.2 && d.chamfer < 0.25);
     /// ```
-    pub fn to_points(
-        model: &[Triangle],
-        points: &[Vec3],
-        threshold: f64,
-        samples: usize,
-        seed: u64,
-    ) -> Option<SurfaceDistance> {
-        let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        let a = sample(model, samples, &mut rng)?;
-        let b = subsample(points, samples, &mut rng);
+    pub fn to_points(model: &[Triangle], points: &[Vec3], sampling: Sampling) -> Option<Self> {
+        let (mut rng, a) = sampling.model_samples(model)?;
+        let b = subsample(points, sampling.samples, &mut rng);
         if b.is_empty() {
             return None;
         }
-        Some(Self::of_samples(&a, &b, threshold))
+        Some(Self::of_samples(&a, &b, sampling.threshold))
     }
 
     /// The measures of two sets of samples.
@@ -221,6 +230,14 @@ pub(crate) fn nearest(from: &[DVec3], to: &[DVec3], threshold: f64) -> (f64, f64
 mod tests {
     use super::*;
 
+    fn sampling(threshold: f64, samples: usize, seed: u64) -> Sampling {
+        Sampling {
+            threshold,
+            samples,
+            seed,
+        }
+    }
+
     fn unit_square(z: f32) -> Vec<Triangle> {
         let p = |x: f32, y: f32| Vec3::new(x, y, z);
         vec![
@@ -232,28 +249,34 @@ mod tests {
     #[test]
     fn parallel_planes_are_their_distance_apart() {
         let d =
-            SurfaceDistance::between(&unit_square(0.0), &unit_square(0.5), 0.4, 400, 1).unwrap();
+            SurfaceDistance::between(&unit_square(0.0), &unit_square(0.5), sampling(0.4, 400, 1))
+                .unwrap();
         // Every nearest sample is at least 0.5 away, and near it: samples of the other
         // square lie about 1/20 apart.
         assert!(d.chamfer >= 0.5 && d.chamfer < 0.52, "{}", d.chamfer);
         assert_eq!(d.f_score, 0.0);
         let d =
-            SurfaceDistance::between(&unit_square(0.0), &unit_square(0.5), 0.6, 400, 1).unwrap();
+            SurfaceDistance::between(&unit_square(0.0), &unit_square(0.5), sampling(0.6, 400, 1))
+                .unwrap();
         assert_eq!(d.f_score, 1.0);
     }
 
     #[test]
     fn a_surface_is_near_itself_and_half_a_surface_recalls_half() {
         let same =
-            SurfaceDistance::between(&unit_square(0.0), &unit_square(0.0), 0.1, 500, 2).unwrap();
+            SurfaceDistance::between(&unit_square(0.0), &unit_square(0.0), sampling(0.1, 500, 2))
+                .unwrap();
         assert!(same.chamfer < 0.05);
         assert_eq!(same.f_score, 1.0);
         // The model is the square's lower-right triangle, far below the threshold from
         // it: precision 1, recall about 1/2 (target samples in the other half lie up to
         // 0.7 away), so the F-score is about 2/3.
-        let half =
-            SurfaceDistance::between(&unit_square(0.0)[..1], &unit_square(0.0), 0.02, 2000, 3)
-                .unwrap();
+        let half = SurfaceDistance::between(
+            &unit_square(0.0)[..1],
+            &unit_square(0.0),
+            sampling(0.02, 2000, 3),
+        )
+        .unwrap();
         assert!((half.f_score - 2.0 / 3.0).abs() < 0.05, "{}", half.f_score);
     }
 
@@ -277,6 +300,6 @@ mod tests {
         assert_eq!(points, again);
         assert!(sample(&[], 10, &mut rng).is_none());
         assert!(sample(&[[Vec3::ZERO; 3]], 10, &mut rng).is_none());
-        assert!(SurfaceDistance::between(&[big], &[big], 0.1, 0, 0).is_none());
+        assert!(SurfaceDistance::between(&[big], &[big], sampling(0.1, 0, 0)).is_none());
     }
 }
