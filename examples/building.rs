@@ -23,7 +23,7 @@ use std::time::Duration;
 
 use anyhow::Context;
 use generators::LotBuilding;
-use shapegen::export::{ContactSheet, ExportError, Palette, Preview, save_glb, save_obj};
+use shapegen::export::{ContactSheet, ExportError, Model, Palette, Preview, save_glb, save_obj};
 use shapegen::optimize::Control;
 use shapegen::optimize::multi::{MultiGa, MultiSnapshot};
 use shapegen::optimize::{Optimizer, Settings};
@@ -95,12 +95,8 @@ fn main() -> anyhow::Result<()> {
         .collect();
     let mut csv = format!("model,{}\n", names.join(","));
     for (i, (member, instances)) in result.front.iter().zip(&models).enumerate() {
-        save_glb(
-            out.join(format!("front_{i:03}.glb")),
-            instances,
-            meshes,
-            &palette,
-        )?;
+        let model = Model::new(instances, meshes, &palette);
+        save_glb(out.join(format!("front_{i:03}.glb")), model)?;
         let values: Vec<String> = member.values.iter().map(|v| format!("{v}")).collect();
         csv += &format!("{i},{}\n", values.join(","));
     }
@@ -126,8 +122,9 @@ fn main() -> anyhow::Result<()> {
         .max_by(|&a, &b| score(&result.front[a].values).total_cmp(&score(&result.front[b].values)))
         .context("the front holds a building")?;
     let instances = &models[best];
-    save_obj(out.join("best"), instances, meshes, &palette)?;
-    save_glb(out.join("best.glb"), instances, meshes, &palette)?;
+    let model = Model::new(instances, meshes, &palette);
+    save_obj(out.join("best"), model)?;
+    save_glb(out.join("best.glb"), model)?;
     Preview::framing(instances, meshes, 800, 600)
         .render(instances, meshes, &palette)?
         .save(out.join("best.png"))?;

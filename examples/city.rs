@@ -15,7 +15,7 @@ use std::time::Duration;
 use anyhow::Context;
 use generators::City;
 use shapegen::Grammar;
-use shapegen::export::{Palette, Preview, save_glb, save_obj};
+use shapegen::export::{Model, Palette, Preview, save_glb, save_obj};
 use shapegen::optimize::{Control, Ga, GaSettings, Snapshot};
 use shapegen::optimize::{Optimizer, Settings};
 use shapegen::scene::{BackendChoice, Scene, SceneEvaluator, SceneScorer};
@@ -70,8 +70,9 @@ fn main() -> anyhow::Result<()> {
     let mut instances = Vec::new();
     result.best.derive_into(&mut instances);
     let palette = Palette::new();
-    save_obj(out.join("best"), &instances, &meshes, &palette)?;
-    save_glb(out.join("best.glb"), &instances, &meshes, &palette)?;
+    let model = Model::new(&instances, &meshes, &palette);
+    save_obj(out.join("best"), model)?;
+    save_glb(out.join("best.glb"), model)?;
     result.best.save_json(out.join("best.genome.json"))?;
     let target = &scorer.silhouette().context("a silhouette scene")?.targets()[0];
     let preview = Preview {

@@ -26,7 +26,7 @@ use generators::{GeneratorVisitor, Published};
 use glam::{Affine3A, Vec3};
 use image::{GenericImageView, RgbImage};
 use rand::SeedableRng;
-use shapegen::export::{Palette, Preview, save_glb, save_obj};
+use shapegen::export::{Model, Palette, Preview, save_glb, save_obj};
 use shapegen::genome::Limits;
 use shapegen::geometry::MeshFormat;
 use shapegen::ops::Operators;
@@ -173,8 +173,9 @@ impl GeneratorVisitor for Fit<'_> {
         let mut instances = Vec::new();
         result.best.derive_into(&mut instances);
         let palette = Palette::new();
-        save_obj(o.out.join("best"), &instances, &meshes, &palette)?;
-        save_glb(o.out.join("best.glb"), &instances, &meshes, &palette)?;
+        let model = Model::new(&instances, &meshes, &palette);
+        save_obj(o.out.join("best"), model)?;
+        save_glb(o.out.join("best.glb"), model)?;
         result.best.save_json(o.out.join("best.genome.json"))?;
         let metrics = Metrics::of(
             &scene,
@@ -288,7 +289,10 @@ fn volume_goal(o: &Options, centre: Vec3, side: f32) -> anyhow::Result<String> {
     }
     let (lo, hi) = mesh.bounds().context("the placed target has vertices")?;
     let (bound, placed) = alone(mesh)?;
-    save_obj(o.out.join("target"), &placed, &bound, &Palette::new())?;
+    save_obj(
+        o.out.join("target"),
+        Model::new(&placed, &bound, &Palette::new()),
+    )?;
     let pad = (hi - lo) * 0.1 + Vec3::splat(side * 0.02);
     let (lo, hi) = (lo - pad, hi + pad);
     let cell = (hi - lo).max_element() / GRID_CELLS;

@@ -21,7 +21,7 @@ use glam::{Affine3A, Quat, Vec3, vec2, vec3};
 use libtest_mimic::{Arguments, Failed, Trial};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use shapegen::export::{Palette, glb_bytes};
+use shapegen::export::{Model, Palette, glb_bytes};
 use shapegen::geometry::{Mesh, MeshId, MeshLibrary, Polygon, RoofShape};
 use shapegen::prelude::*;
 use shapegen::{BoundMeshes, CUBE, Instance, Scope};
@@ -193,7 +193,9 @@ impl Validator {
     fn assert_valid(&self, files: &[(&str, &[Instance], &BoundMeshes)]) {
         let glbs: Vec<Vec<u8>> = files
             .iter()
-            .map(|(_, instances, meshes)| glb_bytes(instances, meshes, &Palette::new()).unwrap())
+            .map(|(_, instances, meshes)| {
+                glb_bytes(Model::new(instances, meshes, &Palette::new())).unwrap()
+            })
             .collect();
         let named: Vec<(&str, &[u8])> = files
             .iter()
@@ -390,7 +392,7 @@ fn non_finite_instances_are_left_out(v: &Validator) {
         at(nan, wall),
         at(huge, wall),
     ];
-    let glb = glb_bytes(&model, &meshes, &Palette::new()).unwrap();
+    let glb = glb_bytes(Model::new(&model, &meshes, &Palette::new())).unwrap();
     let reports = v.validate(&[("non_finite", &glb)]);
     assert_eq!(
         (reports[0].errors, reports[0].warnings),
@@ -399,7 +401,7 @@ fn non_finite_instances_are_left_out(v: &Validator) {
         reports[0].messages
     );
     // The finite cube alone is left, and the wall, with no finite instance, not at all.
-    let cube = glb_bytes(&model[..1], &meshes, &Palette::new()).unwrap();
+    let cube = glb_bytes(Model::new(&model[..1], &meshes, &Palette::new())).unwrap();
     assert!(glb == cube, "more than the finite cube exported");
     assert_names("non_finite", &glb, &model[..1], &meshes);
 }
@@ -434,7 +436,7 @@ fn broken_files_are_reported(v: &Validator) {
         transform: Affine3A::IDENTITY,
         mesh: CUBE,
     }];
-    let glb = glb_bytes(&cube, &meshes, &Palette::new()).unwrap();
+    let glb = glb_bytes(Model::new(&cube, &meshes, &Palette::new())).unwrap();
     let truncated = &glb[..glb.len() / 2];
     // The JSON chunk starts at byte 20 with `{`: make it no JSON at all.
     let mut corrupted = glb.clone();

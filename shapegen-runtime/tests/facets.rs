@@ -8,7 +8,7 @@ mod support {
 use glam::{Affine3A, Quat, Vec3, vec2, vec3};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use shapegen_runtime::export::{Palette, glb_bytes, write_obj};
+use shapegen_runtime::export::{Model, Palette, glb_bytes, write_obj};
 use shapegen_runtime::geometry::{Mesh, MeshId, MeshLibrary, Polygon, RoofShape};
 use shapegen_runtime::score::objective::{Objective, ObjectiveScratch, Surface, UniqueNormals};
 use shapegen_runtime::score::volume::{Fill, Grid, VolumeCounts, VolumeScorer, VolumeTarget};
@@ -249,13 +249,18 @@ fn exports_name_generated_parts_by_their_facet_mesh() {
         let mut model = Vec::new();
         ops.random(4, &mut rng).derive_into(&mut model);
         let mut obj = Vec::new();
-        write_obj(&mut obj, "site.mtl", &model, &meshes, &Palette::new()).unwrap();
+        write_obj(
+            &mut obj,
+            "site.mtl",
+            Model::new(&model, &meshes, &Palette::new()),
+        )
+        .unwrap();
         let obj = String::from_utf8(obj).unwrap();
         let facets = model.iter().filter(|i| i.mesh != CUBE).count();
         let boxes = model.len() - facets;
         let faces = obj.lines().filter(|l| l.starts_with("f ")).count();
         assert_eq!(faces, facets + 12 * boxes);
-        let glb = glb_bytes(&model, &meshes, &Palette::new()).unwrap();
+        let glb = glb_bytes(Model::new(&model, &meshes, &Palette::new())).unwrap();
         let gltf = gltf::Gltf::from_slice(&glb).unwrap();
         let names: Vec<_> = gltf.materials().filter_map(|m| m.name()).collect();
         if facets > 0 {

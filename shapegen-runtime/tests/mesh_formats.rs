@@ -6,7 +6,7 @@ use std::path::Path;
 
 use base64::Engine as _;
 use glam::{Affine3A, Quat, Vec3};
-use shapegen_runtime::export::{Palette, glb_bytes};
+use shapegen_runtime::export::{Model, Palette, glb_bytes};
 use shapegen_runtime::geometry::{Mesh, MeshFormat, PointCloud};
 use shapegen_runtime::score::volume::{Fill, Grid, VolumeTarget, VoxelClasses};
 use shapegen_runtime::{CUBE, Instance, MeshLibrary};
@@ -130,7 +130,7 @@ fn glb() -> Vec<u8> {
         transform: t,
         mesh: CUBE,
     }];
-    glb_bytes(&model, &meshes, &Palette::new()).unwrap()
+    glb_bytes(Model::new(&model, &meshes, &Palette::new())).unwrap()
 }
 
 /// The same glTF as JSON with its buffer in a `data:` URI.

@@ -7,7 +7,7 @@ use std::path::Path;
 use anyhow::Context;
 use image::Rgb;
 use serde::Serialize;
-use shapegen::export::{ContactSheet, Palette, glb_bytes};
+use shapegen::export::{ContactSheet, Model, Palette, glb_bytes};
 use shapegen::genome::GenomeSet;
 use shapegen::optimize::multi::{
     Front, Member, MultiObserver, MultiResult, MultiSnapshot, Ranking,
@@ -348,7 +348,7 @@ impl Outputs<'_> {
             member.genome.derive_on(self.site, &mut instances);
             files.write(
                 &folder.join(format!("model_{i:03}.glb")),
-                &glb_bytes(&instances, &self.meshes, &self.palette)?,
+                &glb_bytes(Model::new(&instances, &self.meshes, &self.palette))?,
             )?;
         }
         Ok(())

@@ -6,7 +6,7 @@ use std::path::Path;
 
 use image::{GrayImage, ImageFormat, Luma, Rgb};
 use serde::Serialize;
-use shapegen::export::{Palette, Preview, glb_bytes, write_mtl, write_obj};
+use shapegen::export::{Model, Palette, Preview, glb_bytes, write_mtl, write_obj};
 use shapegen::optimize::islands::IslandSettings;
 use shapegen::optimize::{Best, Control, Observer, RunResult, Snapshot};
 use shapegen::scene::{Metrics, OptimizerGoal, Scene, SceneScorer};
@@ -157,21 +157,13 @@ impl<'a> Outputs<'a> {
     ) -> anyhow::Result<()> {
         let mut instances = Vec::new();
         best.derive_on(self.site, &mut instances);
+        let model = Model::new(&instances, &self.meshes, &self.palette);
         let (mut obj, mut mtl) = (Vec::new(), Vec::new());
-        write_obj(
-            &mut obj,
-            "best.mtl",
-            &instances,
-            &self.meshes,
-            &self.palette,
-        )?;
-        write_mtl(&mut mtl, &instances, &self.meshes, &self.palette)?;
+        write_obj(&mut obj, "best.mtl", model)?;
+        write_mtl(&mut mtl, model)?;
         files.write(&dir.join("best.mtl"), &mtl)?;
         files.write(&dir.join("best.obj"), &obj)?;
-        files.write(
-            &dir.join("best.glb"),
-            &glb_bytes(&instances, &self.meshes, &self.palette)?,
-        )?;
+        files.write(&dir.join("best.glb"), &glb_bytes(model)?)?;
         files.write(&dir.join("best.genome.json"), best.to_json().as_bytes())?;
         let target = self.scorer.silhouette().map(|s| (s, &s.targets()[0]));
         let preview = match target {

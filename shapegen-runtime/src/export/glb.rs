@@ -10,16 +10,16 @@ use json::validation::{Checked::Valid, USize64};
 
 use super::bake::{placements, used_meshes};
 use super::error::ExportError;
+use super::model::Model;
 use super::obj::write_file;
-use super::palette::Palette;
-use crate::geometry::{BoundMeshes, Instance, Mesh};
+use crate::geometry::{Instance, Mesh};
 
 const GLB_MAGIC: &[u8; 4] = b"glTF";
 const GLB_VERSION: u32 = 2;
 const CHUNK_JSON: &[u8; 4] = b"JSON";
 const CHUNK_BIN: &[u8; 4] = b"BIN\0";
 
-/// The instances as a binary glTF 2.0 file.
+/// The model as a binary glTF 2.0 file.
 ///
 /// One glTF mesh per mesh used, in [`MeshId`] order, holding all its instances baked
 /// into world space: one triangle primitive with `POSITION` (with the exact `min` and
@@ -40,20 +40,21 @@ const CHUNK_BIN: &[u8; 4] = b"BIN\0";
 ///
 /// ```
 /// use glam::Affine3A;
-/// use shapegen_runtime::{CUBE, Instance, export::{Palette, glb_bytes}, geometry::MeshLibrary};
+/// use shapegen_runtime::{CUBE, Instance, export::{Model, Palette, glb_bytes}, geometry::MeshLibrary};
 ///
 /// let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"])?;
 /// let boxes = [Instance { transform: Affine3A::IDENTITY, mesh: CUBE }];
-/// let glb = glb_bytes(&boxes, &meshes, &Palette::new())?;
+/// let glb = glb_bytes(Model::new(&boxes, &meshes, &Palette::new()))?;
 /// assert_eq!(&glb[..4], b"glTF");
 /// assert_eq!(glb.len() % 4, 0);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn glb_bytes(
-    instances: &[Instance],
-    meshes: &BoundMeshes,
-    palette: &Palette,
-) -> Result<Vec<u8>, ExportError> {
+pub fn glb_bytes(model: Model<'_>) -> Result<Vec<u8>, ExportError> {
+    let Model {
+        instances,
+        meshes,
+        palette,
+    } = model;
     let mut file = GlbFile::default();
     for id in used_meshes(instances, meshes)? {
         let name = meshes.name(id).unwrap_or_default();
@@ -228,25 +229,15 @@ impl GlbFile {
 }
 
 /// Writes [`glb_bytes`] to `writer`.
-pub fn write_glb<W: Write>(
-    mut writer: W,
-    instances: &[Instance],
-    meshes: &BoundMeshes,
-    palette: &Palette,
-) -> Result<(), ExportError> {
-    writer.write_all(&glb_bytes(instances, meshes, palette)?)?;
+pub fn write_glb<W: Write>(mut writer: W, model: Model<'_>) -> Result<(), ExportError> {
+    writer.write_all(&glb_bytes(model)?)?;
     writer.flush()?;
     Ok(())
 }
 
 /// Writes [`glb_bytes`] to the file `path`, as given (conventionally `*.glb`).
-pub fn save_glb(
-    path: impl AsRef<Path>,
-    instances: &[Instance],
-    meshes: &BoundMeshes,
-    palette: &Palette,
-) -> Result<(), ExportError> {
-    let bytes = glb_bytes(instances, meshes, palette)?;
+pub fn save_glb(path: impl AsRef<Path>, model: Model<'_>) -> Result<(), ExportError> {
+    let bytes = glb_bytes(model)?;
     write_file(path.as_ref(), |f| Ok(f.write_all(&bytes)?))
 }
 

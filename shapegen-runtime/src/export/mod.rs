@@ -1,5 +1,6 @@
 //! Writing derived models to files: Wavefront OBJ with its MTL materials, binary glTF
 //! (`.glb`), and shaded [`Preview`] pictures, alone or side by side ([`ContactSheet`]).
+//! The file writers take a [`Model`]: its instances, their meshes and a palette.
 //!
 //! Both exporters bake every [`Instance`] into world space: positions through the
 //! instance's transform, normals through its inverse transpose (renormalized), and
@@ -13,6 +14,7 @@
 mod bake;
 mod error;
 mod glb;
+mod model;
 mod obj;
 mod palette;
 mod render;
@@ -20,6 +22,7 @@ mod sheet;
 
 pub use error::ExportError;
 pub use glb::{glb_bytes, save_glb, write_glb};
+pub use model::Model;
 pub use obj::{save_obj, write_mtl, write_obj};
 pub use palette::Palette;
 pub use render::Preview;

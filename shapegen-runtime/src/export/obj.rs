@@ -6,10 +6,9 @@ use std::path::Path;
 
 use super::bake::{placements, used_meshes};
 use super::error::ExportError;
-use super::palette::Palette;
-use crate::geometry::{BoundMeshes, Instance};
+use super::model::Model;
 
-/// Writes the instances as OBJ text referring to the material library `mtl_name` (a
+/// Writes the model as OBJ text referring to the material library `mtl_name` (a
 /// file name such as `"tree.mtl"`, written with [`write_mtl`]).
 ///
 /// One object (`o`) per mesh used, named after the mesh, in [`MeshId`] order, with
@@ -24,24 +23,23 @@ use crate::geometry::{BoundMeshes, Instance};
 ///
 /// ```
 /// use glam::{Affine3A, vec3};
-/// use shapegen_runtime::{CUBE, Instance, export::{Palette, write_obj}, geometry::MeshLibrary};
+/// use shapegen_runtime::{CUBE, Instance, export::{Model, Palette, write_obj}, geometry::MeshLibrary};
 ///
 /// let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"])?;
 /// let boxes = [Instance { transform: Affine3A::from_translation(vec3(2.0, 0.0, 0.0)), mesh: CUBE }];
 /// let mut text = Vec::new();
-/// write_obj(&mut text, "boxes.mtl", &boxes, &meshes, &Palette::new())?;
+/// write_obj(&mut text, "boxes.mtl", Model::new(&boxes, &meshes, &Palette::new()))?;
 /// let text = String::from_utf8(text)?;
 /// assert!(text.contains("mtllib boxes.mtl\no cube\nusemtl cube\nv 2.5 -0.5 -0.5 0.2542 0.3278 0.4341\n"));
 /// assert_eq!(text.lines().filter(|l| l.starts_with("f ")).count(), 12);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn write_obj<W: Write>(
-    writer: W,
-    mtl_name: &str,
-    instances: &[Instance],
-    meshes: &BoundMeshes,
-    palette: &Palette,
-) -> Result<(), ExportError> {
+pub fn write_obj<W: Write>(writer: W, mtl_name: &str, model: Model<'_>) -> Result<(), ExportError> {
+    let Model {
+        instances,
+        meshes,
+        palette,
+    } = model;
     let used = used_meshes(instances, meshes)?;
     let mut out = BufWriter::new(writer);
     writeln!(
@@ -79,18 +77,13 @@ pub fn write_obj<W: Write>(
 /// Writes the MTL material library for [`write_obj`]: one material per mesh used,
 /// named after the mesh, with its palette colour as diffuse colour (`Kd`), no ambient
 /// or specular part, opaque.
-pub fn write_mtl<W: Write>(
-    writer: W,
-    instances: &[Instance],
-    meshes: &BoundMeshes,
-    palette: &Palette,
-) -> Result<(), ExportError> {
-    let used = used_meshes(instances, meshes)?;
+pub fn write_mtl<W: Write>(writer: W, model: Model<'_>) -> Result<(), ExportError> {
+    let used = used_meshes(model.instances, model.meshes)?;
     let mut out = BufWriter::new(writer);
     writeln!(out, "# shapegen materials: {} meshes", used.len())?;
     for id in used {
-        let name = meshes.name(id).unwrap_or_default();
-        let [r, g, b] = palette.color(id, name);
+        let name = model.meshes.name(id).unwrap_or_default();
+        let [r, g, b] = model.palette.color(id, name);
         writeln!(out, "\nnewmtl {name}")?;
         writeln!(out, "Ka 0 0 0\nKd {r} {g} {b}\nKs 0 0 0\nd 1\nillum 1")?;
     }
@@ -101,19 +94,12 @@ pub fn write_mtl<W: Write>(
 /// Writes `path` with its extension set to `obj` and, next to it, the material library
 /// with extension `mtl`: `save_obj("out/tree", ..)` writes `out/tree.obj` and
 /// `out/tree.mtl`.
-pub fn save_obj(
-    path: impl AsRef<Path>,
-    instances: &[Instance],
-    meshes: &BoundMeshes,
-    palette: &Palette,
-) -> Result<(), ExportError> {
+pub fn save_obj(path: impl AsRef<Path>, model: Model<'_>) -> Result<(), ExportError> {
     let obj_path = path.as_ref().with_extension("obj");
     let mtl_path = path.as_ref().with_extension("mtl");
     let mtl_name = mtl_path.file_name().unwrap_or_default().to_string_lossy();
-    write_file(&obj_path, |f| {
-        write_obj(f, &mtl_name, instances, meshes, palette)
-    })?;
-    write_file(&mtl_path, |f| write_mtl(f, instances, meshes, palette))
+    write_file(&obj_path, |f| write_obj(f, &mtl_name, model))?;
+    write_file(&mtl_path, |f| write_mtl(f, model))
 }
 
 /// Creates `path` and writes it with `write`, naming the file in I/O errors.

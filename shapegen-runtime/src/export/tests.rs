@@ -97,7 +97,7 @@ fn assert_outward(positions: &[Vec3], normals: &[Vec3], triangles: &[u32], centr
 #[test]
 fn glb_parses_validates_and_holds_every_instance() {
     let (instances, meshes) = (instances(), meshes());
-    let glb = glb_bytes(&instances, &meshes, &Palette::new()).unwrap();
+    let glb = glb_bytes(Model::new(&instances, &meshes, &Palette::new())).unwrap();
     let gltf = gltf::Gltf::from_slice(&glb).expect("valid glTF");
     let blob = gltf.blob.as_deref().expect("BIN chunk");
 
@@ -164,7 +164,7 @@ fn glb_parses_validates_and_holds_every_instance() {
 
 #[test]
 fn glb_container_is_aligned_and_padded() {
-    let glb = glb_bytes(&instances(), &meshes(), &Palette::new()).unwrap();
+    let glb = glb_bytes(Model::new(&instances(), &meshes(), &Palette::new())).unwrap();
     let word = |at: usize| u32::from_le_bytes(glb[at..at + 4].try_into().unwrap()) as usize;
     assert_eq!(&glb[0..4], b"glTF");
     assert_eq!(word(4), 2);
@@ -190,11 +190,12 @@ fn glb_container_is_aligned_and_padded() {
 fn exports_are_deterministic() {
     let (instances, meshes) = (instances(), meshes());
     let palette = Palette::new().with("leaf", [0.1, 0.6, 0.2]);
-    let glb = |m: &BoundMeshes| glb_bytes(&instances, m, &palette).unwrap();
+    let glb = |m: &BoundMeshes| glb_bytes(Model::new(&instances, m, &palette)).unwrap();
     let obj = |m: &BoundMeshes| {
+        let model = Model::new(&instances, m, &palette);
         let (mut obj, mut mtl) = (Vec::new(), Vec::new());
-        write_obj(&mut obj, "t.mtl", &instances, m, &palette).unwrap();
-        write_mtl(&mut mtl, &instances, m, &palette).unwrap();
+        write_obj(&mut obj, "t.mtl", model).unwrap();
+        write_mtl(&mut mtl, model).unwrap();
         (obj, mtl)
     };
     // Same input, including meshes loaded afresh: identical bytes.
@@ -208,9 +209,7 @@ fn obj_reloads_with_the_expected_geometry_and_materials() {
     let dir = tempfile::tempdir().unwrap();
     save_obj(
         dir.path().join("scene.glb"),
-        &instances,
-        &meshes,
-        &Palette::new(),
+        Model::new(&instances, &meshes, &Palette::new()),
     )
     .unwrap();
     let (models, materials) = tobj::load_obj(
@@ -291,7 +290,8 @@ fn mirrored_and_flattened_instances_keep_outward_unit_normals() {
             mesh: CUBE,
         }];
         let gltf =
-            gltf::Gltf::from_slice(&glb_bytes(&one, &meshes, &Palette::new()).unwrap()).unwrap();
+            gltf::Gltf::from_slice(&glb_bytes(Model::new(&one, &meshes, &Palette::new())).unwrap())
+                .unwrap();
         let blob = gltf.blob.as_deref().unwrap();
         let primitive = gltf.meshes().next().unwrap().primitives().next().unwrap();
         let reader = primitive.reader(|_| Some(blob));
@@ -312,12 +312,17 @@ fn mirrored_and_flattened_instances_keep_outward_unit_normals() {
 #[test]
 fn empty_and_invalid_input() {
     let meshes = meshes();
-    let glb = glb_bytes(&[], &meshes, &Palette::new()).unwrap();
+    let glb = glb_bytes(Model::new(&[], &meshes, &Palette::new())).unwrap();
     let gltf = gltf::Gltf::from_slice(&glb).unwrap();
     assert_eq!(gltf.meshes().count(), 0);
     assert!(gltf.blob.is_none());
     let mut obj = Vec::new();
-    write_obj(&mut obj, "none.mtl", &[], &meshes, &Palette::new()).unwrap();
+    write_obj(
+        &mut obj,
+        "none.mtl",
+        Model::new(&[], &meshes, &Palette::new()),
+    )
+    .unwrap();
     assert_eq!(
         String::from_utf8(obj).unwrap(),
         "# shapegen OBJ export: 0 instances of 0 meshes\nmtllib none.mtl\n"
@@ -326,12 +331,16 @@ fn empty_and_invalid_input() {
         transform: Affine3A::IDENTITY,
         mesh: MeshId(7),
     }];
-    let err = glb_bytes(&stray, &meshes, &Palette::new()).unwrap_err();
+    let err = glb_bytes(Model::new(&stray, &meshes, &Palette::new())).unwrap_err();
     assert_eq!(
         err.to_string(),
         "instance 0 uses mesh id 7, but only 4 meshes are bound"
     );
-    let err = save_obj("/no/such/dir/out", &stray[..0], &meshes, &Palette::new()).unwrap_err();
+    let err = save_obj(
+        "/no/such/dir/out",
+        Model::new(&stray[..0], &meshes, &Palette::new()),
+    )
+    .unwrap_err();
     assert!(
         crate::error::error_chain(&err).starts_with("cannot write `/no/such/dir/out.obj`: "),
         "{err}"
@@ -362,9 +371,12 @@ fn glb_leaves_out_instances_placed_at_nan_or_infinity() {
         finite[1],
         at(overflow, LEAF),
     ];
-    let glb = glb_bytes(&model, &meshes, &Palette::new()).unwrap();
+    let glb = glb_bytes(Model::new(&model, &meshes, &Palette::new())).unwrap();
     // Exactly the file of the finite instances: the leaf, with none, is not in it.
-    assert_eq!(glb, glb_bytes(&finite, &meshes, &Palette::new()).unwrap());
+    assert_eq!(
+        glb,
+        glb_bytes(Model::new(&finite, &meshes, &Palette::new())).unwrap()
+    );
     let gltf = gltf::Gltf::from_slice(&glb).unwrap();
     let names: Vec<_> = gltf.materials().map(|m| m.name()).collect();
     assert_eq!(names, [Some("cube")]);
@@ -380,6 +392,9 @@ fn glb_leaves_out_instances_placed_at_nan_or_infinity() {
     let bbox = primitive.bounding_box();
     assert_eq!((Vec3::from(bbox.min), Vec3::from(bbox.max)), bounds(&p));
     // Nothing finite at all: the empty model's file.
-    let none = glb_bytes(&model[2..4], &meshes, &Palette::new()).unwrap();
-    assert_eq!(none, glb_bytes(&[], &meshes, &Palette::new()).unwrap());
+    let none = glb_bytes(Model::new(&model[2..4], &meshes, &Palette::new())).unwrap();
+    assert_eq!(
+        none,
+        glb_bytes(Model::new(&[], &meshes, &Palette::new())).unwrap()
+    );
 }

@@ -39,7 +39,7 @@ use clap::Args;
 use image::Rgb;
 use serde::Serialize;
 use shapegen::Grammar;
-use shapegen::export::{Palette, glb_bytes};
+use shapegen::export::{Model, Palette, glb_bytes};
 use shapegen::optimize::Control;
 use shapegen::scene::{METRIC_COLUMNS, Method, Overrides, Scene};
 use shapegen::search::stats::quartile_curve;
@@ -344,7 +344,7 @@ impl Shown<'_> {
         result.best.derive_on(&self.scene.site, &mut self.instances);
         atomic_write(
             &dir.join("best.glb"),
-            &glb_bytes(&self.instances, meshes, &self.palette)?,
+            &glb_bytes(Model::new(&self.instances, meshes, &self.palette))?,
         )?;
         let elapsed = result.history.last().map_or(0.0, |h| h.elapsed_s);
         eprintln!(

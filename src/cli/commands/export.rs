@@ -8,7 +8,7 @@ use clap::Args;
 use shapegen::Grammar;
 use shapegen::MeshLibrary;
 use shapegen::Site;
-use shapegen::export::{Palette, glb_bytes, write_mtl, write_obj};
+use shapegen::export::{Model, Palette, glb_bytes, write_mtl, write_obj};
 use shapegen::scene::{Overrides, Scene};
 
 use crate::cli::files::atomic_write;
@@ -122,20 +122,21 @@ impl Visit for Export<'_> {
                 .with_context(|| format!("cannot create `{}`", parent.display()))?;
         }
         let palette = Palette::new();
+        let model = Model::new(&instances, &meshes, &palette);
         let written = match self.format {
             Format::Obj => {
                 let mtl = args.out.with_extension("mtl");
                 let mtl_name = mtl.file_name().unwrap_or_default().to_string_lossy();
                 let mut obj_bytes = Vec::new();
-                write_obj(&mut obj_bytes, &mtl_name, &instances, &meshes, &palette)?;
+                write_obj(&mut obj_bytes, &mtl_name, model)?;
                 let mut mtl_bytes = Vec::new();
-                write_mtl(&mut mtl_bytes, &instances, &meshes, &palette)?;
+                write_mtl(&mut mtl_bytes, model)?;
                 atomic_write(&mtl, &mtl_bytes)?;
                 atomic_write(&args.out, &obj_bytes)?;
                 format!("{} and {}", args.out.display(), mtl.display())
             }
             Format::Glb => {
-                atomic_write(&args.out, &glb_bytes(&instances, &meshes, &palette)?)?;
+                atomic_write(&args.out, &glb_bytes(model)?)?;
                 args.out.display().to_string()
             }
         };

@@ -8,7 +8,7 @@ use clap::Args;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
-use shapegen::export::{Palette, save_glb, save_obj};
+use shapegen::export::{Model, Palette, save_glb, save_obj};
 use shapegen::genome::{GenomeSet, Limits};
 use shapegen::ops::Operators;
 use shapegen::{Genome, Grammar};
@@ -106,8 +106,9 @@ impl Visit for Sample<'_> {
             .try_for_each_init(Vec::new, |instances, (i, genome)| {
                 genome.derive_into(instances);
                 let stem = args.out.join(format!("model_{i:0width$}"));
-                save_obj(&stem, instances, &meshes, &palette)?;
-                save_glb(stem.with_extension("glb"), instances, &meshes, &palette)?;
+                let model = Model::new(instances, &meshes, &palette);
+                save_obj(&stem, model)?;
+                save_glb(stem.with_extension("glb"), model)?;
                 anyhow::Ok(())
             })?;
 

@@ -19,7 +19,7 @@ use std::sync::atomic::AtomicBool;
 use anyhow::Context;
 use serde::{Deserialize, Deserializer, Serialize};
 use shapegen::Grammar;
-use shapegen::export::{Palette, glb_bytes};
+use shapegen::export::{Model, Palette, glb_bytes};
 use shapegen::gpu::GpuContext;
 use shapegen::optimize::{HistoryEntry, StopReason};
 use shapegen::scene::{Metrics, Scene, SceneEvaluator, SceneScorer};
@@ -281,7 +281,7 @@ impl Visit for CellRun<'_> {
         let metrics = Metrics::of_genome(self.scene, Some(&scorer), &meshes, &result.best);
         let mut instances = Vec::new();
         result.best.derive_on(&self.scene.site, &mut instances);
-        let model = glb_bytes(&instances, &meshes, &Palette::new())?;
+        let model = glb_bytes(Model::new(&instances, &meshes, &Palette::new()))?;
         *self.outcome = Some(Outcome {
             best: result.best_fitness,
             evaluations: result.evaluations,
