@@ -22,7 +22,7 @@ use shapegen::ops::Operators;
 use shapegen::score::retained::RetainedScorer;
 use shapegen::score::silhouette::{
     Camera, GpuRetention, GpuSilhouetteScorer, ImageTarget, OrbitCamera, SilhouetteCounts,
-    SilhouetteScorer,
+    SilhouetteScorer, Weighting,
 };
 use shapegen::score::{Form, InstanceBatch, Scorer, count_batch};
 use shapegen::{BoundMeshes, Genome, Grammar, gpu::GpuContext};
@@ -41,7 +41,13 @@ fn target(scene: &str, file: &str, camera: OrbitCamera) -> ImageTarget {
         .join(scene)
         .join(file);
     let image = image::open(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    ImageTarget::from_mask(file.into(), &image, Camera::Orbit(camera), 1.0, -1.0).unwrap()
+    ImageTarget::new(
+        file.into(),
+        &image,
+        Camera::Orbit(camera),
+        Weighting::mask(1.0, -1.0),
+    )
+    .unwrap()
 }
 
 fn population<G: Grammar>(limits: Limits, initial_len: u32) -> InstanceBatch {

@@ -8,7 +8,7 @@ use glam::{Mat4, Vec2};
 use libfuzzer_sys::fuzz_target;
 use shapegen::scene::decode_image;
 use shapegen_runtime::score::objective::{ProjectionMatch, View};
-use shapegen_runtime::score::silhouette::{Camera, ImageTarget, MaskRule};
+use shapegen_runtime::score::silhouette::{Camera, ImageTarget, MaskRule, Weighting};
 
 fuzz_target!(|data: &[u8]| {
     let Ok(image) = decode_image(data) else {
@@ -28,9 +28,10 @@ fuzz_target!(|data: &[u8]| {
             tolerance: 32,
         },
     ] {
-        let _ = ImageTarget::from_mask_by(name(), &image, camera(), 1.0, -1.0, rule);
+        let mask = Weighting::mask_by(rule, 1.0, -1.0);
+        let _ = ImageTarget::new(name(), &image, camera(), mask);
     }
-    let _ = ImageTarget::from_weight_map(name(), &image, camera(), 1.0, -1.0);
+    let _ = ImageTarget::new(name(), &image, camera(), Weighting::weight_map(1.0, -1.0));
     let gray = image.into_luma8();
     let _ = ProjectionMatch::from_image(View::Top, Vec2::splat(-1.0), Vec2::splat(1.0), &gray);
 });

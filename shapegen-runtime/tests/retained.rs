@@ -23,7 +23,7 @@ use shapegen_runtime::evaluate::Bred;
 use shapegen_runtime::ops::{OperatorVariant, Operators};
 use shapegen_runtime::score::objective::ProjectionScorer;
 use shapegen_runtime::score::retained::{InstanceDiff, RetainedScorer, Retention};
-use shapegen_runtime::score::silhouette::{Camera, ImageTarget, SilhouetteScorer};
+use shapegen_runtime::score::silhouette::{Camera, ImageTarget, SilhouetteScorer, Weighting};
 use shapegen_runtime::score::volume::VolumeScorer;
 use shapegen_runtime::score::{InstanceBatch, Scorer, count_batch};
 use shapegen_runtime::{BoundMeshes, Genome, Grammar, Instance, Limits, MeshLibrary};
@@ -101,7 +101,7 @@ fn check_sequences<G: Grammar, S: RetainedScorer>(
 fn image_target(scene: &str, file: &str, camera: Camera) -> ImageTarget {
     let path = scenes().join(scene).join(file);
     let image = image::open(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    ImageTarget::from_mask(file.to_owned(), &image, camera, 1.0, -1.0).unwrap()
+    ImageTarget::new(file.to_owned(), &image, camera, Weighting::mask(1.0, -1.0)).unwrap()
 }
 
 /// The tree's meshes as the paper scene loads them: the published trunk and leaf,
@@ -247,7 +247,7 @@ fn building_volume_and_silhouette() {
             255
         }])
     }));
-    let t = ImageTarget::from_mask("front".into(), &image, camera, 1.0, -1.0).unwrap();
+    let t = ImageTarget::new("front".into(), &image, camera, Weighting::mask(1.0, -1.0)).unwrap();
     let silhouette = SilhouetteScorer::new(vec![t], &meshes, SMOOTH).unwrap();
     check_sequences::<building::Building, _>(
         "building silhouette",

@@ -8,7 +8,7 @@ mod support {
 use generators::{city, tree};
 use glam::{Vec2, vec2, vec3};
 use shapegen_runtime::score::silhouette::{
-    Camera, ImageTarget, SilhouetteCounts, SilhouetteScorer,
+    Camera, ImageTarget, SilhouetteCounts, SilhouetteScorer, Weighting,
 };
 use shapegen_runtime::score::{Scorer, count_batch};
 use shapegen_runtime::{Genome, Grammar, Instance};
@@ -18,7 +18,7 @@ use support::silhouette_scenes::{SMOOTH, city_camera, tree_camera};
 fn load(scene: &str, file: &str, camera: Camera) -> ImageTarget {
     let path = scenes().join(scene).join(file);
     let image = image::open(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    ImageTarget::from_mask(file.to_owned(), &image, camera, 1.0, -1.0).unwrap()
+    ImageTarget::new(file.to_owned(), &image, camera, Weighting::mask(1.0, -1.0)).unwrap()
 }
 
 fn derive<G: Grammar>(g: &Genome<G>) -> Vec<Instance> {

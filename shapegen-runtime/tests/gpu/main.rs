@@ -14,7 +14,7 @@ mod support {
     pub mod spaceship_expanded;
     pub mod volume_scenes;
 
-    use shapegen_runtime::score::silhouette::{Camera, ImageTarget};
+    use shapegen_runtime::score::silhouette::{Camera, ImageTarget, Weighting};
 
     /// A published target image scaled down to 160 x 120 pixels, as a mask or as a
     /// weight map.
@@ -26,9 +26,15 @@ mod support {
             image::imageops::FilterType::Triangle,
         );
         if weight_map {
-            ImageTarget::from_weight_map(file.to_owned(), &image, camera, 1.0, -0.5).unwrap()
+            ImageTarget::new(
+                file.to_owned(),
+                &image,
+                camera,
+                Weighting::weight_map(1.0, -0.5),
+            )
+            .unwrap()
         } else {
-            ImageTarget::from_mask(file.to_owned(), &image, camera, 1.0, -1.0).unwrap()
+            ImageTarget::new(file.to_owned(), &image, camera, Weighting::mask(1.0, -1.0)).unwrap()
         }
     }
 }

@@ -6,6 +6,7 @@ use shapegen_runtime::geometry::{MeshId, RoofMeshes, RoofPiece, RoofShape};
 use shapegen_runtime::gpu::GpuContext;
 use shapegen_runtime::score::silhouette::{
     Camera, GpuSilhouetteScorer, ImageTarget, OrbitCamera, SilhouetteCounts, SilhouetteScorer,
+    Weighting,
 };
 use shapegen_runtime::score::{InstanceBatch, count_batch};
 use shapegen_runtime::{CUBE, Grammar, Scope};
@@ -281,7 +282,13 @@ fn gpu_counts_a_batch_larger_than_one_chunk(gpu: &GpuContext) {
     let image = image::DynamicImage::ImageLuma8(image::GrayImage::from_fn(4096, 4096, |x, _| {
         image::Luma([(x / 16) as u8])
     }));
-    let target = ImageTarget::from_weight_map("big".into(), &image, camera, 1.0, -1.0).unwrap();
+    let target = ImageTarget::new(
+        "big".into(),
+        &image,
+        camera,
+        Weighting::weight_map(1.0, -1.0),
+    )
+    .unwrap();
     let scorer = SilhouetteScorer::new(vec![target], &meshes, SMOOTH).unwrap();
     let on_gpu = GpuSilhouetteScorer::new(gpu, &scorer).unwrap();
     assert_eq!(on_gpu.bitset_bytes(), 2 << 20);

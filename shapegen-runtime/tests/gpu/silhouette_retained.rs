@@ -10,7 +10,7 @@ use shapegen_runtime::ops::Operators;
 use shapegen_runtime::score::InstanceBatch;
 use shapegen_runtime::score::retained::RetentionStats;
 use shapegen_runtime::score::silhouette::{
-    GpuRetention, GpuSilhouetteScorer, ImageTarget, SilhouetteCounts, SilhouetteScorer,
+    GpuRetention, GpuSilhouetteScorer, ImageTarget, SilhouetteCounts, SilhouetteScorer, Weighting,
 };
 use shapegen_runtime::{Genome, Grammar, Limits};
 
@@ -177,8 +177,13 @@ fn slots_on_several_pages_count_as_from_nothing(gpu: &GpuContext) {
     let image = image::DynamicImage::ImageLuma8(image::GrayImage::from_fn(2048, 2048, |x, _| {
         image::Luma([(x / 8) as u8])
     }));
-    let target =
-        ImageTarget::from_weight_map("big".into(), &image, city_camera(), 1.0, -1.0).unwrap();
+    let target = ImageTarget::new(
+        "big".into(),
+        &image,
+        city_camera(),
+        Weighting::weight_map(1.0, -1.0),
+    )
+    .unwrap();
     let scorer = SilhouetteScorer::new(vec![target], &meshes, SMOOTH).unwrap();
     let on_gpu = GpuSilhouetteScorer::new(gpu, &scorer).unwrap();
     let retention = GpuRetention::new(&on_gpu).unwrap();

@@ -5,7 +5,7 @@
 use glam::DVec2;
 use shapegen_runtime::geometry::{Mesh, MeshLibrary, Polygon, RoofShape};
 use shapegen_runtime::prelude::*;
-use shapegen_runtime::score::silhouette::{Camera, ImageTarget, OrbitCamera};
+use shapegen_runtime::score::silhouette::{Camera, ImageTarget, OrbitCamera, Weighting};
 use shapegen_runtime::{BoundMeshes, generator};
 
 /// The footprint of shape `k`, `size` across.
@@ -159,5 +159,5 @@ pub fn front_target() -> ImageTarget {
             255
         }])
     }));
-    ImageTarget::from_mask("front".into(), &image, camera, 1.0, -1.0).unwrap()
+    ImageTarget::new("front".into(), &image, camera, Weighting::mask(1.0, -1.0)).unwrap()
 }

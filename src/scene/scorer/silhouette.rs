@@ -17,7 +17,7 @@ use serde::Deserialize;
 use shapegen_runtime::geometry::BoundMeshes;
 use shapegen_runtime::gpu::{GpuContext, GpuError};
 use shapegen_runtime::score::silhouette::{
-    Camera, GpuRetention, GpuSilhouetteScorer, ImageTarget, MaskRule, OrbitCamera,
+    Camera, GpuRetention, GpuSilhouetteScorer, ImageTarget, Weighting, MaskRule, OrbitCamera,
     SilhouetteCounts, SilhouetteScorer,
 };
 use shapegen_runtime::score::{Form, InstanceBatch};
@@ -244,13 +244,13 @@ fn image_target(
     let off = f64::from(t.off.unwrap_or(-1.0));
     let on = r.finite(&format!("{key}.on"), on)? as f32;
     let off = r.finite(&format!("{key}.off"), off)? as f32;
-    let name = t.image.clone();
     let rule = mask_rule(r, key, t)?;
-    let target = match t.kind {
-        ImageKind::Mask => ImageTarget::from_mask_by(name, &image, camera, on, off, rule),
-        ImageKind::Weights => ImageTarget::from_weight_map(name, &image, camera, on, off),
+    let weighting = match t.kind {
+        ImageKind::Mask => Weighting::mask_by(rule, on, off),
+        ImageKind::Weights => Weighting::weight_map(on, off),
     };
-    target.map_err(|err| r.refused(image_key, err))
+    ImageTarget::new(t.image.clone(), &image, camera, weighting)
+        .map_err(|err| r.refused(image_key, err))
 }
 
 /// The rule that picks a mask's target pixels: at most one of `threshold`,

@@ -21,7 +21,7 @@
 //! ```
 //! use glam::{Affine3A, Vec3};
 //! use image::{DynamicImage, GrayImage, Luma};
-//! use shapegen_runtime::score::silhouette::{Camera, ImageTarget, OrbitCamera, SilhouetteScorer};
+//! use shapegen_runtime::score::silhouette::{Camera, ImageTarget, OrbitCamera, SilhouetteScorer, Weighting};
 //! use shapegen_runtime::score::{Form, Scorer};
 //! use shapegen_runtime::{CUBE, Instance, MeshLibrary};
 //!
@@ -33,7 +33,7 @@
 //!     phi: -std::f32::consts::FRAC_PI_2, theta: 0.0, radius: 5.0, lookat: Vec3::ZERO,
 //!     fov_degrees: 60.0, near: 0.1, far: 100.0,
 //! });
-//! let target = ImageTarget::from_mask("square".into(), &DynamicImage::ImageLuma8(image), camera, 1.0, -1.0)?;
+//! let target = ImageTarget::new("square".into(), &DynamicImage::ImageLuma8(image), camera, Weighting::mask(1.0, -1.0))?;
 //! let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"])?;
 //! let scorer = SilhouetteScorer::new(vec![target], &meshes, Form::Smooth { good: 1.0, bad: 1.0 })?;
 //!
@@ -70,4 +70,4 @@ pub use gpu::GpuSilhouetteScorer;
 pub use gpu_retained::GpuRetention;
 pub use retained::SilhouetteState;
 pub use scorer::{SilhouetteError, SilhouetteScorer, SilhouetteScratch};
-pub use target::{ImageTarget, MAX_TARGET_PIXELS, MaskRule, TargetError, TargetKind};
+pub use target::{ImageTarget, MAX_TARGET_PIXELS, MaskRule, TargetError, TargetKind, Weighting};

@@ -80,7 +80,7 @@ pub enum SilhouetteError {
 /// ```
 /// use glam::{Affine3A, Vec3};
 /// use image::{DynamicImage, GrayImage, Luma};
-/// use shapegen_runtime::score::silhouette::{Camera, ImageTarget, OrbitCamera, SilhouetteScorer};
+/// use shapegen_runtime::score::silhouette::{Camera, ImageTarget, OrbitCamera, SilhouetteScorer, Weighting};
 /// use shapegen_runtime::score::{Form, Scorer};
 /// use shapegen_runtime::{CUBE, Instance, MeshLibrary};
 ///
@@ -90,7 +90,7 @@ pub enum SilhouetteError {
 ///     phi: -std::f32::consts::FRAC_PI_2, theta: 0.0, radius: 5.0, lookat: Vec3::ZERO,
 ///     fov_degrees: 90.0, near: 0.1, far: 100.0,
 /// });
-/// let target = ImageTarget::from_mask("half".into(), &DynamicImage::ImageLuma8(image), camera, 1.0, -1.0)?;
+/// let target = ImageTarget::new("half".into(), &DynamicImage::ImageLuma8(image), camera, Weighting::mask(1.0, -1.0))?;
 /// let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"])?;
 /// let scorer = SilhouetteScorer::new(vec![target], &meshes, Form::Weighted { overlap: 0.0 })?;
 ///
@@ -173,13 +173,13 @@ impl SilhouetteScorer {
     /// ```
     /// # use glam::{Affine3A, Vec3};
     /// # use image::{DynamicImage, GrayImage, Luma};
-    /// # use shapegen_runtime::score::silhouette::{Camera, ImageTarget, OrbitCamera, SilhouetteScorer};
+    /// # use shapegen_runtime::score::silhouette::{Camera, ImageTarget, OrbitCamera, SilhouetteScorer, Weighting};
     /// # use shapegen_runtime::score::Form;
     /// # use shapegen_runtime::{CUBE, Instance, MeshLibrary};
     /// # let image = DynamicImage::ImageLuma8(GrayImage::from_pixel(8, 6, Luma([0])));
     /// # let camera = Camera::Orbit(OrbitCamera { phi: 0.0, theta: 0.0, radius: 5.0,
     /// #     lookat: Vec3::ZERO, fov_degrees: 60.0, near: 0.1, far: 100.0 });
-    /// # let target = ImageTarget::from_mask("t".into(), &image, camera, 1.0, -1.0)?;
+    /// # let target = ImageTarget::new("t".into(), &image, camera, Weighting::mask(1.0, -1.0))?;
     /// # let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"])?;
     /// let scorer = SilhouetteScorer::new(vec![target], &meshes, Form::Smooth { good: 1.0, bad: 1.0 })?;
     /// let model = [Instance { transform: Affine3A::IDENTITY, mesh: CUBE }];

@@ -79,7 +79,7 @@ pub enum TargetKind {
     WeightMap,
 }
 
-/// Which pixels of a [mask](ImageTarget::from_mask) are its target pixels.
+/// Which pixels of a [mask](Weighting::mask_by) are its target pixels.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum MaskRule {
     /// Pixels whose red channel is 0: the original implementation's rule (its
@@ -128,18 +128,19 @@ impl MaskRule {
 
 /// One silhouette target: an image of per-pixel weights seen through a camera.
 ///
-/// Every pixel has a grey level `g` in `0..=255` and a weight: a
-/// [mask](Self::from_mask)'s target pixels (by its [`MaskRule`]) have level 0 and weight
-/// `on`, its other pixels level 255 and weight `off`; a [weight map](Self::from_weight_map)
-/// keeps the image's luminance `g` as the level and weighs `on + (off - on) * g / 255`
-/// (black is `on`, white `off`). Positive weights attract, negative ones repel, 0 is
-/// indifferent; the *target pixels* are those of positive weight. A mask keeps its
-/// levels as 0 or 255, so both kinds score with the same formula.
+/// Every pixel has a grey level `g` in `0..=255` and a weight, as its [`Weighting`]
+/// says: a [mask](Weighting::mask_by)'s target pixels (by its [`MaskRule`]) have level 0
+/// and weight `on`, its other pixels level 255 and weight `off`; a
+/// [weight map](Weighting::weight_map) keeps the image's luminance `g` as the level and
+/// weighs `on + (off - on) * g / 255` (black is `on`, white `off`). Positive weights
+/// attract, negative ones repel, 0 is indifferent; the *target pixels* are those of
+/// positive weight. A mask keeps its levels as 0 or 255, so both kinds score with the
+/// same formula.
 ///
 /// ```
 /// use glam::Vec3;
 /// use image::{DynamicImage, GrayImage, Luma};
-/// use shapegen_runtime::score::silhouette::{Camera, ImageTarget, MaskRule, OrbitCamera};
+/// use shapegen_runtime::score::silhouette::{Camera, ImageTarget, MaskRule, OrbitCamera, Weighting};
 ///
 /// let camera = Camera::Orbit(OrbitCamera {
 ///     phi: 0.0, theta: 0.0, radius: 5.0, lookat: Vec3::ZERO,
@@ -151,18 +152,18 @@ impl MaskRule {
 /// let image = DynamicImage::ImageLuma8(image);
 ///
 /// // The original's rule: only the black pixel is a target pixel.
-/// let mask = ImageTarget::from_mask("m".into(), &image, camera, 1.0, -0.5)?;
+/// let mask = ImageTarget::new("m".into(), &image, camera, Weighting::mask(1.0, -0.5))?;
 /// assert_eq!(mask.target_pixels(), 1);
 /// assert_eq!(mask.weight(1, 0), 1.0);
 /// assert_eq!(mask.weight(2, 1), -0.5);
 ///
 /// // A threshold takes the dark grey pixel too.
-/// let dark = MaskRule::DarkerThan(128);
-/// let sketch = ImageTarget::from_mask_by("s".into(), &image, camera, 1.0, -0.5, dark)?;
+/// let dark = Weighting::mask_by(MaskRule::DarkerThan(128), 1.0, -0.5);
+/// let sketch = ImageTarget::new("s".into(), &image, camera, dark)?;
 /// assert_eq!(sketch.target_pixels(), 2);
 /// assert_eq!(sketch.weight(2, 1), 1.0);
 ///
-/// let map = ImageTarget::from_weight_map("w".into(), &image, camera, 1.0, 0.0)?;
+/// let map = ImageTarget::new("w".into(), &image, camera, Weighting::weight_map(1.0, 0.0))?;
 /// assert_eq!(map.weight(1, 0), 1.0);
 /// assert!((map.weight(2, 1) - (1.0 - 100.0 / 255.0)).abs() < 1e-12);
 /// assert_eq!(map.target_pixels(), 2);
@@ -187,7 +188,8 @@ pub struct ImageTarget {
     words: Vec<u64>,
 }
 
-/// How [`ImageTarget::build`] reads an image's pixels into grey levels.
+/// How an image's pixels are read into grey levels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Levels {
     /// 0 for the rule's target pixels, 255 for the others.
     Mask(MaskRule),
@@ -195,41 +197,97 @@ enum Levels {
     Luminance,
 }
 
+/// How a target's image becomes weights: which of its pixels are target pixels, or what
+/// its grey levels stand for, and the weights `on` and `off` (see [`ImageTarget`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Weighting {
+    levels: Levels,
+    on: f32,
+    off: f32,
+}
+
+impl Weighting {
+    /// Black and white by the original's rule ([`MaskRule::RedZero`]): pixels whose red
+    /// channel is 0 weigh `on`, the others `off`.
+    pub const fn mask(on: f32, off: f32) -> Weighting {
+        Weighting::mask_by(MaskRule::RedZero, on, off)
+    }
+
+    /// Black and white: the target pixels, chosen by `rule`, weigh `on` and the other
+    /// pixels `off`.
+    pub const fn mask_by(rule: MaskRule, on: f32, off: f32) -> Weighting {
+        let levels = Levels::Mask(rule);
+        Weighting { levels, on, off }
+    }
+
+    /// Grey levels: a pixel of grey level `g` weighs `on + (off - on) * g / 255`.
+    pub const fn weight_map(on: f32, off: f32) -> Weighting {
+        let levels = Levels::Luminance;
+        Weighting { levels, on, off }
+    }
+}
+
 impl ImageTarget {
-    /// A black-and-white target by the original's rule ([`MaskRule::RedZero`]): pixels
-    /// whose red channel is 0 weigh `on`, the others `off`.
-    pub fn from_mask(
+    /// The target of `image`, seen through `camera`, its pixels weighed as `weighting`
+    /// says.
+    pub fn new(
         name: String,
         image: &image::DynamicImage,
         camera: Camera,
-        on: f32,
-        off: f32,
+        weighting: Weighting,
     ) -> Result<ImageTarget, TargetError> {
-        Self::from_mask_by(name, image, camera, on, off, MaskRule::RedZero)
-    }
-
-    /// A black-and-white target whose target pixels, chosen by `rule`, weigh `on` and
-    /// whose other pixels weigh `off`.
-    pub fn from_mask_by(
-        name: String,
-        image: &image::DynamicImage,
-        camera: Camera,
-        on: f32,
-        off: f32,
-        rule: MaskRule,
-    ) -> Result<ImageTarget, TargetError> {
-        Self::build(name, image, camera, on, off, Levels::Mask(rule))
-    }
-
-    /// A grey-level target: a pixel of grey level `g` weighs `on + (off - on) * g / 255`.
-    pub fn from_weight_map(
-        name: String,
-        image: &image::DynamicImage,
-        camera: Camera,
-        on: f32,
-        off: f32,
-    ) -> Result<ImageTarget, TargetError> {
-        Self::build(name, image, camera, on, off, Levels::Luminance)
+        let Weighting { levels, on, off } = weighting;
+        let (width, height) = (image.width(), image.height());
+        if width == 0 || height == 0 {
+            return Err(TargetError::Empty {
+                name,
+                width,
+                height,
+            });
+        }
+        if u64::from(width) * u64::from(height) > MAX_TARGET_PIXELS {
+            return Err(TargetError::TooLarge {
+                name,
+                width,
+                height,
+                max: MAX_TARGET_PIXELS,
+            });
+        }
+        for (field, value) in [("on", on), ("off", off)] {
+            if !value.is_finite() {
+                return Err(TargetError::Weight { name, field, value });
+            }
+        }
+        if let Err(source) = camera.validate() {
+            return Err(TargetError::Camera { name, source });
+        }
+        let (kind, levels): (_, Vec<u8>) = match levels {
+            Levels::Mask(rule) => (
+                TargetKind::Mask,
+                image
+                    .to_rgba8()
+                    .pixels()
+                    .map(|&p| if rule.is_target(p) { 0 } else { 255 })
+                    .collect(),
+            ),
+            Levels::Luminance => (TargetKind::WeightMap, image.to_luma8().into_raw()),
+        };
+        let mut target = ImageTarget {
+            name,
+            kind,
+            width,
+            height,
+            camera,
+            view_projection: camera.view_projection(width, height),
+            on,
+            off,
+            levels,
+            target_pixels: 0,
+            zero_level: None,
+            words: Vec::new(),
+        };
+        target.build_words();
+        Ok(target)
     }
 
     /// The mask shaped by distance: an opt-in slope for targets a generator cannot reach
@@ -249,7 +307,7 @@ impl ImageTarget {
     /// ```
     /// use glam::Vec3;
     /// use image::{DynamicImage, GrayImage, Luma};
-    /// use shapegen_runtime::score::silhouette::{Camera, ImageTarget, OrbitCamera};
+    /// use shapegen_runtime::score::silhouette::{Camera, ImageTarget, OrbitCamera, Weighting};
     ///
     /// let camera = Camera::Orbit(OrbitCamera {
     ///     phi: 0.0, theta: 0.0, radius: 5.0, lookat: Vec3::ZERO,
@@ -257,7 +315,8 @@ impl ImageTarget {
     /// });
     /// // One black pixel at the left end of a 12 x 1 row.
     /// let image = GrayImage::from_fn(12, 1, |x, _| Luma([if x == 0 { 0 } else { 255 }]));
-    /// let mask = ImageTarget::from_mask("m".into(), &DynamicImage::ImageLuma8(image), camera, 1.0, -1.0)?;
+    /// let image = DynamicImage::ImageLuma8(image);
+    /// let mask = ImageTarget::new("m".into(), &image, camera, Weighting::mask(1.0, -1.0))?;
     /// let shaped = mask.shaped(10.0)?;
     /// assert_eq!(shaped.weight(0, 0), 1.0);
     /// assert!(shaped.weight(1, 0) <= 0.0 && shaped.weight(1, 0) > -0.15);
@@ -325,67 +384,6 @@ impl ImageTarget {
     /// Whether the target is [shaped by distance](Self::shaped).
     pub fn is_shaped(&self) -> bool {
         self.zero_level.is_some()
-    }
-
-    fn build(
-        name: String,
-        image: &image::DynamicImage,
-        camera: Camera,
-        on: f32,
-        off: f32,
-        levels: Levels,
-    ) -> Result<ImageTarget, TargetError> {
-        let (width, height) = (image.width(), image.height());
-        if width == 0 || height == 0 {
-            return Err(TargetError::Empty {
-                name,
-                width,
-                height,
-            });
-        }
-        if u64::from(width) * u64::from(height) > MAX_TARGET_PIXELS {
-            return Err(TargetError::TooLarge {
-                name,
-                width,
-                height,
-                max: MAX_TARGET_PIXELS,
-            });
-        }
-        for (field, value) in [("on", on), ("off", off)] {
-            if !value.is_finite() {
-                return Err(TargetError::Weight { name, field, value });
-            }
-        }
-        if let Err(source) = camera.validate() {
-            return Err(TargetError::Camera { name, source });
-        }
-        let (kind, levels): (_, Vec<u8>) = match levels {
-            Levels::Mask(rule) => (
-                TargetKind::Mask,
-                image
-                    .to_rgba8()
-                    .pixels()
-                    .map(|&p| if rule.is_target(p) { 0 } else { 255 })
-                    .collect(),
-            ),
-            Levels::Luminance => (TargetKind::WeightMap, image.to_luma8().into_raw()),
-        };
-        let mut target = ImageTarget {
-            name,
-            kind,
-            width,
-            height,
-            camera,
-            view_projection: camera.view_projection(width, height),
-            on,
-            off,
-            levels,
-            target_pixels: 0,
-            zero_level: None,
-            words: Vec::new(),
-        };
-        target.build_words();
-        Ok(target)
     }
 
     /// Fills `words` and `target_pixels` from the levels.

@@ -38,6 +38,12 @@ const IDENTITY: Camera = Camera::Matrices {
     projection: Mat4::IDENTITY,
 };
 
+/// Target pixels weigh 1, the others -1.
+const MASK: Weighting = Weighting::mask(1.0, -1.0);
+
+/// Black weighs 1, white -1.
+const MAP: Weighting = Weighting::weight_map(1.0, -1.0);
+
 fn white(width: u32, height: u32) -> DynamicImage {
     DynamicImage::ImageLuma8(GrayImage::from_pixel(width, height, Luma([255])))
 }
@@ -133,7 +139,7 @@ fn unit_cube_head_on_covers_the_hand_computed_block() {
     // is 4.5 away and spans +-0.5: ndc +-1/9 with fov 90, pixels 50 +- 5.56 in a
     // 100 x 100 image, so the centres 44.5 ..= 55.5: columns and rows 44 to 55.
     let camera = Camera::Orbit(orbit(-FRAC_PI_2, 0.0, 5.0, 90.0, 0.1, 100.0));
-    let target = ImageTarget::from_mask("t".into(), &white(100, 100), camera, 1.0, -1.0).unwrap();
+    let target = ImageTarget::new("t".into(), &white(100, 100), camera, MASK).unwrap();
     let scorer = cube_scorer(target, SMOOTH);
     let model = [cube(Vec3::ONE, Vec3::ZERO)];
     assert_eq!(covered(&scorer, &model), block(44..56, 44..56));
@@ -387,7 +393,7 @@ fn near_plane_clips_before_the_divide() {
     // looking along +z: it covers the lower half of the image and nothing above the
     // horizon (without clipping, its vertices behind the eye would flip upwards).
     let camera = Camera::Orbit(orbit(-FRAC_PI_2, 0.0, 5.0, 60.0, 0.1, 1000.0));
-    let target = ImageTarget::from_mask("t".into(), &white(80, 60), camera, 1.0, -1.0).unwrap();
+    let target = ImageTarget::new("t".into(), &white(80, 60), camera, MASK).unwrap();
     let scorer = cube_scorer(target, SMOOTH);
     let floor = [cube(vec3(200.0, 0.01, 110.0), vec3(0.0, -1.0, 45.0))];
     // The far edge projects to ndc y = -s2 / 105: pixel row 30.3, so rows 30 to 59.
@@ -404,20 +410,19 @@ fn mask_and_weight_map_fitness_from_hand_counts() {
 
     // The original's mask: only level 0 (red 0) is a target pixel; of the covered
     // levels 0, 100, 50 and 128, one is on target and three off.
-    let original = ImageTarget::from_mask("o".into(), &image, IDENTITY, 2.0, -1.0).unwrap();
+    let original =
+        ImageTarget::new("o".into(), &image, IDENTITY, Weighting::mask(2.0, -1.0)).unwrap();
     assert_eq!(original.target_pixels(), 3);
     let weighted = cube_scorer(original, WEIGHTED);
     let t = weighted.count(&model, &mut weighted.scratch()).targets()[0];
     assert_eq!((t.covered, t.on_target, t.off_target), (4, 1, 3));
 
     // A threshold mask: covered levels 0, 100, 50 (target) and 128 (not).
-    let mask = ImageTarget::from_mask_by(
+    let mask = ImageTarget::new(
         "m".into(),
         &image,
         IDENTITY,
-        2.0,
-        -1.0,
-        MaskRule::DarkerThan(128),
+        Weighting::mask_by(MaskRule::DarkerThan(128), 2.0, -1.0),
     )
     .unwrap();
     assert_eq!(mask.target_pixels(), 5);
@@ -441,7 +446,7 @@ fn mask_and_weight_map_fitness_from_hand_counts() {
     assert!((f - expected).abs() < 1e-12);
 
     // Weight map 1 - 2 g / 255: covered weights 1, 1 - 200/255, 1 - 100/255, 1 - 256/255.
-    let map = ImageTarget::from_weight_map("w".into(), &image, IDENTITY, 1.0, -1.0).unwrap();
+    let map = ImageTarget::new("w".into(), &image, IDENTITY, MAP).unwrap();
     assert_eq!(map.target_pixels(), 5);
     let weighted = cube_scorer(map, WEIGHTED);
     let counts = weighted.count(&model, &mut weighted.scratch());
@@ -458,7 +463,7 @@ fn a_shaped_mask_costs_off_target_pixels_by_their_distance() {
     let image = GrayImage::from_fn(10, 1, |x, _| Luma([if x < 2 { 0 } else { 255 }]));
     let image = DynamicImage::ImageLuma8(image);
     let model = [cube(vec3(1.0, 2.0, 1.0), vec3(-0.5, 0.0, 0.0))];
-    let mask = ImageTarget::from_mask("m".into(), &image, IDENTITY, 1.0, -1.0).unwrap();
+    let mask = ImageTarget::new("m".into(), &image, IDENTITY, MASK).unwrap();
     let plain = cube_scorer(mask.clone(), SMOOTH);
     let counts = plain.count(&model, &mut plain.scratch());
     assert_eq!(
@@ -492,17 +497,18 @@ fn a_shaped_mask_costs_off_target_pixels_by_their_distance() {
 #[test]
 fn shaping_is_refused_where_it_has_no_meaning() {
     let image = DynamicImage::ImageLuma8(GrayImage::from_fn(4, 1, |x, _| Luma([x as u8 * 80])));
-    let mask = ImageTarget::from_mask("m".into(), &image, IDENTITY, 1.0, -1.0).unwrap();
+    let mask = ImageTarget::new("m".into(), &image, IDENTITY, MASK).unwrap();
     let reason = |target: ImageTarget, radius: f32| target.shaped(radius).unwrap_err().to_string();
     assert_eq!(
         reason(mask.clone(), 0.0),
         "target `m`: distance shaping radius is 0; it must be a positive number of pixels"
     );
     assert!(reason(mask.clone(), f32::NAN).contains("positive number of pixels"));
-    let map = ImageTarget::from_weight_map("w".into(), &image, IDENTITY, 1.0, -1.0).unwrap();
+    let map = ImageTarget::new("w".into(), &image, IDENTITY, MAP).unwrap();
     assert!(reason(map, 4.0).contains("needs a mask"));
     for (on, off) in [(1.0, 0.0), (1.0, 0.5), (-1.0, -2.0), (1.0, -0.001)] {
-        let mask = ImageTarget::from_mask("m".into(), &image, IDENTITY, on, off).unwrap();
+        let mask =
+            ImageTarget::new("m".into(), &image, IDENTITY, Weighting::mask(on, off)).unwrap();
         assert!(
             reason(mask, 4.0).contains("needs on > 0 > off"),
             "on {on}, off {off}"
@@ -512,8 +518,14 @@ fn shaping_is_refused_where_it_has_no_meaning() {
 
 #[test]
 fn several_targets_add_up() {
-    let a = ImageTarget::from_mask("a".into(), &white(4, 2), IDENTITY, 1.0, -1.0).unwrap();
-    let b = ImageTarget::from_weight_map("b".into(), &white(8, 8), IDENTITY, 1.0, -0.5).unwrap();
+    let a = ImageTarget::new("a".into(), &white(4, 2), IDENTITY, MASK).unwrap();
+    let b = ImageTarget::new(
+        "b".into(),
+        &white(8, 8),
+        IDENTITY,
+        Weighting::weight_map(1.0, -0.5),
+    )
+    .unwrap();
     let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"]).unwrap();
     let scorer = SilhouetteScorer::new(vec![a, b], &meshes, WEIGHTED).unwrap();
     let model = [cube(Vec3::ONE, Vec3::ZERO)];
@@ -530,7 +542,7 @@ fn box_fast_path_agrees_with_triangles() {
         lookat: vec3(0.0, 1.0, 0.0),
         ..orbit(0.4, 0.3, 12.0, 60.0, 0.1, 100.0)
     });
-    let target = ImageTarget::from_mask("t".into(), &white(160, 120), camera, 1.0, -1.0).unwrap();
+    let target = ImageTarget::new("t".into(), &white(160, 120), camera, MASK).unwrap();
     let fast = cube_scorer(target, SMOOTH);
     assert!(fast.meshes[0].hull.is_some(), "the cube is convex");
     let mut slow = fast.clone();
@@ -633,15 +645,14 @@ fn camera_errors_name_the_field_and_the_valid_range() {
         bad.validate().unwrap_err().to_string(),
         "camera `projection` matrix has a non-finite entry"
     );
-    let err = ImageTarget::from_mask(
+    let err = ImageTarget::new(
         "sky".into(),
         &white(4, 4),
         Camera::Orbit(OrbitCamera {
             radius: -1.0,
             ..good
         }),
-        1.0,
-        -1.0,
+        MASK,
     )
     .unwrap_err();
     assert_eq!(
@@ -652,20 +663,30 @@ fn camera_errors_name_the_field_and_the_valid_range() {
 
 #[test]
 fn target_errors_name_the_image_and_the_limit() {
-    let err = ImageTarget::from_mask("e".into(), &white(0, 3), IDENTITY, 1.0, -1.0).unwrap_err();
+    let err = ImageTarget::new("e".into(), &white(0, 3), IDENTITY, MASK).unwrap_err();
     assert_eq!(
         err.to_string(),
         "target `e`: the image is 0 x 3; it must have at least one pixel"
     );
-    let err = ImageTarget::from_weight_map("big".into(), &white(4097, 4096), IDENTITY, 1.0, 0.0)
-        .unwrap_err();
+    let err = ImageTarget::new(
+        "big".into(),
+        &white(4097, 4096),
+        IDENTITY,
+        Weighting::weight_map(1.0, 0.0),
+    )
+    .unwrap_err();
     assert_eq!(
         err.to_string(),
         "target `big`: the image is 4097 x 4096; at most 16777216 pixels are supported \
          (for example 4096 x 4096)"
     );
-    let err =
-        ImageTarget::from_mask("w".into(), &white(2, 2), IDENTITY, f32::NAN, 0.0).unwrap_err();
+    let err = ImageTarget::new(
+        "w".into(),
+        &white(2, 2),
+        IDENTITY,
+        Weighting::mask(f32::NAN, 0.0),
+    )
+    .unwrap_err();
     assert_eq!(
         err.to_string(),
         "target `w`: weight `on` is NaN; it must be a finite number"
@@ -675,7 +696,7 @@ fn target_errors_name_the_image_and_the_limit() {
 #[test]
 fn scorer_errors_name_the_limit() {
     let meshes = MeshLibrary::new().bind_names("Boxes", &["cube"]).unwrap();
-    let t = ImageTarget::from_mask("t".into(), &white(4, 4), IDENTITY, 1.0, -1.0).unwrap();
+    let t = ImageTarget::new("t".into(), &white(4, 4), IDENTITY, MASK).unwrap();
     let err = SilhouetteScorer::new(vec![t.clone(); 9], &meshes, SMOOTH).unwrap_err();
     assert_eq!(
         err.to_string(),
@@ -738,7 +759,14 @@ fn masks_by_alpha_and_by_distance_from_a_background_colour() {
         Rgba([90, 90, 90, 255]),
     ];
     let image = DynamicImage::ImageRgba8(RgbaImage::from_fn(4, 1, |x, _| pixels[x as usize]));
-    let target = |rule| ImageTarget::from_mask_by("t".into(), &image, IDENTITY, 1.0, -1.0, rule);
+    let target = |rule| {
+        ImageTarget::new(
+            "t".into(),
+            &image,
+            IDENTITY,
+            Weighting::mask_by(rule, 1.0, -1.0),
+        )
+    };
     let pixels_of = |t: &ImageTarget| (0..4).filter(|&x| t.weight(x, 0) > 0.0).collect::<Vec<_>>();
 
     let opaque = target(MaskRule::OpaqueFrom(128)).unwrap();
@@ -996,7 +1024,7 @@ fn a_state_keeps_and_shares_the_footprints_worth_keeping() {
     use crate::score::retained::RetainedScorer;
 
     let camera = Camera::Orbit(orbit(-FRAC_PI_2, 0.0, 6.0, 60.0, 0.1, 100.0));
-    let target = ImageTarget::from_mask("white".into(), &white(64, 48), camera, 1.0, -1.0).unwrap();
+    let target = ImageTarget::new("white".into(), &white(64, 48), camera, MASK).unwrap();
     let mut library = MeshLibrary::new();
     library.register("ball", closed_mesh(12, 16)).unwrap();
     let meshes = library.bind_names("T", &["cube", "ball"]).unwrap();
