@@ -57,6 +57,21 @@ pub struct RetentionStats {
     pub child_instances: u64,
 }
 
+impl RetentionStats {
+    /// Counts one child of `instances` instances: from its parent with `changed`
+    /// instances removed and added, or from nothing (`None`).
+    pub(crate) fn count_child(&mut self, changed: Option<usize>, instances: usize) {
+        match changed {
+            Some(changed) => {
+                self.incremental += 1;
+                self.changed_instances += changed as u64;
+                self.child_instances += instances as u64;
+            }
+            None => self.full += 1,
+        }
+    }
+}
+
 /// The states of the models a search currently holds, keyed by genome, for a list of
 /// [`RetainedScorer`]s (one per scorer of a scene), and the counting of bred children
 /// from them. See the [module documentation](super).
@@ -154,8 +169,9 @@ impl<S: RetainedScorer> Worker<S> {
 /// and, when it could be kept, its state.
 struct Counted<S: RetainedScorer> {
     kept: Option<Arc<Kept<S>>>,
-    incremental: bool,
-    changed: usize,
+    /// The instances removed and added when counted from the parent; `None` when
+    /// counted from nothing.
+    changed: Option<usize>,
 }
 
 impl<S: RetainedScorer> Retention<S> {
@@ -289,13 +305,8 @@ impl<S: RetainedScorer> Retention<S> {
             }
         }
         for ((key, counted), model) in child_keys.into_iter().zip(counted).zip(0..) {
-            if counted.incremental {
-                self.stats.incremental += 1;
-                self.stats.changed_instances += counted.changed as u64;
-                self.stats.child_instances += batch.model(model).len() as u64;
-            } else {
-                self.stats.full += 1;
-            }
+            self.stats
+                .count_child(counted.changed, batch.model(model).len());
             if let Some(state) = counted.kept {
                 kept.insert(key, state);
             }
@@ -368,8 +379,7 @@ fn count_child<S: RetainedScorer>(
                 let kept = keep.then(|| Arc::new(Kept::new(scorers, instances, states)));
                 return Counted {
                     kept,
-                    incremental: true,
-                    changed,
+                    changed: Some(changed),
                 };
             }
         }
@@ -390,8 +400,7 @@ fn count_child<S: RetainedScorer>(
     };
     Counted {
         kept,
-        incremental: false,
-        changed: 0,
+        changed: None,
     }
 }
 

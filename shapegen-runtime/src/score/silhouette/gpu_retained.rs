@@ -322,13 +322,8 @@ impl GpuRetention {
         out: &[SilhouetteCounts],
     ) {
         for (child, slot) in slots.iter().enumerate() {
-            if uses_base[child] {
-                self.stats.incremental += 1;
-                self.stats.changed_instances += diffs[child].len() as u64;
-                self.stats.child_instances += batch.model(child).len() as u64;
-            } else {
-                self.stats.full += 1;
-            }
+            let changed = uses_base[child].then(|| diffs[child].len());
+            self.stats.count_child(changed, batch.model(child).len());
             if let Some(slot) = *slot {
                 let kept = Arc::new(Kept {
                     instances: batch.model(child).to_vec(),
