@@ -126,7 +126,7 @@ fn main() -> anyhow::Result<()> {
     save_obj(out.join("best"), model)?;
     save_glb(out.join("best.glb"), model)?;
     Preview::framing(instances, meshes, 800, 600)
-        .render(instances, meshes, &palette)?
+        .render(model)?
         .save(out.join("best.png"))?;
     let values: Vec<String> = names
         .iter()

@@ -10,7 +10,7 @@
 use std::path::Path;
 
 use glam::{DVec2, Vec3, vec3};
-use shapegen::export::{Palette, Preview};
+use shapegen::export::{Model, Palette, Preview};
 use shapegen::geometry::{Margins, Mesh, MeshId, MeshLibrary, Polygon, RoofShape};
 use shapegen::{Axis, BoundMeshes, Face, Instance, Scope};
 
@@ -135,7 +135,7 @@ fn save(dir: &Path, name: &str, instances: &[Instance], meshes: &BoundMeshes) {
         .with("tower", [0.6, 0.7, 0.8]);
     let path = dir.join(format!("{name}.png"));
     Preview::framing(instances, meshes, SIZE, SIZE)
-        .render(instances, meshes, &palette)
+        .render(Model::new(instances, meshes, &palette))
         .expect("every mesh bound")
         .save(&path)
         .expect("a writable docs/cga");

@@ -80,9 +80,7 @@ fn main() -> anyhow::Result<()> {
         width: target.width(),
         height: target.height(),
     };
-    preview
-        .render(&instances, &meshes, &palette)?
-        .save(out.join("best.png"))?;
+    preview.render(model)?.save(out.join("best.png"))?;
     // The fitness curve, as `shapegen run` writes it, for the viewer.
     let mut curve = String::from("generation,elapsed_s,evaluations,best,mean,std\n");
     for h in &result.history {

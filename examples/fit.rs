@@ -364,8 +364,8 @@ fn compare_picture(
         let (bound, placed) = alone(target.clone())?;
         let preview = Preview::framing(&placed, &bound, 480, 360);
         (
-            preview.render(&placed, &bound, &palette)?,
-            preview.render(instances, meshes, &palette)?,
+            preview.render(Model::new(&placed, &bound, &palette))?,
+            preview.render(Model::new(instances, meshes, &palette))?,
         )
     } else {
         let target = &scorer.silhouette().context("a silhouette scene")?.targets()[0];
@@ -381,7 +381,10 @@ fn compare_picture(
                 [240, 240, 236]
             })
         });
-        (image, preview.render(instances, meshes, &palette)?)
+        (
+            image,
+            preview.render(Model::new(instances, meshes, &palette))?,
+        )
     };
     let mut both = RgbImage::from_pixel(
         left.width() + right.width(),

@@ -75,7 +75,7 @@ fn main() -> anyhow::Result<()> {
     save_glb(out.join("best.glb"), model)?;
     result.best.save_json(out.join("best.genome.json"))?;
     Preview::framing(&instances, &meshes, 800, 600)
-        .render(&instances, &meshes, &palette)?
+        .render(model)?
         .save(out.join("best.png"))?;
     println!(
         "wrote best.obj, best.glb, best.png and best.genome.json to {}",

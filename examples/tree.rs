@@ -81,7 +81,7 @@ fn main() -> anyhow::Result<()> {
         width: sketch.width(),
         height: sketch.height(),
     };
-    let mut picture = preview.render(&instances, &meshes, &palette)?;
+    let mut picture = preview.render(model)?;
     let background = *picture.get_pixel(0, 0);
     for (x, y, pixel) in picture.enumerate_pixels_mut() {
         // Where the tree leaves the background bare, show the sketch in light grey.

@@ -174,10 +174,7 @@ impl<'a> Outputs<'a> {
             },
             None => Preview::framing(&instances, &self.meshes, 800, 600),
         };
-        files.png(
-            &dir.join("best.png"),
-            &preview.render(&instances, &self.meshes, &self.palette)?,
-        )?;
+        files.png(&dir.join("best.png"), &preview.render(model)?)?;
         if let Some((silhouette, t)) = target {
             let (w, h) = (t.width(), t.height());
             let mut mask = vec![false; w as usize * h as usize];

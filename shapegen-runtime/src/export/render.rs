@@ -6,7 +6,7 @@ use glam::{Mat4, Vec3, Vec4, Vec4Swizzles};
 use image::{Rgb, RgbImage};
 
 use super::error::ExportError;
-use super::palette::Palette;
+use super::model::Model;
 use crate::geometry::{BoundMeshes, Instance};
 
 /// How a preview is drawn: the camera's view-projection matrix and the image size.
@@ -40,14 +40,14 @@ impl Preview {
     /// the unit cube.
     ///
     /// ```
-    /// use shapegen_runtime::export::Preview;
+    /// use shapegen_runtime::export::{Model, Preview};
     /// use shapegen_runtime::{CUBE, Instance, MeshLibrary};
     /// use glam::Affine3A;
     ///
     /// let meshes = MeshLibrary::new().bind_names("Demo", &["cube"]).unwrap();
     /// let cube = [Instance { transform: Affine3A::IDENTITY, mesh: CUBE }];
     /// let preview = Preview::framing(&cube, &meshes, 64, 48);
-    /// let image = preview.render(&cube, &meshes, &Default::default()).unwrap();
+    /// let image = preview.render(Model::new(&cube, &meshes, &Default::default())).unwrap();
     /// assert_eq!(image.dimensions(), (64, 48));
     /// // The cube is in the middle of the picture, on the background.
     /// assert_ne!(image.get_pixel(32, 24), image.get_pixel(0, 0));
@@ -89,17 +89,18 @@ impl Preview {
         }
     }
 
-    /// Draws `instances` shaded by their meshes' colours in `palette`, with a depth
-    /// buffer, two-sided Lambert lighting from a fixed direction and 2 x 2 supersampling.
+    /// Draws the model's instances shaded by their meshes' colours in its palette, with
+    /// a depth buffer, two-sided Lambert lighting from a fixed direction and 2 x 2
+    /// supersampling.
     ///
     /// # Errors
-    /// [`ExportError::UnknownMesh`] when an instance names a mesh `meshes` lacks.
-    pub fn render(
-        &self,
-        instances: &[Instance],
-        meshes: &BoundMeshes,
-        palette: &Palette,
-    ) -> Result<RgbImage, ExportError> {
+    /// [`ExportError::UnknownMesh`] when an instance names a mesh the model's meshes lack.
+    pub fn render(&self, model: Model<'_>) -> Result<RgbImage, ExportError> {
+        let Model {
+            instances,
+            meshes,
+            palette,
+        } = model;
         let (w, h) = (self.width * SUPERSAMPLE, self.height * SUPERSAMPLE);
         let mut target = Target {
             width: w as usize,
@@ -275,6 +276,7 @@ mod tests {
     use glam::{Affine3A, Vec3};
 
     use super::*;
+    use crate::export::Palette;
     use crate::geometry::{CUBE, MeshLibrary};
 
     fn meshes() -> BoundMeshes {
@@ -301,7 +303,7 @@ mod tests {
             height: 40,
         };
         let image = preview
-            .render(&[cube_at(0.0)], &meshes(), &Palette::new())
+            .render(Model::new(&[cube_at(0.0)], &meshes(), &Palette::new()))
             .unwrap();
         assert_eq!(covered(&image), 20 * 20);
         assert_ne!(image.get_pixel(20, 20).0, BACKGROUND);
@@ -313,7 +315,9 @@ mod tests {
     fn framing_keeps_the_whole_model_in_view() {
         let model = [cube_at(-3.0), cube_at(3.0)];
         let preview = Preview::framing(&model, &meshes(), 80, 60);
-        let image = preview.render(&model, &meshes(), &Palette::new()).unwrap();
+        let image = preview
+            .render(Model::new(&model, &meshes(), &Palette::new()))
+            .unwrap();
         // Both cubes are drawn, and nothing touches the border.
         assert!(covered(&image) > 100);
         for x in 0..80 {
@@ -349,7 +353,7 @@ mod tests {
             mesh: CUBE,
         };
         let image = preview
-            .render(&[behind], &meshes(), &Palette::new())
+            .render(Model::new(&[behind], &meshes(), &Palette::new()))
             .unwrap();
         assert_eq!(covered(&image), 0);
         let around = Instance {
@@ -357,7 +361,7 @@ mod tests {
             mesh: CUBE,
         };
         preview
-            .render(&[around], &meshes(), &Palette::new())
+            .render(Model::new(&[around], &meshes(), &Palette::new()))
             .unwrap();
     }
 
@@ -369,7 +373,7 @@ mod tests {
         };
         let preview = Preview::framing(&[], &meshes(), 8, 8);
         let err = preview
-            .render(&[bad], &meshes(), &Palette::new())
+            .render(Model::new(&[bad], &meshes(), &Palette::new()))
             .unwrap_err();
         assert!(matches!(
             err,

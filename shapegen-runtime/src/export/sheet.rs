@@ -3,6 +3,7 @@
 use image::{Rgb, RgbImage};
 
 use super::error::ExportError;
+use super::model::Model;
 use super::palette::Palette;
 use super::render::Preview;
 use crate::geometry::{BoundMeshes, Instance};
@@ -65,7 +66,7 @@ impl ContactSheet {
             Rgb([255, 255, 255]),
         );
         for (i, model) in models.iter().enumerate() {
-            let mut cell = preview.render(model.as_ref(), meshes, palette)?;
+            let mut cell = preview.render(Model::new(model.as_ref(), meshes, palette))?;
             decorate(i, &mut cell)?;
             let (x, y) = ((i % columns) as u32, (i / columns) as u32);
             image::imageops::replace(

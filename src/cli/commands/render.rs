@@ -6,7 +6,7 @@ use anyhow::Context;
 use clap::Args;
 use rayon::prelude::*;
 use shapegen::Grammar;
-use shapegen::export::{Palette, Preview};
+use shapegen::export::{Model, Palette, Preview};
 use shapegen::scene::SceneScorer;
 use shapegen::score::objective::Surface;
 
@@ -79,7 +79,7 @@ impl Visit for Render<'_> {
                 };
                 let path = args.out.join(format!("model_{i:0width$}.png"));
                 preview
-                    .render(instances, &meshes, &palette)?
+                    .render(Model::new(instances, &meshes, &palette))?
                     .save(&path)
                     .with_context(|| format!("cannot write `{}`", path.display()))?;
                 if let Some(goal) = &self.scene.objectives {
