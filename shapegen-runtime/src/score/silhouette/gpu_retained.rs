@@ -77,6 +77,27 @@ struct Draw<'a> {
     added: &'a [Instance],
 }
 
+impl<'a> Draw<'a> {
+    /// The draw of a child into `slot`: the changes `diff` from the kept parent `base`,
+    /// or the whole `model` when it is counted from nothing.
+    fn of(slot: u32, base: Option<&Kept>, diff: &'a InstanceDiff, model: &'a [Instance]) -> Self {
+        match base {
+            Some(base) => Draw {
+                slot,
+                from: Some(base.slot),
+                removed: diff.removed(),
+                added: diff.added(),
+            },
+            None => Draw {
+                slot,
+                from: None,
+                removed: &[],
+                added: model,
+            },
+        }
+    }
+}
+
 /// The states a search keeps on the GPU for its current models, keyed by genome, and
 /// the counting of bred children from them: the GPU counterpart of
 /// [`Retention`](crate::score::retained::Retention) for one silhouette scorer.
@@ -269,24 +290,11 @@ impl GpuRetention {
             .iter()
             .enumerate()
             .filter_map(|(child, slot)| {
-                let slot = (*slot)?;
                 let base = bases[from[child] as usize].as_deref();
+                let base = base.filter(|_| uses_base[child]);
                 Some((
                     child,
-                    match base.filter(|_| uses_base[child]) {
-                        Some(base) => Draw {
-                            slot,
-                            from: Some(base.slot),
-                            removed: diffs[child].removed(),
-                            added: diffs[child].added(),
-                        },
-                        None => Draw {
-                            slot,
-                            from: None,
-                            removed: &[],
-                            added: batch.model(child),
-                        },
-                    },
+                    Draw::of((*slot)?, base, &diffs[child], batch.model(child)),
                 ))
             })
             .collect();
