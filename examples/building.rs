@@ -24,8 +24,9 @@ use std::time::Duration;
 use anyhow::Context;
 use generators::LotBuilding;
 use shapegen::export::{ContactSheet, ExportError, Model, Palette, Preview, save_glb, save_obj};
+use shapegen::geometry::{BoundMeshes, Instance};
 use shapegen::optimize::Control;
-use shapegen::optimize::multi::{MultiGa, MultiSnapshot};
+use shapegen::optimize::multi::{Member, MultiGa, MultiSnapshot};
 use shapegen::optimize::{Optimizer, Settings};
 use shapegen::scene::{ObjectiveEvaluator, Scene};
 
@@ -80,11 +81,8 @@ fn main() -> anyhow::Result<()> {
         result.evaluations
     );
 
-    // What was found: every building of the front, built on the lot, as a model, in a
-    // contact sheet, and in a table of its objective values.
-    let meshes = evaluator.meshes();
-    let palette = Palette::new();
-    let models: Vec<Vec<_>> = result
+    // What was found: every building of the front, built on the lot.
+    let models: Vec<Vec<Instance>> = result
         .front
         .iter()
         .map(|member| {
@@ -93,8 +91,28 @@ fn main() -> anyhow::Result<()> {
             instances
         })
         .collect();
+    let meshes = evaluator.meshes();
+    write_front(&out, &names, &result.front, &models, meshes)?;
+    write_best(&out, &names, &result.front, &models, meshes)?;
+    println!(
+        "wrote front.csv, contact_sheet.png, front_NNN.glb and best.obj/.mtl/.glb/.png to {}",
+        out.display()
+    );
+    Ok(())
+}
+
+/// Writes each building of the front as a model and in a table of its objective values,
+/// and a contact sheet of at most 24 of them.
+fn write_front(
+    out: &Path,
+    names: &[&str],
+    front: &[Member<LotBuilding>],
+    models: &[Vec<Instance>],
+    meshes: &BoundMeshes,
+) -> anyhow::Result<()> {
+    let palette = Palette::new();
     let mut csv = format!("model,{}\n", names.join(","));
-    for (i, (member, instances)) in result.front.iter().zip(&models).enumerate() {
+    for (i, (member, instances)) in front.iter().zip(models).enumerate() {
         let model = Model::new(instances, meshes, &palette);
         save_glb(out.join(format!("front_{i:03}.glb")), model)?;
         let values: Vec<String> = member.values.iter().map(|v| format!("{v}")).collect();
@@ -110,16 +128,26 @@ fn main() -> anyhow::Result<()> {
     }
     .render(&shown, meshes, &palette, |_, _| Ok::<_, ExportError>(()))?
     .save(out.join("contact_sheet.png"))?;
+    Ok(())
+}
 
-    // The building whose footprint and front silhouette match best (the largest mean of
-    // the two matches), with a material per part.
+/// Writes the building whose footprint and front silhouette match best (the largest
+/// mean of the two matches), with a material per part.
+fn write_best(
+    out: &Path,
+    names: &[&str],
+    front: &[Member<LotBuilding>],
+    models: &[Vec<Instance>],
+    meshes: &BoundMeshes,
+) -> anyhow::Result<()> {
+    let palette = Palette::new();
     let matches: Vec<usize> = ["top", "front"]
         .iter()
         .filter_map(|n| names.iter().position(|m| m == n))
         .collect();
     let score = |values: &[f64]| matches.iter().map(|&k| values[k]).sum::<f64>();
     let best = (0..models.len())
-        .max_by(|&a, &b| score(&result.front[a].values).total_cmp(&score(&result.front[b].values)))
+        .max_by(|&a, &b| score(&front[a].values).total_cmp(&score(&front[b].values)))
         .context("the front holds a building")?;
     let instances = &models[best];
     let model = Model::new(instances, meshes, &palette);
@@ -130,13 +158,9 @@ fn main() -> anyhow::Result<()> {
         .save(out.join("best.png"))?;
     let values: Vec<String> = names
         .iter()
-        .zip(&result.front[best].values)
+        .zip(&front[best].values)
         .map(|(n, v)| format!("{n} {v:.3}"))
         .collect();
     println!("best match: front member {best}, {}", values.join(", "));
-    println!(
-        "wrote front.csv, contact_sheet.png, front_NNN.glb and best.obj/.mtl/.glb/.png to {}",
-        out.display()
-    );
     Ok(())
 }

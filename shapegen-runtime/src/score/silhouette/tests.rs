@@ -816,6 +816,71 @@ fn closed_mesh(rings: u32, sectors: u32) -> crate::geometry::Mesh {
     }
 }
 
+/// A closed mesh of random resolution, for case `case` of the mesh fill test: whole,
+/// with holes (some triangles taken out) or wound inconsistently (some turned).
+fn damaged_mesh(case: usize, rng: &mut ChaCha8Rng) -> crate::geometry::Mesh {
+    let mut mesh = closed_mesh(rng.random_range(1..6), rng.random_range(3..9));
+    match case % 4 {
+        // Holes: some triangles taken out.
+        1 => {
+            let n = mesh.indices.len() / 3;
+            for _ in 0..rng.random_range(1..4) {
+                let t = rng.random_range(0..mesh.indices.len() / 3);
+                mesh.indices.drain(3 * t..3 * t + 3);
+            }
+            assert!(mesh.indices.len() / 3 < n);
+        }
+        // Inconsistent winding: some triangles turned.
+        2 => {
+            for _ in 0..rng.random_range(1..3) {
+                let t = rng.random_range(0..mesh.indices.len() / 3);
+                mesh.indices.swap(3 * t, 3 * t + 1);
+            }
+        }
+        _ => {}
+    }
+    mesh
+}
+
+/// Image positions, snapped to the subpixel grid, for a mesh's `positions` placed at
+/// random in an image of `width` x `height` pixels (and up to 10 beyond): a sphere's projection
+/// under a random rotation, or points anywhere, on a coarse lattice of centres and
+/// edges, or all but one on a line.
+fn placed_points(
+    positions: &[Vec3],
+    (width, height): (u32, u32),
+    rng: &mut ChaCha8Rng,
+) -> Vec<Vec2> {
+    use super::raster::SUBPIXEL;
+    let centre = vec2(
+        rng.random_range(-10.0..width as f32 + 10.0),
+        rng.random_range(-10.0..height as f32 + 10.0),
+    );
+    let size = [2.0f32, 8.0, 30.0, 120.0][rng.random_range(0..4)];
+    let rotation = glam::Quat::from_euler(
+        glam::EulerRot::XYZ,
+        rng.random_range(0.0..6.3),
+        rng.random_range(0.0..6.3),
+        rng.random_range(0.0..6.3),
+    );
+    let style = rng.random_range(0..4);
+    positions
+        .iter()
+        .map(|&p| {
+            let q = match style {
+                0 => (rotation * p).truncate() * size,
+                1 => vec2(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0)) * size,
+                2 => ((rotation * p).truncate() * size * 2.0).round() / 2.0,
+                _ => vec2(
+                    p.y * size,
+                    p.y * size * 0.37 + rng.random_range(-1..=1) as f32 / 256.0,
+                ),
+            };
+            ((centre + q) * SUBPIXEL).round() / SUBPIXEL
+        })
+        .collect()
+}
+
 /// Filling a whole mesh with its negative triangles left out where they cannot add a
 /// pixel covers exactly what filling every triangle covers: on closed meshes, meshes
 /// with holes (triangles taken out), meshes wound inconsistently (triangles turned),
@@ -826,7 +891,7 @@ fn closed_mesh(rings: u32, sectors: u32) -> crate::geometry::Mesh {
 fn filling_a_mesh_covers_what_filling_its_triangles_covers() {
     use super::mesh_fill::{MeshScratch, ProjectedMesh};
     use super::meshes::RasterMesh;
-    use super::raster::{SUBPIXEL, to_fixed};
+    use super::raster::to_fixed;
     let (width, height) = (96, 64);
     let mut rng = ChaCha8Rng::seed_from_u64(21);
     let scale: usize = std::env::var("SHAPEGEN_PROPERTY_SCALE")
@@ -840,59 +905,10 @@ fn filling_a_mesh_covers_what_filling_its_triangles_covers() {
     let mut scratch = MeshScratch::default();
     let (mut left_out, mut with_holes, mut pixels) = (0, 0, 0);
     for case in 0..cases {
-        let mut mesh = closed_mesh(rng.random_range(1..6), rng.random_range(3..9));
-        match case % 4 {
-            // Holes: some triangles taken out.
-            1 => {
-                let n = mesh.indices.len() / 3;
-                for _ in 0..rng.random_range(1..4) {
-                    let t = rng.random_range(0..mesh.indices.len() / 3);
-                    mesh.indices.drain(3 * t..3 * t + 3);
-                }
-                assert!(mesh.indices.len() / 3 < n);
-            }
-            // Inconsistent winding: some triangles turned.
-            2 => {
-                for _ in 0..rng.random_range(1..3) {
-                    let t = rng.random_range(0..mesh.indices.len() / 3);
-                    mesh.indices.swap(3 * t, 3 * t + 1);
-                }
-            }
-            _ => {}
-        }
+        let mesh = damaged_mesh(case, &mut rng);
         let raster = RasterMesh::new(&mesh);
         with_holes += usize::from(!raster.boundary.is_empty());
-        // Positions in the plane: a sphere's projection under a random rotation, or
-        // points anywhere, on a coarse lattice of centres and edges, or all but one
-        // on a line.
-        let centre = vec2(
-            rng.random_range(-10.0..width as f32 + 10.0),
-            rng.random_range(-10.0..height as f32 + 10.0),
-        );
-        let size = [2.0f32, 8.0, 30.0, 120.0][rng.random_range(0..4)];
-        let rotation = glam::Quat::from_euler(
-            glam::EulerRot::XYZ,
-            rng.random_range(0.0..6.3),
-            rng.random_range(0.0..6.3),
-            rng.random_range(0.0..6.3),
-        );
-        let style = rng.random_range(0..4);
-        let points: Vec<Vec2> = raster
-            .positions
-            .iter()
-            .map(|&p| {
-                let q = match style {
-                    0 => (rotation * p).truncate() * size,
-                    1 => vec2(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0)) * size,
-                    2 => ((rotation * p).truncate() * size * 2.0).round() / 2.0,
-                    _ => vec2(
-                        p.y * size,
-                        p.y * size * 0.37 + rng.random_range(-1..=1) as f32 / 256.0,
-                    ),
-                };
-                ((centre + q) * SUBPIXEL).round() / SUBPIXEL
-            })
-            .collect();
+        let points = placed_points(&raster.positions, (width, height), &mut rng);
         let fixed: Vec<[i32; 2]> = points.iter().map(|&p| to_fixed(p)).collect();
         let projected = ProjectedMesh {
             mesh: &raster,
