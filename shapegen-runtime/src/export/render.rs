@@ -276,7 +276,7 @@ mod tests {
     use glam::{Affine3A, Vec3};
 
     use super::*;
-    use crate::export::Palette;
+    use crate::export::palette::Palette;
     use crate::geometry::{CUBE, MeshLibrary};
 
     fn meshes() -> BoundMeshes {
