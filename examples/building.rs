@@ -91,9 +91,16 @@ fn main() -> anyhow::Result<()> {
             instances
         })
         .collect();
-    let meshes = evaluator.meshes();
-    write_front(&out, &names, &result.front, &models, meshes)?;
-    write_best(&out, &names, &result.front, &models, meshes)?;
+    let found = Found {
+        out: &out,
+        names: &names,
+        front: &result.front,
+        models: &models,
+        meshes: evaluator.meshes(),
+        palette: &Palette::new(),
+    };
+    found.write_front()?;
+    found.write_best()?;
     println!(
         "wrote front.csv, contact_sheet.png, front_NNN.glb and best.obj/.mtl/.glb/.png to {}",
         out.display()
@@ -101,66 +108,68 @@ fn main() -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Writes each building of the front as a model and in a table of its objective values,
-/// and a contact sheet of at most 24 of them.
-fn write_front(
-    out: &Path,
-    names: &[&str],
-    front: &[Member<LotBuilding>],
-    models: &[Vec<Instance>],
-    meshes: &BoundMeshes,
-) -> anyhow::Result<()> {
-    let palette = Palette::new();
-    let mut csv = format!("model,{}\n", names.join(","));
-    for (i, (member, instances)) in front.iter().zip(models).enumerate() {
-        let model = Model::new(instances, meshes, &palette);
-        save_glb(out.join(format!("front_{i:03}.glb")), model)?;
-        let values: Vec<String> = member.values.iter().map(|v| format!("{v}")).collect();
-        csv += &format!("{i},{}\n", values.join(","));
-    }
-    std::fs::write(out.join("front.csv"), csv)?;
-    // At most 24 of them, evenly thinned, in the csv's order.
-    let step = models.len().div_ceil(24).max(1);
-    let shown: Vec<&Vec<_>> = models.iter().step_by(step).collect();
-    ContactSheet {
-        cell: 200,
-        columns: 8,
-    }
-    .render(&shown, meshes, &palette, |_, _| Ok::<_, ExportError>(()))?
-    .save(out.join("contact_sheet.png"))?;
-    Ok(())
+/// The front a search found, each member's building derived on the lot, and where its
+/// files go.
+struct Found<'a> {
+    out: &'a Path,
+    names: &'a [&'a str],
+    front: &'a [Member<LotBuilding>],
+    models: &'a [Vec<Instance>],
+    meshes: &'a BoundMeshes,
+    palette: &'a Palette,
 }
 
-/// Writes the building whose footprint and front silhouette match best (the largest
-/// mean of the two matches), with a material per part.
-fn write_best(
-    out: &Path,
-    names: &[&str],
-    front: &[Member<LotBuilding>],
-    models: &[Vec<Instance>],
-    meshes: &BoundMeshes,
-) -> anyhow::Result<()> {
-    let palette = Palette::new();
-    let matches: Vec<usize> = ["top", "front"]
-        .iter()
-        .filter_map(|n| names.iter().position(|m| m == n))
-        .collect();
-    let score = |values: &[f64]| matches.iter().map(|&k| values[k]).sum::<f64>();
-    let best = (0..models.len())
-        .max_by(|&a, &b| score(&front[a].values).total_cmp(&score(&front[b].values)))
-        .context("the front holds a building")?;
-    let instances = &models[best];
-    let model = Model::new(instances, meshes, &palette);
-    save_obj(out.join("best"), model)?;
-    save_glb(out.join("best.glb"), model)?;
-    Preview::framing(instances, meshes, 800, 600)
-        .render(model)?
-        .save(out.join("best.png"))?;
-    let values: Vec<String> = names
-        .iter()
-        .zip(&front[best].values)
-        .map(|(n, v)| format!("{n} {v:.3}"))
-        .collect();
-    println!("best match: front member {best}, {}", values.join(", "));
-    Ok(())
+impl Found<'_> {
+    /// Writes each building of the front as a model and in a table of its objective
+    /// values, and a contact sheet of at most 24 of them.
+    fn write_front(&self) -> anyhow::Result<()> {
+        let mut csv = format!("model,{}\n", self.names.join(","));
+        for (i, (member, instances)) in self.front.iter().zip(self.models).enumerate() {
+            let model = Model::new(instances, self.meshes, self.palette);
+            save_glb(self.out.join(format!("front_{i:03}.glb")), model)?;
+            let values: Vec<String> = member.values.iter().map(|v| format!("{v}")).collect();
+            csv += &format!("{i},{}\n", values.join(","));
+        }
+        std::fs::write(self.out.join("front.csv"), csv)?;
+        // At most 24 of them, evenly thinned, in the csv's order.
+        let step = self.models.len().div_ceil(24).max(1);
+        let shown: Vec<&Vec<_>> = self.models.iter().step_by(step).collect();
+        ContactSheet {
+            cell: 200,
+            columns: 8,
+        }
+        .render(&shown, self.meshes, self.palette, |_, _| {
+            Ok::<_, ExportError>(())
+        })?
+        .save(self.out.join("contact_sheet.png"))?;
+        Ok(())
+    }
+
+    /// Writes the building whose footprint and front silhouette match best (the largest
+    /// mean of the two matches), with a material per part.
+    fn write_best(&self) -> anyhow::Result<()> {
+        let matches: Vec<usize> = ["top", "front"]
+            .iter()
+            .filter_map(|n| self.names.iter().position(|m| m == n))
+            .collect();
+        let score = |values: &[f64]| matches.iter().map(|&k| values[k]).sum::<f64>();
+        let best = (0..self.models.len())
+            .max_by(|&a, &b| score(&self.front[a].values).total_cmp(&score(&self.front[b].values)))
+            .context("the front holds a building")?;
+        let instances = &self.models[best];
+        let model = Model::new(instances, self.meshes, self.palette);
+        save_obj(self.out.join("best"), model)?;
+        save_glb(self.out.join("best.glb"), model)?;
+        Preview::framing(instances, self.meshes, 800, 600)
+            .render(model)?
+            .save(self.out.join("best.png"))?;
+        let values: Vec<String> = self
+            .names
+            .iter()
+            .zip(&self.front[best].values)
+            .map(|(n, v)| format!("{n} {v:.3}"))
+            .collect();
+        println!("best match: front member {best}, {}", values.join(", "));
+        Ok(())
+    }
 }

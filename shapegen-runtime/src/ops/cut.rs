@@ -85,7 +85,7 @@ impl<G: Grammar> Operators<G> {
                 &self.kinds,
                 words,
                 child,
-                &s.genes.map,
+                &s.genes.parent,
                 &mut s.depth,
                 max_cut,
             ) > max_cut
@@ -94,7 +94,7 @@ impl<G: Grammar> Operators<G> {
             // first draw when it fits and redrawing exactly otherwise gives each cuttable
             // link its weight over the cuttable links' total weight.
             gene_starts(&self.kinds, words, &mut s.genes.starts);
-            subtree_sizes(&s.genes.starts, &s.genes.map, &mut s.depth);
+            subtree_sizes(&s.genes.starts, &s.genes.parent, &mut s.depth);
             let total = cuttable_weights(cand, cum, &s.depth, max_cut);
             if total == 0 {
                 return false;
@@ -162,7 +162,7 @@ impl<G: Grammar> Operators<G> {
         if pos == 0 {
             return Err(GenomeError::IsRoot);
         }
-        subtree_sizes(&s.genes.starts, &s.genes.map, &mut s.depth);
+        subtree_sizes(&s.genes.starts, &s.genes.parent, &mut s.depth);
         let left = genome.len - s.depth[pos as usize];
         if left < self.limits.min_len {
             return Err(GenomeError::TooShort {

@@ -25,101 +25,106 @@ pub(super) fn cover(table: &mut Vec<u32>, n: usize) {
     }
 }
 
-/// Removes the gene at `root` (not the genome's root) and its whole subtree from the
-/// valid genome in `words`, compacting the survivors and fixing all offsets in one
-/// forward sweep from `root`; the parent's link becomes 0. Returns the number of genes
-/// removed.
-///
-/// `parent` and `link` (word-indexed) must hold, for every gene from `root` on, its
-/// parent's position and the index of the link it hangs from, as [`record_links`] fills
-/// them; `parent` is overwritten. The sweep meets parents before children, so when it
-/// moves a gene it knows its parent's new place and the link there to patch, and it tells
-/// removed genes by their parent's mark.
-pub(super) fn remove_subtree(
-    kinds: &[KindInfo],
-    words: &mut Vec<u32>,
-    root: u32,
-    parent: &mut [u32],
-    link: &[u32],
-) -> u32 {
-    debug_assert!(root != 0);
-    let n = words.len() as u32;
-    let mut cursor = root;
-    let mut removed = 0;
-    let mut pos = root;
-    while pos < n {
-        let k = kinds[words[pos as usize] as usize];
-        let p = pos as usize;
-        let par = parent[p];
-        if pos == root || par == GONE {
-            if pos == root {
-                words[(par + HEADER_WORDS + link[p]) as usize] = 0;
-            }
-            for &off in &words[p + HEADER_WORDS as usize..][..k.links as usize] {
-                if off != 0 {
-                    parent[(pos + off) as usize] = GONE;
-                }
-            }
-            removed += 1;
-        } else {
-            // Moving down never reaches the words of a gene not yet swept.
-            let np = cursor;
-            words.copy_within(p..p + k.gene_words as usize, np as usize);
-            words[np as usize + 1] = par.wrapping_sub(np);
-            words[(par + HEADER_WORDS + link[p]) as usize] = np - par;
-            for &off in &words[(np + HEADER_WORDS) as usize..][..k.links as usize] {
-                if off != 0 {
-                    parent[(pos + off) as usize] = np;
-                }
-            }
-            cursor += k.gene_words;
-        }
-        pos += k.gene_words;
-    }
-    words.truncate(cursor as usize);
-    removed
+/// Where the genes of a genome start, and each child's parent and link, as
+/// [`record`](Self::record) fills them.
+#[derive(Debug, Default)]
+pub(super) struct GeneMap {
+    /// Every gene's start, in order.
+    pub starts: Vec<u32>,
+    /// Word-indexed: each child's parent position.
+    pub parent: Vec<u32>,
+    /// Word-indexed: the index of the link each child hangs from.
+    pub link: Vec<u32>,
 }
 
-/// One forward pass over the valid genome in `words`: records in `parent` and `link`
-/// (word-indexed) each child's parent position and link index, and calls `each_link`
-/// with every expressed link's child position and [`LinkInfo`]; pushes each gene's start
-/// into `starts` when given.
-#[inline]
-pub(super) fn record_links(
-    kinds: &[KindInfo],
-    links: &[LinkInfo],
-    words: &[u32],
-    parent: &mut Vec<u32>,
-    link: &mut Vec<u32>,
-    mut starts: Option<&mut Vec<u32>>,
-    mut each_link: impl FnMut(u32, &LinkInfo),
-) {
-    cover(parent, words.len());
-    cover(link, words.len());
-    if let Some(starts) = starts.as_deref_mut() {
-        starts.clear();
-    }
-    let mut pos = 0u32;
-    while (pos as usize) < words.len() {
-        let k = kinds[words[pos as usize] as usize];
-        if let Some(starts) = starts.as_deref_mut() {
-            starts.push(pos);
-        }
-        let at = (pos + HEADER_WORDS) as usize;
-        let infos = &links[k.first_link as usize..][..k.links as usize];
-        for (l, (&off, info)) in words[at..at + k.links as usize]
-            .iter()
-            .zip(infos)
-            .enumerate()
-        {
-            if off != 0 {
-                let child = pos + off;
-                parent[child as usize] = pos;
-                link[child as usize] = l as u32;
-                each_link(child, info);
+impl GeneMap {
+    /// One forward pass over the valid genome in `words`: records each gene's start,
+    /// each child's parent position and link index, and calls `each_link` with every
+    /// expressed link's child position and [`LinkInfo`].
+    #[inline]
+    pub(super) fn record(
+        &mut self,
+        kinds: &[KindInfo],
+        links: &[LinkInfo],
+        words: &[u32],
+        mut each_link: impl FnMut(u32, &LinkInfo),
+    ) {
+        cover(&mut self.parent, words.len());
+        cover(&mut self.link, words.len());
+        self.starts.clear();
+        let mut pos = 0u32;
+        while (pos as usize) < words.len() {
+            let k = kinds[words[pos as usize] as usize];
+            self.starts.push(pos);
+            let at = (pos + HEADER_WORDS) as usize;
+            let infos = &links[k.first_link as usize..][..k.links as usize];
+            for (l, (&off, info)) in words[at..at + k.links as usize]
+                .iter()
+                .zip(infos)
+                .enumerate()
+            {
+                if off != 0 {
+                    let child = pos + off;
+                    self.parent[child as usize] = pos;
+                    self.link[child as usize] = l as u32;
+                    each_link(child, info);
+                }
             }
+            pos += k.gene_words;
         }
-        pos += k.gene_words;
+    }
+
+    /// Removes the gene at `root` (not the genome's root) and its whole subtree from the
+    /// valid genome in `words`, compacting the survivors and fixing all offsets in one
+    /// forward sweep from `root`; the parent's link becomes 0. Returns the number of genes
+    /// removed.
+    ///
+    /// The map must hold the genome as [`record`](Self::record) filled it; its parents
+    /// are overwritten. The sweep meets parents before children, so when it moves a gene
+    /// it knows its parent's new place and the link there to patch, and it tells removed
+    /// genes by their parent's mark.
+    pub(super) fn remove_subtree(
+        &mut self,
+        kinds: &[KindInfo],
+        words: &mut Vec<u32>,
+        root: u32,
+    ) -> u32 {
+        debug_assert!(root != 0);
+        let n = words.len() as u32;
+        let mut cursor = root;
+        let mut removed = 0;
+        let mut pos = root;
+        while pos < n {
+            let k = kinds[words[pos as usize] as usize];
+            let p = pos as usize;
+            let par = self.parent[p];
+            if pos == root || par == GONE {
+                if pos == root {
+                    words[(par + HEADER_WORDS + self.link[p]) as usize] = 0;
+                }
+                for &off in &words[p + HEADER_WORDS as usize..][..k.links as usize] {
+                    if off != 0 {
+                        self.parent[(pos + off) as usize] = GONE;
+                    }
+                }
+                removed += 1;
+            } else {
+                // Moving down never reaches the words of a gene not yet swept.
+                let np = cursor;
+                words.copy_within(p..p + k.gene_words as usize, np as usize);
+                words[np as usize + 1] = par.wrapping_sub(np);
+                words[(par + HEADER_WORDS + self.link[p]) as usize] = np - par;
+                for &off in &words[(np + HEADER_WORDS) as usize..][..k.links as usize] {
+                    if off != 0 {
+                        self.parent[(pos + off) as usize] = np;
+                    }
+                }
+                cursor += k.gene_words;
+            }
+            pos += k.gene_words;
+        }
+        words.truncate(cursor as usize);
+        removed
     }
 }
 

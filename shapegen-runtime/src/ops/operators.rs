@@ -5,7 +5,7 @@ use std::marker::PhantomData;
 
 use serde::{Deserialize, Serialize};
 
-use super::edit::{Survey, record_links, remove_subtree};
+use super::edit::{GeneMap, Survey};
 use super::kinds::{KindInfo, LinkInfo};
 use super::weight::{Fenwick, weight};
 use crate::derive::Grammar;
@@ -207,53 +207,6 @@ pub(super) struct Scratch {
     pub(super) owners: Vec<(u32, u32, u32)>,
 }
 
-/// Where the genes of a genome start, and each child's parent and link, as
-/// [`record_links`] fills them.
-#[derive(Default)]
-pub(super) struct GeneMap {
-    /// Every gene's start, in order.
-    pub(super) starts: Vec<u32>,
-    /// Word-indexed: each child's parent position.
-    pub(super) map: Vec<u32>,
-    /// Word-indexed: the index of the link each child hangs from.
-    pub(super) link_of: Vec<u32>,
-}
-
-impl GeneMap {
-    /// [`record_links`] of the genome in `words` into these buffers, calling
-    /// `each_link` with every expressed link's child position and [`LinkInfo`].
-    #[inline]
-    pub(super) fn record(
-        &mut self,
-        kinds: &[KindInfo],
-        links: &[LinkInfo],
-        words: &[u32],
-        each_link: impl FnMut(u32, &LinkInfo),
-    ) {
-        record_links(
-            kinds,
-            links,
-            words,
-            &mut self.map,
-            &mut self.link_of,
-            Some(&mut self.starts),
-            each_link,
-        );
-    }
-
-    /// [`remove_subtree`] of the gene at word `root` of the genome in `words`, as
-    /// recorded here; returns the number of genes removed.
-    #[inline]
-    pub(super) fn remove_subtree(
-        &mut self,
-        kinds: &[KindInfo],
-        words: &mut Vec<u32>,
-        root: u32,
-    ) -> u32 {
-        remove_subtree(kinds, words, root, &mut self.map, &self.link_of)
-    }
-}
-
 impl<G: Grammar> Operators<G> {
     /// Weighted operators keeping genomes within `limits`, array-slot links matching
     /// only on the same index; fails if the limits cannot be met together (see
@@ -352,8 +305,8 @@ impl<G: Grammar> Operators<G> {
 }
 
 impl<G: Grammar> Operators<G> {
-    /// [`record_links`] of the genome in `words` into the scratch's [`GeneMap`]: each
-    /// gene's parent and link (`map`, `link_of`) and where each gene starts (`starts`).
+    /// [`GeneMap::record`] of the genome in `words` into the scratch: each gene's start,
+    /// parent and link.
     pub(super) fn map_links(&mut self, words: &[u32]) {
         self.s
             .genes
