@@ -4,7 +4,7 @@
 use rand::Rng;
 
 use super::edit::cover;
-use super::kinds::{KindInfo, gene_starts};
+use super::kinds::KindInfo;
 use super::operators::{OperatorVariant, Operators};
 use super::weight::{ONE, below};
 use crate::derive::Grammar;
@@ -92,8 +92,8 @@ impl<G: Grammar> Operators<G> {
         {
             // Drawn too large: draw again among the cuttable links only. Accepting the
             // first draw when it fits and redrawing exactly otherwise gives each cuttable
-            // link its weight over the cuttable links' total weight.
-            gene_starts(&self.kinds, words, &mut s.genes.starts);
+            // link its weight over the cuttable links' total weight. The survey mapped
+            // the genes' starts and parents.
             subtree_sizes(&s.genes.starts, &s.genes.parent, &mut s.depth);
             let total = cuttable_weights(cand, cum, &s.depth, max_cut);
             if total == 0 {
